@@ -1,0 +1,112 @@
+#pragma once
+// The one type every analysis takes: a linear T-periodic system
+//   x' = A(t) x + B(t) u,   y = C(t) x + D(t) u,   A(t + T) = A(t), ...
+// built from Fourier coefficients, from time functions, or from piecewise-constant samples
+// (matrices given at K azimuths). Second-order systems M p'' + D p' + K p = F u are converted
+// to this form by second_order.h. The object is immutable and cheap to copy (shared state);
+// every evaluation is const and thread-safe, so sweeps and segment integrations may call it in
+// parallel.
+#include <Eigen/Dense>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ltp/core/fourier_matrix.h"
+
+namespace ltp {
+
+/// A frozen (time-invariant) system: the snapshot of a periodic system at one instant.
+struct LtiSystem {
+  Eigen::MatrixXd A, B, C, D;
+};
+
+/// Names of states, inputs and outputs, for output and for selecting channels by name.
+struct SystemLabels {
+  std::vector<std::string> states, inputs, outputs;
+};
+
+class PeriodicSystem {
+ public:
+  /// Writes a matrix-valued function of time into `out` (pre-sized). Must be thread-safe.
+  using MatrixFunction = std::function<void(double t, Eigen::Ref<Eigen::MatrixXd> out)>;
+
+  enum class Form {
+    kFourier,            ///< finite Fourier series: exact coefficients known
+    kFunction,           ///< time functions A(t), ...; may jump at breakpoints()
+    kPiecewiseConstant,  ///< samples held constant on [t_k, t_{k+1})
+  };
+
+  struct Functions {
+    MatrixFunction A, B, C, D;  ///< B, C, D may be empty when there are no inputs/outputs
+  };
+
+  /// From Fourier coefficients. A is n×n; B n×m, C p×n, D p×m (an empty FourierMatrix means
+  /// no inputs / no outputs / zero feedthrough).
+  /// @throws InputError on period <= 0 or not finite, inconsistent sizes, non-finite coefficients.
+  static PeriodicSystem FromFourier(double period, FourierMatrix A, FourierMatrix B = {},
+                                    FourierMatrix C = {}, FourierMatrix D = {});
+
+  /// From time functions with period T. `breakpoints` are the times in [0, T) where a
+  /// coefficient jumps (integrators restart there; Fourier fits expect algebraic decay).
+  static PeriodicSystem FromFunctions(double period, int states, int inputs, int outputs,
+                                      Functions functions, std::vector<double> breakpoints = {});
+
+  /// Piecewise constant: samples[k] holds on [times[k], times[k+1]), times[K] = times[0] + T.
+  /// `times` must be strictly increasing in [0, T). The state transition is then an exact
+  /// product of matrix exponentials.
+  static PeriodicSystem FromSamples(double period, std::vector<double> times,
+                                    std::vector<LtiSystem> samples);
+
+  int states() const;
+  int inputs() const;
+  int outputs() const;
+  double period() const;
+  /// Ωp = 2π/T.
+  double omega() const;
+  Form form() const;
+
+  void EvalA(double t, Eigen::Ref<Eigen::MatrixXd> out) const;
+  void EvalB(double t, Eigen::Ref<Eigen::MatrixXd> out) const;
+  void EvalC(double t, Eigen::Ref<Eigen::MatrixXd> out) const;
+  void EvalD(double t, Eigen::Ref<Eigen::MatrixXd> out) const;
+  Eigen::MatrixXd A(double t) const;
+  Eigen::MatrixXd B(double t) const;
+  Eigen::MatrixXd C(double t) const;
+  Eigen::MatrixXd D(double t) const;
+
+  /// The frozen LTI system at time t.
+  LtiSystem Snapshot(double t) const;
+  /// The frozen LTI system at rotor angle `angle_rad` (t = angle/rotor_speed).
+  /// @throws InputError if the system has no rotor speed.
+  LtiSystem SnapshotAtAngle(double angle_rad) const;
+
+  /// Times in [0, T) where coefficients jump (sorted). For sampled systems: the sample times.
+  const std::vector<double>& breakpoints() const;
+
+  /// Exact Fourier coefficients, when the system was built from them; nullptr otherwise.
+  const FourierMatrix* fourier_A() const;
+  const FourierMatrix* fourier_B() const;
+  const FourierMatrix* fourier_C() const;
+  const FourierMatrix* fourier_D() const;
+
+  /// Sample times and matrices of a piecewise-constant system; empty otherwise.
+  const std::vector<double>& sample_times() const;
+  const std::vector<LtiSystem>& samples() const;
+
+  const SystemLabels& labels() const;
+  /// Returns a copy with these labels (sizes must match states/inputs/outputs or be empty).
+  PeriodicSystem WithLabels(SystemLabels labels) const;
+  /// Rotor speed in rad/s, when the system describes a rotor (rotor angle = speed · t).
+  std::optional<double> rotor_speed() const;
+  PeriodicSystem WithRotorSpeed(double rad_per_s) const;
+
+  struct Impl;
+
+ private:
+  explicit PeriodicSystem(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  std::shared_ptr<const Impl> impl_;
+};
+
+}  // namespace ltp

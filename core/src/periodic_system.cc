@@ -1,0 +1,259 @@
+#include "ltp/core/periodic_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+struct PeriodicSystem::Impl {
+  Form form = Form::kFunction;
+  double period = 0;
+  int n = 0, m = 0, p = 0;
+  FourierMatrix fa, fb, fc, fd;  // Fourier form
+  Functions fn;                  // function form
+  std::vector<double> times;     // sampled form
+  std::vector<LtiSystem> samples;
+  std::vector<double> breakpoints;
+  SystemLabels labels;
+  std::optional<double> rotor_speed;
+
+  // Index of the sample active at time t (sampled form).
+  int SampleIndex(double t) const {
+    double tau = std::fmod(t - times.front(), period);
+    if (tau < 0) tau += period;
+    tau += times.front();
+    auto it = std::upper_bound(times.begin(), times.end(), tau);
+    int k = static_cast<int>(it - times.begin()) - 1;
+    return std::clamp(k, 0, static_cast<int>(times.size()) - 1);
+  }
+};
+
+namespace {
+
+void CheckPeriod(double period) {
+  if (!std::isfinite(period) || period <= 0) {
+    std::ostringstream s;
+    s << "period = " << period << ": must be finite and > 0";
+    throw InputError(s.str());
+  }
+}
+
+void CheckFinite(const FourierMatrix& f, const char* name) {
+  for (int w = -f.max_harmonic(); w <= f.max_harmonic(); ++w)
+    if (!f[w].allFinite())
+      throw InputError(std::string("Fourier coefficient of ") + name + " at harmonic " +
+                       std::to_string(w) + " is not finite");
+}
+
+}  // namespace
+
+PeriodicSystem PeriodicSystem::FromFourier(double period, FourierMatrix A, FourierMatrix B,
+                                           FourierMatrix C, FourierMatrix D) {
+  CheckPeriod(period);
+  auto impl = std::make_shared<Impl>();
+  impl->form = Form::kFourier;
+  impl->period = period;
+  impl->n = A.rows();
+  if (A.rows() != A.cols()) throw InputError("A must be square");
+  impl->m = B.cols();
+  impl->p = C.rows();
+  if (B.cols() > 0 && B.rows() != impl->n) throw InputError("B must have as many rows as A");
+  if (C.rows() > 0 && C.cols() != impl->n) throw InputError("C must have as many columns as A");
+  if (D.rows() == 0 && D.cols() == 0) D = FourierMatrix(impl->p, impl->m, 0);
+  if (D.rows() != impl->p || D.cols() != impl->m) throw InputError("D must be outputs × inputs");
+  if (B.rows() == 0 && B.cols() == 0) B = FourierMatrix(impl->n, 0, 0);
+  if (C.rows() == 0 && C.cols() == 0) C = FourierMatrix(0, impl->n, 0);
+  CheckFinite(A, "A");
+  CheckFinite(B, "B");
+  CheckFinite(C, "C");
+  CheckFinite(D, "D");
+  impl->fa = std::move(A);
+  impl->fb = std::move(B);
+  impl->fc = std::move(C);
+  impl->fd = std::move(D);
+  return PeriodicSystem(std::move(impl));
+}
+
+PeriodicSystem PeriodicSystem::FromFunctions(double period, int states, int inputs, int outputs,
+                                             Functions functions, std::vector<double> breakpoints) {
+  CheckPeriod(period);
+  if (states < 0 || inputs < 0 || outputs < 0) throw InputError("negative system dimension");
+  if (!functions.A) throw InputError("A(t) is missing");
+  if (inputs > 0 && !functions.B) throw InputError("B(t) is missing but the system has inputs");
+  if (outputs > 0 && !functions.C) throw InputError("C(t) is missing but the system has outputs");
+  for (double b : breakpoints)
+    if (!std::isfinite(b) || b < 0 || b >= period)
+      throw InputError("breakpoint " + std::to_string(b) + " outside [0, T)");
+  std::sort(breakpoints.begin(), breakpoints.end());
+  breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
+  auto impl = std::make_shared<Impl>();
+  impl->form = Form::kFunction;
+  impl->period = period;
+  impl->n = states;
+  impl->m = inputs;
+  impl->p = outputs;
+  impl->fn = std::move(functions);
+  impl->breakpoints = std::move(breakpoints);
+  return PeriodicSystem(std::move(impl));
+}
+
+PeriodicSystem PeriodicSystem::FromSamples(double period, std::vector<double> times,
+                                           std::vector<LtiSystem> samples) {
+  CheckPeriod(period);
+  if (times.empty() || times.size() != samples.size())
+    throw InputError("sampled system needs one time per sample and at least one sample");
+  for (size_t k = 0; k < times.size(); ++k) {
+    if (!std::isfinite(times[k]) || times[k] < 0 || times[k] >= period)
+      throw InputError("sample time " + std::to_string(times[k]) + " outside [0, T)");
+    if (k > 0 && times[k] <= times[k - 1])
+      throw InputError("sample times must be strictly increasing");
+  }
+  const LtiSystem& s0 = samples.front();
+  const auto n = s0.A.rows();
+  if (s0.A.cols() != n) throw InputError("sample A must be square");
+  const auto m = s0.B.cols(), p = s0.C.rows();
+  for (size_t k = 0; k < samples.size(); ++k) {
+    LtiSystem& s = samples[k];
+    if (s.B.size() == 0) s.B.setZero(n, m);
+    if (s.C.size() == 0) s.C.setZero(p, n);
+    if (s.D.size() == 0) s.D.setZero(p, m);
+    if (s.A.rows() != n || s.A.cols() != n || s.B.rows() != n || s.B.cols() != m ||
+        s.C.rows() != p || s.C.cols() != n || s.D.rows() != p || s.D.cols() != m)
+      throw InputError("sample " + std::to_string(k) + " has sizes different from sample 0");
+    if (!s.A.allFinite() || !s.B.allFinite() || !s.C.allFinite() || !s.D.allFinite())
+      throw InputError("sample " + std::to_string(k) + " has a non-finite entry");
+  }
+  auto impl = std::make_shared<Impl>();
+  impl->form = Form::kPiecewiseConstant;
+  impl->period = period;
+  impl->n = static_cast<int>(n);
+  impl->m = static_cast<int>(m);
+  impl->p = static_cast<int>(p);
+  impl->breakpoints = times;
+  impl->times = std::move(times);
+  impl->samples = std::move(samples);
+  return PeriodicSystem(std::move(impl));
+}
+
+int PeriodicSystem::states() const { return impl_->n; }
+int PeriodicSystem::inputs() const { return impl_->m; }
+int PeriodicSystem::outputs() const { return impl_->p; }
+double PeriodicSystem::period() const { return impl_->period; }
+double PeriodicSystem::omega() const { return 2 * std::numbers::pi / impl_->period; }
+PeriodicSystem::Form PeriodicSystem::form() const { return impl_->form; }
+
+void PeriodicSystem::EvalA(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
+  switch (impl_->form) {
+    case Form::kFourier: impl_->fa.Evaluate(t, omega(), out); break;
+    case Form::kFunction: impl_->fn.A(t, out); break;
+    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].A; break;
+  }
+}
+
+void PeriodicSystem::EvalB(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
+  if (impl_->m == 0) return;
+  switch (impl_->form) {
+    case Form::kFourier: impl_->fb.Evaluate(t, omega(), out); break;
+    case Form::kFunction: impl_->fn.B(t, out); break;
+    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].B; break;
+  }
+}
+
+void PeriodicSystem::EvalC(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
+  if (impl_->p == 0) return;
+  switch (impl_->form) {
+    case Form::kFourier: impl_->fc.Evaluate(t, omega(), out); break;
+    case Form::kFunction: impl_->fn.C(t, out); break;
+    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].C; break;
+  }
+}
+
+void PeriodicSystem::EvalD(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
+  if (impl_->p == 0 || impl_->m == 0) return;
+  switch (impl_->form) {
+    case Form::kFourier: impl_->fd.Evaluate(t, omega(), out); break;
+    case Form::kFunction:
+      if (impl_->fn.D) {
+        impl_->fn.D(t, out);
+      } else {
+        out.setZero();
+      }
+      break;
+    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].D; break;
+  }
+}
+
+Eigen::MatrixXd PeriodicSystem::A(double t) const {
+  Eigen::MatrixXd out(impl_->n, impl_->n);
+  EvalA(t, out);
+  return out;
+}
+Eigen::MatrixXd PeriodicSystem::B(double t) const {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(impl_->n, impl_->m);
+  EvalB(t, out);
+  return out;
+}
+Eigen::MatrixXd PeriodicSystem::C(double t) const {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(impl_->p, impl_->n);
+  EvalC(t, out);
+  return out;
+}
+Eigen::MatrixXd PeriodicSystem::D(double t) const {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(impl_->p, impl_->m);
+  EvalD(t, out);
+  return out;
+}
+
+LtiSystem PeriodicSystem::Snapshot(double t) const { return {A(t), B(t), C(t), D(t)}; }
+
+LtiSystem PeriodicSystem::SnapshotAtAngle(double angle_rad) const {
+  if (!impl_->rotor_speed || *impl_->rotor_speed == 0)
+    throw InputError("this system has no rotor speed: give a snapshot time instead of an angle");
+  return Snapshot(angle_rad / *impl_->rotor_speed);
+}
+
+const std::vector<double>& PeriodicSystem::breakpoints() const { return impl_->breakpoints; }
+const FourierMatrix* PeriodicSystem::fourier_A() const {
+  return impl_->form == Form::kFourier ? &impl_->fa : nullptr;
+}
+const FourierMatrix* PeriodicSystem::fourier_B() const {
+  return impl_->form == Form::kFourier ? &impl_->fb : nullptr;
+}
+const FourierMatrix* PeriodicSystem::fourier_C() const {
+  return impl_->form == Form::kFourier ? &impl_->fc : nullptr;
+}
+const FourierMatrix* PeriodicSystem::fourier_D() const {
+  return impl_->form == Form::kFourier ? &impl_->fd : nullptr;
+}
+const std::vector<double>& PeriodicSystem::sample_times() const { return impl_->times; }
+const std::vector<LtiSystem>& PeriodicSystem::samples() const { return impl_->samples; }
+const SystemLabels& PeriodicSystem::labels() const { return impl_->labels; }
+
+PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const {
+  auto check = [](const std::vector<std::string>& v, int n, const char* what) {
+    if (!v.empty() && static_cast<int>(v.size()) != n)
+      throw InputError(std::string("expected ") + std::to_string(n) + " " + what + " names, got " +
+                       std::to_string(v.size()));
+  };
+  check(labels.states, impl_->n, "state");
+  check(labels.inputs, impl_->m, "input");
+  check(labels.outputs, impl_->p, "output");
+  auto impl = std::make_shared<Impl>(*impl_);
+  impl->labels = std::move(labels);
+  return PeriodicSystem(std::move(impl));
+}
+
+std::optional<double> PeriodicSystem::rotor_speed() const { return impl_->rotor_speed; }
+
+PeriodicSystem PeriodicSystem::WithRotorSpeed(double rad_per_s) const {
+  if (!std::isfinite(rad_per_s)) throw InputError("rotor speed must be finite");
+  auto impl = std::make_shared<Impl>(*impl_);
+  impl->rotor_speed = rad_per_s;
+  return PeriodicSystem(std::move(impl));
+}
+
+}  // namespace ltp

@@ -1,0 +1,61 @@
+#pragma once
+// State-transition matrices Φ(t1, t0) of x' = A(t) x, all n columns integrated together
+// (Φ' = A(t) Φ as one n×n matrix ODE), by one of several integrators behind one interface.
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+
+namespace ltp {
+
+enum class IntegratorType {
+  kDopri5,      ///< adaptive Dormand–Prince 5(4), Boost.Odeint; smooth non-stiff A(t)
+  kRkf78,       ///< adaptive Runge–Kutta–Fehlberg 7(8), Boost.Odeint; tight tolerances
+  kCvodeBdf,    ///< SUNDIALS CVODE, BDF (stiff), Newton with an exact block preconditioner
+  kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (non-stiff, cheap per step)
+  kMagnus4,     ///< fixed-step 4th-order Magnus, 2 Gauss–Legendre nodes + expm
+  kMagnus6,     ///< fixed-step 6th-order Magnus, 3 Gauss–Legendre nodes + expm
+  kExpm,        ///< product of matrix exponentials: exact for piecewise-constant systems
+};
+
+std::string_view ToString(IntegratorType type);
+std::optional<IntegratorType> ParseIntegratorType(std::string_view name);
+std::vector<IntegratorType> AllIntegrators();
+
+struct IntegratorOptions {
+  IntegratorType type = IntegratorType::kDopri5;
+  /// Relative tolerance of the adaptive methods, and the target of automatic step selection
+  /// for the fixed-step ones. Tight by default: Floquet exponents inherit this error.
+  double rel_tol = 1e-10;
+  /// Absolute tolerance per entry of Φ (Φ(t0,t0) = I, so entries are O(1) at the start).
+  double abs_tol = 1e-13;
+  /// Fixed-step methods (Magnus, expm on non-piecewise-constant systems): steps per period.
+  /// 0 = automatic: doubled until two successive results agree to rel_tol.
+  int steps_per_period = 0;
+  /// Upper bound on steps per integration (adaptive methods) before giving up.
+  long max_steps = 2'000'000;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct TransitionResult {
+  Eigen::MatrixXd phi;      ///< Φ(t1, t0), n×n
+  bool ok = false;          ///< false: integrator failed; `message` says why
+  std::string message;
+  long steps = 0;           ///< accepted steps (fixed-step: steps taken)
+  long rhs_evals = 0;       ///< evaluations of A(t)
+  int steps_per_period = 0; ///< fixed-step methods: the resolution used (after auto choice)
+  double error_estimate = -1;  ///< fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; else -1
+};
+
+/// Φ(t1, t0) for t1 >= t0. Integration restarts at every breakpoint of the system inside
+/// (t0, t1) (and at its periodic copies), so discontinuous A(t) keeps full order.
+/// Never throws for numerical trouble (see TransitionResult::ok); throws InputError for bad
+/// options or t1 < t0.
+TransitionResult StateTransition(const PeriodicSystem& system, double t0, double t1,
+                                 const IntegratorOptions& options = {});
+
+}  // namespace ltp
