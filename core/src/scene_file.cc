@@ -1,0 +1,412 @@
+// YAML scene files: a scene written as matrices of muParser expressions in t, pi and the
+// scene's parameters (see scenes/*.yaml for commented examples).
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "expression.h"
+#include "expression_matrix.h"
+#include "ltp/core/error.h"
+#include "ltp/core/scene.h"
+#include "ltp/core/second_order.h"
+
+namespace ltp {
+namespace {
+
+using internal::ExpressionEntry;
+using internal::ExpressionMatrixText;
+
+// What a scene file says, kept with the location of every entry so that errors found when the
+// scene is built (after --set overrides) still name the file, line and entry.
+struct SceneModel {
+  std::optional<ExpressionEntry> period, omega, rotor_speed;
+  std::vector<ExpressionEntry> breakpoints;
+  bool second_order = false;
+  std::string mass_where;  // location of second_order.M, for SingularMassError
+  // state_space: A, B, C, D.  second_order: M, D, K, F, Cd, Cv. Absent matrices are empty.
+  std::map<std::string, ExpressionMatrixText> matrices;
+  int states = 0, inputs = 0, outputs = 0;
+  SystemLabels labels;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  // "file:line: entry", the prefix of every message about `node`.
+  std::string Where(const YAML::Node& node, const std::string& entry) const {
+    return Where(node.Mark(), entry);
+  }
+  std::string Where(const YAML::Mark& mark, const std::string& entry) const {
+    std::string where = source_;
+    if (mark.line >= 0) where.append(":").append(std::to_string(mark.line + 1));
+    if (!entry.empty()) where.append(": ").append(entry);
+    return where;
+  }
+  [[noreturn]] void Fail(const YAML::Node& node, const std::string& entry,
+                         const std::string& message) const {
+    Fail(node.Mark(), entry, message);
+  }
+  [[noreturn]] void Fail(const YAML::Mark& mark, const std::string& entry,
+                         const std::string& message) const {
+    throw SceneError(Where(mark, entry) + ": " + message);
+  }
+
+  // Where `key` of the mapping `map` is written (a block's own mark is its first entry's).
+  static YAML::Mark KeyMark(const YAML::Node& map, const std::string& key) {
+    for (const auto& item : map)
+      if (item.first.Scalar() == key) return item.first.Mark();
+    return map.Mark();
+  }
+
+  std::string Scalar(const YAML::Node& node, const std::string& entry) const {
+    if (!node.IsScalar()) Fail(node, entry, "expected a number or an expression");
+    return node.Scalar();
+  }
+  ExpressionEntry Expression(const YAML::Node& node, const std::string& entry) const {
+    return {Scalar(node, entry), Where(node, entry)};
+  }
+  std::vector<std::string> Names(const YAML::Node& node, const std::string& entry) const {
+    if (!node.IsSequence()) Fail(node, entry, "expected a list of names, e.g. [x, y]");
+    std::vector<std::string> names;
+    for (size_t i = 0; i < node.size(); ++i)
+      names.push_back(Scalar(node[i], entry + "[" + std::to_string(i) + "]"));
+    return names;
+  }
+
+  // A non-empty list of equally long rows of expressions.
+  ExpressionMatrixText Matrix(const YAML::Node& node, const std::string& entry) const {
+    if (!node.IsSequence() || node.size() == 0)
+      Fail(node, entry,
+           "expected a matrix: a list of rows, e.g. [[\"0\", \"1\"], [\"-k\", \"0\"]]");
+    ExpressionMatrixText rows;
+    for (size_t r = 0; r < node.size(); ++r) {
+      const YAML::Node row = node[r];
+      const std::string row_entry = entry + "[" + std::to_string(r) + "]";
+      if (!row.IsSequence() || row.size() == 0)
+        Fail(row, row_entry, "expected a row: a list of entries, e.g. [\"0\", \"1\"]");
+      if (r > 0 && row.size() != rows[0].size())
+        Fail(row, row_entry,
+             "row has " + std::to_string(row.size()) + " entries but row 0 has " +
+                 std::to_string(rows[0].size()));
+      rows.emplace_back();
+      for (size_t c = 0; c < row.size(); ++c)
+        rows.back().push_back(Expression(row[c], row_entry + "[" + std::to_string(c) + "]"));
+    }
+    return rows;
+  }
+
+  void CheckKeys(const YAML::Node& map, const std::string& entry,
+                 const std::set<std::string>& allowed) const {
+    for (const auto& item : map) {
+      const std::string key = item.first.Scalar();
+      if (allowed.count(key) > 0) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      Fail(item.first, entry.empty() ? key : entry + "." + key,
+           "unknown key (expected one of: " + list + ")");
+    }
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+int Rows(const ExpressionMatrixText& m) { return static_cast<int>(m.size()); }
+int Cols(const ExpressionMatrixText& m) { return m.empty() ? 0 : static_cast<int>(m[0].size()); }
+
+std::string Size(const ExpressionMatrixText& m) {
+  return std::to_string(Rows(m)) + "x" + std::to_string(Cols(m));
+}
+
+// Reads an optional matrix `key` of `block` and checks its size (-1: any).
+void ReadMatrix(const Reader& reader, const YAML::Node& block, const std::string& block_name,
+                const std::string& key, const std::string& stored_as, int rows, int cols,
+                SceneModel& model) {
+  const YAML::Node node = block[key];
+  if (!node) return;
+  const std::string entry = block_name + "." + key;
+  ExpressionMatrixText m = reader.Matrix(node, entry);
+  if ((rows >= 0 && Rows(m) != rows) || (cols >= 0 && Cols(m) != cols))
+    reader.Fail(node, entry,
+                "is " + Size(m) + " but must be " + (rows >= 0 ? std::to_string(rows) : "any") +
+                    "x" + (cols >= 0 ? std::to_string(cols) : "any"));
+  model.matrices[stored_as] = std::move(m);
+}
+
+void ReadStateSpace(const Reader& reader, const YAML::Node& root, SceneModel& model) {
+  const std::string name = "state_space";
+  const YAML::Node block = root[name];
+  const YAML::Mark mark = Reader::KeyMark(root, name);
+  if (!block.IsMap()) reader.Fail(mark, name, "expected a mapping with A and optional B, C, D");
+  reader.CheckKeys(block, name, {"A", "B", "C", "D"});
+  if (!block["A"]) reader.Fail(mark, name, "missing the state matrix A");
+  const ExpressionMatrixText a = reader.Matrix(block["A"], name + ".A");
+  if (Rows(a) != Cols(a)) reader.Fail(block["A"], name + ".A", "must be square, got " + Size(a));
+  const int n = Rows(a);
+  model.matrices["A"] = a;
+  ReadMatrix(reader, block, name, "B", "B", n, -1, model);
+  ReadMatrix(reader, block, name, "C", "C", -1, n, model);
+  model.states = n;
+  model.inputs = Cols(model.matrices["B"]);
+  model.outputs = Rows(model.matrices["C"]);
+  if (block["D"] && (model.inputs == 0 || model.outputs == 0))
+    reader.Fail(block["D"], name + ".D", "feedthrough D needs both B and C");
+  ReadMatrix(reader, block, name, "D", "D", model.outputs, model.inputs, model);
+}
+
+void ReadSecondOrder(const Reader& reader, const YAML::Node& root, SceneModel& model) {
+  const std::string name = "second_order";
+  const YAML::Node block = root[name];
+  const YAML::Mark mark = Reader::KeyMark(root, name);
+  if (!block.IsMap())
+    reader.Fail(mark, name, "expected a mapping with M, K and optional D, F, outputs");
+  reader.CheckKeys(block, name, {"M", "D", "K", "F", "outputs"});
+  if (!block["M"]) reader.Fail(mark, name, "missing the mass matrix M");
+  if (!block["K"]) reader.Fail(mark, name, "missing the stiffness matrix K");
+  const ExpressionMatrixText mass = reader.Matrix(block["M"], name + ".M");
+  if (Rows(mass) != Cols(mass))
+    reader.Fail(block["M"], name + ".M", "must be square, got " + Size(mass));
+  const int q = Rows(mass);
+  model.matrices["M"] = mass;
+  model.mass_where = reader.Where(block["M"], name + ".M");
+  ReadMatrix(reader, block, name, "K", "K", q, q, model);
+  ReadMatrix(reader, block, name, "D", "D", q, q, model);
+  ReadMatrix(reader, block, name, "F", "F", q, -1, model);
+  model.states = 2 * q;
+  model.inputs = Cols(model.matrices["F"]);
+  if (const YAML::Node outputs = block["outputs"]) {
+    const std::string entry = name + ".outputs";
+    if (!outputs.IsMap())
+      reader.Fail(outputs, entry, "expected a mapping with displacement and/or velocity");
+    reader.CheckKeys(outputs, entry, {"displacement", "velocity"});
+    ReadMatrix(reader, outputs, entry, "displacement", "Cd", -1, q, model);
+    const int p = Rows(model.matrices["Cd"]);
+    ReadMatrix(reader, outputs, entry, "velocity", "Cv", p > 0 ? p : -1, q, model);
+    model.outputs = std::max(p, Rows(model.matrices["Cv"]));
+  }
+}
+
+void CheckLabels(const Reader& reader, const YAML::Node& root, const std::string& key,
+                 std::vector<std::string>& names, int count) {
+  const YAML::Node node = root[key];
+  if (!node) return;
+  names = reader.Names(node, key);
+  if (static_cast<int>(names.size()) != count)
+    reader.Fail(node, key,
+                "gives " + std::to_string(names.size()) + " names but the system has " +
+                    std::to_string(count) + " " + key);
+}
+
+// Evaluates a constant expression in pi and the parameters. @throws SceneError.
+double Value(const ExpressionEntry& entry, const internal::Constants& constants) {
+  double value = 0;
+  try {
+    value = internal::EvaluateConstant(entry.text, constants);
+  } catch (const internal::ExpressionError& e) {
+    throw SceneError(entry.where + ": " + e.what());
+  }
+  if (!std::isfinite(value))
+    throw SceneError(entry.where + ": '" + entry.text + "' evaluates to " +
+                     internal::FormatValue(value));
+  return value;
+}
+
+// Explicit breakpoints first (they are exact), then detected jumps not already listed.
+std::vector<double> MergeBreakpoints(std::vector<double> explicit_times,
+                                     const std::vector<double>& found, double period) {
+  const double tolerance = 1e-9 * period;
+  std::vector<double> all = std::move(explicit_times);
+  for (double t : found) {
+    const bool known = std::any_of(all.begin(), all.end(), [&](double b) {
+      const double d = std::abs(b - t);
+      return d < tolerance || period - d < tolerance;
+    });
+    if (!known) all.push_back(t);
+  }
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& parameters) {
+  const internal::Constants constants(parameters.begin(), parameters.end());
+  const ExpressionEntry& period_entry = model.period ? *model.period : *model.omega;
+  const double value = Value(period_entry, constants);
+  const double period = model.period ? value : 2 * std::numbers::pi / value;
+  if (!(value > 0) || !std::isfinite(period))
+    throw SceneError(period_entry.where + ": must be > 0, got '" + period_entry.text +
+                     "' = " + internal::FormatValue(value));
+
+  std::vector<double> explicit_breakpoints;
+  for (const ExpressionEntry& b : model.breakpoints) {
+    const double t = Value(b, constants);
+    if (t < 0 || t >= period)
+      throw SceneError(b.where + ": breakpoint " + internal::FormatValue(t) +
+                       " is outside [0, T) = [0, " + internal::FormatValue(period) + ")");
+    explicit_breakpoints.push_back(t);
+  }
+
+  internal::ExpressionMatrices compiler(constants, period);
+  std::map<std::string, int> handles;
+  for (const auto& [name, text] : model.matrices)
+    if (!text.empty()) handles[name] = compiler.Add(text);
+  const std::vector<double> breakpoints =
+      MergeBreakpoints(std::move(explicit_breakpoints), compiler.jumps(), period);
+  const auto functions = compiler.Finish();
+  auto function = [&](const std::string& name) -> PeriodicSystem::MatrixFunction {
+    const auto it = handles.find(name);
+    return it == handles.end() ? nullptr : functions[it->second];
+  };
+
+  std::optional<PeriodicSystem> system;
+  if (model.second_order) {
+    SecondOrderSystem s;
+    s.period = period;
+    s.dofs = model.states / 2;
+    s.inputs = model.inputs;
+    s.outputs = model.outputs;
+    s.M = function("M");
+    s.D = function("D");
+    s.K = function("K");
+    s.F = function("F");
+    s.Cd = function("Cd");
+    s.Cv = function("Cv");
+    s.breakpoints = breakpoints;
+    try {
+      system = FromSecondOrder(s);
+    } catch (const SingularMassError& e) {
+      throw SingularMassError(model.mass_where + ": " + e.what());
+    }
+  } else {
+    PeriodicSystem::Functions f{function("A"), function("B"), function("C"), function("D")};
+    system = PeriodicSystem::FromFunctions(period, model.states, model.inputs, model.outputs,
+                                           std::move(f), breakpoints);
+  }
+  system = system->WithLabels(model.labels);
+  if (model.rotor_speed) system = system->WithRotorSpeed(Value(*model.rotor_speed, constants));
+  return *system;
+}
+
+YAML::Node LoadYaml(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    std::string where = source;
+    if (e.mark.line >= 0) where += ":" + std::to_string(e.mark.line + 1);
+    throw SceneError(where + ": YAML syntax error: " + e.msg);
+  }
+}
+
+}  // namespace
+
+Scene ParseSceneYaml(const std::string& text, const std::string& source) {
+  const Reader reader(source);
+  const YAML::Node root = LoadYaml(text, source);
+  if (!root.IsMap())
+    throw SceneError(reader.Where(root, "") +
+                     ": a scene file must be a mapping with period (or omega) and a "
+                     "state_space or second_order block");
+  reader.CheckKeys(
+      root, "",
+      {"name", "description", "period", "omega", "parameters", "parameter_descriptions",
+       "breakpoints", "rotor_speed", "inputs", "outputs", "states", "state_space", "second_order"});
+
+  Scene scene;
+  scene.source = source;
+  scene.name = root["name"] ? reader.Scalar(root["name"], "name")
+                            : std::filesystem::path(source).stem().string();
+  if (root["description"]) scene.description = reader.Scalar(root["description"], "description");
+
+  if (const YAML::Node parameters = root["parameters"]) {
+    if (!parameters.IsMap())
+      reader.Fail(parameters, "parameters", "expected a mapping name: default, e.g. {k: 10}");
+    for (const auto& item : parameters) {
+      const std::string name = item.first.Scalar();
+      const std::string entry = "parameters." + name;
+      if (!internal::IsIdentifier(name))
+        reader.Fail(item.first, entry, "'" + name + "' is not a valid parameter name");
+      if (internal::IsReservedName(name))
+        reader.Fail(item.first, entry,
+                    "parameter '" + name + "' would shadow the built-in '" + name +
+                        "' (t is time, pi and functions are predefined)");
+      const double value = Value(reader.Expression(item.second, entry), {});
+      scene.parameters.push_back({name, value, ""});
+    }
+  }
+  if (const YAML::Node descriptions = root["parameter_descriptions"]) {
+    if (!descriptions.IsMap())
+      reader.Fail(descriptions, "parameter_descriptions", "expected a mapping name: text");
+    for (const auto& item : descriptions) {
+      const std::string name = item.first.Scalar();
+      auto it = std::find_if(scene.parameters.begin(), scene.parameters.end(),
+                             [&](const SceneParameter& p) { return p.name == name; });
+      if (it == scene.parameters.end())
+        reader.Fail(item.first, "parameter_descriptions." + name, "no such parameter");
+      it->description = reader.Scalar(item.second, "parameter_descriptions." + name);
+    }
+  }
+
+  SceneModel model;
+  if (root["period"] && root["omega"])
+    reader.Fail(Reader::KeyMark(root, "omega"), "omega", "give either period or omega, not both");
+  if (root["period"]) {
+    model.period = reader.Expression(root["period"], "period");
+  } else if (root["omega"]) {
+    model.omega = reader.Expression(root["omega"], "omega");
+  } else {
+    reader.Fail(root, "", "missing 'period' (or 'omega', with T = 2*pi/omega)");
+  }
+  if (const YAML::Node breakpoints = root["breakpoints"]) {
+    if (!breakpoints.IsSequence())
+      reader.Fail(breakpoints, "breakpoints", "expected a list of times, e.g. [pi/2, 3*pi/2]");
+    for (size_t i = 0; i < breakpoints.size(); ++i)
+      model.breakpoints.push_back(
+          reader.Expression(breakpoints[i], "breakpoints[" + std::to_string(i) + "]"));
+  }
+  if (root["rotor_speed"])
+    model.rotor_speed = reader.Expression(root["rotor_speed"], "rotor_speed");
+
+  if (root["state_space"] && root["second_order"])
+    reader.Fail(Reader::KeyMark(root, "second_order"), "second_order",
+                "give either state_space or second_order, not both");
+  if (root["state_space"]) {
+    ReadStateSpace(reader, root, model);
+  } else if (root["second_order"]) {
+    model.second_order = true;
+    ReadSecondOrder(reader, root, model);
+  } else {
+    reader.Fail(root, "", "missing 'state_space' (A, B, C, D) or 'second_order' (M, D, K, F)");
+  }
+  CheckLabels(reader, root, "states", model.labels.states, model.states);
+  CheckLabels(reader, root, "inputs", model.labels.inputs, model.inputs);
+  CheckLabels(reader, root, "outputs", model.labels.outputs, model.outputs);
+
+  scene.build = [model = std::move(model)](const ParameterMap& parameters) {
+    return BuildFromModel(model, parameters);
+  };
+  // Build once with the defaults so that unknown names, bad expressions and NaNs are reported
+  // when the file is loaded, not in the middle of a command.
+  scene.Build();
+  return scene;
+}
+
+Scene LoadSceneFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw SceneError(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw SceneError(path + ": cannot read scene file");
+  return ParseSceneYaml(text.str(), path);
+}
+
+}  // namespace ltp
