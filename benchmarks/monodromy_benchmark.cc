@@ -1,0 +1,150 @@
+// Monodromy route: cost of Mathieu multipliers at relative error <= 1e-10 per integrator, and
+// of a rotor-size system (n = 40). For each integrator the loosest tolerance (or fewest fixed
+// steps) that still reaches 1e-10 is found once, before timing, against an rkf78 reference at
+// rel_tol 1e-14; the counters report the error actually reached.
+//
+//   build/benchmarks/monodromy_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <complex>
+#include <map>
+#include <numbers>
+
+#include "ltp/floquet/floquet.h"
+
+namespace {
+
+using ltp::FloquetOptions;
+using ltp::IntegratorType;
+using cd = std::complex<double>;
+
+ltp::PeriodicSystem Mathieu(double a, double q, double c) {
+  ltp::FourierMatrix A(2, 2, 1);
+  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
+  a0 << 0, 1, -a, -c;
+  a1(1, 0) = q;
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return ltp::PeriodicSystem::FromFourier(std::numbers::pi, A);
+}
+
+// n/2 Mathieu oscillators with distinct stiffnesses, coupled by springs and a damper chain:
+// a rotor-size (n = 40) smooth periodic system with harmonics ±1.
+ltp::PeriodicSystem MathieuChain(int dofs) {
+  const int n = 2 * dofs;
+  ltp::FourierMatrix A(n, n, 1);
+  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
+  for (int i = 0; i < dofs; ++i) {
+    a0(i, dofs + i) = 1;
+    const double k = 1.0 + 0.37 * i;
+    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
+    if (i > 0) a0(dofs + i, i - 1) = 0.2;
+    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
+    a0(dofs + i, dofs + i) = -0.02;
+    a1(dofs + i, i) = 0.3 * k;  // parametric excitation 0.6k cos 2t
+  }
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return ltp::PeriodicSystem::FromFourier(std::numbers::pi, A);
+}
+
+double MaxLogError(const ltp::FloquetResult& r, const ltp::FloquetResult& ref) {
+  double worst = 0;
+  for (const auto& m : r.modes) {
+    double best = 1e300;
+    for (const auto& x : ref.modes) {
+      const cd d = m.log_multiplier - x.log_multiplier;
+      best = std::min(best, std::hypot(d.real(), std::remainder(d.imag(), 2 * std::numbers::pi)));
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+FloquetOptions Fast(IntegratorType type) {
+  FloquetOptions o;
+  o.integrator.type = type;
+  o.estimate_error = false;  // time one run of the multipliers, as a user's inner loop would
+  o.compute_modes = false;
+  o.segments = 1;
+  o.threads = 1;
+  return o;
+}
+
+// Loosest setting reaching `target` (error in log ρ relative to max|log ρ|, or absolute when
+// the multipliers sit on the unit circle).
+FloquetOptions Calibrate(const ltp::PeriodicSystem& sys, IntegratorType type, double target,
+                         double* reached) {
+  FloquetOptions ref_options = Fast(IntegratorType::kRkf78);
+  ref_options.integrator.rel_tol = 1e-14;
+  const ltp::FloquetResult ref = ltp::AnalyzeFloquet(sys, ref_options);
+  const bool fixed = type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6 ||
+                     type == IntegratorType::kExpm;
+  FloquetOptions best = Fast(type);
+  for (int i = 0; i < 40; ++i) {
+    FloquetOptions o = Fast(type);
+    if (fixed) {
+      o.integrator.steps_per_period = 4 << i;
+    } else {
+      o.integrator.rel_tol = std::pow(10.0, -4.0 - 0.5 * i);
+      o.integrator.abs_tol = o.integrator.rel_tol * 1e-3;
+    }
+    const ltp::FloquetResult r = ltp::AnalyzeFloquet(sys, o);
+    const double err = r.ok ? MaxLogError(r, ref) : 1e300;
+    best = o;
+    *reached = err;
+    if (err <= target) break;
+  }
+  return best;
+}
+
+void BM_MathieuMultipliers(benchmark::State& state, IntegratorType type) {
+  const ltp::PeriodicSystem sys = Mathieu(1.5, 2.0, 0.05);
+  double err = 0;
+  const FloquetOptions o = Calibrate(sys, type, 1e-10, &err);
+  ltp::FloquetResult r;
+  for (auto _ : state) benchmark::DoNotOptimize(r = ltp::AnalyzeFloquet(sys, o));
+  state.counters["error"] = err;
+  state.counters["rel_tol"] = o.integrator.rel_tol;
+  state.counters["steps_per_T"] = o.integrator.steps_per_period;
+  state.counters["rhs_evals"] = static_cast<double>(r.rhs_evals);
+}
+
+void BM_Chain40(benchmark::State& state, IntegratorType type) {
+  const ltp::PeriodicSystem sys = MathieuChain(20);
+  double err = 0;
+  const FloquetOptions o = Calibrate(sys, type, 1e-8, &err);
+  ltp::FloquetResult r;
+  for (auto _ : state) benchmark::DoNotOptimize(r = ltp::AnalyzeFloquet(sys, o));
+  state.counters["dim"] = sys.states();
+  state.counters["error"] = err;
+  state.counters["rhs_evals"] = static_cast<double>(r.rhs_evals);
+}
+
+// The full analysis a user gets from `ltp floquet` (auto segments on all cores, modes, branch
+// choice, error estimate by a second run).
+void BM_Chain40FullAnalysis(benchmark::State& state) {
+  const ltp::PeriodicSystem sys = MathieuChain(20);
+  FloquetOptions o;
+  ltp::FloquetResult r;
+  for (auto _ : state) benchmark::DoNotOptimize(r = ltp::AnalyzeFloquet(sys, o));
+  state.counters["segments"] = r.segments;
+  state.counters["error_estimate"] = r.error_estimate;
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, dopri5, IntegratorType::kDopri5)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_adams, IntegratorType::kCvodeAdams)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus4, IntegratorType::kMagnus4)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus6, IntegratorType::kMagnus6)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Chain40, dopri5, IntegratorType::kDopri5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Chain40, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Chain40, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Chain40, magnus6, IntegratorType::kMagnus6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Chain40FullAnalysis)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

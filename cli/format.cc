@@ -1,0 +1,32 @@
+#include "format.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace ltp::cli {
+
+std::string Num(double x, int precision, int width) {
+  char buf[64];
+  if (std::isnan(x)) {
+    std::snprintf(buf, sizeof buf, "%*s", width, "nan");
+  } else if (std::isinf(x)) {
+    std::snprintf(buf, sizeof buf, "%*s", width, x > 0 ? "inf" : "-inf");
+  } else {
+    std::snprintf(buf, sizeof buf, "%*.*g", width, precision, x);
+  }
+  return buf;
+}
+
+nlohmann::json JsonNumber(double x) {
+  if (std::isfinite(x)) return x;
+  if (std::isnan(x)) return "nan";
+  return x > 0 ? "inf" : "-inf";
+}
+
+double ExpClamped(double log_abs) {
+  if (log_abs > 709.78) return std::numeric_limits<double>::infinity();
+  return std::exp(log_abs);  // underflows to 0 (or a denormal) below e^-745
+}
+
+}  // namespace ltp::cli

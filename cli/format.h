@@ -1,0 +1,16 @@
+#pragma once
+// Number formatting shared by the command writers: never prints "nan" silently, keeps columns.
+#include <complex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace ltp::cli {
+
+/// Fixed-width number for tables: "%.*g", with non-finite values spelled out.
+std::string Num(double x, int precision = 6, int width = 0);
+/// A JSON value for a double: the number if finite, else the string "inf", "-inf" or "nan".
+nlohmann::json JsonNumber(double x);
+/// exp(log_abs) as a number that under- or overflows to 0 or inf on purpose.
+double ExpClamped(double log_abs);
+
+}  // namespace ltp::cli

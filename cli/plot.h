@@ -1,0 +1,20 @@
+#pragma once
+// Pictures through gnuplot (PNG or SVG, chosen by the file name's extension).
+#include <string>
+
+#include "ltp/floquet/floquet.h"
+
+namespace ltp::cli {
+
+/// Runs a gnuplot script with the given inline data blocks. @throws InputError if the file
+/// extension is not .svg/.png or gnuplot is missing or fails.
+void RunGnuplot(const std::string& output_file, const std::string& script);
+
+/// Terminal line for the extension of `file` ("set terminal svg ..." / "pngcairo").
+std::string GnuplotTerminal(const std::string& file, int width, int height);
+
+/// Left: Floquet exponents (Re λ vs frequency, the stability boundary Re λ = 0).
+/// Right: Fourier energy of each periodic mode shape per harmonic (the branch choice).
+void PlotFloquet(const FloquetResult& result, const std::string& title, const std::string& file);
+
+}  // namespace ltp::cli

@@ -1,0 +1,115 @@
+#pragma once
+// Floquet analysis via the monodromy matrix: multipliers, exponents on the physical branch,
+// periodic mode shapes and left modes, with an error estimate and the wall time.
+//
+// The period is split into K segments; the factors Φ_i = Φ(t_{i+1}, t_i) are integrated
+// independently (in parallel) and the multipliers are the eigenvalues of Φ_K⋯Φ_1 from a
+// periodic Schur decomposition, as logarithms, so exponents stay exact when multipliers leave
+// the double range (ρ = e^{−1000T}). Mode shapes ξ_k(t_i) at the segment boundaries come from
+// the null vectors of the block-cyclic matrix, never from propagating through the product.
+#include <Eigen/Dense>
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp {
+
+enum class MultiplierMethod {
+  kPeriodicSchur,  ///< eigenvalues of the product of segment factors (SLICOT MB03BD)
+  kSingleShot,     ///< eig of the formed product Φ: loses every |ρ| below ~eps·max|ρ|
+};
+std::string_view ToString(MultiplierMethod method);
+
+struct FloquetOptions {
+  IntegratorOptions integrator;
+  /// Number of segments K; 0 = automatic: at least `mode_samples`, refined where a factor's
+  /// condition number exceeds `max_factor_condition` (fast growth or decay within a segment).
+  int segments = 0;
+  /// Largest condition number σmax/σmin accepted for one segment factor in automatic mode.
+  /// A factor loses about log10(cond) digits of its smallest singular directions.
+  double max_factor_condition = 1e3;
+  /// Upper bound on K (automatic mode); reaching it is reported in the diagnostics.
+  int max_segments = 20000;
+  MultiplierMethod multipliers = MultiplierMethod::kPeriodicSchur;
+  /// Equally spaced samples of the mode shapes per period (power of two, >= 4); their FFT
+  /// gives the Fourier coefficients used to choose the branch. 0 = automatic (from the
+  /// harmonic content of A).
+  int mode_samples = 0;
+  /// Second run at rel_tol/100 (or twice the steps): the difference is the error estimate.
+  bool estimate_error = true;
+  /// Compute mode shapes, left modes and branch selection (off: multipliers only, faster).
+  bool compute_modes = true;
+  /// OpenMP threads for the segments; 0 = all cores.
+  int threads = 0;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct FloquetMode {
+  std::complex<double> exponent;        ///< λ on the chosen branch (1/s)
+  std::complex<double> log_multiplier;  ///< log ρ = log|ρ| + j arg ρ, arg in (−π, π]
+  int branch = 0;             ///< m in λ = Log(ρ)/T + j m Ωp
+  double frequency_hz = 0;    ///< Im λ / 2π
+  double damping_ratio = 0;   ///< −Re λ / |λ| (0 when λ = 0)
+  double central_weight = 0;  ///< fraction of ξ's Fourier energy on harmonic 0 (chosen branch)
+  /// Distance of the energy centroid from the nearest branch tie (0.5 = unambiguous, 0 = tie:
+  /// e.g. a negative real multiplier, whose exponent sits on the strip edge).
+  double branch_margin = 0;
+  double eigvec_residual = 0;  ///< cyclic residual of the periodic eigenvector
+};
+
+struct FloquetResult {
+  bool ok = false;               ///< false: integration failed, see diagnostics
+  int states = 0;
+  double period = 0;
+  std::string integrator;
+  std::string multiplier_method;
+  int segments = 0;              ///< K actually used
+  std::vector<double> segment_times;   ///< t_0 = 0 < t_1 < … < t_K = T
+  std::vector<FloquetMode> modes;      ///< sorted by frequency (|Im λ|), then Re λ
+  double max_real_exponent = 0;        ///< max Re λ (1/s)
+  double max_log_abs_multiplier = 0;   ///< max log|ρ| = T · max Re λ
+  bool stable = false;                 ///< max Re λ < 0 beyond the error estimate
+  /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
+  /// second run at a tighter tolerance, plus the round-off floor. -1 when not computed.
+  double error_estimate = -1;
+  /// |Σ log|ρ_k| − ∫_0^T tr A dt| / max(1, |∫ tr A|) (Liouville: det Φ = exp ∫ tr A).
+  double liouville_residual = -1;
+  /// 2-norm condition number of the normalised mode matrix Ξ(0); large = (near-)defective.
+  double mode_condition = -1;
+  /// Monodromy Φ(T, 0) as the formed product (entries may under/overflow for stiff systems).
+  Eigen::MatrixXd monodromy;
+  /// Periodic mode shapes at `sample_times` (uniform, t_s = s T/S): column k of
+  /// mode_samples[s] is ξ_k(t_s) on mode k's chosen branch.
+  std::vector<double> sample_times;
+  std::vector<Eigen::MatrixXcd> mode_samples;
+  /// Fourier coefficients of the mode shapes: mode_fourier[v + H] (n × n) holds ξ_{k,v} in
+  /// column k, harmonics v = −H..H.
+  std::vector<Eigen::MatrixXcd> mode_fourier;
+  int mode_harmonics = 0;  ///< H
+  long rhs_evals = 0;
+  double elapsed_s = 0;
+  std::vector<std::string> diagnostics;
+
+  /// Ξ(t) from the Fourier coefficients of the mode shapes (spectral interpolation).
+  Eigen::MatrixXcd ModeMatrix(double t) const;
+  /// Left modes: rows of Ξ(t)⁻¹ (throws NumericalError-free: returns the pseudo-inverse
+  /// when Ξ is singular and says so via mode_condition).
+  Eigen::MatrixXcd LeftModes(double t) const;
+  /// One line: K, max Re λ, stability, error, time.
+  std::string BriefReport() const;
+};
+
+/// Floquet analysis of the homogeneous part x' = A(t) x. Never throws for numerical trouble
+/// (see ok and diagnostics); throws InputError for invalid options.
+FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& options = {});
+
+/// ∫_0^T tr A(t) dt: exact for Fourier and piecewise-constant systems, Gauss–Legendre on the
+/// smooth pieces between breakpoints otherwise.
+double IntegralOfTrace(const PeriodicSystem& system);
+
+}  // namespace ltp

@@ -1,0 +1,224 @@
+#pragma once
+// Hill's method: Floquet exponents as eigenvalues of the truncated Hill matrix
+//   block (v,u) = A_{v−u} − j v Ωp δ_vu I,   v, u = −N..N,   size (2N+1)n   (DESIGN.md),
+// whose spectrum approximates λ_k + j m Ωp for every k and m. Only n eigenvalues are the
+// physical ones: they are selected by where the eigenvector's energy sits over the harmonic
+// blocks (centred on block 0), with a selection margin, a tail weight and a truncation error
+// estimate for each. A Koopman–Hill projection Φ(T) ≈ C expm(H_N T) W gives the multipliers
+// without any selection, as an independent cross-check.
+//
+// Two solvers: dense (LAPACK zgeev: full spectrum, cost ~ N³) and structured (banded
+// shift-invert Arnoldi around the expected exponents: only the n physical ones, cost ~ N).
+#include <Eigen/Dense>
+#include <complex>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ltp/core/fourier_fit.h"
+#include "ltp/core/fourier_matrix.h"
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/floquet.h"
+
+namespace ltp {
+
+enum class HillSolver {
+  kDense,       ///< all (2N+1)n eigenpairs by LAPACK zgeev
+  kStructured,  ///< banded LU (zgbtrf) + shift-invert Arnoldi around the expected exponents
+};
+std::string_view ToString(HillSolver solver);
+std::optional<HillSolver> ParseHillSolver(std::string_view name);
+
+/// How the n physical eigenvalues are picked among the (2N+1)n.
+enum class HillSelectionRule {
+  /// Energy centroid of the eigenvector over the blocks closest to block 0 (|centroid| < 1/2
+  /// passes). Same rule as the monodromy route's branch choice, so both report the same branch.
+  kCentroid,
+  /// Largest energy fraction on the central block (block 0 must be the heaviest to pass).
+  kCentralWeight,
+  /// Fundamental strip |Im λ| <= Ωp/2 (the textbook rule, for comparison: it ignores the
+  /// eigenvector and is wrong whenever a mode's frequency exceeds Ωp/2).
+  kStrip,
+};
+std::string_view ToString(HillSelectionRule rule);
+std::optional<HillSelectionRule> ParseHillSelectionRule(std::string_view name);
+
+enum class PeriodDoubling {
+  kNever,   ///< report ambiguous choices in the diagnostics only
+  kAuto,    ///< re-analyse with T' = 2T when a choice is ambiguous (strip-edge exponents)
+  kAlways,  ///< always analyse with T' = 2T
+};
+
+struct HillOptions {
+  /// Truncation N: harmonics −N..N.
+  int harmonics = 16;
+  HillSolver solver = HillSolver::kDense;
+  HillSelectionRule selection = HillSelectionRule::kCentroid;
+  /// A selection margin below this flags the choice as ambiguous (margins are in [0, 1]).
+  double ambiguity_threshold = 0.05;
+  PeriodDoubling period_doubling = PeriodDoubling::kAuto;
+  /// Truncation error estimate from a second solve at N + Δ (0 = automatic: max(2, ⌈N/2⌉);
+  /// -1 = no second solve).
+  int delta_harmonics = 0;
+  /// Koopman–Hill cross-check (needs a dense expm of the Hill matrix; skipped above
+  /// `koopman_max_size`) and the a-priori bound that uses its eigenvectors.
+  bool koopman_check = true;
+  int koopman_max_size = 2500;
+  /// Structured solver: expected exponents used as shifts (e.g. from AnalyzeFloquet).
+  /// Empty = eigenvalues of A_0 (the averaged system).
+  std::vector<std::complex<double>> expected;
+  /// Structured solver: fall back to the dense one (when it fits in memory) if fewer than n
+  /// exponents were found.
+  bool structured_fallback = true;
+  /// Fourier fit of A(t) for systems not given in Fourier form.
+  FourierFitOptions fourier;
+  /// Largest dense Hill matrix accepted (bytes); larger → ResourceError.
+  double max_dense_bytes = 2.0 * 1024 * 1024 * 1024;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+/// What the selection says about one physical eigenvalue (parallel to HillResult::modes).
+struct HillModeInfo {
+  /// Energy centroid of the eigenvector over the blocks (0 = centred on harmonic 0).
+  double centroid = 0;
+  /// Score gap between the chosen eigenvalue and the runner-up of its jΩp-shift family under
+  /// the selection rule, in [0, 1]: 1 = clean, 0 = tie. Centroid rule: |c_runner| − |c_winner|
+  /// (ideal 1 − 2|c|); central-weight rule: difference of central-block weights; strip rule:
+  /// 1 − 2|Im λ|/Ωp.
+  double selection_margin = 0;
+  /// Fraction of the eigenvector's energy on the outermost blocks ±N: large = truncation too
+  /// small for this mode.
+  double tail_weight = 0;
+  /// |λ_N − λ_{N+Δ}| modulo jΩp (1/s); -1 when not computed.
+  double truncation_change = -1;
+  /// Relative eigen-residual ||H x − λ x|| / (||H|| ||x||).
+  double residual = 0;
+  bool passed = false;     ///< met the rule's pass condition (see HillSelectionRule)
+  bool ambiguous = false;  ///< selection_margin < ambiguity_threshold
+};
+
+/// ||A_w|| <= a e^{−b|w|} envelope of the Fourier coefficients of A (Frobenius norms), or an
+/// algebraic decay ~ |w|^{−p} for which no exponential envelope exists.
+struct HillDecay {
+  std::string kind;  ///< "finite", "exponential" or "algebraic"
+  int harmonics = 0;          ///< H: largest harmonic of A used
+  double fourier_tail = 0;    ///< relative norm of the dropped harmonics of A (0 when exact)
+  /// Fitted rate: b of ||A_w|| ~ e^{−b|w|} (exponential; caps the envelope's b) or p of
+  /// ||A_w|| ~ |w|^{−p} (algebraic: no exponential envelope, no a-priori bound); 0 = finite.
+  double rate = 0;
+  double a = 0, b = 0;        ///< envelope a e^{−b|w|} minimising the bound at the N analysed
+  std::vector<double> norms;  ///< ||A_w||_F, w = 0..H
+};
+
+struct HillResult {
+  bool ok = false;  ///< false: the solver failed or fewer than n exponents were found
+  int states = 0;
+  int harmonics = 0;    ///< N actually used (2N after period doubling)
+  int matrix_size = 0;  ///< (2N+1)n
+  double period = 0;    ///< analysed period: T, or 2T after period doubling
+  bool period_doubled = false;
+  std::string solver;
+  std::string selection_rule;
+  /// The n physical exponents (same struct and order as AnalyzeFloquet: by |frequency|,
+  /// positive first, then Re λ). branch_margin = 0.5 − |centroid|.
+  std::vector<FloquetMode> modes;
+  std::vector<HillModeInfo> info;  ///< parallel to modes
+  double max_real_exponent = 0;
+  bool stable = false;
+
+  // Truncation error (exponents, 1/s).
+  int delta_harmonics = 0;          ///< Δ of the N vs N+Δ estimate (0: not computed)
+  double truncation_estimate = -1;  ///< max_k |λ_k(N) − λ_k(N+Δ)| (mod jΩp); -1 = not computed
+  /// A-priori bound on the exponent error: Bayer–Leine bound on ||Φ(T) − C e^{H_N T} W||,
+  /// carried to the multipliers by Bauer–Fike and added to the Hill vs Koopman–Hill gap.
+  /// +inf when not available (algebraic decay, bound not yet below |ρ|, no Koopman check).
+  double apriori_bound = std::numeric_limits<double>::infinity();
+  /// Bound on ||Φ(T) − C e^{H_N T} W||_2 (truncation, plus the expm round-off when the
+  /// Koopman–Hill check ran).
+  double apriori_phi_bound = std::numeric_limits<double>::infinity();
+  HillDecay decay;
+
+  // Koopman–Hill cross-check (sorting-free).
+  std::vector<std::complex<double>> koopman_log_multipliers;  ///< log eig(C e^{H T} W)
+  double koopman_discrepancy = -1;  ///< max_k |λ_k,Hill − log ρ_k,KH / T| (mod jΩp); -1 = skipped
+
+  /// All eigenvalues of the Hill matrix (dense solver) or those found (structured).
+  std::vector<std::complex<double>> eigenvalues;
+  double elapsed_s = 0;
+  std::vector<std::string> diagnostics;
+
+  /// One line: N, size, max Re λ, error estimates, time.
+  std::string BriefReport() const;
+};
+
+/// Hill analysis of x' = A(t) x. Fourier-form systems use their exact coefficients; others are
+/// fitted by FFT first (the fit's tail and decay are reported). Never throws for numerical
+/// trouble (see ok, diagnostics).
+/// @throws InputError for invalid options; ResourceError when the truncation would not fit.
+HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& options = {});
+
+/// Convergence study over N = 1 .. max_harmonics (every N up to 10, then roughly ×1.25).
+struct HillStudyRow {
+  int harmonics = 0;
+  int matrix_size = 0;
+  /// Per physical exponent (in the order of the reference): |λ_Hill − λ_ref| modulo jΩp of
+  /// the analysed period; empty without a reference.
+  std::vector<double> errors;
+  double max_error = -1;          ///< max of errors; -1 without a reference
+  double apriori_bound = 0;       ///< HillResult::apriori_bound
+  double truncation_estimate = 0; ///< N vs N+Δ (HillResult::truncation_estimate)
+  double selection_margin = 0;    ///< min over modes
+  double tail_weight = 0;         ///< max over modes
+  bool ambiguous = false;
+  bool period_doubled = false;
+  double elapsed_s = 0;
+};
+
+struct HillStudy {
+  std::vector<HillStudyRow> rows;
+  HillDecay decay;           ///< of A's coefficients
+  /// Fitted convergence law of the error (of the N vs N+Δ estimate without a reference):
+  /// "exponential" (error ~ e^{−rate N}) or "algebraic" (error ~ N^{−rate}); "" = too few
+  /// points above round-off.
+  std::string rate_kind;
+  double rate = 0;
+  std::vector<std::complex<double>> reference;  ///< reference exponents used
+  double elapsed_s = 0;
+  std::vector<std::string> diagnostics;
+};
+
+/// `options.harmonics` is overridden per row. With a reference (the monodromy route), errors
+/// are measured against its exponents modulo jΩp.
+/// @throws InputError for max_harmonics < 1 or invalid options.
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               const FloquetResult& reference, HillOptions options = {});
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               HillOptions options = {});
+
+// --- Building blocks (also used by tests and benchmarks) ------------------------------------
+
+/// Dense Hill matrix of the Fourier series A with fundamental `omega` and truncation N.
+/// @throws ResourceError when it would exceed `max_bytes`.
+Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics,
+                            double max_bytes = 2.0 * 1024 * 1024 * 1024);
+
+/// The same series seen with period 2T: A'_{2w} = A_w, odd harmonics zero.
+FourierMatrix DoublePeriod(const FourierMatrix& A);
+/// The system seen with period 2T (every form; labels and rotor speed kept).
+PeriodicSystem DoublePeriod(const PeriodicSystem& system);
+
+/// Koopman–Hill projection Φ(t) ≈ C expm(H_N t) W (C picks block 0, W stacks identities).
+Eigen::MatrixXcd KoopmanHillTransition(const FourierMatrix& A, double omega, int harmonics,
+                                       double t);
+
+/// Decay of A's coefficients and the envelope a e^{−b|w|} (b chosen for truncation N).
+HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmonics, double period);
+
+/// Bayer–Leine bound (2e^{−b})^N e^{4aT} on ||Φ(T) − C e^{H_N T} W|| for the envelope in
+/// `decay` (b > ln 2); +inf for algebraic decay.
+double KoopmanHillBound(const HillDecay& decay, int harmonics, double period);
+
+}  // namespace ltp

@@ -1,0 +1,440 @@
+#include "ltp/floquet/floquet.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <unsupported/Eigen/FFT>
+
+#include "ltp/core/error.h"
+#include "ltp/floquet/periodic_eigen.h"
+#include "segment_grid.h"
+
+namespace ltp {
+
+namespace {
+
+using cd = std::complex<double>;
+constexpr double kPi = std::numbers::pi;
+
+int NextPowerOfTwo(int x) {
+  int p = 1;
+  while (p < x) p *= 2;
+  return p;
+}
+
+// Mode samples per period: enough to resolve the mode shapes, whose spectra are wider than
+// A's own (the coupling A_{±w} spreads them), but bounded so a discontinuous A(t) does not ask
+// for thousands.
+int AutoModeSamples(const PeriodicSystem& system) {
+  int harmonics = 8;
+  if (const FourierMatrix* fa = system.fourier_A()) harmonics = fa->max_harmonic();
+  else if (!system.breakpoints().empty()) harmonics = 16;
+  return std::clamp(NextPowerOfTwo(8 * (harmonics + 1)), 32, 256);
+}
+
+// Greedy order-free matching of two sets of log multipliers; returns the largest distance
+// (arguments compared modulo 2π).
+double MaxLogDistance(const std::vector<cd>& a, const std::vector<cd>& b) {
+  std::vector<bool> used(b.size(), false);
+  double worst = 0;
+  for (const cd& x : a) {
+    double best = std::numeric_limits<double>::infinity();
+    size_t best_j = 0;
+    for (size_t j = 0; j < b.size(); ++j) {
+      if (used[j]) continue;
+      double darg = std::remainder(x.imag() - b[j].imag(), 2 * kPi);
+      double dre = x.real() - b[j].real();
+      if (std::isinf(x.real()) && std::isinf(b[j].real()) && x.real() == b[j].real()) dre = 0;
+      const double d = std::hypot(dre, darg);
+      if (d < best) {
+        best = d;
+        best_j = j;
+      }
+    }
+    if (!b.empty()) used[best_j] = true;
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+double Condition(const Eigen::MatrixXcd& m) {
+  if (m.size() == 0) return 1;
+  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(m);
+  const auto& s = svd.singularValues();
+  if (s(s.size() - 1) == 0) return std::numeric_limits<double>::infinity();
+  return s(0) / s(s.size() - 1);
+}
+
+}  // namespace
+
+std::string_view ToString(MultiplierMethod method) {
+  return method == MultiplierMethod::kPeriodicSchur ? "periodic-schur" : "single-shot";
+}
+
+void FloquetOptions::Validate() const {
+  integrator.Validate();
+  auto fail = [](const std::string& field, double value, const std::string& constraint) {
+    std::ostringstream s;
+    s << "FloquetOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
+    throw InputError(s.str());
+  };
+  if (segments < 0) fail("segments", segments, "segments >= 0 (0 = automatic)");
+  if (!(max_factor_condition > 10)) fail("max_factor_condition", max_factor_condition, "> 10");
+  if (max_segments < 1) fail("max_segments", max_segments, "max_segments >= 1");
+  if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
+    fail("mode_samples", mode_samples, "0 or a power of two >= 4");
+  if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
+}
+
+double IntegralOfTrace(const PeriodicSystem& system) {
+  const double T = system.period();
+  if (const FourierMatrix* fa = system.fourier_A()) return T * (*fa)[0].real().trace();
+  if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) {
+    const auto& times = system.sample_times();
+    double sum = 0;
+    for (size_t k = 0; k < times.size(); ++k) {
+      const double end = k + 1 < times.size() ? times[k + 1] : times.front() + T;
+      sum += (end - times[k]) * system.samples()[k].A.trace();
+    }
+    return sum;
+  }
+  // 10-point Gauss–Legendre on each of 16 panels of every smooth piece.
+  static const double x[5] = {0.1488743389816312, 0.4333953941292472, 0.6794095682990244,
+                              0.8650633666889845, 0.9739065285171717};
+  static const double w[5] = {0.2955242247147529, 0.2692667193099963, 0.2190863625159820,
+                              0.1494513491505806, 0.0666713443086881};
+  std::vector<double> cuts = {0.0};
+  for (double b : system.breakpoints())
+    if (b > 0) cuts.push_back(b);
+  cuts.push_back(T);
+  Eigen::MatrixXd a(system.states(), system.states());
+  double sum = 0;
+  for (size_t p = 0; p + 1 < cuts.size(); ++p) {
+    const int panels = 16;
+    const double h = (cuts[p + 1] - cuts[p]) / panels;
+    for (int q = 0; q < panels; ++q) {
+      const double mid = cuts[p] + (q + 0.5) * h;
+      for (int i = 0; i < 5; ++i)
+        for (double sgn : {-1.0, 1.0}) {
+          system.EvalA(mid + sgn * x[i] * h / 2, a);
+          sum += w[i] * h / 2 * a.trace();
+        }
+    }
+  }
+  return sum;
+}
+
+Eigen::MatrixXcd FloquetResult::ModeMatrix(double t) const {
+  Eigen::MatrixXcd xi = Eigen::MatrixXcd::Zero(states, states);
+  const double omega = 2 * kPi / period;
+  for (int v = -mode_harmonics; v <= mode_harmonics; ++v)
+    xi += mode_fourier[v + mode_harmonics] * std::polar(1.0, v * omega * t);
+  return xi;
+}
+
+Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
+  const Eigen::MatrixXcd xi = ModeMatrix(t);
+  return xi.completeOrthogonalDecomposition().pseudoInverse();
+}
+
+std::string FloquetResult::BriefReport() const {
+  std::ostringstream s;
+  s << (ok ? "" : "FAILED: ") << "K = " << segments << ", max Re λ = " << max_real_exponent
+    << " 1/s (" << (stable ? "stable" : "unstable") << "), error ≈ " << error_estimate
+    << ", " << elapsed_s << " s";
+  return s.str();
+}
+
+FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  FloquetResult r;
+  const int n = system.states();
+  const double T = system.period();
+  const double omega = system.omega();
+  r.states = n;
+  r.period = T;
+  r.integrator = std::string(ToString(options.integrator.type));
+  r.multiplier_method = std::string(ToString(options.multipliers));
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+
+  // 1. Segment factors on a grid refined where factors grow or decay too fast.
+  const int samples = options.compute_modes
+                          ? (options.mode_samples > 0 ? options.mode_samples
+                                                      : AutoModeSamples(system))
+                          : 1;
+  internal::SegmentGridOptions grid_options;
+  grid_options.integrator = options.integrator;
+  grid_options.uniform_segments = options.segments > 0 ? options.segments : samples;
+  grid_options.refine = options.segments == 0;
+  grid_options.max_factor_condition = options.max_factor_condition;
+  grid_options.max_segments = options.max_segments;
+  grid_options.threads = threads;
+  internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
+  r.rhs_evals += grid.rhs_evals;
+  for (auto& d : grid.diagnostics) r.diagnostics.push_back(d);
+  if (!grid.ok) {
+    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  }
+  // 2. Multipliers as logarithms.
+  auto log_eigenvalues = [&](const internal::SegmentGrid& g) {
+    if (options.multipliers == MultiplierMethod::kSingleShot) {
+      Eigen::MatrixXd product = Eigen::MatrixXd::Identity(n, n);
+      for (const auto& f : g.factors) product = f * product;
+      return SingleShotLogEigenvalues(product);
+    }
+    return PeriodicSchurLogEigenvalues(g.factors);
+  };
+  LogEigenvalues eig = log_eigenvalues(grid);
+  if (!eig.ok) {
+    r.diagnostics.push_back("eigenvalues of the monodromy failed: " + eig.message);
+    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  }
+
+  // 3. Error estimate: a second run with every segment halved and a 100× tighter tolerance
+  // (twice the fixed steps). Halving the segments matters: on short segments an adaptive
+  // method may take the same single step at both tolerances, and a same-grid comparison would
+  // then see no difference at all. The reported numbers come from this better run, so the
+  // difference bounds their error with a wide margin.
+  double integration_error = 0;
+  if (options.estimate_error && n > 0) {
+    internal::SegmentGridOptions fine = grid_options;
+    fine.refine = false;
+    fine.fixed_times.clear();
+    for (size_t i = 0; i + 1 < grid.times.size(); ++i) {
+      fine.fixed_times.push_back(grid.times[i]);
+      fine.fixed_times.push_back(0.5 * (grid.times[i] + grid.times[i + 1]));
+    }
+    fine.fixed_times.push_back(grid.times.back());
+    fine.integrator.rel_tol = std::max(options.integrator.rel_tol * 1e-2, 1e-15);
+    fine.integrator.abs_tol = options.integrator.abs_tol * 1e-2;
+    if (fine.integrator.steps_per_period > 0) fine.integrator.steps_per_period *= 2;
+    internal::SegmentGrid reference = internal::ComputeSegmentGrid(system, fine);
+    r.rhs_evals += reference.rhs_evals;
+    LogEigenvalues ref_eig = reference.ok ? log_eigenvalues(reference) : LogEigenvalues{};
+    if (ref_eig.ok) {
+      integration_error = MaxLogDistance(eig.log_values, ref_eig.log_values) / T;
+      grid = std::move(reference);
+      eig = std::move(ref_eig);
+    } else {
+      r.diagnostics.push_back("error estimate: the refined reference run failed; results are "
+                              "from the first run and their error is unknown");
+      integration_error = std::numeric_limits<double>::infinity();
+    }
+  }
+  r.segments = static_cast<int>(grid.factors.size());
+  r.segment_times = grid.times;
+  r.monodromy = Eigen::MatrixXd::Identity(n, n);
+  for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
+  const std::vector<cd>& log_rho = eig.log_values;
+  std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers, from the modes below
+
+  // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
+  std::vector<FloquetMode> modes(n);
+  for (int k = 0; k < n; ++k) {
+    modes[k].log_multiplier = log_rho[k];
+    modes[k].exponent = log_rho[k] / T;
+  }
+  if (options.compute_modes && n > 0) {
+    std::vector<double> dt(grid.factors.size());
+    for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
+    std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(grid.factors, dt, log_rho);
+    // The uniform mode samples are grid points (the grid refines the uniform one); find them.
+    r.sample_times.resize(samples);
+    std::vector<int> at(samples);
+    for (int s = 0; s < samples; ++s) {
+      const double ts = T * s / samples;
+      auto it = std::lower_bound(grid.times.begin(), grid.times.end(), ts - 1e-12 * T);
+      at[s] = static_cast<int>(it - grid.times.begin());
+      r.sample_times[s] = grid.times[at[s]];
+    }
+    bool uniform_hit = true;
+    for (int s = 0; s < samples; ++s)
+      uniform_hit = uniform_hit && at[s] < static_cast<int>(grid.times.size()) - 1 &&
+                    std::abs(grid.times[at[s]] - T * s / samples) <= 1e-9 * T;
+    std::vector<Eigen::MatrixXcd> xi(samples, Eigen::MatrixXcd(n, n));
+    if (uniform_hit) {
+      for (int s = 0; s < samples; ++s)
+        for (int k = 0; k < n; ++k) xi[s].col(k) = vecs[k].v[at[s]];
+    } else {
+      // A user-chosen K that does not contain the uniform samples: propagate from the last
+      // grid point before each sample, ξ(t_s) = Φ(t_s, t_i) ξ(t_i) e^{-λ(t_s − t_i)}.
+      r.diagnostics.push_back("mode samples propagated within segments (K is not a multiple of " +
+                              std::to_string(samples) + ")");
+      for (int s = 0; s < samples; ++s) {
+        const double ts = T * s / samples;
+        auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
+        const int i = static_cast<int>(it - grid.times.begin()) - 1;
+        r.sample_times[s] = ts;
+        TransitionResult tr = StateTransition(system, grid.times[i], ts, options.integrator);
+        r.rhs_evals += tr.rhs_evals;
+        for (int k = 0; k < n; ++k)
+          xi[s].col(k) = tr.phi.cast<cd>() * vecs[k].v[i] *
+                         std::exp(-log_rho[k] / T * (ts - grid.times[i]));
+      }
+    }
+    // Fourier coefficients of every entry (FFT), then the branch centred on harmonic 0.
+    Eigen::FFT<double> fft;
+    const int H = samples / 2 - 1;  // the Nyquist bin is dropped (ambiguous sign)
+    std::vector<Eigen::MatrixXcd> coef(2 * H + 1, Eigen::MatrixXcd::Zero(n, n));
+    std::vector<cd> in(samples), out(samples);
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < n; ++k) {
+        for (int s = 0; s < samples; ++s) in[s] = xi[s](i, k);
+        fft.fwd(out, in);  // out[j] = Σ_s in[s] e^{-2πj js/S}
+        for (int v = -H; v <= H; ++v) coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
+      }
+    double worst_tail = 0;
+    for (int k = 0; k < n; ++k) {
+      std::vector<double> energy(2 * H + 1);
+      double total = 0, first_moment = 0, tail = 0;
+      for (int v = -H; v <= H; ++v) {
+        energy[v + H] = coef[v + H].col(k).squaredNorm();
+        total += energy[v + H];
+        first_moment += v * energy[v + H];
+        if (std::abs(v) > H / 2) tail += energy[v + H];
+      }
+      if (total <= 0) continue;
+      worst_tail = std::max(worst_tail, tail / total);
+      const double centroid = first_moment / total;
+      int m = static_cast<int>(std::lround(centroid));
+      if (std::abs(std::abs(centroid - m) - 0.5) < 0.01) {
+        // A tie (negative real multiplier: the exponent sits on the strip edge ±Ωp/2). Both
+        // neighbours are valid; take the one with the smallest non-negative frequency so that
+        // repeated runs agree, and say so in the diagnostics below.
+        const int lo = static_cast<int>(std::floor(centroid)), hi = lo + 1;
+        const double im_lo = (log_rho[k] / T).imag() + lo * omega;
+        const double im_hi = (log_rho[k] / T).imag() + hi * omega;
+        m = (im_lo >= -1e-12 * omega && (im_hi < -1e-12 * omega || im_lo <= im_hi)) ? lo : hi;
+      }
+      FloquetMode& mode = modes[k];
+      mode.branch = m;
+      mode.exponent = log_rho[k] / T + cd(0, m * omega);
+      mode.central_weight = (std::abs(m) <= H ? energy[m + H] : 0) / total;
+      mode.branch_margin = std::max(0.0, 0.5 - std::abs(centroid - m));
+      mode.eigvec_residual = vecs[k].residual;
+      // Shift to the chosen branch: ξ^(m)(t) = ξ(t) e^{-j m Ωp t}, coefficients c_{v+m}.
+      for (int s = 0; s < samples; ++s) xi[s].col(k) *= std::polar(1.0, -m * omega * r.sample_times[s]);
+      std::vector<Eigen::VectorXcd> shifted(2 * H + 1, Eigen::VectorXcd::Zero(n));
+      for (int v = -H; v <= H; ++v)
+        if (std::abs(v + m) <= H) shifted[v + H] = coef[v + m + H].col(k);
+      for (int v = -H; v <= H; ++v) coef[v + H].col(k) = shifted[v + H];
+    }
+    if (worst_tail > 1e-10) {
+      std::ostringstream s;
+      s << "mode shapes under-resolved: " << worst_tail
+        << " of a mode's Fourier energy lies in the upper half of the " << samples
+        << " samples; raise --mode-samples";
+      r.diagnostics.push_back(s.str());
+    }
+    r.mode_samples = std::move(xi);
+    r.mode_fourier = std::move(coef);
+    r.mode_harmonics = H;
+    Eigen::MatrixXcd xi0 = r.mode_samples[0];
+    for (int k = 0; k < n; ++k) {
+      const double norm = xi0.col(k).norm();
+      if (norm > 0) xi0.col(k) /= norm;
+    }
+    r.mode_condition = Condition(xi0);
+    // Eigenvalue condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(0)/||ξ_k(0)|| and y_k
+    // the k-th row of Ξ(0)⁻¹ (left eigenvector scaled so that y_k x_k = 1).
+    const Eigen::MatrixXcd left = xi0.completeOrthogonalDecomposition().pseudoInverse();
+    for (int k = 0; k < n; ++k)
+      kappa[k] = std::isfinite(r.mode_condition) ? left.row(k).norm()
+                                                 : std::numeric_limits<double>::infinity();
+    if (!(r.mode_condition < 1e8)) {
+      std::ostringstream s;
+      s << "mode matrix is ill-conditioned (cond = " << r.mode_condition
+        << "): the monodromy is (near-)defective, e.g. a double multiplier at ±1 on a stability "
+           "boundary; mode shapes, left modes and branch choices are unreliable, and exponents "
+           "are accurate only to about the square root of the integration error";
+      r.diagnostics.push_back(s.str());
+    }
+  } else {
+    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
+  }
+  for (FloquetMode& mode : modes) {
+    mode.frequency_hz = mode.exponent.imag() / (2 * kPi);
+    const double mag = std::abs(mode.exponent);
+    mode.damping_ratio = mag > 0 ? -mode.exponent.real() / mag : 0;
+  }
+
+  // 5. Order the modes: by |frequency|, positive first, then by Re λ.
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const double fa = std::abs(modes[a].exponent.imag()), fb = std::abs(modes[b].exponent.imag());
+    if (std::abs(fa - fb) > 1e-9 * (1 + fa)) return fa < fb;
+    if (modes[a].exponent.imag() != modes[b].exponent.imag())
+      return modes[a].exponent.imag() > modes[b].exponent.imag();
+    return modes[a].exponent.real() > modes[b].exponent.real();
+  });
+  for (int k : order) r.modes.push_back(modes[k]);
+  if (options.compute_modes)
+    for (int k = 0; k < n; ++k)
+      if (r.modes[k].branch_margin < 0.05) {
+        std::ostringstream s;
+        const bool negative_real = std::abs(std::abs(r.modes[k].log_multiplier.imag()) - kPi) < 1e-6;
+        if (negative_real) {
+          s << "mode " << k + 1 << ": negative real multiplier, so the exponent sits on the strip "
+               "edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the same solution; the "
+               "non-negative one is reported (analyse 2T to separate them)";
+        } else {
+          s << "mode " << k + 1 << ": branch ambiguous (margin " << r.modes[k].branch_margin
+            << "): its mode shape's Fourier energy is split between two neighbouring harmonics; "
+               "the smaller non-negative frequency was taken";
+        }
+        r.diagnostics.push_back(s.str());
+      }
+  if (!r.mode_samples.empty()) {
+    auto permute = [&](Eigen::MatrixXcd& m) {
+      Eigen::MatrixXcd p(m.rows(), m.cols());
+      for (int j = 0; j < n; ++j) p.col(j) = m.col(order[j]);
+      m = p;
+    };
+    for (auto& m : r.mode_samples) permute(m);
+    for (auto& m : r.mode_fourier) permute(m);
+  }
+
+  // 6. Summary numbers and checks.
+  r.max_real_exponent = -std::numeric_limits<double>::infinity();
+  for (const auto& mode : r.modes) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
+  if (n == 0) r.max_real_exponent = 0;
+  r.max_log_abs_multiplier = r.max_real_exponent * T;
+  double max_abs_log = 0;
+  double sum_log_abs = 0;
+  for (const cd& l : log_rho) {
+    if (std::isfinite(l.real())) max_abs_log = std::max(max_abs_log, std::abs(l));
+    sum_log_abs += l.real();
+  }
+  const double trace_integral = IntegralOfTrace(system);
+  r.liouville_residual = std::abs(sum_log_abs - trace_integral) / std::max(1.0, std::abs(trace_integral));
+  // Round-off floor: every factor carries a backward error of a few eps, K + n of them
+  // accumulate; an eigenvalue moves by κ_k times that, or by its square root when the
+  // eigenvalue is defective (κ = ∞).
+  const double backward = 16 * std::numeric_limits<double>::epsilon() * (r.segments + n);
+  double floor = 0;
+  for (int k = 0; k < n; ++k)
+    floor = std::max(floor, std::min(kappa[k] * backward, 2 * std::sqrt(backward)) / T);
+  floor = std::max(floor, backward * max_abs_log / T);
+  r.error_estimate = options.estimate_error ? integration_error + floor : -1;
+  r.stable = r.max_real_exponent < 0;
+  if (options.estimate_error && std::abs(r.max_real_exponent) <= r.error_estimate)
+    r.diagnostics.push_back("stability undecided: |max Re λ| is within the error estimate "
+                            "(the system is on or near a stability boundary)");
+  if (r.liouville_residual > 1e-6)
+    r.diagnostics.push_back("Liouville check failed: Σ log|ρ| differs from ∫ tr A by " +
+                            std::to_string(r.liouville_residual) + " (relative)");
+  r.ok = true;
+  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace ltp

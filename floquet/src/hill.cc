@@ -1,0 +1,314 @@
+// Hill analysis: coefficients → Hill matrix → eigenpairs → physical selection → error
+// estimates (N vs N+Δ, a-priori bound, Koopman–Hill cross-check) → result.
+#include "ltp/floquet/hill.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+#include "hill_internal.h"
+#include "ltp/core/error.h"
+
+namespace ltp {
+namespace {
+
+using cd = std::complex<double>;
+using hill_internal::Eigenpairs;
+constexpr double kPi = std::numbers::pi;
+
+bool AnyAmbiguous(const HillResult& r) {
+  return std::any_of(r.info.begin(), r.info.end(), [](const HillModeInfo& i) { return i.ambiguous; });
+}
+
+FloquetMode MakeMode(cd mu, double T, double omega) {
+  FloquetMode m;
+  m.exponent = mu;
+  double arg = std::remainder(mu.imag() * T, 2 * kPi);
+  if (arg <= -kPi) arg += 2 * kPi;
+  m.log_multiplier = cd(mu.real() * T, arg);
+  m.branch = static_cast<int>(std::lround((mu.imag() - arg / T) / omega));
+  m.frequency_hz = mu.imag() / (2 * kPi);
+  const double mag = std::abs(mu);
+  m.damping_ratio = mag > 0 ? -mu.real() / mag : 0;
+  return m;
+}
+
+// Eigenpairs with the requested solver; the structured one falls back to dense when it misses
+// exponents and the dense matrix fits.
+Eigenpairs Solve(const FourierMatrix& A, double omega, int N, const HillOptions& o,
+                 const std::vector<cd>& shifts, std::string& solver_used,
+                 std::vector<std::string>& diagnostics) {
+  if (o.solver == HillSolver::kDense) {
+    hill_internal::CheckDenseMemory(A.rows(), N, o.max_dense_bytes);
+    solver_used = "dense";
+    return hill_internal::SolveDense(A, omega, N);
+  }
+  solver_used = "structured";
+  Eigenpairs p = hill_internal::SolveStructured(A, omega, N, shifts);
+  for (const std::string& s : p.notes) diagnostics.push_back(s);
+  return p;
+}
+
+// One Hill analysis at fixed period and N (no period doubling).
+HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T, int N,
+                        const HillOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = A.rows();
+  const double omega = 2 * kPi / T;
+  HillResult r;
+  r.states = n;
+  r.harmonics = N;
+  r.matrix_size = (2 * N + 1) * n;
+  r.period = T;
+  r.selection_rule = std::string(ToString(o.selection));
+
+  std::vector<cd> shifts = o.expected;
+  if (shifts.empty()) {
+    const Eigen::VectorXcd e = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(A[0]).eigenvalues();
+    shifts.assign(e.data(), e.data() + e.size());
+  }
+  Eigenpairs pairs = Solve(A, omega, N, o, shifts, r.solver, r.diagnostics);
+  hill_internal::Selection sel;
+  if (pairs.ok) sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
+  if (o.solver == HillSolver::kStructured && o.structured_fallback &&
+      static_cast<int>(sel.chosen.size()) < n) {
+    const double bytes = std::pow((2.0 * N + 1) * n, 2) * sizeof(cd);
+    if (bytes <= o.max_dense_bytes) {
+      r.diagnostics.push_back("structured solver found " + std::to_string(sel.chosen.size()) +
+                              " of " + std::to_string(n) + " exponents; fell back to dense");
+      HillOptions dense = o;
+      dense.solver = HillSolver::kDense;
+      pairs = Solve(A, omega, N, dense, shifts, r.solver, r.diagnostics);
+      r.solver = "structured→dense";
+      if (pairs.ok)
+        sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
+    }
+  }
+  for (const std::string& s : pairs.notes) r.diagnostics.push_back(s);
+  for (const std::string& s : sel.diagnostics) r.diagnostics.push_back(s);
+  r.eigenvalues = pairs.values;
+  if (!pairs.ok) return r;
+
+  // Modes, sorted as AnalyzeFloquet sorts them: |frequency|, positive first, then Re λ.
+  const double norm_h = hill_internal::HillNormEstimate(A, omega, N);
+  std::vector<FloquetMode> modes;
+  std::vector<HillModeInfo> infos;
+  for (size_t k = 0; k < sel.chosen.size(); ++k) {
+    const int i = sel.chosen[k];
+    const Eigen::VectorXcd x = pairs.vectors.col(i);
+    FloquetMode m = MakeMode(pairs.values[i], T, omega);
+    HillModeInfo info = sel.info[k];
+    const std::vector<double> e = hill_internal::BlockEnergies(x, n, N);
+    m.central_weight = e[N];
+    m.branch_margin = 0.5 - std::min(0.5, std::abs(info.centroid));
+    info.residual = (hill_internal::HillMultiply(A, omega, N, x) - pairs.values[i] * x).norm() /
+                    (norm_h * x.norm());
+    m.eigvec_residual = info.residual;
+    modes.push_back(m);
+    infos.push_back(info);
+  }
+  std::vector<int> order(modes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const double fa = std::abs(modes[a].exponent.imag()), fb = std::abs(modes[b].exponent.imag());
+    if (std::abs(fa - fb) > 1e-9 * (1 + fa)) return fa < fb;
+    if (modes[a].exponent.imag() != modes[b].exponent.imag())
+      return modes[a].exponent.imag() > modes[b].exponent.imag();
+    return modes[a].exponent.real() > modes[b].exponent.real();
+  });
+  for (int k : order) {
+    r.modes.push_back(modes[k]);
+    r.info.push_back(infos[k]);
+  }
+  r.ok = static_cast<int>(r.modes.size()) == n;
+  r.max_real_exponent = n > 0 ? -std::numeric_limits<double>::infinity() : 0;
+  for (const FloquetMode& m : r.modes) r.max_real_exponent = std::max(r.max_real_exponent, m.exponent.real());
+  r.stable = r.ok && r.max_real_exponent < 0;
+
+  double worst_tail = 0;
+  for (const HillModeInfo& i : r.info) worst_tail = std::max(worst_tail, i.tail_weight);
+  if (worst_tail > 1e-8) {
+    std::ostringstream s;
+    s << "eigenvectors reach the truncation edge (tail weight " << worst_tail
+      << " on blocks ±N): raise N";
+    r.diagnostics.push_back(s.str());
+  }
+
+  // Truncation estimate: the same analysis at N + Δ (shifts from this solve).
+  if (o.delta_harmonics >= 0 && r.ok) {
+    r.delta_harmonics = o.delta_harmonics > 0 ? o.delta_harmonics : std::max(2, (N + 1) / 2);
+    HillOptions o2 = o;
+    o2.delta_harmonics = -1;
+    o2.koopman_check = false;
+    o2.expected.clear();
+    for (const FloquetMode& m : r.modes) o2.expected.push_back(m.exponent);
+    try {
+      const HillResult r2 = AnalyzeFixed(A, fit, T, N + r.delta_harmonics, o2);
+      std::vector<cd> a, b;
+      for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
+      for (const FloquetMode& m : r2.modes) b.push_back(m.exponent);
+      const std::vector<double> d = hill_internal::MatchModulo(a, b, omega);
+      r.truncation_estimate = 0;
+      for (size_t k = 0; k < d.size(); ++k) {
+        r.info[k].truncation_change = d[k];
+        r.truncation_estimate = std::max(r.truncation_estimate, d[k]);
+      }
+    } catch (const ResourceError&) {
+      r.delta_harmonics = 0;
+      r.diagnostics.push_back("N + Δ estimate skipped: the larger truncation does not fit in memory");
+    }
+  }
+
+  // Koopman–Hill cross-check and the a-priori bound (which needs its eigenvectors).
+  r.decay = FitHillDecay(A, fit, N, T);
+  r.apriori_phi_bound = KoopmanHillBound(r.decay, N, T);
+  if (o.koopman_check && r.ok && r.matrix_size <= o.koopman_max_size) {
+    const Eigen::MatrixXcd phi = KoopmanHillTransition(A, omega, N, T);
+    // The bound holds in exact arithmetic; the computed expm adds round-off ~ eps ||H T|| ||Φ||.
+    r.apriori_phi_bound += 16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) *
+                           std::max(1.0, phi.norm());
+    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(phi);
+    std::vector<cd> kh;
+    for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) {
+      const cd rho = es.eigenvalues()(k);
+      r.koopman_log_multipliers.push_back(std::log(rho));
+      kh.push_back(std::log(rho) / T);
+    }
+    std::vector<cd> hill;
+    for (const FloquetMode& m : r.modes) hill.push_back(m.exponent);
+    r.koopman_discrepancy = 0;
+    for (double d : hill_internal::MatchModulo(hill, kh, omega))
+      r.koopman_discrepancy = std::max(r.koopman_discrepancy, d);
+    // Bauer–Fike: |Δρ| <= κ(V) ||ΔΦ||; |Δ log ρ| <= −log(1 − |Δρ|/|ρ|).
+    Eigen::MatrixXcd V = es.eigenvectors();
+    for (Eigen::Index k = 0; k < V.cols(); ++k) V.col(k).normalize();
+    const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(V);
+    const auto& s = svd.singularValues();
+    const double kappa = s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
+    double worst = 0;
+    for (const FloquetMode& m : r.modes) {
+      const double delta = kappa * r.apriori_phi_bound / std::exp(m.exponent.real() * T);
+      worst = std::max(worst, delta < 1 ? -std::log1p(-delta) / T : std::numeric_limits<double>::infinity());
+    }
+    // Plus the round-off floor of the eigenvalue solve (backward error ~ eps ||H_N||).
+    r.apriori_bound = worst + r.koopman_discrepancy +
+                      4 * std::numeric_limits<double>::epsilon() * norm_h;
+  } else if (o.koopman_check && r.ok) {
+    r.diagnostics.push_back("Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
+                            std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
+  }
+  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace
+
+std::string_view ToString(HillSolver solver) {
+  return solver == HillSolver::kDense ? "dense" : "structured";
+}
+
+std::optional<HillSolver> ParseHillSolver(std::string_view name) {
+  if (name == "dense") return HillSolver::kDense;
+  if (name == "structured") return HillSolver::kStructured;
+  return std::nullopt;
+}
+
+std::string_view ToString(HillSelectionRule rule) {
+  switch (rule) {
+    case HillSelectionRule::kCentroid: return "centroid";
+    case HillSelectionRule::kCentralWeight: return "central-weight";
+    case HillSelectionRule::kStrip: return "strip";
+  }
+  return "?";
+}
+
+std::optional<HillSelectionRule> ParseHillSelectionRule(std::string_view name) {
+  if (name == "centroid") return HillSelectionRule::kCentroid;
+  if (name == "central-weight") return HillSelectionRule::kCentralWeight;
+  if (name == "strip") return HillSelectionRule::kStrip;
+  return std::nullopt;
+}
+
+void HillOptions::Validate() const {
+  auto fail = [](const std::string& field, double value, const std::string& constraint) {
+    std::ostringstream s;
+    s << "HillOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
+    throw InputError(s.str());
+  };
+  if (harmonics < 0) fail("harmonics", harmonics, "harmonics >= 0");
+  if (!(ambiguity_threshold >= 0 && ambiguity_threshold < 1))
+    fail("ambiguity_threshold", ambiguity_threshold, "0 <= ambiguity_threshold < 1");
+  if (delta_harmonics < -1) fail("delta_harmonics", delta_harmonics, ">= -1 (0 = automatic, -1 = off)");
+  if (koopman_max_size < 0) fail("koopman_max_size", koopman_max_size, "koopman_max_size >= 0");
+  if (!(max_dense_bytes > 0) || !std::isfinite(max_dense_bytes))
+    fail("max_dense_bytes", max_dense_bytes, "finite and > 0");
+  for (const auto& e : expected)
+    if (!std::isfinite(e.real()) || !std::isfinite(e.imag()))
+      fail("expected", e.real() + e.imag(), "every expected exponent finite");
+}
+
+HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  const double T = system.period();
+  std::vector<std::string> notes;
+  FourierMatrix A;
+  std::optional<FourierFit> fit;
+  if (const FourierMatrix* fa = system.fourier_A()) {
+    A = *fa;
+  } else {
+    auto f = [&system](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalA(t, out); };
+    fit = FitFourier(f, system.states(), system.states(), T, options.fourier);
+    A = fit->series;
+    std::ostringstream s;
+    s << "A(t) fitted by FFT: " << A.max_harmonic() << " harmonics from " << fit->samples
+      << " samples, relative tail " << fit->tail << ", decay " << fit->decay;
+    if (fit->decay == "exponential") s << " (b = " << fit->decay_rate << ")";
+    if (fit->decay == "algebraic")
+      s << " (|A_w| ~ |w|^-" << fit->decay_rate
+        << ": discontinuous A(t), expect algebraic convergence in N)";
+    notes.push_back(s.str());
+    if (!fit->converged)
+      notes.push_back("Fourier fit not converged: the dropped tail limits the accuracy of every "
+                      "exponent, whatever N");
+  }
+
+  const bool always = options.period_doubling == PeriodDoubling::kAlways;
+  const FourierFit* fit_ptr = fit ? &*fit : nullptr;
+  HillResult r = always ? AnalyzeFixed(DoublePeriod(A), fit_ptr, 2 * T, 2 * options.harmonics, options)
+                        : AnalyzeFixed(A, fit_ptr, T, options.harmonics, options);
+  r.period_doubled = always;
+  if (!always && options.period_doubling == PeriodDoubling::kAuto && AnyAmbiguous(r)) {
+    HillResult d = AnalyzeFixed(DoublePeriod(A), fit_ptr, 2 * T, 2 * options.harmonics, options);
+    if (d.ok && !AnyAmbiguous(d)) {
+      std::vector<std::string> before = std::move(r.diagnostics);
+      r = std::move(d);
+      r.period_doubled = true;
+      r.diagnostics.insert(r.diagnostics.begin(), before.begin(), before.end());
+      r.diagnostics.push_back(
+          "resolved by period doubling: analysed with T' = 2T (Ωp' = Ωp/2, N' = 2N); exponents "
+          "are reported modulo jΩp/2 and their mode shapes are 2T-periodic");
+    } else {
+      r.diagnostics.push_back("period doubling (T' = 2T) did not resolve the ambiguity");
+    }
+  }
+  if (always) r.diagnostics.push_back("analysed with period 2T as requested (Ωp' = Ωp/2, N' = 2N)");
+  r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
+  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+std::string HillResult::BriefReport() const {
+  std::ostringstream s;
+  s << "Hill N = " << harmonics << " (" << solver << ", size " << matrix_size << "): max Re λ = "
+    << max_real_exponent << " (" << (stable ? "stable" : "unstable") << "), N vs N+"
+    << delta_harmonics << ": " << truncation_estimate << ", a-priori bound: " << apriori_bound
+    << ", Koopman–Hill gap: " << koopman_discrepancy << ", " << elapsed_s * 1e3 << " ms";
+  if (period_doubled) s << ", period doubled";
+  return s.str();
+}
+
+}  // namespace ltp

@@ -1,0 +1,171 @@
+// The Hill matrix H_N (dense, banded, or as an operator) and the period-doubled series.
+#include <complex>
+// LAPACKE with std::complex<double> arguments (same layout as Fortran COMPLEX*16).
+#define lapack_complex_float std::complex<float>
+#define lapack_complex_double std::complex<double>
+#include <lapacke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "hill_internal.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/hill.h"
+
+namespace ltp {
+namespace hill_internal {
+
+int BlockBandwidth(const FourierMatrix& A, int harmonics) {
+  int h = 0;
+  for (int w = 1; w <= A.max_harmonic(); ++w)
+    if (A[w].norm() > 0 || A[-w].norm() > 0) h = w;
+  return std::min(h, 2 * harmonics);
+}
+
+double HillNormEstimate(const FourierMatrix& A, double omega, int harmonics) {
+  double s = harmonics * omega;
+  const int h = std::min(A.max_harmonic(), 2 * harmonics);
+  for (int w = -h; w <= h; ++w) s += A[w].norm();
+  return std::max(s, 1e-300);
+}
+
+Eigen::VectorXcd HillMultiply(const FourierMatrix& A, double omega, int harmonics,
+                              const Eigen::VectorXcd& x) {
+  const int n = A.rows(), N = harmonics;
+  const int h = BlockBandwidth(A, N);
+  Eigen::VectorXcd y = Eigen::VectorXcd::Zero(x.size());
+  for (int v = -N; v <= N; ++v) {
+    auto yv = y.segment((v + N) * n, n);
+    for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u)
+      yv.noalias() += A[v - u] * x.segment((u + N) * n, n);
+    yv -= cd(0, v * omega) * x.segment((v + N) * n, n);
+  }
+  return y;
+}
+
+void CheckDenseMemory(int n, int harmonics, double max_bytes) {
+  const double size = (2.0 * harmonics + 1) * n;
+  const double bytes = size * size * sizeof(cd);
+  if (bytes > max_bytes) {
+    std::ostringstream s;
+    s << "Hill truncation N = " << harmonics << " with n = " << n << " states needs a dense "
+      << size << "×" << size << " complex matrix (" << bytes / (1024.0 * 1024 * 1024)
+      << " GiB), more than the limit of " << max_bytes / (1024.0 * 1024 * 1024)
+      << " GiB; lower the harmonics or use the structured solver";
+    throw ResourceError(s.str());
+  }
+}
+
+BandedShiftInvert::BandedShiftInvert(const FourierMatrix& A, double omega, int harmonics)
+    : a_(A), omega_(omega), harmonics_(harmonics), n_(A.rows()) {
+  size_ = (2 * harmonics + 1) * n_;
+  kl_ = std::min((BlockBandwidth(A, harmonics) + 1) * n_ - 1, size_ - 1);
+  ldab_ = 3 * kl_ + 1;  // 2 kl + ku + 1 with ku = kl (zgbtrf needs kl extra rows for fill-in)
+  CheckBandMemory(n_, BlockBandwidth(A, harmonics), harmonics);
+}
+
+void CheckBandMemory(int n, int block_bandwidth, int harmonics) {
+  const double size = (2.0 * harmonics + 1) * n;
+  const double kl = std::min((block_bandwidth + 1.0) * n - 1, size - 1);
+  const double bytes = (3 * kl + 1) * size * sizeof(cd);
+  if (bytes > 2.0 * 1024 * 1024 * 1024) {
+    std::ostringstream s;
+    s << "Hill truncation N = " << harmonics << " with n = " << n
+      << " states needs a band matrix of " << bytes / (1024.0 * 1024 * 1024)
+      << " GiB, more than the limit of 2 GiB; lower the harmonics";
+    throw ResourceError(s.str());
+  }
+}
+
+bool BandedShiftInvert::Factor(cd shift) {
+  const int N = harmonics_, n = n_, h = BlockBandwidth(a_, N), ku = kl_;
+  ab_.assign(static_cast<size_t>(ldab_) * size_, cd(0));
+  ipiv_.assign(size_, 0);
+  auto at = [&](int i, int j) -> cd& { return ab_[kl_ + ku + i - j + static_cast<size_t>(j) * ldab_]; };
+  for (int v = -N; v <= N; ++v)
+    for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u) {
+      const Eigen::MatrixXcd& b = a_[v - u];
+      for (int c = 0; c < n; ++c)
+        for (int r = 0; r < n; ++r) at((v + N) * n + r, (u + N) * n + c) = b(r, c);
+    }
+  for (int v = -N; v <= N; ++v)
+    for (int r = 0; r < n; ++r) at((v + N) * n + r, (v + N) * n + r) -= cd(0, v * omega_) + shift;
+  const lapack_int info = LAPACKE_zgbtrf(LAPACK_COL_MAJOR, size_, size_, kl_, ku, ab_.data(),
+                                         ldab_, ipiv_.data());
+  return info == 0;
+}
+
+void BandedShiftInvert::Solve(Eigen::Ref<Eigen::VectorXcd> x) const {
+  LAPACKE_zgbtrs(LAPACK_COL_MAJOR, 'N', size_, kl_, kl_, 1, ab_.data(), ldab_, ipiv_.data(),
+                 x.data(), size_);
+}
+
+}  // namespace hill_internal
+
+Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics, double max_bytes) {
+  if (harmonics < 0) throw InputError("HillMatrix: harmonics must be >= 0");
+  const int n = A.rows(), N = harmonics;
+  hill_internal::CheckDenseMemory(n, N, max_bytes);
+  const int h = std::min(A.max_harmonic(), 2 * N);
+  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero((2 * N + 1) * n, (2 * N + 1) * n);
+  for (int v = -N; v <= N; ++v) {
+    for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u)
+      H.block((v + N) * n, (u + N) * n, n, n) = A[v - u];
+    H.block((v + N) * n, (v + N) * n, n, n).diagonal().array() -= std::complex<double>(0, v * omega);
+  }
+  return H;
+}
+
+FourierMatrix DoublePeriod(const FourierMatrix& A) {
+  if (A.rows() == 0 || A.cols() == 0) return A;
+  FourierMatrix out(A.rows(), A.cols(), 2 * A.max_harmonic());
+  for (int w = -A.max_harmonic(); w <= A.max_harmonic(); ++w) out[2 * w] = A[w];
+  return out;
+}
+
+PeriodicSystem DoublePeriod(const PeriodicSystem& system) {
+  const double T = system.period();
+  PeriodicSystem out = [&] {
+    switch (system.form()) {
+      case PeriodicSystem::Form::kFourier:
+        return PeriodicSystem::FromFourier(2 * T, DoublePeriod(*system.fourier_A()),
+                                           DoublePeriod(*system.fourier_B()),
+                                           DoublePeriod(*system.fourier_C()),
+                                           DoublePeriod(*system.fourier_D()));
+      case PeriodicSystem::Form::kPiecewiseConstant: {
+        std::vector<double> times = system.sample_times();
+        std::vector<LtiSystem> samples = system.samples();
+        const size_t k = times.size();
+        for (size_t i = 0; i < k; ++i) {
+          times.push_back(times[i] + T);
+          samples.push_back(samples[i]);
+        }
+        return PeriodicSystem::FromSamples(2 * T, times, samples);
+      }
+      case PeriodicSystem::Form::kFunction:
+      default: {
+        // The same functions (they are T-periodic, hence 2T-periodic); jumps repeat at +T.
+        PeriodicSystem::Functions f;
+        f.A = [system](double t, Eigen::Ref<Eigen::MatrixXd> o) { system.EvalA(t, o); };
+        if (system.inputs() > 0)
+          f.B = [system](double t, Eigen::Ref<Eigen::MatrixXd> o) { system.EvalB(t, o); };
+        if (system.outputs() > 0) {
+          f.C = [system](double t, Eigen::Ref<Eigen::MatrixXd> o) { system.EvalC(t, o); };
+          if (system.inputs() > 0)
+            f.D = [system](double t, Eigen::Ref<Eigen::MatrixXd> o) { system.EvalD(t, o); };
+        }
+        std::vector<double> breaks = system.breakpoints();
+        const size_t k = breaks.size();
+        for (size_t i = 0; i < k; ++i) breaks.push_back(breaks[i] + T);
+        return PeriodicSystem::FromFunctions(2 * T, system.states(), system.inputs(),
+                                             system.outputs(), f, breaks);
+      }
+    }
+  }();
+  out = out.WithLabels(system.labels());
+  if (auto speed = system.rotor_speed()) out = out.WithRotorSpeed(*speed);
+  return out;
+}
+
+}  // namespace ltp

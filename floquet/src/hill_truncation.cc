@@ -1,0 +1,243 @@
+// Truncation error of Hill's method: the decay of A's Fourier coefficients, the a-priori
+// Koopman–Hill bound, and the convergence study over N.
+//
+// Bound (F. Bayer, R. I. Leine, "Explicit error bounds and guaranteed convergence of the
+// Koopman-Hill projection stability method for linear time-periodic dynamics",
+// arXiv:2503.21318): if ||A_w|| <= a e^{−b|w|} with b > ln 2, then
+//   ||Φ(t) − C e^{H_N t} W|| <= (2 e^{−b})^N e^{4a|t|}.
+// (Other versions print the factor as e^{4at} − 1; the larger one is used here.) For a finite
+// series every b is admissible with a(b) = max_w ||A_w|| e^{b|w|}; b is chosen to minimise the
+// bound at the N analysed. Frobenius norms (>= the 2-norm) keep a conservative.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "hill_internal.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/hill.h"
+
+namespace ltp {
+namespace {
+
+using cd = std::complex<double>;
+constexpr double kLn2 = std::numbers::ln2;
+// For a finite series the bound keeps improving with b; beyond this it is far below round-off.
+constexpr double kMaxB = 40;
+
+// log of the bound for a given b, or +inf when b is not admissible.
+double LogBound(const std::vector<double>& norms, double b, int N, double T) {
+  double a = 0;
+  for (size_t w = 0; w < norms.size(); ++w)
+    if (norms[w] > 0) a = std::max(a, norms[w] * std::exp(b * static_cast<double>(w)));
+  return N * (kLn2 - b) + 4 * a * T;
+}
+
+struct Envelope {
+  double a = 0, b = 0, log_bound = std::numeric_limits<double>::infinity();
+};
+
+Envelope BestEnvelope(const std::vector<double>& norms, double b_max, int N, double T) {
+  Envelope best;
+  if (!(b_max > kLn2)) return best;
+  // Log-spaced grid over b − ln2, then a local refinement around the best point.
+  const int kGrid = 400;
+  const double lo = std::log(1e-4), hi = std::log(b_max - kLn2);
+  double best_b = 0;
+  for (int i = 0; i <= kGrid; ++i) {
+    const double b = kLn2 + std::exp(lo + (hi - lo) * i / kGrid);
+    const double l = LogBound(norms, b, N, T);
+    if (l < best.log_bound) {
+      best.log_bound = l;
+      best_b = b;
+    }
+  }
+  best.b = best_b;
+  for (size_t w = 0; w < norms.size(); ++w)
+    if (norms[w] > 0) best.a = std::max(best.a, norms[w] * std::exp(best_b * static_cast<double>(w)));
+  return best;
+}
+
+struct Line {
+  double alpha = 0, beta = 0, rss = 0;
+};
+Line FitLine(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxx = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  Line l;
+  l.beta = sxx > 0 ? sxy / sxx : 0;
+  l.alpha = my - l.beta * mx;
+  for (size_t i = 0; i < x.size(); ++i) l.rss += std::pow(y[i] - l.alpha - l.beta * x[i], 2);
+  return l;
+}
+
+// N = 1..10, then about ×1.25 (16, 20, 24, 32, 40, 48, 64, ...), always ending at max.
+std::vector<int> StudyHarmonics(int max_harmonics) {
+  std::vector<int> out;
+  for (int N = 1; N <= std::min(10, max_harmonics); ++N) out.push_back(N);
+  for (int p = 8; p <= max_harmonics; p *= 2)
+    for (int f : {4, 5, 6}) {
+      const int N = p * f / 4;
+      if (N > 10 && N <= max_harmonics && N != out.back()) out.push_back(N);
+    }
+  if (out.back() != max_harmonics) out.push_back(max_harmonics);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmonics, double period) {
+  HillDecay d;
+  d.harmonics = A.max_harmonic();
+  d.norms.resize(A.max_harmonic() + 1);
+  for (int w = 0; w <= A.max_harmonic(); ++w)
+    d.norms[w] = std::max(A[w].norm(), A[-w].norm());
+  if (fit) {
+    d.kind = fit->decay;
+    d.rate = fit->decay_rate;
+    d.fourier_tail = fit->tail;
+  } else {
+    d.kind = "finite";
+  }
+  const double b_max = d.kind == "finite" ? kMaxB : d.kind == "exponential" ? d.rate : 0;
+  const Envelope e = BestEnvelope(d.norms, b_max, harmonics, period);
+  d.a = e.a;
+  d.b = e.b;
+  return d;
+}
+
+double KoopmanHillBound(const HillDecay& decay, int harmonics, double period) {
+  if (decay.kind == "algebraic") return std::numeric_limits<double>::infinity();
+  const double b_max = decay.kind == "finite" ? kMaxB : decay.rate;
+  const Envelope e = BestEnvelope(decay.norms, b_max, harmonics, period);
+  return e.log_bound > 700 ? std::numeric_limits<double>::infinity() : std::exp(e.log_bound);
+}
+
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               HillOptions options) {
+  return HillConvergenceStudy(system, max_harmonics, FloquetResult{}, std::move(options));
+}
+
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               const FloquetResult& reference, HillOptions options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.Validate();
+  if (max_harmonics < 1) {
+    std::ostringstream s;
+    s << "HillConvergenceStudy: max_harmonics = " << max_harmonics
+      << ". Violated constraint: max_harmonics >= 1";
+    throw InputError(s.str());
+  }
+  // Fail up front (not after hours of smaller truncations) when the largest one cannot fit.
+  const int largest = max_harmonics + std::max(options.delta_harmonics, (max_harmonics + 1) / 2);
+  if (options.solver == HillSolver::kDense)
+    hill_internal::CheckDenseMemory(system.states(), largest, options.max_dense_bytes);
+  else if (const FourierMatrix* fa = system.fourier_A())
+    hill_internal::CheckBandMemory(system.states(), hill_internal::BlockBandwidth(*fa, largest), largest);
+  HillStudy study;
+  for (const FloquetMode& m : reference.modes) study.reference.push_back(m.exponent);
+  const bool have_ref = !study.reference.empty();
+
+  // One solve per N (the N + Δ estimates reuse other rows' solves).
+  std::map<int, HillResult> cache;
+  auto solve = [&](int N) -> const HillResult& {
+    auto it = cache.find(N);
+    if (it != cache.end()) return it->second;
+    HillOptions o = options;
+    o.harmonics = N;
+    o.delta_harmonics = -1;
+    return cache.emplace(N, AnalyzeHill(system, o)).first->second;
+  };
+  auto exponents = [](const HillResult& r) {
+    std::vector<cd> v;
+    for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
+    return v;
+  };
+
+  for (int N : StudyHarmonics(max_harmonics)) {
+    const HillResult& r = solve(N);
+    const double omega = 2 * std::numbers::pi / r.period;
+    HillStudyRow row;
+    row.harmonics = N;
+    row.matrix_size = r.matrix_size;
+    row.apriori_bound = r.apriori_bound;
+    row.elapsed_s = r.elapsed_s;
+    row.period_doubled = r.period_doubled;
+    row.selection_margin = 1;
+    for (const HillModeInfo& i : r.info) {
+      row.selection_margin = std::min(row.selection_margin, i.selection_margin);
+      row.tail_weight = std::max(row.tail_weight, i.tail_weight);
+      row.ambiguous = row.ambiguous || i.ambiguous;
+    }
+    const int delta = options.delta_harmonics > 0 ? options.delta_harmonics
+                                                  : std::max(2, (N + 1) / 2);
+    if (options.delta_harmonics >= 0) {
+      const HillResult& r2 = solve(N + delta);
+      const double omega2 = 2 * std::numbers::pi / r2.period;
+      row.truncation_estimate = 0;
+      for (double d : hill_internal::MatchModulo(exponents(r), exponents(r2), std::min(omega, omega2)))
+        row.truncation_estimate = std::max(row.truncation_estimate, d);
+    } else {
+      row.truncation_estimate = -1;
+    }
+    if (have_ref) {
+      row.errors = hill_internal::MatchModulo(study.reference, exponents(r), omega);
+      row.max_error = 0;
+      for (double e : row.errors) row.max_error = std::max(row.max_error, e);
+    }
+    if (study.rows.empty()) {
+      study.decay = r.decay;
+      for (const std::string& d : r.diagnostics)
+        if (d.rfind("A(t) fitted", 0) == 0) study.diagnostics.push_back(d);
+    }
+    study.rows.push_back(row);
+  }
+
+  // Convergence law from the points clearly above round-off.
+  double scale = 1;
+  for (const cd& l : study.reference) scale = std::max(scale, std::abs(l));
+  std::vector<double> n_lin, n_log, y;
+  for (const HillStudyRow& row : study.rows) {
+    const double e = have_ref ? row.max_error : row.truncation_estimate;
+    if (e > 1e-12 * scale && std::isfinite(e)) {
+      n_lin.push_back(row.harmonics);
+      n_log.push_back(std::log(static_cast<double>(row.harmonics)));
+      y.push_back(std::log(e));
+    }
+  }
+  if (y.size() >= 3) {
+    const Line ex = FitLine(n_lin, y), al = FitLine(n_log, y);
+    if (ex.rss <= al.rss) {
+      study.rate_kind = "exponential";
+      study.rate = -ex.beta;
+    } else {
+      study.rate_kind = "algebraic";
+      study.rate = -al.beta;
+    }
+  } else {
+    study.diagnostics.push_back("too few points above round-off to fit a convergence rate");
+  }
+  if (study.decay.kind == "algebraic") {
+    std::ostringstream s;
+    s << "A(t) is discontinuous (coefficients decay like |w|^-" << study.decay.rate
+      << "): expect algebraic convergence of the exponents, and no exponential a-priori bound";
+    study.diagnostics.push_back(s.str());
+  }
+  study.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return study;
+}
+
+}  // namespace ltp

@@ -1,0 +1,229 @@
+// StateTransition: input checks, the restart grid, dispatch to the integrator families, the
+// automatic resolution loop of the fixed-step methods, and the names of the integrators.
+#include "ltp/floquet/integrator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "integrator_internal.h"
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+namespace {
+
+struct NamedType {
+  IntegratorType type;
+  std::string_view name;
+};
+
+constexpr std::array<NamedType, 7> kNames = {{
+    {IntegratorType::kDopri5, "dopri5"},
+    {IntegratorType::kRkf78, "rkf78"},
+    {IntegratorType::kCvodeBdf, "cvode"},
+    {IntegratorType::kCvodeAdams, "cvode-adams"},
+    {IntegratorType::kMagnus4, "magnus4"},
+    {IntegratorType::kMagnus6, "magnus6"},
+    {IntegratorType::kExpm, "expm"},
+}};
+
+// Automatic resolution: start coarse, double until two successive results agree to rel_tol.
+constexpr int kAutoStartSteps = 8;
+constexpr int kAutoMaxSteps = 1 << 20;
+
+[[noreturn]] void ThrowOption(const char* field, double value, const char* constraint) {
+  std::ostringstream s;
+  s << "IntegratorOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
+  throw InputError(s.str());
+}
+
+bool IsFixedStep(IntegratorType type) {
+  return type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6 ||
+         type == IntegratorType::kExpm;
+}
+
+// ||Φ_a − Φ_b|| / ||Φ_a|| (Frobenius), 0 when both vanish (e.g. total underflow).
+double RelativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  const double diff = (a - b).norm();
+  const double scale = a.norm();
+  if (diff == 0) return 0;
+  return scale > 0 ? diff / scale : std::numeric_limits<double>::infinity();
+}
+
+TransitionResult FixedStepTransition(const PeriodicSystem& system,
+                                     const std::vector<double>& points,
+                                     const IntegratorOptions& options) {
+  TransitionResult result;
+  internal::FixedStepIntegrator integrator(system, options.type);
+  const bool exact = options.type == IntegratorType::kExpm &&
+                     system.form() == PeriodicSystem::Form::kPiecewiseConstant;
+  if (exact) {
+    result.phi = integrator.RunPiecewiseConstant(points);
+    result.ok = true;
+  } else if (options.steps_per_period > 0) {
+    result.phi = integrator.Run(points, options.steps_per_period);
+    result.steps_per_period = options.steps_per_period;
+    result.ok = true;
+  } else {
+    // Doubling loop; the Richardson difference of the last two passes is the error estimate.
+    // The reported resolution is the step density actually used (short pieces start at one
+    // step, so it can exceed kAutoStartSteps · refine).
+    const double span = points.back() - points.front();
+    auto density = [&] {
+      return static_cast<int>(std::lround(integrator.last_pass_steps() * system.period() / span));
+    };
+    long refine = 1;
+    Eigen::MatrixXd coarse = integrator.Run(points, kAutoStartSteps, refine);
+    while (true) {
+      if (!coarse.allFinite()) {
+        result.phi = std::move(coarse);
+        result.steps_per_period = density();
+        break;
+      }
+      refine *= 2;
+      Eigen::MatrixXd fine = integrator.Run(points, kAutoStartSteps, refine);
+      result.error_estimate = RelativeDifference(fine, coarse);
+      result.phi = fine;
+      result.steps_per_period = density();
+      if (result.error_estimate <= options.rel_tol) {
+        result.ok = true;
+        break;
+      }
+      if (kAutoStartSteps * refine >= kAutoMaxSteps || !fine.allFinite()) {
+        std::ostringstream s;
+        s << "did not reach rel_tol = " << options.rel_tol << " with " << result.steps_per_period
+          << " steps per period (last relative change " << result.error_estimate << ")";
+        result.message = s.str();
+        break;
+      }
+      coarse = std::move(fine);
+    }
+  }
+  result.steps = integrator.steps();
+  result.rhs_evals = integrator.rhs_evals();
+  if (result.ok && options.type == IntegratorType::kExpm && !exact)
+    result.message =
+        "expm on a non-piecewise-constant system: exponential midpoint rule, 2nd order";
+  return result;
+}
+
+}  // namespace
+
+std::string_view ToString(IntegratorType type) {
+  for (const auto& [t, name] : kNames)
+    if (t == type) return name;
+  return "unknown";
+}
+
+std::optional<IntegratorType> ParseIntegratorType(std::string_view name) {
+  for (const auto& [t, n] : kNames)
+    if (n == name) return t;
+  return std::nullopt;
+}
+
+std::vector<IntegratorType> AllIntegrators() {
+  std::vector<IntegratorType> all;
+  for (const auto& named : kNames) all.push_back(named.type);
+  return all;
+}
+
+void IntegratorOptions::Validate() const {
+  if (!ParseIntegratorType(ToString(type)))
+    ThrowOption("type", static_cast<int>(type), "one of the IntegratorType values");
+  if (!(rel_tol > 0 && rel_tol < 1)) ThrowOption("rel_tol", rel_tol, "0 < rel_tol < 1");
+  if (!(abs_tol >= 0 && std::isfinite(abs_tol)))
+    ThrowOption("abs_tol", abs_tol, "0 <= abs_tol < inf");
+  if (steps_per_period < 0)
+    ThrowOption("steps_per_period", steps_per_period, "steps_per_period >= 0");
+  if (max_steps <= 0) ThrowOption("max_steps", static_cast<double>(max_steps), "max_steps > 0");
+}
+
+namespace internal {
+
+std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, double t1) {
+  std::vector<double> points = {t0};
+  const double period = system.period();
+  // Points this close are one point: a piece shorter than this would only carry round-off.
+  const double merge =
+      64 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t1), period});
+  const auto& breaks = system.breakpoints();
+  if (!breaks.empty()) {
+    const double first = std::floor(t0 / period);
+    const double last = std::ceil(t1 / period);
+    for (double k = first; k <= last; ++k) {
+      for (double b : breaks) {
+        const double t = k * period + b;
+        if (t > t0 + merge && t < t1 - merge && t > points.back() + merge) points.push_back(t);
+      }
+    }
+  }
+  if (t1 > points.back()) points.push_back(t1);
+  return points;
+}
+
+PieceWindow::PieceWindow(double a, double b) {
+  const double margin =
+      8 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
+  lo_ = a + margin;
+  hi_ = b - margin;
+  if (lo_ > hi_) lo_ = hi_ = 0.5 * (a + b);  // a sliver piece: its midpoint
+}
+
+double InitialStep(double norm_a, double length, double rel_tol, int order) {
+  if (!(norm_a > 0) || !std::isfinite(norm_a)) return length;
+  return std::min(length, std::pow(rel_tol, 1.0 / (order + 1)) / norm_a);
+}
+
+}  // namespace internal
+
+TransitionResult StateTransition(const PeriodicSystem& system, double t0, double t1,
+                                 const IntegratorOptions& options) {
+  options.Validate();
+  if (!std::isfinite(t0) || !std::isfinite(t1)) {
+    std::ostringstream s;
+    s << "StateTransition: t0 = " << t0 << ", t1 = " << t1 << " must be finite";
+    throw InputError(s.str());
+  }
+  if (t1 < t0) {
+    std::ostringstream s;
+    s << "StateTransition: t1 = " << t1 << " < t0 = " << t0 << " (only forward transitions)";
+    throw InputError(s.str());
+  }
+  const int n = system.states();
+  if (t1 == t0 || n == 0) {
+    TransitionResult result;
+    result.phi = Eigen::MatrixXd::Identity(n, n);
+    result.ok = true;
+    return result;
+  }
+
+  const std::vector<double> points = internal::RestartPoints(system, t0, t1);
+  TransitionResult result;
+  switch (options.type) {
+    case IntegratorType::kDopri5:
+    case IntegratorType::kRkf78:
+      result = internal::OdeintTransition(system, points, options);
+      break;
+    case IntegratorType::kCvodeBdf:
+    case IntegratorType::kCvodeAdams:
+      result = internal::CvodeTransition(system, points, options);
+      break;
+    case IntegratorType::kMagnus4:
+    case IntegratorType::kMagnus6:
+    case IntegratorType::kExpm:
+      result = FixedStepTransition(system, points, options);
+      break;
+  }
+  if (!IsFixedStep(options.type)) result.error_estimate = -1;
+  if (!result.phi.allFinite()) {
+    result.ok = false;
+    result.message = internal::kNotFiniteMessage;
+  }
+  return result;
+}
+
+}  // namespace ltp

@@ -1,0 +1,86 @@
+#pragma once
+// Internal pieces of StateTransition (integrator.h): the restart grid, and one routine per
+// integrator family. Every routine takes the restart points t_0 < … < t_m of [t0, t1] (the
+// interval cut at every breakpoint copy) and returns Φ(t_m, t_0) with its counters; the
+// dispatcher in integrator.cc validates input, checks finiteness and runs the automatic
+// step-size loop of the fixed-step methods.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp::internal {
+
+/// t0, every copy b + kT of a system breakpoint strictly inside (t0, t1), t1 — sorted, with
+/// points closer than a few ulps merged (a sliver piece would only add round-off).
+std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, double t1);
+
+/// Initial step for an adaptive method of the given order on a piece of length `length`:
+/// the step whose local error (h·||A||)^(order+1) is about rel_tol.
+double InitialStep(double norm_a, double length, double rel_tol, int order);
+
+/// Where to evaluate A(t) while integrating the smooth piece [a, b]: t moved a few ulps
+/// inside the piece. A(t) exactly at a breakpoint is ambiguous — sign(cos t) at the double
+/// nearest π/2 is +1, the value of the *previous* piece — and methods whose first stage sits at
+/// the piece start (rkf78, CVODE's initial derivative) would otherwise integrate the wrong
+/// side of the jump.
+class PieceWindow {
+ public:
+  PieceWindow() = default;
+  PieceWindow(double a, double b);
+  double operator()(double t) const { return std::clamp(t, lo_, hi_); }
+
+ private:
+  double lo_ = 0, hi_ = 0;
+};
+
+/// "state transition is not finite (overflow?)" — one wording for every integrator.
+inline constexpr const char* kNotFiniteMessage = "state transition is not finite (overflow?)";
+
+/// kDopri5 / kRkf78 via Boost.Odeint controlled steppers; max_steps bounds the attempted
+/// steps over the whole interval.
+TransitionResult OdeintTransition(const PeriodicSystem& system, const std::vector<double>& points,
+                                  const IntegratorOptions& options);
+
+/// kCvodeBdf / kCvodeAdams via SUNDIALS CVODE on the n² vector vec(Φ).
+TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector<double>& points,
+                                 const IntegratorOptions& options);
+
+/// Fixed-step exponential integrators (Magnus 4/6, exponential midpoint rule) with their
+/// workspace allocated once and reused over the passes of the automatic resolution loop.
+class FixedStepIntegrator {
+ public:
+  /// `type` must be kMagnus4, kMagnus6 or kExpm.
+  FixedStepIntegrator(const PeriodicSystem& system, IntegratorType type);
+
+  /// One pass over the restart points; each piece gets
+  /// refine · max(1, ceil(steps_per_period · length / T)) equal steps. The automatic loop
+  /// doubles `refine`, which doubles the steps on *every* piece — with steps_per_period
+  /// doubled instead, pieces shorter than T/steps_per_period would keep their single step
+  /// and two passes could agree without having converged. Adds to the counters.
+  Eigen::MatrixXd Run(const std::vector<double>& points, int steps_per_period, long refine = 1);
+  /// Steps taken by the last Run.
+  long last_pass_steps() const { return last_pass_steps_; }
+
+  /// Exact product of exp(A_k Δt_k) over the held pieces of a piecewise-constant system.
+  Eigen::MatrixXd RunPiecewiseConstant(const std::vector<double>& points);
+
+  long steps() const { return steps_; }
+  long rhs_evals() const { return rhs_evals_; }
+
+ private:
+  // Ω for one step [t, t + h] of the configured method; A evaluated into the workspace.
+  void StepGenerator(double t, double h);
+
+  const PeriodicSystem& system_;
+  IntegratorType type_;
+  Eigen::MatrixXd a1_, a2_, a3_, b2_, b3_, omega_, comm_, tmp_, step_, phi_, next_;
+  long steps_ = 0;
+  long rhs_evals_ = 0;
+  long last_pass_steps_ = 0;
+};
+
+}  // namespace ltp::internal

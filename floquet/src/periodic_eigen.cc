@@ -1,0 +1,491 @@
+// Eigenvalues and periodic eigenvectors of a cyclic matrix product Φ_K ⋯ Φ_1.
+//
+// Eigenvalues: SLICOT chain MB03VD → MB03BD.
+//   MB03VD reduces the product A_1 A_2 ⋯ A_K to periodic Hessenberg-triangular form
+//   (A_1 Hessenberg, the others upper triangular) by orthogonal transformations
+//   Q_j' A_j Q_{j+1}, Q_{K+1} = Q_1, which leave the eigenvalues of the product unchanged.
+//   MB03BD (periodic QZ, JOB='E', signatures S = +1, Hessenberg index H = 1) then returns each
+//   eigenvalue as (ALPHAR + j ALPHAI)/BETA · BASE^SCAL with ALPHA of order one, so log ρ is
+//   formed from the pieces and never from ρ itself (which may lie far outside double range).
+//   SLICOT's product is ordered A_1 A_2 ⋯ A_K (A_1 leftmost), so A_j = Φ_{K+1-j}.
+//
+// Eigenvectors: null vectors of the block-cyclic "lifted" matrix, by sparse inverse iteration
+// (see ComputePeriodicEigenvectors below).
+#include "ltp/floquet/periodic_eigen.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ltp/core/error.h"
+
+// SLICOT 5.0 (Fortran 77, gfortran ABI): every argument by pointer, the lengths of CHARACTER
+// arguments appended as hidden size_t arguments. Argument lists checked against the SLICOT 5.0
+// sources of MB03VD.f and MB03BD.f.
+extern "C" {
+void mb03vd_(const int* n, const int* p, const int* ilo, const int* ihi, double* a,
+             const int* lda1, const int* lda2, double* tau, const int* ldtau, double* dwork,
+             int* info);
+void mb03bd_(const char* job, const char* defl, const char* compq, const int* qind,
+             const int* k, const int* n, const int* h, const int* ilo, const int* ihi,
+             const int* s, double* a, const int* lda1, const int* lda2, double* q,
+             const int* ldq1, const int* ldq2, double* alphar, double* alphai, double* beta,
+             int* scal, int* iwork, const int* liwork, double* dwork, const int* ldwork,
+             int* iwarn, int* info, std::size_t job_len, std::size_t defl_len,
+             std::size_t compq_len);
+}
+
+namespace ltp {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// arg in (−π, π]: a negative real eigenvalue reports +π whatever the sign of its zero
+/// imaginary part.
+double PrincipalArg(double re, double im) {
+  if (im == 0) im = 0.0;  // drops a negative zero
+  const double arg = std::atan2(im, re);
+  return arg <= -std::numbers::pi ? std::numbers::pi : arg;
+}
+
+/// Descending log|ρ|. The two members of a conjugate pair may differ in the last bit of
+/// log|ρ| (SLICOT scales each separately); they are made exact conjugates and listed with the
+/// positive arg first, so the order is reproducible.
+void SortDescending(std::vector<Complex>& values) {
+  std::sort(values.begin(), values.end(), [](const Complex& a, const Complex& b) {
+    if (a.real() != b.real()) return a.real() > b.real();
+    return a.imag() > b.imag();
+  });
+  constexpr double kPairTol = 16 * std::numeric_limits<double>::epsilon();
+  for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+    const Complex a = values[i], b = values[i + 1];
+    if (!std::isfinite(a.real()) || a.imag() == 0 || b.imag() == 0) continue;
+    const bool conjugate =
+        std::abs(a.real() - b.real()) <= kPairTol * std::max(1.0, std::abs(a.real())) &&
+        std::abs(a.imag() + b.imag()) <= kPairTol * std::max(1.0, std::abs(a.imag()));
+    if (!conjugate) continue;
+    const double re = 0.5 * (a.real() + b.real());
+    const double im = 0.5 * (std::abs(a.imag()) + std::abs(b.imag()));
+    values[i] = Complex(re, im);
+    values[i + 1] = Complex(re, -im);
+    ++i;
+  }
+}
+
+/// Empty when all factors are square, of one size and finite; otherwise what is wrong.
+std::string CheckFactors(const std::vector<Eigen::MatrixXd>& factors) {
+  if (factors.empty()) return "no factors given";
+  const Eigen::Index n = factors[0].rows();
+  for (std::size_t i = 0; i < factors.size(); ++i) {
+    const Eigen::MatrixXd& f = factors[i];
+    if (f.rows() != n || f.cols() != n) {
+      return "factor " + std::to_string(i) + " is " + std::to_string(f.rows()) + "x" +
+             std::to_string(f.cols()) + ", expected " + std::to_string(n) + "x" +
+             std::to_string(n);
+    }
+    if (!f.allFinite()) return "factor " + std::to_string(i) + " has non-finite entries";
+  }
+  return {};
+}
+
+}  // namespace
+
+LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& factors) {
+  LogEigenvalues result;
+  if (std::string problem = CheckFactors(factors); !problem.empty()) {
+    result.message = "PeriodicSchurLogEigenvalues: " + problem;
+    return result;
+  }
+  const int n = static_cast<int>(factors[0].rows());
+  const int k = static_cast<int>(factors.size());
+  if (n == 0) {
+    result.ok = true;
+    return result;
+  }
+
+  // A(:,:,j) = Φ_{K+1-j}, column-major n×n×K, so that A_1 ⋯ A_K = Φ_K ⋯ Φ_1.
+  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
+  std::vector<double> a(static_cast<std::size_t>(block * k));
+  for (int j = 0; j < k; ++j) {
+    Eigen::Map<Eigen::MatrixXd>(a.data() + j * block, n, n) = factors[k - 1 - j];
+  }
+
+  // Periodic Hessenberg-triangular form. Arguments are validated above, so SLICOT's XERBLA
+  // (which would print) is never reached.
+  const int ilo = 1, ihi = n, lda = n, ldtau = std::max(1, n - 1);
+  std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
+  std::vector<double> dwork_vd(n);
+  int info = 0;
+  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork_vd.data(),
+          &info);
+  if (info != 0) {
+    result.message = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
+    return result;
+  }
+  // MB03VD leaves its Householder vectors below the Hessenberg (j = 1) or triangular part;
+  // MB03BD expects those entries to be zero.
+  for (int j = 0; j < k; ++j) {
+    Eigen::Map<Eigen::MatrixXd> aj(a.data() + j * block, n, n);
+    const int first_zero_below = (j == 0) ? 2 : 1;
+    for (int c = 0; c < n; ++c) {
+      for (int r = c + first_zero_below; r < n; ++r) aj(r, c) = 0.0;
+    }
+  }
+
+  // Periodic QZ, eigenvalues only. Workspace: the larger of the SLICOT 5.0 and 5.7 minimums
+  // (5.0 has no workspace query; a too-short workspace would make it call XERBLA).
+  const char job = 'E', defl = 'C', compq = 'N';
+  const int h = 1, ldq = 1;
+  std::vector<int> qind(k, 0), signature(k, 1);
+  double q_unused = 0.0;
+  std::vector<double> alphar(n), alphai(n), beta(n);
+  std::vector<int> scal(n);
+  const int liwork = 2 * k + n;
+  const int ldwork = k + std::max(2 * n, 8 * k);
+  std::vector<int> iwork(liwork);
+  std::vector<double> dwork(ldwork);
+  int iwarn = 0;
+  info = 0;
+  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(),
+          a.data(), &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(),
+          beta.data(), scal.data(), iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn,
+          &info, 1, 1, 1);
+  if (info != 0) {
+    result.message = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
+                     (info > 0 ? " (iteration did not converge)" : "");
+    return result;
+  }
+
+  // log ρ = log|ALPHA| − log|BETA| + SCAL·log(BASE) + j arg(ALPHA); BETA is 1 or 0 (0 = infinite
+  // eigenvalue, impossible here since no factor is inverted, but kept for completeness).
+  const double log_base = std::log(static_cast<double>(std::numeric_limits<double>::radix));
+  result.log_values.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double modulus = std::hypot(alphar[i], alphai[i]);
+    if (beta[i] == 0.0) {
+      result.log_values.emplace_back(kInf, PrincipalArg(alphar[i], alphai[i]));
+    } else if (modulus == 0.0) {
+      result.log_values.emplace_back(-kInf, 0.0);
+    } else {
+      const double log_abs =
+          std::log(modulus) - std::log(std::abs(beta[i])) + scal[i] * log_base;
+      result.log_values.emplace_back(log_abs, PrincipalArg(alphar[i] * beta[i],
+                                                           alphai[i] * beta[i]));
+    }
+  }
+  SortDescending(result.log_values);
+  result.ok = true;
+  if (iwarn != 0) {
+    result.message = "SLICOT MB03BD warning IWARN = " + std::to_string(iwarn) +
+                     ": eigenvalues of the leading 2x2 blocks (up to index " +
+                     std::to_string(iwarn + 1) + ") may be inaccurate";
+  }
+  return result;
+}
+
+LogEigenvalues SingleShotLogEigenvalues(const Eigen::MatrixXd& product) {
+  LogEigenvalues result;
+  if (product.rows() != product.cols()) {
+    result.message = "SingleShotLogEigenvalues: product is " + std::to_string(product.rows()) +
+                     "x" + std::to_string(product.cols()) + ", not square";
+    return result;
+  }
+  if (!product.allFinite()) {
+    result.message = "SingleShotLogEigenvalues: product has non-finite entries";
+    return result;
+  }
+  if (product.rows() == 0) {
+    result.ok = true;
+    return result;
+  }
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(product, /*computeEigenvectors=*/false);
+  if (solver.info() != Eigen::Success) {
+    result.message = "SingleShotLogEigenvalues: Eigen::EigenSolver did not converge";
+    return result;
+  }
+  for (const Complex& rho : solver.eigenvalues()) {
+    const double modulus = std::abs(rho);
+    result.log_values.emplace_back(modulus == 0.0 ? -kInf : std::log(modulus),
+                                   modulus == 0.0 ? 0.0 : PrincipalArg(rho.real(), rho.imag()));
+  }
+  SortDescending(result.log_values);
+  result.ok = true;
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Periodic eigenvectors.
+//
+// The vectors (v_0, …, v_{K−1}) with Φ_i v_i = σ_i v_{i+1} form the null vector of the nK×nK
+// block-cyclic matrix C whose block row i holds Φ_i at block column i and −σ_i I at block
+// column i+1 (mod K). Each block row is divided by ||Φ_i||_F + |σ_i|, so that every row has
+// unit scale whatever the magnitude of the factor or of σ_i; then inverse iteration with a
+// sparse LU of C − μI converges to the null vector. No product of factors is ever formed.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+using SparseMatrixC = Eigen::SparseMatrix<Complex>;
+using SparseLUC = Eigen::SparseLU<SparseMatrixC, Eigen::COLAMDOrdering<int>>;
+
+// Shift μ of the equilibrated C (whose block rows have norm ≈ 1): far below the next singular
+// value of C in any well-conditioned problem, yet about 100× the LU rounding level, so that
+// an exactly singular C never gives a zero pivot and all null directions of a cluster are
+// amplified alike (with μ at rounding level some would win by orders of magnitude and the
+// others be lost in the orthonormalisation).
+constexpr double kShift = 1e-14;
+// log ρ closer than this (relative to max(1, |log ρ|)) are treated as one cluster.
+constexpr double kClusterTol = 1e-8;
+// Each CᴴC step damps the other directions by (μ / s₂(C))², ≤ 1e-12 unless s₂ < 1e-8.
+constexpr int kClusterSteps = 2;  // block inverse-iteration steps on a cluster's subspace
+constexpr int kMemberSteps = 2;   // further steps with each member's own σ
+// Plain steps on C − μI at the end; each damps a close neighbour (gap s₂) by μ / s₂ only.
+constexpr int kPlainSteps = 2;
+
+/// ||Φ_i||_F + |σ_i|, the scale of block row i; 1 for a zero factor with σ_i = 0 (a zero
+/// multiplier of a zero factor), where any vector satisfies the relation.
+double RowScale(double factor_norm, Complex sigma) {
+  const double scale = factor_norm + std::abs(sigma);
+  return scale > 0 ? scale : 1.0;
+}
+
+struct CyclicSystem {
+  std::vector<Complex> sigma;  // σ_i
+  SparseMatrixC shifted;       // equilibrated C − μI
+  double shift = 0;            // μ
+  SparseLUC lu;                // of `shifted`
+  bool ok = false;
+};
+
+/// Builds the equilibrated C − μI for one log ρ and factors it; retries with a larger shift in
+/// the (unexpected) case that the LU still meets a zero pivot.
+void FactorCyclic(const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& norms,
+                  const std::vector<double>& dt, double period, Complex log_rho,
+                  CyclicSystem& sys) {
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  sys.sigma.resize(k);
+  for (int i = 0; i < k; ++i) sys.sigma[i] = std::exp(log_rho * (dt[i] / period));
+
+  for (double shift = kShift; shift < 1e-6; shift *= 100) {
+    std::vector<Eigen::Triplet<Complex>> triplets;
+    triplets.reserve(static_cast<std::size_t>(k) * (n * n + 2 * n));
+    for (int i = 0; i < k; ++i) {
+      const double row_scale = 1.0 / RowScale(norms[i], sys.sigma[i]);
+      const Eigen::Index row0 = i * n;
+      const Eigen::Index col_next = ((i + 1) % k) * n;
+      for (Eigen::Index c = 0; c < n; ++c) {
+        for (Eigen::Index r = 0; r < n; ++r) {
+          if (factors[i](r, c) != 0.0) {
+            triplets.emplace_back(row0 + r, row0 + c, factors[i](r, c) * row_scale);
+          }
+        }
+        // Duplicates are summed, which also covers K = 1 (Φ_0 − σ_0 I in one block).
+        triplets.emplace_back(row0 + c, col_next + c, -sys.sigma[i] * row_scale);
+        triplets.emplace_back(row0 + c, row0 + c, Complex(-shift, 0.0));
+      }
+    }
+    sys.shifted.resize(k * n, k * n);
+    sys.shifted.setFromTriplets(triplets.begin(), triplets.end());
+    sys.shifted.makeCompressed();
+    sys.shift = shift;
+    sys.lu.compute(sys.shifted);
+    if (sys.lu.info() == Eigen::Success) {
+      sys.ok = true;
+      return;
+    }
+  }
+  sys.ok = false;
+}
+
+/// One step of inverse iteration on (C − μI)ᴴ(C − μI) for each column — the null vectors of C
+/// are its smallest singular vectors — then orthonormalisation of the columns (so a cluster
+/// keeps spanning its whole subspace instead of collapsing onto one vector). Iterating with
+/// the Hermitian CᴴC rather than C matters: C is far from normal, its left and right null
+/// vectors can be nearly orthogonal, and plain inverse iteration on C then stalls at a
+/// residual of (LU backward error)/|uᴴv|, observed up to 1e-12.
+void InverseIterationStep(CyclicSystem& sys, Eigen::MatrixXcd& x) {
+  Eigen::MatrixXcd w = sys.lu.adjoint().solve(x);
+  x = sys.lu.solve(w);
+  if (x.cols() == 1) {
+    x /= x.norm();
+  } else {
+    Eigen::HouseholderQR<Eigen::MatrixXcd> qr(x);
+    x = qr.householderQ() * Eigen::MatrixXcd::Identity(x.rows(), x.cols());
+  }
+}
+
+/// ||C x|| / ||x|| of the equilibrated (unshifted) C.
+double EquilibratedResidual(const CyclicSystem& sys, const Eigen::VectorXcd& x) {
+  return (sys.shifted * x + sys.shift * x).norm() / x.norm();
+}
+
+/// Final refinement of a converged vector. The CᴴC iteration converges to the smallest
+/// singular vector of C − μI, which differs from the null vector of C by O(μ / s₂(C)). Plain
+/// inverse-iteration steps on C − μI remove that bias (the null vector is an exact
+/// eigenvector of C − μI, so the shift cancels) and usually brings the residual to rounding
+/// level; when left and right null vectors are nearly orthogonal it can instead stall higher,
+/// so the iterate with the smallest ||C x|| is kept.
+Eigen::VectorXcd Refine(const CyclicSystem& sys, const Eigen::VectorXcd& x) {
+  Eigen::VectorXcd best = x, plain = x;
+  double best_residual = EquilibratedResidual(sys, x);
+  for (int step = 0; step < kPlainSteps; ++step) {
+    plain = sys.lu.solve(plain).eval();
+    plain /= plain.norm();
+    if (!plain.allFinite()) break;
+    const double residual = EquilibratedResidual(sys, plain);
+    if (residual <= best_residual) {
+      best = plain;
+      best_residual = residual;
+    }
+  }
+  return best;
+}
+
+/// Splits the stacked vector into K blocks, scales to max_i ||v_i|| = 1 with the largest entry
+/// of the largest block real positive (a fixed phase), and measures the cyclic residual.
+PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
+                                 const std::vector<double>& norms,
+                                 const std::vector<Complex>& sigma,
+                                 const Eigen::VectorXcd& stacked) {
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  PeriodicEigenvector out;
+  if (!stacked.allFinite()) {
+    out.v.assign(k, Eigen::VectorXcd::Zero(n));
+    out.residual = kInf;
+    return out;
+  }
+  int largest = 0;
+  double largest_norm = -1;
+  for (int i = 0; i < k; ++i) {
+    const double norm = stacked.segment(i * n, n).norm();
+    if (norm > largest_norm) {
+      largest_norm = norm;
+      largest = i;
+    }
+  }
+  Eigen::Index pivot = 0;
+  stacked.segment(largest * n, n).cwiseAbs().maxCoeff(&pivot);
+  const Complex anchor = stacked(largest * n + pivot);
+  const Complex scale = largest_norm > 0 ? std::conj(anchor) / (std::abs(anchor) * largest_norm)
+                                         : Complex(0.0);
+  out.v.reserve(k);
+  for (int i = 0; i < k; ++i) out.v.push_back(stacked.segment(i * n, n) * scale);
+  for (int i = 0; i < k; ++i) {
+    const double r = (factors[i] * out.v[i] - sigma[i] * out.v[(i + 1) % k]).norm() /
+                     RowScale(norms[i], sigma[i]);
+    out.residual = std::max(out.residual, r);
+  }
+  if (largest_norm <= 0) out.residual = kInf;
+  return out;
+}
+
+/// |a − b| in the log plane, with −inf real parts (zero multipliers) comparing equal.
+double LogDistance(Complex a, Complex b) {
+  const bool a_zero = std::isinf(a.real()) && a.real() < 0;
+  const bool b_zero = std::isinf(b.real()) && b.real() < 0;
+  if (a_zero || b_zero) return a_zero && b_zero ? std::abs(a.imag() - b.imag()) : kInf;
+  return std::abs(a - b);
+}
+
+}  // namespace
+
+std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
+    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
+    const std::vector<Complex>& log_rho) {
+  if (std::string problem = CheckFactors(factors); !problem.empty()) {
+    throw InputError("ComputePeriodicEigenvectors: " + problem);
+  }
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  if (dt.size() != factors.size()) {
+    throw InputError("ComputePeriodicEigenvectors: " + std::to_string(dt.size()) +
+                     " segment lengths for " + std::to_string(k) + " factors");
+  }
+  double period = 0;
+  for (double d : dt) {
+    if (!std::isfinite(d) || d <= 0) {
+      throw InputError("ComputePeriodicEigenvectors: segment lengths must be finite and > 0");
+    }
+    period += d;
+  }
+  for (const Complex& l : log_rho) {
+    if (std::isnan(l.real()) || !std::isfinite(l.imag()) || l.real() == kInf) {
+      throw InputError("ComputePeriodicEigenvectors: log_rho must be finite (or -inf real)");
+    }
+  }
+
+  std::vector<PeriodicEigenvector> result(log_rho.size());
+  if (n == 0) {
+    for (auto& r : result) r.v.assign(k, Eigen::VectorXcd());
+    return result;
+  }
+  std::vector<double> norms(k);
+  for (int i = 0; i < k; ++i) norms[i] = factors[i].norm();
+
+  std::mt19937_64 rng(20240531);
+  std::normal_distribution<double> normal;
+  const Eigen::Index size = static_cast<Eigen::Index>(k) * n;
+
+  std::vector<bool> done(log_rho.size(), false);
+  for (std::size_t first = 0; first < log_rho.size(); ++first) {
+    if (done[first]) continue;
+    std::vector<std::size_t> cluster;
+    const double tol = kClusterTol * std::max(1.0, std::abs(log_rho[first]));
+    for (std::size_t j = first; j < log_rho.size(); ++j) {
+      if (!done[j] && LogDistance(log_rho[j], log_rho[first]) <= tol) {
+        cluster.push_back(j);
+        done[j] = true;
+      }
+    }
+
+    // Block inverse iteration on the cluster's subspace with the first member's σ, from
+    // independent random starts.
+    CyclicSystem base;
+    FactorCyclic(factors, norms, dt, period, log_rho[first], base);
+    const auto m = static_cast<Eigen::Index>(cluster.size());
+    Eigen::MatrixXcd x(size, m);
+    for (Eigen::Index c = 0; c < m; ++c) {
+      for (Eigen::Index r = 0; r < size; ++r) x(r, c) = Complex(normal(rng), normal(rng));
+    }
+    if (base.ok) {
+      for (int step = 0; step < kClusterSteps; ++step) InverseIterationStep(base, x);
+    } else {
+      x.setConstant(Complex(kInf, 0.0));  // reported as residual = inf below
+    }
+
+    // Refine each member with its own σ. Identical log ρ keep their (null-space) vectors
+    // unchanged; distinct but close ones move to their own eigenvectors; a defective cluster
+    // collapses towards one direction (seen later as an ill-conditioned mode matrix).
+    for (Eigen::Index c = 0; c < m; ++c) {
+      const std::size_t member = cluster[c];
+      Eigen::MatrixXcd xc = x.col(c);
+      Eigen::VectorXcd refined;
+      CyclicSystem own;
+      CyclicSystem* sys = &base;
+      if (log_rho[member] != log_rho[first]) {
+        FactorCyclic(factors, norms, dt, period, log_rho[member], own);
+        sys = &own;
+      }
+      if (sys->ok && base.ok) {
+        for (int step = 0; step < kMemberSteps; ++step) InverseIterationStep(*sys, xc);
+        refined = Refine(*sys, xc.col(0));
+      } else {
+        refined.setConstant(size, Complex(kInf, 0.0));
+      }
+      result[member] = FinishVector(factors, norms, sys->sigma, refined);
+    }
+  }
+  return result;
+}
+
+}  // namespace ltp

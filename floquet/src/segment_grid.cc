@@ -1,0 +1,124 @@
+#include "segment_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace ltp::internal {
+
+namespace {
+
+// σmax/σmin of a factor; +inf for a non-finite or singular one.
+double FactorCondition(const Eigen::MatrixXd& f) {
+  if (f.size() == 0) return 1;
+  if (!f.allFinite()) return std::numeric_limits<double>::infinity();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(f);
+  const auto& s = svd.singularValues();
+  if (!(s(s.size() - 1) > 0)) return std::numeric_limits<double>::infinity();
+  return s(0) / s(s.size() - 1);
+}
+
+struct Piece {
+  double t0, t1;
+  TransitionResult tr;
+  double cond = 1;
+};
+
+void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
+               const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
+  const long count = static_cast<long>(todo.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+  for (long j = 0; j < count; ++j) {
+    Piece& p = pieces[todo[j]];
+    try {
+      p.tr = StateTransition(system, p.t0, p.t1, integrator);
+    } catch (const std::exception& e) {  // never let an exception cross the OpenMP region
+      p.tr = TransitionResult{};
+      p.tr.ok = false;
+      p.tr.message = e.what();
+    }
+    p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
+  }
+}
+
+}  // namespace
+
+SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOptions& options) {
+  SegmentGrid grid;
+  const double T = system.period();
+  std::vector<Piece> pieces;
+  if (!options.fixed_times.empty()) {
+    for (size_t i = 0; i + 1 < options.fixed_times.size(); ++i)
+      pieces.push_back({options.fixed_times[i], options.fixed_times[i + 1], {}, 1});
+  } else {
+    const int k = std::max(1, options.uniform_segments);
+    for (int i = 0; i < k; ++i)
+      pieces.push_back({T * i / k, i + 1 == k ? T : T * (i + 1) / k, {}, 1});
+  }
+  std::vector<size_t> todo(pieces.size());
+  for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
+  const double log_limit = std::log(options.max_factor_condition);
+  for (int round = 0;; ++round) {
+    Integrate(system, pieces, todo, options.integrator, options.threads);
+    for (size_t i : todo) grid.rhs_evals += pieces[i].tr.rhs_evals;
+    if (!options.refine) break;
+    // Split every piece whose factor is too ill-conditioned into as many equal parts as its
+    // condition number asks for (log cond is additive along the segment for a steady rate).
+    std::vector<Piece> next;
+    std::vector<size_t> next_todo;
+    bool split = false;
+    for (Piece& p : pieces) {
+      if (p.cond <= options.max_factor_condition) {
+        next.push_back(std::move(p));
+        continue;
+      }
+      // A condition number near 1/eps is itself unreliable (σmin is round-off): split harder.
+      int parts = std::isfinite(p.cond) && p.cond < 1e14
+                      ? static_cast<int>(std::ceil(std::log(p.cond) / log_limit)) + 1
+                      : 16;
+      parts = std::max(parts, 2);
+      if (static_cast<int>(next.size() + pieces.size()) + parts > options.max_segments) {
+        next.push_back(std::move(p));
+        continue;
+      }
+      split = true;
+      for (int q = 0; q < parts; ++q) {
+        next_todo.push_back(next.size());
+        next.push_back({p.t0 + (p.t1 - p.t0) * q / parts,
+                        q + 1 == parts ? p.t1 : p.t0 + (p.t1 - p.t0) * (q + 1) / parts, {}, 1});
+      }
+    }
+    pieces = std::move(next);
+    todo = std::move(next_todo);
+    if (!split || round > 12) break;
+  }
+  grid.ok = true;
+  double worst = 1;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const Piece& p = pieces[i];
+    if (!p.tr.ok) {
+      grid.ok = false;
+      std::ostringstream s;
+      s << "segment [" << p.t0 << ", " << p.t1 << "]: " << p.tr.message;
+      grid.diagnostics.push_back(s.str());
+    }
+    worst = std::max(worst, p.cond);
+  }
+  if (options.refine && worst > options.max_factor_condition) {
+    std::ostringstream s;
+    s << "segment refinement stopped with a factor of condition " << worst << " (limit "
+      << options.max_factor_condition << ", at most " << options.max_segments
+      << " segments): the smallest multipliers may be inaccurate";
+    grid.diagnostics.push_back(s.str());
+  }
+  grid.times.reserve(pieces.size() + 1);
+  for (const Piece& p : pieces) {
+    grid.times.push_back(p.t0);
+    grid.factors.push_back(p.tr.phi);
+  }
+  grid.times.push_back(pieces.empty() ? T : pieces.back().t1);
+  return grid;
+}
+
+}  // namespace ltp::internal

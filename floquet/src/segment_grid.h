@@ -1,0 +1,34 @@
+#pragma once
+// The segment factors Φ_i = Φ(t_{i+1}, t_i) over one period, on a grid that starts uniform and
+// is refined where a factor's condition number says it grows or decays too fast for its small
+// singular directions to survive. Segments are integrated in parallel (OpenMP).
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp::internal {
+
+struct SegmentGridOptions {
+  IntegratorOptions integrator;
+  int uniform_segments = 1;           ///< starting grid: t_i = i T / uniform_segments
+  std::vector<double> fixed_times;    ///< if non-empty: use exactly this grid (no refinement)
+  bool refine = true;
+  double max_factor_condition = 1e3;
+  int max_segments = 20000;
+  int threads = 1;
+};
+
+struct SegmentGrid {
+  bool ok = false;
+  std::vector<double> times;              ///< K + 1 points, 0 … T
+  std::vector<Eigen::MatrixXd> factors;   ///< K factors
+  long rhs_evals = 0;
+  std::vector<std::string> diagnostics;
+};
+
+SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOptions& options);
+
+}  // namespace ltp::internal

@@ -1,0 +1,130 @@
+// End-to-end: run the `ltp` binary as a user would and check its output and exit codes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+
+namespace {
+
+struct Outcome {
+  int code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+Outcome Ltp(const std::string& args) {
+  const std::string err_file = std::string(::testing::TempDir()) + "ltp_stderr.txt";
+  const std::string cmd = std::string(LTP_BINARY) + " " + args + " 2>" + err_file;
+  Outcome r;
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (p && fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = p ? pclose(p) : -1;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* e = std::fopen(err_file.c_str(), "r")) {
+    while (fgets(buf.data(), buf.size(), e)) r.err += buf.data();
+    std::fclose(e);
+  }
+  return r;
+}
+
+std::string Src(const std::string& rel) { return std::string(LTP_SOURCE_DIR) + "/" + rel; }
+
+TEST(Cli, VersionAndHelp) {
+  EXPECT_EQ(Ltp("--version").code, 0);
+  const Outcome h = Ltp("--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("floquet"), std::string::npos);
+  EXPECT_EQ(Ltp("floquet --help").code, 0);
+}
+
+TEST(Cli, ScenesListsBuiltins) {
+  const Outcome r = Ltp("scenes --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& s : j) names.push_back(s["name"]);
+  for (const char* want : {"mathieu", "meissner", "jeffcott"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+}
+
+TEST(Cli, InfoMathieu) {
+  const Outcome r = Ltp("info mathieu --set q=2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["states"], 2);
+  EXPECT_NEAR(j["period"].get<double>(), std::numbers::pi, 1e-15);  // Mathieu: period π
+  EXPECT_EQ(j["parameters"]["q"], 2.0);
+  // Snapshot at t = 0: A = [[0,1],[-(a-2q), -c]] (hand-computed from the scene definition).
+  ASSERT_EQ(j["snapshot_eigenvalues"].size(), 2u);
+  EXPECT_EQ(Ltp("info mathieu --set q=2").code, 0);
+}
+
+// The JSON object of issue 3, with a value checked against GSL-independent physics: for
+// a = 1.5, q = 2 (inside the first Mathieu tongue, a_1(2) ≈ 1.859 > 1.5 > b_1(2) ≈ -0.110),
+// the undamped system is unstable with multipliers ρ, 1/ρ real negative.
+TEST(Cli, FloquetJsonHasTheDocumentedKeys) {
+  const Outcome r = Ltp("floquet mathieu --set a=1.5 --set q=2 --set c=0 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"scene", "parameters", "states", "period", "method", "integrator",
+                          "segments", "exponents", "multipliers", "max_real_exponent", "stable",
+                          "error_estimate", "elapsed_s", "diagnostics"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["method"], "monodromy");
+  ASSERT_EQ(j["exponents"].size(), 2u);
+  for (const char* key : {"re", "im", "frequency_hz", "damping_ratio"})
+    EXPECT_TRUE(j["exponents"][0].contains(key)) << key;
+  for (const char* key : {"re", "im", "log_abs", "arg"})
+    EXPECT_TRUE(j["multipliers"][0].contains(key)) << key;
+  EXPECT_FALSE(j["stable"].get<bool>());
+  EXPECT_GT(j["max_real_exponent"].get<double>(), 0.1);
+  // Liouville for c = 0: log|ρ1| + log|ρ2| = 0.
+  EXPECT_NEAR(j["multipliers"][0]["log_abs"].get<double>() + j["multipliers"][1]["log_abs"].get<double>(),
+              0, 1e-8);
+  // Negative real multipliers: arg = ±π.
+  EXPECT_NEAR(std::abs(j["multipliers"][0]["arg"].get<double>()), std::numbers::pi, 1e-8);
+}
+
+// A user YAML scene whose multipliers under- and overflow a double: exponents are the
+// period averages of the diagonal (closed form for a triangular A): -800, 150, -3.
+TEST(Cli, StiffYamlSceneKeepsEveryExponent) {
+  const Outcome r = Ltp("floquet " + Src("tests/data/stiff.yaml") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  std::vector<double> re;
+  for (const auto& e : j["exponents"]) re.push_back(e["re"].get<double>());
+  std::sort(re.begin(), re.end());
+  ASSERT_EQ(re.size(), 3u);
+  EXPECT_NEAR(re[0], -800, 800 * 1e-9);
+  EXPECT_NEAR(re[1], -3, 3 * 1e-9);
+  EXPECT_NEAR(re[2], 150, 150 * 1e-9);
+  bool underflow = false, overflow = false;
+  for (const auto& m : j["multipliers"]) {
+    if (m["re"] == 0.0 && m["log_abs"].get<double>() < -5000) underflow = true;
+    if (m["re"] == "inf" && m["log_abs"].get<double>() > 900) overflow = true;
+  }
+  EXPECT_TRUE(underflow);
+  EXPECT_TRUE(overflow);
+  EXPECT_FALSE(j["stable"].get<bool>());
+}
+
+TEST(Cli, BadInputGivesExitTwoAndOneLine) {
+  for (const std::string& args : std::vector<std::string>{
+           "floquet nosuchscene", "floquet mathieu --set nosuch=1", "floquet mathieu --set a=nan",
+        "floquet mathieu --integrator euler", "floquet mathieu --segments 0",
+        "floquet mathieu --tol -1", "info " + Src("tests/data/does-not-exist.yaml"), "frobnicate",
+        "floquet mathieu --plot out.pdf"}) {
+    const Outcome r = Ltp(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("error"), std::string::npos) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << args;
+  }
+}
+
+}  // namespace

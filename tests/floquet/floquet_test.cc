@@ -1,0 +1,323 @@
+// Floquet analysis via the monodromy matrix against independent references: GSL's Mathieu
+// characteristic values, the Meissner closed form, the Jeffcott rotor's rotating-frame
+// eigenvalues, a Lyapunov-reducible system with prescribed exponents, Liouville's identity.
+#include "ltp/floquet/floquet.h"
+
+#include <gsl/gsl_sf_mathieu.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "ltp/core/error.h"
+#include "support/systems.h"
+
+namespace ltp {
+namespace {
+
+using test::kPi;
+using cd = std::complex<double>;
+
+FloquetOptions Tight(IntegratorType type = IntegratorType::kDopri5) {
+  FloquetOptions o;
+  o.integrator.type = type;
+  o.integrator.rel_tol = 1e-11;
+  return o;
+}
+
+double MathieuA(int n, double q) {  // GSL: characteristic value a_n(q) of ce_n
+  gsl_sf_result r;
+  EXPECT_EQ(gsl_sf_mathieu_a_e(n, q, &r), 0);
+  return r.val;
+}
+double MathieuB(int n, double q) {  // GSL: characteristic value b_n(q) of se_n
+  gsl_sf_result r;
+  EXPECT_EQ(gsl_sf_mathieu_b_e(n, q, &r), 0);
+  return r.val;
+}
+
+// --- Mathieu: GSL characteristic values are the stability boundaries -------------------------
+// y'' + (a − 2q cos 2t) y = 0 with period π: at a = a_n(q) or b_n(q) a solution of period π
+// (n even) or 2π (n odd) exists, so tr Φ(π) = +2 (n even) or −2 (n odd). For q > 0 the
+// instability tongues are (b_n, a_n), n >= 1, and a < a_0.
+struct TongueCase {
+  int n;
+  double q;
+};
+class MathieuTongue : public ::testing::TestWithParam<TongueCase> {};
+
+TEST_P(MathieuTongue, TraceAtBoundariesAndClassificationAround) {
+  const auto [n, q] = GetParam();
+  const double an = MathieuA(n, q), bn = MathieuB(n, q);
+  ASSERT_LT(bn, an);
+  const double sign = n % 2 == 0 ? 1.0 : -1.0;
+  for (double boundary : {an, bn}) {
+    const FloquetResult r = AnalyzeFloquet(test::Mathieu(boundary, q), Tight());
+    ASSERT_TRUE(r.ok) << r.BriefReport();
+    // GSL's a_n, b_n are accurate to ~1e-12 relative; tr Φ is then ±2 to ~1e-9.
+    EXPECT_NEAR(r.monodromy.trace(), 2 * sign, 1e-8) << "n=" << n << " q=" << q;
+  }
+  // Inside the tongue: unstable, Re λ grows like sqrt(distance); outside: |tr Φ| < 2, both
+  // multipliers on the unit circle (undamped), so max Re λ is 0 within the error estimate.
+  const double width = an - bn;
+  const double inside = AnalyzeFloquet(test::Mathieu(bn + 0.5 * width, q), Tight()).max_real_exponent;
+  EXPECT_GT(inside, 1e-4);
+  for (double a : {an + 1e-3 * width, bn - 1e-3 * width}) {
+    const FloquetResult r = AnalyzeFloquet(test::Mathieu(a, q), Tight());
+    ASSERT_TRUE(r.ok);
+    EXPECT_LE(std::abs(r.max_real_exponent), std::max(r.error_estimate, 1e-9))
+        << "a=" << a << " should be marginally stable";
+    EXPECT_LT(std::abs(r.monodromy.trace()), 2.0);
+  }
+  for (double a : {an - 1e-3 * width, bn + 1e-3 * width}) {
+    const FloquetResult r = AnalyzeFloquet(test::Mathieu(a, q), Tight());
+    EXPECT_GT(r.max_real_exponent, 10 * r.error_estimate) << "a=" << a << " is in the tongue";
+    EXPECT_FALSE(r.stable);
+    EXPECT_GT(std::abs(r.monodromy.trace()), 2.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Gsl, MathieuTongue,
+                         ::testing::Values(TongueCase{1, 1.0}, TongueCase{2, 1.0},
+                                           TongueCase{3, 2.0}, TongueCase{1, 5.0},
+                                           TongueCase{2, 5.0}, TongueCase{4, 3.0}));
+
+// Damping shifts every exponent by −c/2: y = e^{−ct/2} z turns y'' + c y' + (a − 2q cos 2t) y
+// into z'' + (a − c²/4 − 2q cos 2t) z. At a = a_1(q) + c²/4 the z-system sits on the boundary
+// (multipliers −1, −1), so both exponents have Re λ = −c/2 and the branch gives Ωp/2 = 1 rad/s.
+TEST(MathieuDamped, ExponentsShiftedByHalfTheDamping) {
+  const double q = 2, c = 0.2;
+  const double a = MathieuA(1, q) + c * c / 4;
+  const FloquetResult r = AnalyzeFloquet(test::Mathieu(a, q, c), Tight());
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.modes.size(), 2u);
+  for (const auto& m : r.modes) {
+    // A double multiplier: its sensitivity is sqrt(perturbation) ≈ 1e-5 at rel tol 1e-11.
+    EXPECT_NEAR(m.exponent.real(), -c / 2, 1e-4);
+    EXPECT_NEAR(m.log_multiplier.real(), -c / 2 * kPi, 3e-4);
+    EXPECT_NEAR(std::abs(m.log_multiplier.imag()), kPi, 1e-4);  // ρ = −e^{−cπ/2}
+  }
+  EXPECT_TRUE(r.stable);
+  // Inside the first tongue the damped system is still unstable when the undamped growth
+  // exceeds c/2; at the tongue's centre for q = 2, undamped Re λ ≈ 0.87 > 0.1.
+  const double centre = 0.5 * (MathieuA(1, q) + MathieuB(1, q));
+  EXPECT_FALSE(AnalyzeFloquet(test::Mathieu(centre + c * c / 4, q, c), Tight()).stable);
+}
+
+// --- Meissner: closed-form monodromy --------------------------------------------------------
+class MeissnerMonodromy : public ::testing::TestWithParam<IntegratorType> {};
+
+TEST_P(MeissnerMonodromy, MatchesClosedForm) {
+  for (double c : {0.0, 0.1}) {
+    const double a = 1.0, b = 0.3;
+    FloquetOptions o = Tight(GetParam());
+    o.integrator.rel_tol = 1e-12;
+    const FloquetResult r = AnalyzeFloquet(test::Meissner(a, b, c), o);
+    ASSERT_TRUE(r.ok) << r.BriefReport();
+    const Eigen::Matrix2d ref = test::MeissnerMonodromy(a, b, c);
+    // Segments restart at the jumps; 1e-12 tolerance over ~32 segments → ~1e-11 overall.
+    EXPECT_LT((r.monodromy - ref).norm() / ref.norm(), 1e-10) << "c=" << c;
+    // Multipliers against eig of the closed form (order-free); compare logs.
+    Eigen::Vector2cd rho = ref.eigenvalues();
+    for (const auto& m : r.modes) {
+      double best = 1e9;
+      for (int i = 0; i < 2; ++i) best = std::min(best, std::abs(std::exp(m.log_multiplier) - rho(i)));
+      EXPECT_LT(best, 1e-10);
+    }
+    EXPECT_LE(std::abs(r.liouville_residual), 1e-10);  // det Φ = e^{−2πc}
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, MeissnerMonodromy,
+                         ::testing::Values(IntegratorType::kDopri5, IntegratorType::kRkf78,
+                                           IntegratorType::kCvodeBdf, IntegratorType::kMagnus4,
+                                           IntegratorType::kMagnus6),
+                         [](const auto& info) {
+                           std::string s(ToString(info.param));
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
+
+// --- Jeffcott: the unstable band √(k1/m) < Ω < √(k2/m) and rotating-frame exponents -----------
+TEST(Jeffcott, UnstableBandAndRealPartsFromRotatingFrame) {
+  const double m = 1, k1 = 1, k2 = 1.5;
+  for (double omega : {0.8, 0.99, 1.01, 1.1, 1.2, 1.23, 1.4}) {
+    const bool inside = omega > std::sqrt(k1 / m) && omega < std::sqrt(k2 / m);
+    const FloquetResult r = AnalyzeFloquet(test::Jeffcott(m, k1, k2, 0, omega), Tight());
+    ASSERT_TRUE(r.ok);
+    const Eigen::VectorXcd s = test::JeffcottRotatingEigenvalues(m, k1, k2, 0, omega);
+    const double ref = s.real().maxCoeff();
+    EXPECT_NEAR(r.max_real_exponent, ref, 1e-8) << "Ω=" << omega;
+    if (inside) {
+      EXPECT_GT(r.max_real_exponent, 1e-3) << "Ω=" << omega;
+    } else {
+      EXPECT_LE(std::abs(r.max_real_exponent), std::max(r.error_estimate, 1e-9)) << "Ω=" << omega;
+    }
+  }
+  // Damped: all four real parts match the rotating-frame eigenvalues (sorted).
+  const double c = 0.05, omega = 1.1;
+  const FloquetResult r = AnalyzeFloquet(test::Jeffcott(m, k1, k2, c, omega), Tight());
+  const Eigen::VectorXcd s = test::JeffcottRotatingEigenvalues(m, k1, k2, c, omega);
+  std::vector<double> got, want;
+  for (const auto& mode : r.modes) got.push_back(mode.exponent.real());
+  for (int i = 0; i < 4; ++i) want.push_back(s(i).real());
+  std::sort(got.begin(), got.end());
+  std::sort(want.begin(), want.end());
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(got[i], want[i], 1e-8);
+}
+
+// --- Multipliers spanning far more than the double range --------------------------------------
+// Exponents (0.3, −2, −40, −120): multipliers e^{2π·0.3} … e^{−2π·120} = 10^{−327}, i.e. 328
+// decades. The periodic Schur route keeps every exponent; the formed product cannot.
+TEST(StiffMultipliers, PeriodicSchurKeepsEveryExponentSingleShotDoesNot) {
+  const Eigen::Vector4d lambda(0.3, -2, -40, -120);
+  const PeriodicSystem sys = test::Reducible4(lambda);
+  FloquetOptions o = Tight(IntegratorType::kDopri5);
+  const FloquetResult r = AnalyzeFloquet(sys, o);
+  ASSERT_TRUE(r.ok) << r.BriefReport();
+  std::vector<double> got;
+  for (const auto& m : r.modes) {
+    got.push_back(m.exponent.real());
+    EXPECT_NEAR(m.exponent.imag(), 0, 1e-9);  // real mode shapes: centred branch is m = 0
+  }
+  std::sort(got.begin(), got.end());
+  std::vector<double> want(lambda.data(), lambda.data() + 4);
+  std::sort(want.begin(), want.end());
+  double worst = 0;
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(got[i], want[i], 1e-9 * std::max(1.0, std::abs(want[i])));
+    worst = std::max(worst, std::abs(got[i] - want[i]));
+  }
+  EXPECT_GE(r.error_estimate, worst);  // the estimate covers the true error
+  EXPECT_TRUE(r.modes.size() == 4 && !r.stable);
+
+  // Single shot: eig of the formed product loses everything below eps·e^{2π·0.3}.
+  o.multipliers = MultiplierMethod::kSingleShot;
+  const FloquetResult s = AnalyzeFloquet(sys, o);
+  double min_re = 0;
+  for (const auto& m : s.modes) min_re = std::min(min_re, m.exponent.real());
+  EXPECT_GT(std::abs(min_re - (-120)), 1.0) << "single shot unexpectedly recovered e^{-240π}";
+}
+
+// --- Liouville: Σ log|ρ| = ∫ tr A on random periodic systems ------------------------------------
+TEST(Liouville, RandomPeriodicSystems) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0, 0.4);
+  for (int trial = 0; trial < 3; ++trial) {
+    const int n = 5;
+    FourierMatrix A(n, n, 2);
+    for (int w = 0; w <= 2; ++w) {
+      Eigen::MatrixXcd c(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) c(i, j) = w == 0 ? cd(g(rng), 0) : cd(g(rng), g(rng));
+      A.SetHarmonic(w, c);
+    }
+    const PeriodicSystem sys = PeriodicSystem::FromFourier(2.0, A);
+    const FloquetResult r = AnalyzeFloquet(sys, Tight());
+    ASSERT_TRUE(r.ok);
+    double sum = 0;
+    for (const auto& m : r.modes) sum += m.log_multiplier.real();
+    // ∫_0^T tr A = T tr A_0 exactly (closed form for a Fourier series).
+    EXPECT_NEAR(sum, 2.0 * A[0].real().trace(), 1e-9 * std::max(1.0, std::abs(sum)));
+  }
+}
+
+// --- Invariance under integrator and K ----------------------------------------------------------
+// a = 2.5, q = 0.7 lies between the first and second tongues (a_1(0.7) ≈ 1.6 < a < b_2(0.7)
+// ≈ 3.9), so the multipliers are a complex pair and every branch choice is unambiguous.
+TEST(Invariance, MultipliersIndependentOfIntegratorAndSegments) {
+  const PeriodicSystem sys = test::Mathieu(2.5, 0.7, 0.05);
+  const FloquetResult ref = AnalyzeFloquet(sys, Tight(IntegratorType::kRkf78));
+  for (IntegratorType t : {IntegratorType::kDopri5, IntegratorType::kCvodeBdf,
+                           IntegratorType::kCvodeAdams, IntegratorType::kMagnus4,
+                           IntegratorType::kMagnus6}) {
+    for (int k : {1, 3, 8, 32}) {
+      FloquetOptions o = Tight(t);
+      o.segments = k;
+      const FloquetResult r = AnalyzeFloquet(sys, o);
+      ASSERT_TRUE(r.ok) << ToString(t) << " K=" << k;
+      ASSERT_EQ(r.modes.size(), 2u);
+      for (size_t i = 0; i < 2; ++i) {
+        // Same branch and same exponent to the integration tolerance.
+        EXPECT_NEAR(std::abs(r.modes[i].exponent - ref.modes[i].exponent), 0, 1e-8)
+            << ToString(t) << " K=" << k;
+        EXPECT_EQ(r.modes[i].branch, ref.modes[i].branch);
+      }
+    }
+  }
+}
+
+// --- The error estimate covers the true error ----------------------------------------------------
+TEST(ErrorEstimate, CoversTrueErrorOnMeissnerAtLooseTolerance) {
+  const double a = 1.0, b = 0.3;
+  const Eigen::Vector2cd rho = test::MeissnerMonodromy(a, b, 0.05).eigenvalues();
+  for (double tol : {1e-5, 1e-7, 1e-9}) {
+    FloquetOptions o;
+    o.integrator.rel_tol = tol;
+    const FloquetResult r = AnalyzeFloquet(test::Meissner(a, b, 0.05), o);
+    double err = 0;
+    for (const auto& m : r.modes) {
+      double best = 1e9;
+      for (int i = 0; i < 2; ++i) {
+        const cd d = m.log_multiplier - std::log(rho(i));
+        best = std::min(best, std::hypot(d.real(), std::remainder(d.imag(), 2 * kPi)));
+      }
+      err = std::max(err, best / r.period);
+    }
+    EXPECT_GE(r.error_estimate, err) << "tol=" << tol;
+    EXPECT_LT(r.error_estimate, 1e4 * std::max(err, 1e-14)) << "estimate should be informative";
+  }
+}
+
+// --- Mode shapes: ξ' = Aξ − λξ, periodic; left modes invert the mode matrix ----------------------
+TEST(Modes, PeriodicModeShapesSatisfyTheFloquetEquation) {
+  const PeriodicSystem sys = test::Jeffcott(1, 1, 1.5, 0.05, 0.7);
+  const FloquetResult r = AnalyzeFloquet(sys, Tight());
+  ASSERT_TRUE(r.ok);
+  const double T = r.period, h = 1e-5;
+  for (double t : {0.1, 0.37 * T, 0.81 * T}) {
+    const Eigen::MatrixXcd xi = r.ModeMatrix(t);
+    const Eigen::MatrixXcd dxi = (r.ModeMatrix(t + h) - r.ModeMatrix(t - h)) / (2 * h);
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::VectorXcd res =
+          dxi.col(k) - sys.A(t).cast<cd>() * xi.col(k) + r.modes[k].exponent * xi.col(k);
+      // Central difference error ~h²·|ξ'''| ≈ 1e-9; spectral interpolation error is smaller.
+      EXPECT_LT(res.norm() / xi.col(k).norm(), 1e-6) << "mode " << k << " t=" << t;
+    }
+    // Left modes are the rows of Ξ⁻¹.
+    EXPECT_LT((r.LeftModes(t) * xi - Eigen::MatrixXcd::Identity(4, 4)).norm(), 1e-10);
+  }
+  // Periodicity: ξ(T) = ξ(0) for every mode on its chosen branch.
+  EXPECT_LT((r.ModeMatrix(T) - r.ModeMatrix(0)).norm(), 1e-10);
+  EXPECT_LT(r.mode_condition, 1e3);
+}
+
+// A double multiplier at +1 on a stability boundary (Mathieu at a = a_2(q), undamped) gives a
+// defective monodromy: it must be reported, not crash or return NaNs.
+TEST(Modes, DefectiveMonodromyIsReported) {
+  const FloquetResult r = AnalyzeFloquet(test::Mathieu(MathieuA(2, 1.0), 1.0), Tight());
+  ASSERT_TRUE(r.ok);
+  EXPECT_GT(r.mode_condition, 1e3);
+  bool said = false;
+  for (const auto& d : r.diagnostics) said = said || d.find("ill-conditioned") != std::string::npos;
+  EXPECT_TRUE(said || r.mode_condition < 1e8);
+  for (const auto& m : r.modes) EXPECT_TRUE(std::isfinite(m.exponent.real()));
+}
+
+TEST(Options, InvalidOptionsThrowWithFieldName) {
+  FloquetOptions o;
+  o.segments = -1;
+  EXPECT_THROW(AnalyzeFloquet(test::Mathieu(1, 1), o), InputError);
+  o = {};
+  o.mode_samples = 12;
+  try {
+    AnalyzeFloquet(test::Mathieu(1, 1), o);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mode_samples"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace ltp

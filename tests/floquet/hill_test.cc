@@ -1,0 +1,400 @@
+// Hill's method against the monodromy route (AnalyzeFloquet at tight tolerance), the Meissner
+// closed-form monodromy, the Jeffcott rotor's rotating-frame eigenvalues, and its own
+// internal cross-checks (dense vs structured, Koopman–Hill, N vs N+Δ, a-priori bound).
+#include "ltp/floquet/hill.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "ltp/core/error.h"
+#include "support/compare.h"
+#include "support/systems.h"
+
+namespace ltp {
+namespace {
+
+using cd = std::complex<double>;
+using test::kPi;
+
+FloquetResult Reference(const PeriodicSystem& s) {
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kRkf78;
+  o.integrator.rel_tol = 1e-13;
+  o.integrator.abs_tol = 1e-15;
+  return AnalyzeFloquet(s, o);
+}
+
+std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
+  std::vector<cd> v;
+  for (const FloquetMode& m : modes) v.push_back(m.exponent);
+  return v;
+}
+
+// Largest distance of matched exponents, imaginary parts compared modulo Ωp.
+double MaxDistanceModulo(const std::vector<cd>& a, const std::vector<cd>& b, double omega) {
+  EXPECT_EQ(a.size(), b.size());
+  std::vector<bool> used(b.size(), false);
+  double worst = 0;
+  for (const cd& x : a) {
+    double best = 1e300;
+    size_t bj = 0;
+    for (size_t j = 0; j < b.size(); ++j) {
+      if (used[j]) continue;
+      const double d = std::hypot(x.real() - b[j].real(), std::remainder(x.imag() - b[j].imag(), omega));
+      if (d < best) {
+        best = d;
+        bj = j;
+      }
+    }
+    if (!b.empty()) used[bj] = true;
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+// Meissner y'' + c y' + (a + b sign(cos t)) y = 0 with its exact Fourier coefficients up to M:
+// sign(cos t) = (4/π) Σ_{k odd} (−1)^{(k−1)/2} cos(kt)/k, so A_k = [[0,0],[−b (2/π)(−1)^{(k−1)/2}/k, 0]].
+PeriodicSystem MeissnerFourier(double a, double b, double c, int M) {
+  FourierMatrix A(2, 2, M);
+  Eigen::MatrixXcd a0(2, 2);
+  a0 << 0, 1, -a, -c;
+  A.SetHarmonic(0, a0);
+  for (int k = 1; k <= M; k += 2) {
+    Eigen::MatrixXcd ak = Eigen::MatrixXcd::Zero(2, 2);
+    ak(1, 0) = -b * (2 / kPi) * (((k - 1) / 2) % 2 == 0 ? 1.0 : -1.0) / k;
+    A.SetHarmonic(k, ak);
+  }
+  return PeriodicSystem::FromFourier(2 * kPi, A);
+}
+
+// Exponents of the closed-form Meissner monodromy (tests/support/systems.h), principal branch.
+std::vector<cd> MeissnerExponents(double a, double b, double c) {
+  const Eigen::Vector2cd rho = test::MeissnerMonodromy(a, b, c).eigenvalues();
+  return {std::log(rho(0)) / (2 * kPi), std::log(rho(1)) / (2 * kPi)};
+}
+
+// n/2 coupled damped Mathieu oscillators (n = 40 at dofs = 20): a rotor-size smooth system.
+PeriodicSystem MathieuChain(int dofs) {
+  const int n = 2 * dofs;
+  FourierMatrix A(n, n, 1);
+  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
+  for (int i = 0; i < dofs; ++i) {
+    a0(i, dofs + i) = 1;
+    const double k = 1.0 + 0.37 * i;
+    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
+    if (i > 0) a0(dofs + i, i - 1) = 0.2;
+    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
+    a0(dofs + i, dofs + i) = -0.05;
+    a1(dofs + i, i) = 0.1 * k;
+  }
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return PeriodicSystem::FromFourier(kPi, A);
+}
+
+// --- Hill matrix ---------------------------------------------------------------------------
+
+TEST(HillMatrix, BlocksFollowTheConvention) {
+  // DESIGN.md: block (v,u) = A_{v−u} − j v Ωp δ_vu I, v,u = −N..N.
+  const PeriodicSystem s = test::Mathieu(2, 0.7, 0.1);
+  const FourierMatrix& A = *s.fourier_A();
+  const int N = 3, n = 2;
+  const Eigen::MatrixXcd H = HillMatrix(A, s.omega(), N);
+  ASSERT_EQ(H.rows(), (2 * N + 1) * n);
+  for (int v = -N; v <= N; ++v)
+    for (int u = -N; u <= N; ++u) {
+      Eigen::MatrixXcd expected = A.coefficient(v - u);
+      if (v == u) expected -= cd(0, v * s.omega()) * Eigen::MatrixXcd::Identity(n, n);
+      EXPECT_LT((H.block((v + N) * n, (u + N) * n, n, n) - expected).norm(), 1e-15) << v << "," << u;
+    }
+}
+
+TEST(HillMatrix, DoublePeriodMovesHarmonicsToEvenIndices) {
+  const PeriodicSystem s = test::Mathieu(2, 0.7);
+  const FourierMatrix D = DoublePeriod(*s.fourier_A());
+  EXPECT_EQ(D.max_harmonic(), 2);
+  EXPECT_EQ(D.coefficient(1).norm(), 0);
+  EXPECT_EQ((D.coefficient(2) - s.fourier_A()->coefficient(1)).norm(), 0);
+  // Same function of time: A'(t) with Ωp/2 equals A(t).
+  for (double t : {0.1, 0.7, 2.5})
+    EXPECT_LT((D.Evaluate(t, s.omega() / 2) - s.A(t)).norm(), 1e-14);
+  const PeriodicSystem m2 = DoublePeriod(test::Meissner(2, 0.5));
+  EXPECT_DOUBLE_EQ(m2.period(), 4 * kPi);
+  EXPECT_EQ(m2.breakpoints().size(), 4u);
+}
+
+// --- Smooth systems agree with the monodromy route ----------------------------------------
+
+TEST(HillSmooth, DampedMathieuMatchesMonodromy) {
+  const PeriodicSystem s = test::Mathieu(2.5, 1.0, 0.2);
+  const FloquetResult ref = Reference(s);
+  ASSERT_TRUE(ref.ok);
+  HillOptions o;
+  o.harmonics = 20;
+  const HillResult r = AnalyzeHill(s, o);
+  ASSERT_TRUE(r.ok) << r.diagnostics.size();
+  ASSERT_EQ(r.modes.size(), 2u);
+  // Same branch rule as the monodromy route, so the exponents agree without any modulo.
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(std::abs(r.modes[k].exponent - ref.modes[k].exponent), 0, 1e-10) << k;
+    EXPECT_EQ(r.modes[k].branch, ref.modes[k].branch);
+    EXPECT_GT(r.info[k].selection_margin, 0.5);
+    EXPECT_FALSE(r.info[k].ambiguous);
+  }
+  EXPECT_FALSE(r.period_doubled);
+  EXPECT_LT(r.truncation_estimate, 1e-10);
+  EXPECT_LT(r.koopman_discrepancy, 1e-9);
+}
+
+TEST(HillSmooth, JeffcottMatchesMonodromyAndRotatingFrame) {
+  const double m = 1, k1 = 1.0, k2 = 1.4, c = 0.05, omega = 0.45;
+  const PeriodicSystem s = test::Jeffcott(m, k1, k2, c, omega);
+  const FloquetResult ref = Reference(s);
+  ASSERT_TRUE(ref.ok);
+  HillOptions o;
+  o.harmonics = 24;
+  const HillResult r = AnalyzeHill(s, o);
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.modes.size(), 4u);
+  EXPECT_LT(MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), s.omega()), 1e-10);
+  // Rotating frame (systems.h): Re λ equals Re s exactly.
+  const Eigen::VectorXcd rot = test::JeffcottRotatingEigenvalues(m, k1, k2, c, omega);
+  std::vector<double> re_hill, re_rot;
+  for (const FloquetMode& md : r.modes) re_hill.push_back(md.exponent.real());
+  for (int i = 0; i < 4; ++i) re_rot.push_back(rot(i).real());
+  std::sort(re_hill.begin(), re_hill.end());
+  std::sort(re_rot.begin(), re_rot.end());
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(re_hill[i], re_rot[i], 1e-10);
+}
+
+TEST(HillSmooth, ConvergesExponentially) {
+  const PeriodicSystem s = test::Mathieu(2.5, 1.0, 0.2);
+  const FloquetResult ref = Reference(s);
+  const HillStudy study = HillConvergenceStudy(s, 16, ref);
+  EXPECT_EQ(study.rate_kind, "exponential");
+  EXPECT_GT(study.rate, 1.0);
+  EXPECT_LT(study.rows.back().max_error, 1e-11);
+  EXPECT_EQ(study.decay.kind, "finite");
+}
+
+// --- Discontinuous coefficients -----------------------------------------------------------
+
+TEST(HillMeissner, ConvergesAlgebraically) {
+  const double a = 2.0, b = 0.5, c = 0.1;
+  const std::vector<cd> ref = MeissnerExponents(a, b, c);  // closed form (systems.h)
+  const PeriodicSystem s = MeissnerFourier(a, b, c, 512);
+  HillOptions o;
+  o.delta_harmonics = -1;
+  o.koopman_check = false;
+  std::vector<double> err;
+  for (int N : {32, 64, 128}) {
+    o.harmonics = N;
+    const HillResult r = AnalyzeHill(s, o);
+    ASSERT_TRUE(r.ok);
+    err.push_back(MaxDistanceModulo(Exponents(r.modes), ref, 1.0));
+  }
+  const double ratio = err[1] / err[2];
+  RecordProperty("error_N32", std::to_string(err[0]));
+  RecordProperty("error_N64", std::to_string(err[1]));
+  RecordProperty("error_N128", std::to_string(err[2]));
+  // Measured: 3.16e-7, 3.95e-8, 4.94e-9 (ratios 8.00, 8.00), i.e. an N^-3 law.
+  EXPECT_NEAR(ratio, 8.0, 0.2 * 8.0);
+}
+
+TEST(HillMeissner, FittedCoefficientsReportAlgebraicDecay) {
+  const PeriodicSystem s = test::Meissner(2.0, 0.5, 0.1);
+  HillOptions o;
+  o.harmonics = 16;
+  const HillResult r = AnalyzeHill(s, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.decay.kind, "algebraic");
+  EXPECT_NEAR(r.decay.rate, 1.0, 0.3);
+  EXPECT_TRUE(std::isinf(r.apriori_phi_bound));
+  bool said = false;
+  for (const std::string& d : r.diagnostics) said = said || d.find("algebraic") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+// --- A-priori bound -------------------------------------------------------------------------
+
+TEST(HillBound, NeverBelowTrueError) {
+  // The bound only drops below |ρ| (and so becomes finite for the exponents) once
+  // (2e^{−b})^N beats e^{4aT}: N ≈ 20 for the weak Mathieu case, ≈ 90 for q = 1.
+  struct Case {
+    const char* name;
+    PeriodicSystem system;
+    std::vector<int> harmonics;
+  };
+  const std::vector<Case> cases = {
+      {"damped Mathieu", test::Mathieu(2.5, 1.0, 0.2), {4, 16, 64, 96}},
+      {"weak Mathieu", test::Mathieu(2.0, 0.2, 0.1), {4, 8, 16, 24, 32, 48}},
+      {"Mathieu tongue", test::Mathieu(1.0, 0.2, 0.1), {8, 24, 32, 48}},
+      {"Jeffcott", test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45), {8, 32, 48, 56}},
+  };
+  int finite = 0;
+  for (const Case& c : cases) {
+    const FloquetResult ref = Reference(c.system);
+    const double T = c.system.period();
+    for (int N : c.harmonics) {
+      HillOptions o;
+      o.harmonics = N;
+      o.delta_harmonics = -1;
+      const HillResult r = AnalyzeHill(c.system, o);
+      ASSERT_TRUE(r.ok);
+      // Compared modulo the analysed Ωp (the tongue case is analysed with period 2T).
+      const double err = MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), 2 * kPi / r.period);
+      // "True" error is known only up to the reference's own error estimate.
+      EXPECT_GE(r.apriori_bound + ref.error_estimate, err) << c.name << " N=" << N;
+      finite += std::isfinite(r.apriori_bound);
+      if (r.period_doubled) continue;  // its Φ bound is for Φ(2T)
+      // The Φ bound itself, against the monodromy matrix (Frobenius >= 2-norm: stricter).
+      const Eigen::MatrixXcd phi = KoopmanHillTransition(*c.system.fourier_A(), c.system.omega(), N, T);
+      const double phi_err = (phi - ref.monodromy.cast<cd>()).norm();
+      // The reference Φ itself is only good to about its tolerance (1e-13 relative).
+      EXPECT_GE(r.apriori_phi_bound + 1e-12 * ref.monodromy.norm(), phi_err) << c.name << " N=" << N;
+    }
+  }
+  EXPECT_GE(finite, 6);  // the bound is not vacuous on these cases
+}
+
+// --- Selection --------------------------------------------------------------------------------
+
+TEST(HillSelection, StripEdgeIsAmbiguousAndResolvedByPeriodDoubling) {
+  // Undamped Mathieu a = 1.5, q = 2 lies inside the first instability tongue (b_1(2) < 1.5 <
+  // a_1(2), GSL values used in floquet_test.cc): both multipliers are real and negative, so
+  // the exponents sit exactly on the strip edge Im λ = ±Ωp/2.
+  const PeriodicSystem s = test::Mathieu(1.5, 2.0);
+  const FloquetResult ref = Reference(s);
+  ASSERT_TRUE(ref.ok);
+  for (const FloquetMode& m : ref.modes) ASSERT_NEAR(std::abs(m.log_multiplier.imag()), kPi, 1e-9);
+  const double sigma = std::abs(ref.modes[0].log_multiplier.real()) / s.period();
+
+  HillOptions o;
+  o.harmonics = 20;
+  o.period_doubling = PeriodDoubling::kNever;
+  const HillResult plain = AnalyzeHill(s, o);
+  ASSERT_EQ(plain.modes.size(), 2u);
+  for (const HillModeInfo& i : plain.info) EXPECT_TRUE(i.ambiguous);
+  bool said = false;
+  for (const std::string& d : plain.diagnostics) said = said || d.find("ambiguous") != std::string::npos;
+  EXPECT_TRUE(said);
+  // Still one exponent of each family: +σ and −σ, not the two tied copies of one.
+  std::vector<double> re = {plain.modes[0].exponent.real(), plain.modes[1].exponent.real()};
+  std::sort(re.begin(), re.end());
+  EXPECT_NEAR(re[0], -sigma, 1e-9);
+  EXPECT_NEAR(re[1], sigma, 1e-9);
+
+  o.period_doubling = PeriodDoubling::kAuto;
+  const HillResult doubled = AnalyzeHill(s, o);
+  ASSERT_TRUE(doubled.ok);
+  EXPECT_TRUE(doubled.period_doubled);
+  EXPECT_DOUBLE_EQ(doubled.period, 2 * s.period());
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_FALSE(doubled.info[k].ambiguous);
+    EXPECT_GT(doubled.info[k].selection_margin, 0.5);
+    EXPECT_NEAR(doubled.modes[k].exponent.imag(), 0, 1e-9);  // real exponent w.r.t. 2T
+    EXPECT_NEAR(std::abs(doubled.modes[k].exponent.real()), sigma, 1e-9);
+  }
+}
+
+TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {
+  // Mathieu a = 6, q = 0.5, c = 0.1: frequency ≈ √6 ≈ 2.45 rad/s > Ωp/2 = 1, so the strip rule
+  // reports the copy shifted by −jΩp (or −2jΩp) while the centroid rule keeps the physical
+  // branch, which the monodromy route also reports.
+  const PeriodicSystem s = test::Mathieu(6, 0.5, 0.1);
+  const FloquetResult ref = Reference(s);
+  HillOptions o;
+  o.harmonics = 16;
+  const HillResult centroid = AnalyzeHill(s, o);
+  o.selection = HillSelectionRule::kStrip;
+  const HillResult strip = AnalyzeHill(s, o);
+  o.selection = HillSelectionRule::kCentralWeight;
+  const HillResult weight = AnalyzeHill(s, o);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(std::abs(centroid.modes[k].exponent - ref.modes[k].exponent), 0, 1e-9);
+    EXPECT_NEAR(std::abs(weight.modes[k].exponent - ref.modes[k].exponent), 0, 1e-9);
+    EXPECT_LE(std::abs(strip.modes[k].exponent.imag()), s.omega() / 2 + 1e-12);
+  }
+  EXPECT_LT(MaxDistanceModulo(Exponents(strip.modes), Exponents(ref.modes), s.omega()), 1e-9);
+}
+
+// --- Solvers --------------------------------------------------------------------------------
+
+TEST(HillSolvers, DenseAndStructuredAgree) {
+  const std::vector<PeriodicSystem> systems = {test::Mathieu(2.5, 1.0, 0.2),
+                                               test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45),
+                                               test::Mathieu(1.5, 2.0), MathieuChain(20)};
+  for (size_t i = 0; i < systems.size(); ++i) {
+    HillOptions o;
+    o.harmonics = systems[i].states() > 4 ? 8 : 12;
+    o.koopman_check = false;
+    o.period_doubling = PeriodDoubling::kNever;
+    const HillResult dense = AnalyzeHill(systems[i], o);
+    o.solver = HillSolver::kStructured;
+    const HillResult structured = AnalyzeHill(systems[i], o);
+    ASSERT_TRUE(dense.ok && structured.ok) << i;
+    EXPECT_EQ(structured.solver, "structured") << i;
+    EXPECT_LT(MaxDistanceModulo(Exponents(dense.modes), Exponents(structured.modes), systems[i].omega()),
+              1e-10)
+        << i;
+  }
+}
+
+TEST(KoopmanHill, MultipliersMatchMonodromy) {
+  for (const PeriodicSystem& s : {test::Mathieu(2.5, 1.0, 0.2), test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45),
+                                  test::Mathieu(1.5, 2.0)}) {
+    const FloquetResult ref = Reference(s);
+    HillOptions o;
+    o.harmonics = 24;
+    o.period_doubling = PeriodDoubling::kNever;
+    const HillResult r = AnalyzeHill(s, o);
+    std::vector<cd> ref_logs;
+    for (const FloquetMode& m : ref.modes) ref_logs.push_back(m.log_multiplier);
+    test::ExpectLogEigenvaluesNear(r.koopman_log_multipliers, ref_logs, 1e-9);
+    const Eigen::MatrixXcd phi = KoopmanHillTransition(*s.fourier_A(), s.omega(), 24, s.period());
+    EXPECT_LT((phi - ref.monodromy.cast<cd>()).norm(), 1e-9 * std::max(1.0, ref.monodromy.norm()));
+  }
+}
+
+// --- Options and resources -------------------------------------------------------------------
+
+TEST(HillOptionsTest, BadOptionsThrow) {
+  HillOptions o;
+  o.harmonics = -1;
+  try {
+    o.Validate();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("HillOptions::harmonics = -1. Violated constraint:", 0), 0u)
+        << e.what();
+  }
+  o = {};
+  o.ambiguity_threshold = 2;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.delta_harmonics = -5;
+  EXPECT_THROW(o.Validate(), InputError);
+  o = {};
+  o.expected = {cd(std::nan(""), 0)};
+  EXPECT_THROW(AnalyzeHill(test::Mathieu(1, 0.1), o), InputError);
+  EXPECT_THROW(HillConvergenceStudy(test::Mathieu(1, 0.1), 0), InputError);
+}
+
+TEST(HillOptionsTest, HugeTruncationIsAResourceErrorNotACrash) {
+  HillOptions o;
+  o.harmonics = 100000;  // (2N+1)·2 ≈ 4e5 → 2.4 TB dense
+  try {
+    AnalyzeHill(test::Mathieu(1, 0.1), o);
+    FAIL();
+  } catch (const ResourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("GiB"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace ltp

@@ -1,0 +1,435 @@
+// Tests of StateTransition (ltp/floquet/integrator.h). Every reference value states its
+// source: closed forms, Eigen's MatrixFunctions expm (independent of the code under test),
+// Liouville's formula, or rkf78 at a much tighter tolerance where no closed form exists.
+#include "ltp/floquet/integrator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <random>
+#include <string>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "ltp/core/error.h"
+#include "ltp/core/fourier_matrix.h"
+#include "ltp/core/periodic_system.h"
+
+namespace ltp {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double RelErr(const Eigen::MatrixXd& got, const Eigen::MatrixXd& want) {
+  return (got - want).norm() / want.norm();
+}
+
+IntegratorOptions With(IntegratorType type) {
+  IntegratorOptions o;
+  o.type = type;
+  return o;
+}
+
+// Meissner equation y'' + (a + b sign(cos t)) y + c y' = 0, T = 2π, jumps at π/2 and 3π/2.
+PeriodicSystem Meissner(double a, double b, double c) {
+  PeriodicSystem::Functions f;
+  f.A = [a, b, c](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const double k = a + b * (std::cos(t) >= 0 ? 1.0 : -1.0);
+    out << 0, 1, -k, -c;
+  };
+  return PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, std::move(f), {kPi / 2, 3 * kPi / 2});
+}
+
+// The same system as a piecewise-constant (sampled) system: exact for kExpm.
+PeriodicSystem MeissnerSampled(double a, double b, double c) {
+  LtiSystem minus, plus;
+  minus.A.resize(2, 2);
+  plus.A.resize(2, 2);
+  minus.A << 0, 1, -(a - b), -c;
+  plus.A << 0, 1, -(a + b), -c;
+  return PeriodicSystem::FromSamples(2 * kPi, {kPi / 2, 3 * kPi / 2}, {minus, plus});
+}
+
+// Closed-form monodromy of the undamped Meissner equation: the product of the constant-
+// coefficient transitions E(ω, τ) = [[cos ωτ, sin ωτ/ω], [−ω sin ωτ, cos ωτ]] (harmonic
+// oscillator).
+Eigen::Matrix2d MeissnerExact(double a, double b) {
+  auto e = [](double w, double tau) {
+    Eigen::Matrix2d m;
+    m << std::cos(w * tau), std::sin(w * tau) / w, -w * std::sin(w * tau), std::cos(w * tau);
+    return m;
+  };
+  const double wp = std::sqrt(a + b), wm = std::sqrt(a - b);
+  return e(wp, kPi / 2) * e(wm, kPi) * e(wp, kPi / 2);
+}
+
+// Damped Meissner: each constant piece is exp(A± τ), by Eigen's expm (independent reference).
+Eigen::Matrix2d MeissnerDampedReference(double a, double b, double c) {
+  Eigen::Matrix2d ap, am;
+  ap << 0, 1, -(a + b), -c;
+  am << 0, 1, -(a - b), -c;
+  const Eigen::Matrix2d half = (ap * (kPi / 2)).exp();
+  return half * (am * kPi).exp() * half;
+}
+
+// Mathieu oscillator y'' + (a − 2q cos 2t) y = 0, period π.
+PeriodicSystem Mathieu(double a, double q) {
+  PeriodicSystem::Functions f;
+  f.A = [a, q](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, -(a - 2 * q * std::cos(2 * t)), 0;
+  };
+  return PeriodicSystem::FromFunctions(kPi, 2, 0, 0, std::move(f));
+}
+
+// Random smooth 4×4 system with harmonics 0, ±1, ±2 from a fixed seed.
+PeriodicSystem RandomFourier(double period, FourierMatrix* coefficients = nullptr) {
+  std::mt19937 rng(20240611);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  FourierMatrix a(4, 4, 2);
+  Eigen::MatrixXcd a0(4, 4);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) a0(i, j) = u(rng);
+  a.SetHarmonic(0, a0);
+  for (int w = 1; w <= 2; ++w) {
+    Eigen::MatrixXcd aw(4, 4);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) aw(i, j) = {0.5 * u(rng), 0.5 * u(rng)};
+    a.SetHarmonic(w, aw);
+  }
+  if (coefficients) *coefficients = a;
+  return PeriodicSystem::FromFourier(period, a);
+}
+
+// ---------------------------------------------------------------- names and options
+
+TEST(IntegratorNames, RoundTrip) {
+  EXPECT_EQ(AllIntegrators().size(), 7u);
+  for (IntegratorType t : AllIntegrators()) {
+    auto parsed = ParseIntegratorType(ToString(t));
+    ASSERT_TRUE(parsed.has_value()) << ToString(t);
+    EXPECT_EQ(*parsed, t);
+  }
+  EXPECT_EQ(ToString(IntegratorType::kCvodeBdf), "cvode");
+  EXPECT_EQ(ToString(IntegratorType::kCvodeAdams), "cvode-adams");
+  EXPECT_EQ(ParseIntegratorType("magnus6"), IntegratorType::kMagnus6);
+  EXPECT_FALSE(ParseIntegratorType("rk4").has_value());
+  EXPECT_FALSE(ParseIntegratorType("").has_value());
+}
+
+void ExpectInvalid(const IntegratorOptions& o, const std::string& field) {
+  try {
+    o.Validate();
+    ADD_FAILURE() << "no InputError for " << field;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("IntegratorOptions::" + field), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("Violated constraint"), std::string::npos) << e.what();
+  }
+}
+
+TEST(IntegratorOptions, ValidateNamesTheField) {
+  IntegratorOptions good;
+  EXPECT_NO_THROW(good.Validate());
+  IntegratorOptions o;
+  o.rel_tol = -1;
+  ExpectInvalid(o, "rel_tol");
+  o.rel_tol = 1;
+  ExpectInvalid(o, "rel_tol");
+  o.rel_tol = std::nan("");
+  ExpectInvalid(o, "rel_tol");
+  o = {};
+  o.abs_tol = -1e-3;
+  ExpectInvalid(o, "abs_tol");
+  o = {};
+  o.steps_per_period = -2;
+  ExpectInvalid(o, "steps_per_period");
+  o = {};
+  o.max_steps = 0;
+  ExpectInvalid(o, "max_steps");
+
+  o = {};
+  o.rel_tol = -1;
+  try {
+    o.Validate();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "IntegratorOptions::rel_tol = -1. Violated constraint: 0 < rel_tol < 1");
+  }
+}
+
+TEST(TransitionInput, BadOptionsAndBackwardIntervalsThrow) {
+  const PeriodicSystem sys = Mathieu(1, 0.2);
+  IntegratorOptions o;
+  o.rel_tol = 2;
+  EXPECT_THROW(StateTransition(sys, 0, 1, o), InputError);
+  EXPECT_THROW(StateTransition(sys, 1, 0.5), InputError);
+  EXPECT_THROW(StateTransition(sys, 0, std::nan("")), InputError);
+  const TransitionResult same = StateTransition(sys, 0.7, 0.7);
+  EXPECT_TRUE(same.ok);
+  EXPECT_TRUE(same.phi.isIdentity());
+}
+
+// ---------------------------------------------------------------- every integrator
+
+class IntegratorP : public ::testing::TestWithParam<IntegratorType> {};
+
+INSTANTIATE_TEST_SUITE_P(Integrator, IntegratorP, ::testing::ValuesIn(AllIntegrators()),
+                         [](const auto& info) {
+                           std::string s(ToString(info.param));
+                           for (char& c : s)
+                             if (c == '-') c = '_';
+                           return s;
+                         });
+
+TEST_P(IntegratorP, ConstantMatchesExpm) {
+  Eigen::Matrix3d a;
+  a << -0.3, 1.2, 0.4, -1.1, 0.1, 0.7, 0.2, -0.8, -0.5;
+  const double period = 2.5;
+  const PeriodicSystem sys = PeriodicSystem::FromFourier(period, FourierMatrix::Constant(a));
+  const TransitionResult r = StateTransition(sys, 0, period, With(GetParam()));
+  ASSERT_TRUE(r.ok) << r.message;
+  // Reference: Eigen's Padé scaling-and-squaring expm.
+  const Eigen::MatrixXd want = (a * period).exp();
+  EXPECT_LT(RelErr(r.phi, want), 1e-9);
+  EXPECT_GT(r.steps, 0);
+  EXPECT_GT(r.rhs_evals, 0);
+}
+
+TEST_P(IntegratorP, MeissnerMatchesClosedForm) {
+  const double a = 1, b = 0.3;
+  const TransitionResult r = StateTransition(Meissner(a, b, 0), 0, 2 * kPi, With(GetParam()));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_LT(RelErr(r.phi, MeissnerExact(a, b)), 1e-9);
+}
+
+TEST_P(IntegratorP, DampedMeissnerMatchesExpmProduct) {
+  const double a = 1, b = 0.3, c = 0.2;
+  const TransitionResult r = StateTransition(Meissner(a, b, c), 0, 2 * kPi, With(GetParam()));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_LT(RelErr(r.phi, MeissnerDampedReference(a, b, c)), 1e-9);
+}
+
+TEST_P(IntegratorP, LiouvilleDeterminant) {
+  // Liouville: det Φ(T, 0) = exp(∫_0^T tr A) = exp(T tr A_0) (the harmonics integrate to 0).
+  const double period = 1.7;
+  FourierMatrix coefficients;
+  const PeriodicSystem sys = RandomFourier(period, &coefficients);
+  const TransitionResult r = StateTransition(sys, 0, period, With(GetParam()));
+  ASSERT_TRUE(r.ok) << r.message;
+  const double want = std::exp(period * coefficients[0].real().trace());
+  EXPECT_NEAR(r.phi.determinant() / want, 1.0, 1e-9);
+}
+
+TEST_P(IntegratorP, MultiPeriodIsPowerOfMonodromy) {
+  const PeriodicSystem sys = Meissner(1, 0.3, 0.1);
+  const double period = sys.period();
+  const TransitionResult one = StateTransition(sys, 0, period, With(GetParam()));
+  const TransitionResult three = StateTransition(sys, 0, 3 * period, With(GetParam()));
+  ASSERT_TRUE(one.ok) << one.message;
+  ASSERT_TRUE(three.ok) << three.message;
+  EXPECT_LT(RelErr(three.phi, one.phi * one.phi * one.phi), 1e-9);
+}
+
+TEST_P(IntegratorP, ShiftedPeriodIsSimilarToMonodromy) {
+  // Periodicity: Φ(t0 + T, t0) Φ(t0, 0) = Φ(t0 + T, T) Φ(T, 0) = Φ(t0, 0) Φ(T, 0).
+  // t0 = 2 lies between the breakpoints π/2 and 3π/2, so the interval crosses both copies.
+  const PeriodicSystem sys = Meissner(1, 0.3, 0.1);
+  const double period = sys.period(), t0 = 2.0;
+  const IntegratorOptions o = With(GetParam());
+  const TransitionResult head = StateTransition(sys, 0, t0, o);
+  const TransitionResult mono = StateTransition(sys, 0, period, o);
+  const TransitionResult shifted = StateTransition(sys, t0, t0 + period, o);
+  ASSERT_TRUE(head.ok && mono.ok && shifted.ok);
+  EXPECT_LT(RelErr(shifted.phi * head.phi, head.phi * mono.phi), 1e-9);
+}
+
+TEST_P(IntegratorP, OverflowIsReportedNotThrown) {
+  // exp(1000 · 10) overflows a double.
+  const PeriodicSystem sys =
+      PeriodicSystem::FromFourier(10, FourierMatrix::Constant(1000 * Eigen::Matrix2d::Identity()));
+  TransitionResult r;
+  ASSERT_NO_THROW(r = StateTransition(sys, 0, 10, With(GetParam())));
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.message, "state transition is not finite (overflow?)");
+}
+
+// ---------------------------------------------------------------- specific integrators
+
+TEST(TransitionExpm, SampledMeissnerIsExact) {
+  const double a = 1, b = 0.3;
+  const TransitionResult r =
+      StateTransition(MeissnerSampled(a, b, 0), 0, 2 * kPi, With(IntegratorType::kExpm));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(r.message.empty()) << r.message;
+  EXPECT_LT(RelErr(r.phi, MeissnerExact(a, b)), 1e-13);
+  EXPECT_EQ(r.steps, 3);  // [0, π/2), [π/2, 3π/2), [3π/2, 2π)
+
+  const TransitionResult damped =
+      StateTransition(MeissnerSampled(a, b, 0.2), 0, 2 * kPi, With(IntegratorType::kExpm));
+  EXPECT_LT(RelErr(damped.phi, MeissnerDampedReference(a, b, 0.2)), 1e-13);
+}
+
+TEST(TransitionExpm, SmoothSystemUsesMidpointRule) {
+  const TransitionResult r = StateTransition(Mathieu(1, 0.2), 0, kPi, With(IntegratorType::kExpm));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_EQ(r.message,
+            "expm on a non-piecewise-constant system: exponential midpoint rule, 2nd order");
+  EXPECT_GT(r.steps_per_period, 0);
+  EXPECT_GE(r.error_estimate, 0);
+  EXPECT_LE(r.error_estimate, 1e-10);
+}
+
+TEST(TransitionFixedStep, AutoResolutionReportsItsEstimate) {
+  const PeriodicSystem sys = Mathieu(1, 0.4);
+  IntegratorOptions ref;
+  ref.type = IntegratorType::kRkf78;
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-15;
+  const Eigen::MatrixXd want = StateTransition(sys, 0, kPi, ref).phi;
+  for (IntegratorType type : {IntegratorType::kMagnus4, IntegratorType::kMagnus6}) {
+    IntegratorOptions o = With(type);
+    o.rel_tol = 1e-8;
+    const TransitionResult r = StateTransition(sys, 0, kPi, o);
+    ASSERT_TRUE(r.ok) << r.message;
+    EXPECT_GT(r.steps_per_period, 0);
+    EXPECT_LE(r.error_estimate, 1e-8);
+    // The Richardson difference bounds the error of the finer result (it is ~2^p−1 times it).
+    EXPECT_LT(RelErr(r.phi, want), 1e-8);
+  }
+}
+
+TEST(TransitionFixedStep, ShortIntervalsStillConverge) {
+  // Regression: on an interval of T/32, 8 and 16 steps per period both round to one step;
+  // the automatic loop must still refine (it doubles the steps of every piece).
+  const PeriodicSystem sys = Mathieu(1.3, 0.7);
+  const double period = sys.period();
+  IntegratorOptions ref = With(IntegratorType::kRkf78);  // reference: rkf78 at rel_tol 1e-13
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-15;
+  const Eigen::MatrixXd want = StateTransition(sys, 0, period, ref).phi;
+  for (IntegratorType type :
+       {IntegratorType::kMagnus4, IntegratorType::kMagnus6, IntegratorType::kExpm}) {
+    IntegratorOptions o = With(type);
+    o.rel_tol = 1e-9;
+    Eigen::MatrixXd phi = Eigen::MatrixXd::Identity(2, 2);
+    const int segments = 32;
+    for (int k = 0; k < segments; ++k) {
+      const TransitionResult r =
+          StateTransition(sys, k * period / segments, (k + 1) * period / segments, o);
+      ASSERT_TRUE(r.ok) << r.message;
+      EXPECT_GT(r.error_estimate, 0) << ToString(type);
+      phi = r.phi * phi;
+    }
+    EXPECT_LT(RelErr(phi, want), 1e-8) << ToString(type);
+  }
+}
+
+TEST(TransitionFixedStep, UnreachableToleranceFailsWithLastResult) {
+  // Expm midpoint rule (2nd order) cannot reach 1e-15 within 2^20 steps per period.
+  IntegratorOptions o = With(IntegratorType::kExpm);
+  o.rel_tol = 1e-15;
+  const TransitionResult r = StateTransition(Mathieu(1, 0.4), 0, kPi, o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.message.find("did not reach rel_tol"), std::string::npos) << r.message;
+  EXPECT_EQ(r.steps_per_period, 1 << 20);
+  EXPECT_TRUE(r.phi.allFinite());
+}
+
+// Observed order log2(err(N)/err(2N)) of a fixed-step Magnus method on the Mathieu system.
+double ObservedOrder(IntegratorType type, int steps) {
+  const PeriodicSystem sys = Mathieu(1.3, 0.6);
+  IntegratorOptions ref;
+  ref.type = IntegratorType::kRkf78;  // reference: rkf78 at rel_tol 1e-13
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-15;
+  const TransitionResult want = StateTransition(sys, 0, kPi, ref);
+  EXPECT_TRUE(want.ok) << want.message;
+  IntegratorOptions o = With(type);
+  o.steps_per_period = steps;
+  const double coarse = RelErr(StateTransition(sys, 0, kPi, o).phi, want.phi);
+  o.steps_per_period = 2 * steps;
+  const double fine = RelErr(StateTransition(sys, 0, kPi, o).phi, want.phi);
+  EXPECT_GT(fine, 1e-11) << "error too close to the reference's own accuracy";
+  return std::log2(coarse / fine);
+}
+
+TEST(MagnusOrder, Magnus4IsFourthOrder) {
+  EXPECT_NEAR(ObservedOrder(IntegratorType::kMagnus4, 16), 4, 0.3);
+}
+
+TEST(MagnusOrder, Magnus6IsSixthOrder) {
+  EXPECT_NEAR(ObservedOrder(IntegratorType::kMagnus6, 8), 6, 0.4);
+}
+
+TEST(MagnusOrder, ExpmMidpointIsSecondOrder) {
+  EXPECT_NEAR(ObservedOrder(IntegratorType::kExpm, 64), 2, 0.2);
+}
+
+TEST(TransitionStiff, BdfTakesFarFewerStepsThanDopri5) {
+  // A(t) = [[-1000, 1], [0, -1 + 0.5 cos t]]: one fast decaying mode; explicit methods are
+  // limited by stability (h ≲ 3.3/1000), BDF only by accuracy.
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << -1000, 1, 0, -1 + 0.5 * std::cos(t);
+  };
+  const PeriodicSystem sys = PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, std::move(f));
+  // Reference: rkf78 at a tight tolerance (no closed form for the coupling entry Φ_01).
+  IntegratorOptions ref = With(IntegratorType::kRkf78);
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-16;
+  const TransitionResult want = StateTransition(sys, 0, 2 * kPi, ref);
+  ASSERT_TRUE(want.ok) << want.message;
+  // Φ_11 has a closed form: exp(∫ −1 + 0.5 cos t) = e^{−2π} over one period.
+  EXPECT_NEAR(want.phi(1, 1) / std::exp(-2 * kPi), 1, 1e-10);
+
+  // At an engineering tolerance the explicit method is stability-bound (~2000 steps whatever
+  // rel_tol), BDF accuracy-bound; at very tight tolerances BDF (order <= 5) loses that edge.
+  IntegratorOptions loose = With(IntegratorType::kCvodeBdf);
+  loose.rel_tol = 1e-4;
+  const TransitionResult bdf = StateTransition(sys, 0, 2 * kPi, loose);
+  loose.type = IntegratorType::kDopri5;
+  const TransitionResult dopri = StateTransition(sys, 0, 2 * kPi, loose);
+  ASSERT_TRUE(bdf.ok) << bdf.message;
+  ASSERT_TRUE(dopri.ok) << dopri.message;
+  EXPECT_LT(bdf.steps, dopri.steps / 5) << "bdf " << bdf.steps << ", dopri5 " << dopri.steps;
+  EXPECT_LT(RelErr(bdf.phi, want.phi), 1e-4);
+  EXPECT_LT(RelErr(dopri.phi, want.phi), 1e-4);
+
+  // At default options both succeed and agree with the reference.
+  for (IntegratorType type : {IntegratorType::kCvodeBdf, IntegratorType::kDopri5}) {
+    const TransitionResult r = StateTransition(sys, 0, 2 * kPi, With(type));
+    ASSERT_TRUE(r.ok) << r.message;
+    EXPECT_LT(RelErr(r.phi, want.phi), 1e-8) << ToString(type);
+  }
+}
+
+TEST(TransitionLimits, TinyMaxStepsFailsWithoutThrowing) {
+  const PeriodicSystem sys = Mathieu(1, 0.4);
+  for (IntegratorType type : {IntegratorType::kDopri5, IntegratorType::kRkf78,
+                              IntegratorType::kCvodeBdf, IntegratorType::kCvodeAdams}) {
+    IntegratorOptions o = With(type);
+    o.max_steps = 5;
+    TransitionResult r;
+    ASSERT_NO_THROW(r = StateTransition(sys, 0, 10 * kPi, o)) << ToString(type);
+    EXPECT_FALSE(r.ok) << ToString(type);
+    EXPECT_FALSE(r.message.empty()) << ToString(type);
+    EXPECT_LE(r.steps, 5) << ToString(type);
+  }
+}
+
+TEST(TransitionLimits, UserExceptionsFromAPropagate) {
+  // A failing A(t) is the user's error, not a numerical outcome: it must reach the caller,
+  // also through the C frames of CVODE.
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    if (t > 0.5) throw InputError("A(t) undefined");
+    out.setZero();
+  };
+  const PeriodicSystem sys = PeriodicSystem::FromFunctions(1, 2, 0, 0, std::move(f));
+  for (IntegratorType type : AllIntegrators())
+    EXPECT_THROW(StateTransition(sys, 0, 1, With(type)), InputError) << ToString(type);
+}
+
+}  // namespace
+}  // namespace ltp

@@ -1,0 +1,393 @@
+// Tests of the periodic Schur eigenvalues (SLICOT MB03VD + MB03BD) and of the periodic
+// eigenvectors (block-cyclic null vectors). Reference values are either eig of the formed
+// product (well-conditioned cases only) or closed forms of factors built from known pieces.
+#include "ltp/floquet/periodic_eigen.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "ltp/core/error.h"
+#include "support/compare.h"
+
+namespace ltp {
+namespace {
+
+using Complex = std::complex<double>;
+using ltp::test::CompareMatrices;
+using ltp::test::ExpectLogEigenvaluesNear;
+using ltp::test::VectorsEqualUpToPhase;
+
+/// Uniform in [−1, 1) from the raw mt19937 stream (fully specified by the standard, unlike
+/// the std distributions), so the test data are the same on every platform.
+class Uniform {
+ public:
+  explicit Uniform(std::uint32_t seed) : engine_(seed) {}
+  double operator()() { return engine_() / 2147483648.0 - 1.0; }
+  Eigen::MatrixXd Matrix(int n) {
+    Eigen::MatrixXd m(n, n);
+    for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = (*this)();
+    return m;
+  }
+  /// A random orthogonal matrix (Q of the QR of a random matrix).
+  Eigen::MatrixXd Orthogonal(int n) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(Matrix(n));
+    return qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+  }
+
+ private:
+  std::mt19937 engine_;
+};
+
+Eigen::MatrixXd FormProduct(const std::vector<Eigen::MatrixXd>& factors) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Identity(factors[0].rows(), factors[0].cols());
+  for (const Eigen::MatrixXd& f : factors) p = f * p;  // Φ_K ⋯ Φ_1
+  return p;
+}
+
+/// Segment lengths 1 + 0.5 sin(i), scaled to sum to `period`: deliberately unequal.
+std::vector<double> UnequalSegments(int k, double period) {
+  std::vector<double> dt(k);
+  double sum = 0;
+  for (int i = 0; i < k; ++i) sum += dt[i] = 1.0 + 0.5 * std::sin(i + 1.0);
+  for (double& d : dt) d *= period / sum;
+  return dt;
+}
+
+/// Factors Φ_i = Q_{i+1} diag(e^{λ_j dt_i}) Q_iᵀ, Q_K = Q_0, with random orthogonal Q_i. By
+/// construction Φ_i Q_i e_j = e^{λ_j dt_i} Q_{i+1} e_j, so the product has eigenvalues
+/// e^{λ_j T} and eigenvectors Q_0 e_j, and the periodic eigenvectors are v_i = Q_i e_j.
+struct StiffProduct {
+  std::vector<Eigen::MatrixXd> factors;
+  std::vector<Eigen::MatrixXd> q;  // Q_0 … Q_{K−1}
+  std::vector<double> dt;
+};
+
+StiffProduct MakeStiffProduct(const Eigen::VectorXd& lambda, int k, double period,
+                              std::uint32_t seed) {
+  const int n = static_cast<int>(lambda.size());
+  Uniform random(seed);
+  StiffProduct p;
+  p.dt = UnequalSegments(k, period);
+  for (int i = 0; i < k; ++i) p.q.push_back(random.Orthogonal(n));
+  for (int i = 0; i < k; ++i) {
+    const Eigen::VectorXd d = (lambda * p.dt[i]).array().exp();
+    p.factors.push_back(p.q[(i + 1) % k] * d.asDiagonal() * p.q[i].transpose());
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Periodic Schur eigenvalues.
+// ---------------------------------------------------------------------------------------------
+
+class PeriodicSchurRandomTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(PeriodicSchurRandomTest, MatchesEigOfFormedProduct) {
+  const int k = GetParam();
+  Uniform random(1234 + k);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < k; ++i) factors.push_back(random.Matrix(4));
+
+  const LogEigenvalues periodic = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(periodic.ok) << periodic.message;
+  // Reference: Eigen eig of the product formed in long double. The eigenvalues of these
+  // products span up to ~8 decades (K = 8: log|ρ| from 2.6 to −15.7), which already costs a
+  // double-precision formed product ~1e-9 on the smallest; the 64-bit mantissa keeps the
+  // reference at ~1e-12 (checked: it agrees with the periodic result to 1e-13).
+  using MatrixLd = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  MatrixLd product = MatrixLd::Identity(4, 4);
+  for (const Eigen::MatrixXd& f : factors) product = f.cast<long double>() * product;
+  const Eigen::EigenSolver<MatrixLd> solver(product, /*computeEigenvectors=*/false);
+  ASSERT_EQ(solver.info(), Eigen::Success);
+  std::vector<Complex> reference;
+  for (const std::complex<long double>& rho : solver.eigenvalues()) {
+    reference.emplace_back(static_cast<double>(std::log(std::abs(rho))),
+                           static_cast<double>(std::arg(rho)));
+  }
+  ExpectLogEigenvaluesNear(periodic.log_values, reference, 1e-10);
+
+  for (std::size_t i = 1; i < periodic.log_values.size(); ++i) {
+    EXPECT_GE(periodic.log_values[i - 1].real(), periodic.log_values[i].real()) << "not sorted";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicSchurRandomTest, ::testing::Values(1, 3, 8));
+
+TEST(PeriodicSchurTest, MultipliersSpanningSixHundredDecades) {
+  // λ T = (0.1, −5, −300, −1400) with T = 1: the smallest multiplier e^{−1400} ≈ 1e−608 is far
+  // below the smallest double. K = 200 unequal segments keep each factor's dynamic range
+  // moderate (e^{−1400 dt} ≥ e^{−11}), as in an integrated stiff system, so every log|ρ| is
+  // well conditioned with respect to rounding in the factors.
+  const Eigen::Vector4d lambda(0.1, -5.0, -300.0, -1400.0);
+  const StiffProduct p = MakeStiffProduct(lambda, 200, 1.0, 77);
+
+  const LogEigenvalues periodic = PeriodicSchurLogEigenvalues(p.factors);
+  ASSERT_TRUE(periodic.ok) << periodic.message;
+  // Closed form by construction: log ρ_j = λ_j T, all real and positive multipliers.
+  const std::vector<Complex> expected = {0.1, -5.0, -300.0, -1400.0};
+  ExpectLogEigenvaluesNear(periodic.log_values, expected, 1e-9);
+  ASSERT_EQ(periodic.log_values.size(), 4u);
+  for (int j = 0; j < 4; ++j) {  // sorted descending, so the order is known here
+    EXPECT_NEAR(periodic.log_values[j].real(), lambda[j], 1e-9 * std::abs(lambda[j]));
+  }
+
+  // The single-shot route on the formed product cannot see below eps · max|ρ|: its two
+  // smallest multipliers are rounding noise (or exact zeros), wrong by far more than 1 in
+  // log|ρ|. This documents why the periodic route exists.
+  const LogEigenvalues single = SingleShotLogEigenvalues(FormProduct(p.factors));
+  ASSERT_TRUE(single.ok) << single.message;
+  ASSERT_EQ(single.log_values.size(), 4u);
+  EXPECT_NEAR(single.log_values[0].real(), 0.1, 1e-10);  // the dominant one is still fine
+  EXPECT_GT(std::abs(single.log_values[3].real() - (-1400.0)), 1.0);
+  EXPECT_GT(std::abs(single.log_values[2].real() - (-300.0)), 1.0);
+}
+
+TEST(PeriodicSchurTest, ComplexPairOfRotationsTimesScalings) {
+  // Φ_i = Q_{i+1} blockdiag(r_i R(θ_i), p_i, q_i) Q_iᵀ with R(θ) a plane rotation. The product
+  // is Q_0 blockdiag((Π r_i) R(Σ θ_i), Π p_i, Π q_i) Q_0ᵀ, so in closed form
+  //   log ρ = Σ log r_i ± j wrap(Σ θ_i),  Σ log|p_i| + j π (K odd, p_i < 0),  Σ log q_i.
+  // Every factor is scaled by about e^{−50}: the pair's modulus e^{−500} underflows in double.
+  const int k = 9;
+  Uniform random(99);
+  std::vector<Eigen::MatrixXd> q;
+  for (int i = 0; i < k; ++i) q.push_back(random.Orthogonal(4));
+  double log_r = 0, theta = 0, log_p = 0, log_q = 0;
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < k; ++i) {
+    const double lr = -50.0 - 0.3 * i, th = 0.4 + 0.1 * i;
+    const double lp = -49.0 + 0.05 * i, lq = -51.5;
+    log_r += lr;
+    theta += th;
+    log_p += lp;
+    log_q += lq;
+    Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+    block.topLeftCorner<2, 2>() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th);
+    block.topLeftCorner<2, 2>() *= std::exp(lr);
+    block(2, 2) = -std::exp(lp);
+    block(3, 3) = std::exp(lq);
+    factors.push_back(q[(i + 1) % k] * block * q[i].transpose());
+  }
+  const double wrapped = std::remainder(theta, 2 * std::numbers::pi);
+  const std::vector<Complex> expected = {
+      {log_p, std::numbers::pi}, {log_r, wrapped}, {log_r, -wrapped}, {log_q, 0.0}};
+
+  const LogEigenvalues periodic = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(periodic.ok) << periodic.message;
+  ExpectLogEigenvaluesNear(periodic.log_values, expected, 1e-12);
+  // Sorted by log|ρ| descending; the conjugate pair is exact and lists +arg first.
+  ASSERT_EQ(periodic.log_values.size(), 4u);
+  EXPECT_EQ(periodic.log_values[1], std::conj(periodic.log_values[2]));
+  EXPECT_GT(periodic.log_values[1].imag(), 0);
+  EXPECT_DOUBLE_EQ(periodic.log_values[0].imag(), std::numbers::pi);  // negative real: +π
+}
+
+TEST(PeriodicSchurTest, ZeroMultiplierHasMinusInfinityLog) {
+  // diag(2, 0) · diag(3, 5): eigenvalues 6 and 0 (closed form).
+  const std::vector<Eigen::MatrixXd> factors = {Eigen::Vector2d(3, 5).asDiagonal(),
+                                                Eigen::Vector2d(2, 0).asDiagonal()};
+  const LogEigenvalues periodic = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(periodic.ok) << periodic.message;
+  ASSERT_EQ(periodic.log_values.size(), 2u);
+  EXPECT_NEAR(periodic.log_values[0].real(), std::log(6.0), 1e-15);
+  EXPECT_EQ(periodic.log_values[1].real(), -std::numeric_limits<double>::infinity());
+}
+
+TEST(PeriodicSchurTest, EmptyAndInvalidInput) {
+  const LogEigenvalues empty = PeriodicSchurLogEigenvalues({Eigen::MatrixXd(0, 0)});
+  EXPECT_TRUE(empty.ok);
+  EXPECT_TRUE(empty.log_values.empty());
+
+  EXPECT_FALSE(PeriodicSchurLogEigenvalues({}).ok);
+
+  Eigen::MatrixXd bad = Eigen::MatrixXd::Identity(3, 3);
+  bad(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  const LogEigenvalues nan = PeriodicSchurLogEigenvalues({Eigen::MatrixXd::Identity(3, 3), bad});
+  EXPECT_FALSE(nan.ok);
+  EXPECT_NE(nan.message.find("non-finite"), std::string::npos) << nan.message;
+
+  const LogEigenvalues mismatch =
+      PeriodicSchurLogEigenvalues({Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Ones(2, 2)});
+  EXPECT_FALSE(mismatch.ok);
+}
+
+TEST(SingleShotTest, ClosedFormAndInvalidInput) {
+  // Rotation by 2π/3 scaled by 2: eigenvalues 2 e^{±j 2π/3} (closed form); plus −3 and 0.
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  const double th = 2 * std::numbers::pi / 3;
+  m.topLeftCorner<2, 2>() << 2 * std::cos(th), -2 * std::sin(th), 2 * std::sin(th),
+      2 * std::cos(th);
+  m(2, 2) = -3;
+  const LogEigenvalues single = SingleShotLogEigenvalues(m);
+  ASSERT_TRUE(single.ok) << single.message;
+  ASSERT_EQ(single.log_values.size(), 4u);
+  EXPECT_NEAR(std::abs(single.log_values[0] - Complex(std::log(3.0), std::numbers::pi)), 0,
+              1e-14);
+  EXPECT_NEAR(std::abs(single.log_values[1] - Complex(std::log(2.0), th)), 0, 1e-14);
+  EXPECT_NEAR(std::abs(single.log_values[2] - Complex(std::log(2.0), -th)), 0, 1e-14);
+  EXPECT_EQ(single.log_values[3].real(), -std::numeric_limits<double>::infinity());
+
+  EXPECT_FALSE(SingleShotLogEigenvalues(Eigen::MatrixXd::Ones(2, 3)).ok);
+  Eigen::MatrixXd inf = Eigen::MatrixXd::Identity(2, 2);
+  inf(0, 1) = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(SingleShotLogEigenvalues(inf).ok);
+  EXPECT_TRUE(SingleShotLogEigenvalues(Eigen::MatrixXd(0, 0)).ok);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Periodic eigenvectors.
+// ---------------------------------------------------------------------------------------------
+
+/// max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i||_F + |σ_i|), recomputed independently.
+double CyclicResidual(const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
+                      Complex log_rho, const PeriodicEigenvector& vec) {
+  const std::size_t k = factors.size();
+  double period = 0;
+  for (double d : dt) period += d;
+  double worst = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const Complex sigma = std::exp(log_rho * dt[i] / period);
+    const double r = (factors[i] * vec.v[i] - sigma * vec.v[(i + 1) % k]).norm() /
+                     (factors[i].norm() + std::abs(sigma));
+    worst = std::max(worst, r);
+  }
+  return worst;
+}
+
+double MaxBlockNorm(const PeriodicEigenvector& vec) {
+  double m = 0;
+  for (const Eigen::VectorXcd& v : vec.v) m = std::max(m, v.norm());
+  return m;
+}
+
+class PeriodicEigenvectorsRandomTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(PeriodicEigenvectorsRandomTest, CyclicRelationAndEigenvectorOfProduct) {
+  const int k = GetParam();
+  Uniform random(555 + k);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < k; ++i) factors.push_back(random.Matrix(4));
+  const std::vector<double> dt = UnequalSegments(k, 2.5);
+  const LogEigenvalues eig = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(eig.ok) << eig.message;
+
+  const std::vector<PeriodicEigenvector> vecs =
+      ComputePeriodicEigenvectors(factors, dt, eig.log_values);
+  ASSERT_EQ(vecs.size(), eig.log_values.size());
+  const Eigen::MatrixXd product = FormProduct(factors);
+  for (std::size_t j = 0; j < vecs.size(); ++j) {
+    ASSERT_EQ(vecs[j].v.size(), static_cast<std::size_t>(k));
+    EXPECT_NEAR(MaxBlockNorm(vecs[j]), 1.0, 1e-14);
+    EXPECT_LT(vecs[j].residual, 1e-12);
+    EXPECT_LT(CyclicResidual(factors, dt, eig.log_values[j], vecs[j]), 1e-12);
+    // v_0 is an eigenvector of the formed product (well conditioned here): P v_0 = ρ v_0.
+    const Complex rho = std::exp(eig.log_values[j]);
+    const Eigen::VectorXcd& v0 = vecs[j].v[0];
+    EXPECT_LT((product * v0 - rho * v0).norm(), 1e-11 * product.norm() * v0.norm())
+        << "eigenvalue " << j;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicEigenvectorsRandomTest, ::testing::Values(1, 3, 8));
+
+TEST(PeriodicEigenvectorsTest, SixHundredDecadesMatchClosedForm) {
+  // Same construction as MultipliersSpanningSixHundredDecades: v_i = Q_i e_j exactly.
+  const Eigen::Vector4d lambda(0.1, -5.0, -300.0, -1400.0);
+  const StiffProduct p = MakeStiffProduct(lambda, 200, 1.0, 77);
+  const std::vector<Complex> log_rho = {0.1, -5.0, -300.0, -1400.0};
+
+  const std::vector<PeriodicEigenvector> vecs =
+      ComputePeriodicEigenvectors(p.factors, p.dt, log_rho);
+  ASSERT_EQ(vecs.size(), 4u);
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_LT(vecs[j].residual, 1e-12) << "mode " << j;
+    EXPECT_LT(CyclicResidual(p.factors, p.dt, log_rho[j], vecs[j]), 1e-12) << "mode " << j;
+    const Eigen::VectorXcd expected = p.q[0].col(j).cast<Complex>();
+    EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[0], expected, 1e-10)) << "mode " << j;
+    // All v_i have unit norm by construction (orthogonal Q_i, σ_i = exact step factor).
+    EXPECT_NEAR(vecs[j].v[100].norm(), 1.0, 1e-10) << "mode " << j;
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, IdentityFactorsGiveIndependentVectors) {
+  // Φ_i = I: every ρ = 1 (log ρ = 0), a triple non-defective cluster; any v works, so the
+  // returned sets must be made independent: rank [v_0^(1) v_0^(2) v_0^(3)] = 3.
+  for (int k : {1, 4}) {
+    const std::vector<Eigen::MatrixXd> factors(k, Eigen::MatrixXd::Identity(3, 3));
+    const std::vector<double> dt(k, 0.25);
+    const std::vector<PeriodicEigenvector> vecs =
+        ComputePeriodicEigenvectors(factors, dt, {0.0, 0.0, 0.0});
+    ASSERT_EQ(vecs.size(), 3u);
+    Eigen::Matrix3cd v0;
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(vecs[j].residual, 1e-12);
+      v0.col(j) = vecs[j].v[0];
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3cd> svd(v0);
+    EXPECT_GT(svd.singularValues()(2), 0.1 * svd.singularValues()(0)) << "K = " << k;
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, CloseButDistinctEigenvaluesGetTheirOwnVectors) {
+  // Φ_i = Q_{i+1} diag(e^{λ dt_i}) Q_iᵀ with λ_2 − λ_1 = 1e-9: inside the cluster tolerance,
+  // yet each member must converge to its own closed-form vector Q_0 e_j rather than to a
+  // common one (which would be ~1 away from one of them). The achievable accuracy is set by
+  // the gap: the second-smallest singular value of the lifted matrix is 1.2e-10, so rounding
+  // in the factors alone moves the vectors by ~eps/1.2e-10 ≈ 1e-6 (a dense SVD null vector
+  // is off by 2e-7 and 6e-7; this routine by 4e-6 and 7e-7). Hence the loose tolerance.
+  const Eigen::Vector3d lambda(-1.0, -1.0 + 1e-9, 0.5);
+  const StiffProduct p = MakeStiffProduct(lambda, 5, 2.0, 31);
+  const std::vector<Complex> log_rho = {2.0 * lambda[0], 2.0 * lambda[1], 2.0 * lambda[2]};
+  const std::vector<PeriodicEigenvector> vecs =
+      ComputePeriodicEigenvectors(p.factors, p.dt, log_rho);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_LT(vecs[j].residual, 1e-12) << "mode " << j;
+    EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[0], p.q[0].col(j).cast<Complex>(), 3e-5))
+        << "mode " << j;
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, SingleFactorGivesPlainEigenvectors) {
+  // K = 1: v_0 is an eigenvector of Φ_1 itself (diagonal: closed-form eigenvectors e_j).
+  const std::vector<Eigen::MatrixXd> factors = {Eigen::Vector3d(2.0, -0.5, 0.1).asDiagonal()};
+  const std::vector<Complex> log_rho = {std::log(2.0), {std::log(0.5), std::numbers::pi},
+                                        std::log(0.1)};
+  const std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(factors, {1.0}, log_rho);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[0], Eigen::Vector3cd::Unit(j), 1e-12));
+    EXPECT_LT(vecs[j].residual, 1e-14);
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, DefectiveClusterDoesNotCrash) {
+  // Jordan block [[1, 1], [0, 1]]: ρ = 1 twice but one eigenvector e_1. The two returned sets
+  // are (nearly) parallel — detected downstream by the mode matrix's condition number.
+  const std::vector<Eigen::MatrixXd> factors = {(Eigen::Matrix2d() << 1, 1, 0, 1).finished()};
+  const std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(factors, {1.0}, {0.0, 0.0});
+  ASSERT_EQ(vecs.size(), 2u);
+  for (const PeriodicEigenvector& vec : vecs) {
+    ASSERT_TRUE(vec.v[0].allFinite());
+    EXPECT_NEAR(vec.v[0].norm(), 1.0, 1e-14);
+    EXPECT_LT(vec.residual, 1e-6);  // an eigenvector of a Jordan block is only ~sqrt(eps) accurate
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, InvalidInputThrows) {
+  const std::vector<Eigen::MatrixXd> factors(2, Eigen::MatrixXd::Identity(2, 2));
+  EXPECT_THROW(ComputePeriodicEigenvectors(factors, {1.0}, {0.0}), InputError);
+  EXPECT_THROW(ComputePeriodicEigenvectors(factors, {1.0, -1.0}, {0.0}), InputError);
+  EXPECT_THROW(ComputePeriodicEigenvectors(
+                   factors, {1.0, 1.0}, {Complex(std::numeric_limits<double>::quiet_NaN(), 0)}),
+               InputError);
+  EXPECT_THROW(ComputePeriodicEigenvectors({}, {}, {0.0}), InputError);
+}
+
+}  // namespace
+}  // namespace ltp

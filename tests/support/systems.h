@@ -1,0 +1,117 @@
+#pragma once
+// Analytic test systems with known Floquet structure, built directly (not through scenes) so
+// floquet tests do not depend on the scene parser.
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "ltp/core/periodic_system.h"
+
+namespace ltp::test {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Damped Mathieu y'' + c y' + (a − 2q cos 2t) y = 0, period π, exact Fourier form:
+/// A_0 = [[0,1],[−a,−c]], A_{±1} = [[0,0],[q,0]] (2q cos 2t = q e^{j2t} + q e^{−j2t}, Ωp = 2).
+inline PeriodicSystem Mathieu(double a, double q, double c = 0) {
+  FourierMatrix A(2, 2, 1);
+  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
+  a0 << 0, 1, -a, -c;
+  a1(1, 0) = q;
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return PeriodicSystem::FromFourier(kPi, A);
+}
+
+/// Meissner y'' + c y' + (a + b·sign(cos t)) y = 0, period 2π, jumps at π/2 and 3π/2.
+inline PeriodicSystem Meissner(double a, double b, double c = 0) {
+  PeriodicSystem::Functions f;
+  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const double s = std::cos(t) >= 0 ? 1.0 : -1.0;
+    out << 0, 1, -(a + b * s), -c;
+  };
+  return PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f, {kPi / 2, 3 * kPi / 2});
+}
+
+/// Closed-form Meissner monodromy: Φ = E₊(π/2) E₋(π) E₊(π/2), E±(τ) = expm([[0,1],[−(a±b),−c]] τ).
+/// For c = 0 and a > b, E(ω,τ) = [[cos ωτ, sin ωτ/ω], [−ω sin ωτ, cos ωτ]], ω = √(a ± b).
+inline Eigen::Matrix2d MeissnerMonodromy(double a, double b, double c = 0) {
+  auto E = [&](double k, double tau) -> Eigen::Matrix2d {
+    if (c == 0 && k > 0) {
+      const double w = std::sqrt(k);
+      Eigen::Matrix2d e;
+      e << std::cos(w * tau), std::sin(w * tau) / w, -w * std::sin(w * tau), std::cos(w * tau);
+      return e;
+    }
+    Eigen::Matrix2d m;
+    m << 0, 1, -k, -c;
+    return (m * tau).exp();
+  };
+  return E(a + b, kPi / 2) * E(a - b, kPi) * E(a + b, kPi / 2);
+}
+
+/// Jeffcott rotor with an asymmetric shaft, fixed frame: m p'' + c p' + K(t) p = 0,
+/// K(t) = R(Ωt) diag(k1,k2) R(Ωt)ᵀ, period π/Ω, exact Fourier form (Ωp = 2Ω).
+inline PeriodicSystem Jeffcott(double m, double k1, double k2, double c, double omega) {
+  const double k0 = (k1 + k2) / 2, dk = (k1 - k2) / 2;
+  // K(t) = k0 I + dk [[cos 2Ωt, sin 2Ωt],[sin 2Ωt, −cos 2Ωt]];
+  // cos = (e + e*)/2, sin = (e − e*)/(2j)  →  K_1 = dk/2 [[1, −j],[−j, −1]].
+  using cd = std::complex<double>;
+  FourierMatrix A(4, 4, 1);
+  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(4, 4), a1 = Eigen::MatrixXcd::Zero(4, 4);
+  a0(0, 2) = a0(1, 3) = 1;
+  a0(2, 0) = a0(3, 1) = -k0 / m;
+  a0(2, 2) = a0(3, 3) = -c / m;
+  Eigen::Matrix2cd k1m;
+  k1m << cd(1, 0), cd(0, -1), cd(0, -1), cd(-1, 0);
+  a1.block(2, 0, 2, 2) = -dk / 2 / m * k1m;
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return PeriodicSystem::FromFourier(kPi / omega, A);
+}
+
+/// The same rotor in the rotating frame is time-invariant: q = R(Ωt)ᵀ p gives
+/// M_r = mI, D_r = 2mΩJ + cI, K_r = diag(k1,k2) − mΩ²I + cΩJ, J = [[0,−1],[1,0]].
+/// Its eigenvalues s relate to the fixed-frame Floquet exponents by λ = s ± jΩ, so
+/// Re λ = Re s exactly: an independent closed-form reference for the real parts.
+inline Eigen::VectorXcd JeffcottRotatingEigenvalues(double m, double k1, double k2, double c,
+                                                     double omega) {
+  Eigen::Matrix2d J;
+  J << 0, -1, 1, 0;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d D = 2 * m * omega * J + c * I;
+  Eigen::Matrix2d K;
+  K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
+  K += c * omega * J;
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  A.block(0, 2, 2, 2) = I;
+  A.block(2, 0, 2, 2) = -K / m;
+  A.block(2, 2, 2, 2) = -D / m;
+  return A.eigenvalues();
+}
+
+/// A Lyapunov-reducible system with prescribed real exponents: x = R(t) z, z' = Λ z, with
+/// R(t) = Q exp(S t) Qᵀ orthogonal and 2π-periodic (S skew with rates 1 and 2), so
+/// A(t) = R(t) Λ R(t)ᵀ + Q S Qᵀ has Floquet exponents exactly diag(Λ) (closed form).
+inline PeriodicSystem Reducible4(const Eigen::Vector4d& lambda) {
+  Eigen::Matrix4d S = Eigen::Matrix4d::Zero();
+  S(0, 1) = -1;
+  S(1, 0) = 1;
+  S(2, 3) = -2;
+  S(3, 2) = 2;
+  // A fixed orthogonal mixing so that no coordinate is decoupled.
+  Eigen::Matrix4d M;
+  M << 1, 2, 0, -1, 0.5, -1, 3, 1, 2, 0, 1, 1, -1, 1, 1, 2;
+  const Eigen::Matrix4d Q = Eigen::HouseholderQR<Eigen::Matrix4d>(M).householderQ();
+  const Eigen::Matrix4d skew = Q * S * Q.transpose();
+  const Eigen::Matrix4d L = lambda.asDiagonal();
+  PeriodicSystem::Functions f;
+  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const Eigen::Matrix4d R = Q * (S * t).exp() * Q.transpose();
+    out = R * L * R.transpose() + skew;
+  };
+  return PeriodicSystem::FromFunctions(2 * kPi, 4, 0, 0, f);
+}
+
+}  // namespace ltp::test
