@@ -3,6 +3,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +11,7 @@
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -26,6 +28,8 @@ struct FloquetArgs {
   std::string integrator = "dopri5";
   std::string segments = "auto";
   std::string multipliers = "schur";
+  std::string method = "monodromy";
+  std::string harmonics = "auto";
   bool json = false;
   std::string modes_csv;
   std::string plot;
@@ -49,6 +53,17 @@ void ResolveOptions(FloquetArgs& args) {
       throw InputError("--segments must be a positive integer or 'auto', got '" + args.segments + "'");
     }
   }
+  if (args.method != "monodromy" && args.method != "hill" && args.method != "both")
+    throw InputError("--method must be monodromy, hill or both, got '" + args.method + "'");
+  if (args.harmonics != "auto") {
+    try {
+      size_t used = 0;
+      const int n = std::stoi(args.harmonics, &used);
+      if (used != args.harmonics.size() || n < 1) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw InputError("--harmonics must be a positive integer or 'auto', got '" + args.harmonics + "'");
+    }
+  }
   if (args.multipliers == "schur" || args.multipliers == "periodic-schur") {
     args.options.multipliers = MultiplierMethod::kPeriodicSchur;
   } else if (args.multipliers == "single-shot") {
@@ -58,14 +73,204 @@ void ResolveOptions(FloquetArgs& args) {
   }
 }
 
+json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* extra) {
+  json exps = json::array();
+  *multipliers = json::array();
+  *extra = json::array();
+  for (const FloquetMode& m : modes) {
+    exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
+                    {"frequency_hz", JsonNumber(m.frequency_hz)},
+                    {"damping_ratio", JsonNumber(m.damping_ratio)}});
+    const double mag = ExpClamped(m.log_multiplier.real());
+    multipliers->push_back({{"re", JsonNumber(mag * std::cos(m.log_multiplier.imag()))},
+                            {"im", JsonNumber(mag * std::sin(m.log_multiplier.imag()))},
+                            {"log_abs", JsonNumber(m.log_multiplier.real())},
+                            {"arg", JsonNumber(m.log_multiplier.imag())}});
+    extra->push_back({{"branch", m.branch}, {"central_weight", JsonNumber(m.central_weight)},
+                      {"branch_margin", JsonNumber(m.branch_margin)},
+                      {"eigenvector_residual", JsonNumber(m.eigvec_residual)}});
+  }
+  return exps;
+}
+
+json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
+  json mults, modes;
+  json exps = ModesJson(r.modes, &mults, &modes);
+  return {{"scene", l.scene.name},
+          {"parameters", ParametersJson(l.parameters)},
+          {"states", r.states},
+          {"period", r.period},
+          {"method", "monodromy"},
+          {"integrator", r.integrator},
+          {"tolerance", args.options.integrator.rel_tol},
+          {"multiplier_method", r.multiplier_method},
+          {"segments", r.segments},
+          {"branch_rule", "energy centroid of the periodic mode shape on harmonic 0"},
+          {"exponents", exps},
+          {"multipliers", mults},
+          {"modes", modes},
+          {"max_real_exponent", JsonNumber(r.max_real_exponent)},
+          {"max_log_abs_multiplier", JsonNumber(r.max_log_abs_multiplier)},
+          {"stable", r.stable},
+          {"error_estimate", JsonNumber(r.error_estimate)},
+          {"liouville_residual", JsonNumber(r.liouville_residual)},
+          {"mode_condition", JsonNumber(r.mode_condition)},
+          {"rhs_evals", r.rhs_evals},
+          {"elapsed_s", r.elapsed_s},
+          {"ok", r.ok},
+          {"diagnostics", r.diagnostics}};
+}
+
+// Hill's error estimate: the N vs N+Δ change, or the Koopman–Hill disagreement if larger.
+double HillErrorEstimate(const HillResult& h) {
+  double e = h.truncation_estimate;
+  if (h.koopman_discrepancy > e) e = h.koopman_discrepancy;
+  return e < 0 ? std::numeric_limits<double>::infinity() : e;
+}
+
+json HillJson(const LoadedScene& l, const HillResult& h) {
+  json mults, modes;
+  json exps = ModesJson(h.modes, &mults, &modes);
+  double margin = 1;
+  for (size_t k = 0; k < h.info.size(); ++k) {
+    modes[k]["selection_margin"] = JsonNumber(h.info[k].selection_margin);
+    modes[k]["tail_weight"] = JsonNumber(h.info[k].tail_weight);
+    margin = std::min(margin, h.info[k].selection_margin);
+  }
+  return {{"scene", l.scene.name},
+          {"parameters", ParametersJson(l.parameters)},
+          {"states", h.states},
+          {"period", h.period},
+          {"method", "hill"},
+          {"harmonics", h.harmonics},
+          {"matrix_size", h.matrix_size},
+          {"solver", h.solver},
+          {"selection_rule", h.selection_rule},
+          {"period_doubled", h.period_doubled},
+          {"exponents", exps},
+          {"multipliers", mults},
+          {"modes", modes},
+          {"selection_margin", JsonNumber(margin)},
+          {"max_real_exponent", JsonNumber(h.max_real_exponent)},
+          {"stable", h.stable},
+          {"truncation_estimate", JsonNumber(h.truncation_estimate)},
+          {"apriori_bound", JsonNumber(h.apriori_bound)},
+          {"koopman_discrepancy", JsonNumber(h.koopman_discrepancy)},
+          {"coefficient_decay", {{"kind", h.decay.kind}, {"rate", JsonNumber(h.decay.rate)}}},
+          {"error_estimate", JsonNumber(HillErrorEstimate(h))},
+          {"elapsed_s", h.elapsed_s},
+          {"ok", h.ok},
+          {"diagnostics", h.diagnostics}};
+}
+
+void PrintModeTable(const std::vector<FloquetMode>& modes) {
+  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ     log|ρ|    arg ρ [rad]  branch\n";
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const FloquetMode& m = modes[k];
+    std::cout << "  " << std::setw(4) << k + 1 << Num(m.exponent.real(), 7, 15)
+              << Num(m.exponent.imag(), 7, 16) << Num(m.frequency_hz, 6, 14)
+              << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 11)
+              << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch << "\n";
+  }
+}
+
+void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
+  if (diagnostics.empty()) return;
+  std::cout << "  diagnostics:\n";
+  for (const auto& d : diagnostics) std::cout << "    - " << d << "\n";
+}
+
+void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
+  std::cout << "  monodromy by " << r.integrator << " (rel tol " << args.options.integrator.rel_tol
+            << ") over K = " << r.segments << " segments; multipliers by " << r.multiplier_method
+            << "\n";
+  if (!r.ok) {
+    std::cout << "\n  FAILED\n";
+    PrintDiagnostics(r.diagnostics);
+    return;
+  }
+  PrintModeTable(r.modes);
+  std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
+            << (r.stable ? "STABLE" : "UNSTABLE") << "   (max log|ρ| = "
+            << Num(r.max_log_abs_multiplier, 8) << ")\n"
+            << "  error estimate " << Num(r.error_estimate, 2)
+            << " 1/s on every exponent (difference to the run at the requested tolerance on\n"
+            << "  half as many segments; the numbers shown come from the refined, 100× tighter run)\n"
+            << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
+            << Num(r.mode_condition, 3) << ", " << r.rhs_evals << " evaluations of A(t), "
+            << Num(r.elapsed_s * 1e3, 3) << " ms\n"
+            << "  branch: Im λ chosen so each periodic mode shape's Fourier energy is centred on "
+               "harmonic 0\n";
+  PrintDiagnostics(r.diagnostics);
+}
+
+void PrintHill(const HillResult& h) {
+  std::cout << "  Hill's method: N = " << h.harmonics << " harmonics (matrix " << h.matrix_size
+            << "×" << h.matrix_size << ", " << h.solver << " solver, " << h.selection_rule
+            << " selection" << (h.period_doubled ? ", period doubled" : "") << ")\n";
+  if (!h.ok) {
+    std::cout << "\n  FAILED\n";
+    PrintDiagnostics(h.diagnostics);
+    return;
+  }
+  PrintModeTable(h.modes);
+  std::cout << "\n  max Re λ = " << Num(h.max_real_exponent, 8) << " 1/s  →  "
+            << (h.stable ? "STABLE" : "UNSTABLE") << "\n"
+            << "  truncation estimate (N vs N+" << h.delta_harmonics << ") "
+            << Num(h.truncation_estimate, 2) << " 1/s, Koopman–Hill disagreement "
+            << Num(h.koopman_discrepancy, 2) << ", a-priori bound " << Num(h.apriori_bound, 2)
+            << "\n  coefficients of A: " << h.decay.kind << " decay";
+  if (h.decay.kind == "exponential") std::cout << " (rate " << Num(h.decay.rate, 3) << ")";
+  if (h.decay.kind == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(h.decay.rate, 3) << ")";
+  std::cout << ", " << Num(h.elapsed_s * 1e3, 3) << " ms\n";
+  PrintDiagnostics(h.diagnostics);
+}
+
+// Largest distance between the two routes' exponents, matched greedily, with imaginary parts
+// compared modulo `omega` (Ωp; Ωp/2 when Hill doubled the period: both branches are then valid).
+double Disagreement(const std::vector<FloquetMode>& a, const std::vector<FloquetMode>& b,
+                    double omega) {
+  auto distance = [omega](std::complex<double> x, std::complex<double> y) {
+    return std::hypot(x.real() - y.real(), std::remainder(x.imag() - y.imag(), omega));
+  };
+  std::vector<bool> used(b.size(), false);
+  double worst = 0;
+  for (const auto& x : a) {
+    double best = std::numeric_limits<double>::infinity();
+    size_t at = 0;
+    for (size_t j = 0; j < b.size(); ++j)
+      if (!used[j] && distance(x.exponent, b[j].exponent) < best) {
+        best = distance(x.exponent, b[j].exponent);
+        at = j;
+      }
+    if (!b.empty()) used[at] = true;
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
 int RunFloquet(FloquetArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
   ResolveOptions(args);
   LoadedScene l = LoadSceneArgs(args.scene);
-  const FloquetResult r = AnalyzeFloquet(l.system, args.options);
-  const double T = r.period;
+  const bool run_mono = args.method != "hill", run_hill = args.method != "monodromy";
+  FloquetResult r;
+  HillResult h;
+  if (run_mono) r = AnalyzeFloquet(l.system, args.options);
+  if (run_hill) {
+    HillOptions ho;
+    if (run_mono && r.ok) {  // shifts for the structured solver from the monodromy route
+      for (const auto& m : r.modes) ho.expected.push_back(m.exponent);
+    }
+    if (args.harmonics == "auto") {
+      h = AnalyzeHillAuto(l.system, ho, std::max(args.options.integrator.rel_tol, 1e-12));
+    } else {
+      ho.harmonics = std::stoi(args.harmonics);
+      h = AnalyzeHill(l.system, ho);
+    }
+  }
 
-  if (!args.modes_csv.empty()) {
+  if (run_mono && !args.modes_csv.empty()) {
     std::ofstream csv(args.modes_csv);
     if (!csv) throw InputError("cannot write '" + args.modes_csv + "'");
     csv << "t";
@@ -80,85 +285,42 @@ int RunFloquet(FloquetArgs& args) {
       csv << "\n";
     }
   }
-  if (!args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
+  if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
+  const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
 
   if (args.json) {
-    json exps = json::array(), mults = json::array(), modes = json::array();
-    for (const FloquetMode& m : r.modes) {
-      exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
-                      {"frequency_hz", JsonNumber(m.frequency_hz)},
-                      {"damping_ratio", JsonNumber(m.damping_ratio)}});
-      const double mag = ExpClamped(m.log_multiplier.real());
-      mults.push_back({{"re", JsonNumber(mag * std::cos(m.log_multiplier.imag()))},
-                       {"im", JsonNumber(mag * std::sin(m.log_multiplier.imag()))},
-                       {"log_abs", JsonNumber(m.log_multiplier.real())},
-                       {"arg", JsonNumber(m.log_multiplier.imag())}});
-      modes.push_back({{"branch", m.branch}, {"central_weight", JsonNumber(m.central_weight)},
-                       {"branch_margin", JsonNumber(m.branch_margin)},
-                       {"eigenvector_residual", JsonNumber(m.eigvec_residual)}});
+    json j;
+    if (args.method == "monodromy") {
+      j = MonodromyJson(l, args, r);
+    } else if (args.method == "hill") {
+      j = HillJson(l, h);
+    } else {
+      j = {{"scene", l.scene.name},
+           {"parameters", ParametersJson(l.parameters)},
+           {"method", "both"},
+           {"monodromy", MonodromyJson(l, args, r)},
+           {"hill", HillJson(l, h)},
+           {"disagreement", JsonNumber(Disagreement(r.modes, h.modes, 2 * kPi / h.period))},
+           {"combined_error_estimate",
+            JsonNumber(std::max(r.error_estimate, HillErrorEstimate(h)))}};
     }
-    json j = {{"scene", l.scene.name},
-              {"parameters", ParametersJson(l.parameters)},
-              {"states", r.states},
-              {"period", T},
-              {"method", "monodromy"},
-              {"integrator", r.integrator},
-              {"tolerance", args.options.integrator.rel_tol},
-              {"multiplier_method", r.multiplier_method},
-              {"segments", r.segments},
-              {"branch_rule", "energy centroid of the periodic mode shape on harmonic 0"},
-              {"exponents", exps},
-              {"multipliers", mults},
-              {"modes", modes},
-              {"max_real_exponent", JsonNumber(r.max_real_exponent)},
-              {"max_log_abs_multiplier", JsonNumber(r.max_log_abs_multiplier)},
-              {"stable", r.stable},
-              {"error_estimate", JsonNumber(r.error_estimate)},
-              {"liouville_residual", JsonNumber(r.liouville_residual)},
-              {"mode_condition", JsonNumber(r.mode_condition)},
-              {"rhs_evals", r.rhs_evals},
-              {"elapsed_s", r.elapsed_s},
-              {"ok", r.ok},
-              {"diagnostics", r.diagnostics}};
     std::cout << j.dump(2) << "\n";
-    return r.ok ? 0 : 1;
+    return ok ? 0 : 1;
   }
 
+  const double T = l.system.period();
   std::cout << "Floquet analysis of " << l.scene.name;
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
-  std::cout << "\n  " << r.states << " states, period T = " << Num(T, 10) << " s (Ωp = "
-            << Num(2 * kPi / T, 8) << " rad/s)\n  monodromy by " << r.integrator << " (rel tol "
-            << args.options.integrator.rel_tol << ") over K = " << r.segments
-            << " segments; multipliers by " << r.multiplier_method << "\n";
-  if (!r.ok) {
-    std::cout << "\nFAILED:\n";
-    for (const auto& d : r.diagnostics) std::cout << "  - " << d << "\n";
-    return 1;
-  }
-  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ     log|ρ|    arg ρ [rad]  branch\n";
-  for (size_t k = 0; k < r.modes.size(); ++k) {
-    const FloquetMode& m = r.modes[k];
-    std::cout << "  " << std::setw(4) << k + 1 << Num(m.exponent.real(), 7, 15)
-              << Num(m.exponent.imag(), 7, 16) << Num(m.frequency_hz, 6, 14)
-              << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 11)
-              << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch << "\n";
-  }
-  std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
-            << (r.stable ? "STABLE" : "UNSTABLE") << "   (max log|ρ| = "
-            << Num(r.max_log_abs_multiplier, 8) << ")\n"
-            << "  error estimate " << Num(r.error_estimate, 2)
-            << " 1/s on every exponent (difference to the run at the requested tolerance on\n"
-            << "  half as many segments; the numbers shown come from the refined, 100× tighter run)\n"
-            << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ(0)) "
-            << Num(r.mode_condition, 3) << ", " << r.rhs_evals << " evaluations of A(t), "
-            << Num(r.elapsed_s * 1e3, 3) << " ms\n"
-            << "  branch: Im λ chosen so each periodic mode shape's Fourier energy is centred on "
-               "harmonic 0\n";
-  if (!r.diagnostics.empty()) {
-    std::cout << "  diagnostics:\n";
-    for (const auto& d : r.diagnostics) std::cout << "    - " << d << "\n";
-  }
-  return 0;
+  std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
+            << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
+  if (run_mono) PrintMonodromy(args, r);
+  if (run_mono && run_hill) std::cout << "\n";
+  if (run_hill) PrintHill(h);
+  if (run_mono && run_hill)
+    std::cout << "\n  the two routes disagree by " << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
+              << " 1/s (largest difference of matched exponents; estimates "
+              << Num(r.error_estimate, 2) << " and " << Num(HillErrorEstimate(h), 2) << ")\n";
+  return ok ? 0 : 1;
 }
 
 }  // namespace
@@ -178,6 +340,12 @@ Command AddFloquetCommand(CLI::App& app) {
                   "fixed-step methods: steps per period (0 = automatic)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--method", args.method,
+                  "monodromy | hill | both (both: side by side, with their disagreement)")
+      ->capture_default_str();
+  cmd->add_option("--harmonics", args.harmonics,
+                  "Hill truncation N (harmonics -N..N), or auto (doubled until N vs N+Δ agree to --tol)")
+      ->capture_default_str();
   cmd->add_option("--segments", args.segments, "number of segments K, or auto")->capture_default_str();
   cmd->add_option("--multipliers", args.multipliers,
                   "schur (periodic Schur of the segment factors) | single-shot (eig of the formed Φ)")

@@ -292,6 +292,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         for (int v = -H; v <= H; ++v) coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
       }
     double worst_tail = 0;
+    std::vector<int> failed_modes;
     for (int k = 0; k < n; ++k) {
       std::vector<double> energy(2 * H + 1);
       double total = 0, first_moment = 0, tail = 0;
@@ -301,7 +302,15 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         first_moment += v * energy[v + H];
         if (std::abs(v) > H / 2) tail += energy[v + H];
       }
-      if (total <= 0) continue;
+      if (!(total > 0) || !std::isfinite(total) || !std::isfinite(vecs[k].residual)) {
+        // The cyclic null-vector solve failed (seen for mode shapes whose magnitude varies
+        // over hundreds of decades within a period). The exponent does not depend on it.
+        failed_modes.push_back(k);
+        for (int s = 0; s < samples; ++s) xi[s].col(k).setZero();
+        for (auto& c : coef) c.col(k).setZero();
+        modes[k].eigvec_residual = std::numeric_limits<double>::infinity();
+        continue;
+      }
       worst_tail = std::max(worst_tail, tail / total);
       const double centroid = first_moment / total;
       int m = static_cast<int>(std::lround(centroid));
@@ -337,18 +346,42 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.mode_samples = std::move(xi);
     r.mode_fourier = std::move(coef);
     r.mode_harmonics = H;
-    Eigen::MatrixXcd xi0 = r.mode_samples[0];
-    for (int k = 0; k < n; ++k) {
-      const double norm = xi0.col(k).norm();
-      if (norm > 0) xi0.col(k) /= norm;
-    }
-    r.mode_condition = Condition(xi0);
-    // Eigenvalue condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(0)/||ξ_k(0)|| and y_k
-    // the k-th row of Ξ(0)⁻¹ (left eigenvector scaled so that y_k x_k = 1).
-    const Eigen::MatrixXcd left = xi0.completeOrthogonalDecomposition().pseudoInverse();
+    // Condition of the mode matrix: the best over the sample times (a mode shape may be tiny
+    // at t = 0 and large elsewhere; defectiveness makes Ξ(t) ill-conditioned at every t).
+    // Modes whose shape could not be computed are left out.
+    std::vector<int> good;
     for (int k = 0; k < n; ++k)
-      kappa[k] = std::isfinite(r.mode_condition) ? left.row(k).norm()
-                                                 : std::numeric_limits<double>::infinity();
+      if (std::find(failed_modes.begin(), failed_modes.end(), k) == failed_modes.end()) good.push_back(k);
+    r.mode_condition = std::numeric_limits<double>::infinity();
+    Eigen::MatrixXcd best_xi;
+    for (int s = 0; s < samples; ++s) {
+      Eigen::MatrixXcd x(n, good.size());
+      for (size_t j = 0; j < good.size(); ++j) {
+        x.col(j) = r.mode_samples[s].col(good[j]);
+        const double norm = x.col(j).norm();
+        if (norm > 0) x.col(j) /= norm;
+      }
+      const double c = Condition(x);
+      if (c < r.mode_condition || best_xi.size() == 0) {
+        r.mode_condition = c;
+        best_xi = x;
+      }
+    }
+    // Eigenvalue condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(t)/||ξ_k(t)|| and y_k
+    // the k-th row of Ξ(t)⁻¹ (left eigenvector scaled so that y_k x_k = 1), at that best t.
+    const Eigen::MatrixXcd left = best_xi.completeOrthogonalDecomposition().pseudoInverse();
+    for (size_t j = 0; j < good.size(); ++j)
+      kappa[good[j]] = std::isfinite(r.mode_condition) ? left.row(j).norm()
+                                                       : std::numeric_limits<double>::infinity();
+    for (int k : failed_modes) {
+      kappa[k] = std::numeric_limits<double>::infinity();
+      std::ostringstream s;
+      s << "the periodic mode shape of the exponent " << (log_rho[k] / T).real()
+        << (log_rho[k].imag() < 0 ? " - " : " + ") << std::abs((log_rho[k] / T).imag())
+        << "j could not be computed (cyclic eigenvector solve failed); its exponent is "
+           "unaffected, its branch is the principal one and its shape is reported as zero";
+      r.diagnostics.push_back(s.str());
+    }
     if (!(r.mode_condition < 1e8)) {
       std::ostringstream s;
       s << "mode matrix is ill-conditioned (cond = " << r.mode_condition
@@ -379,7 +412,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   for (int k : order) r.modes.push_back(modes[k]);
   if (options.compute_modes)
     for (int k = 0; k < n; ++k)
-      if (r.modes[k].branch_margin < 0.05) {
+      if (r.modes[k].branch_margin < 0.05 && std::isfinite(r.modes[k].eigvec_residual)) {
         std::ostringstream s;
         const bool negative_real = std::abs(std::abs(r.modes[k].log_multiplier.imag()) - kPi) < 1e-6;
         if (negative_real) {

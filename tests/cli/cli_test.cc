@@ -113,12 +113,34 @@ TEST(Cli, StiffYamlSceneKeepsEveryExponent) {
   EXPECT_FALSE(j["stable"].get<bool>());
 }
 
+// Two independent routes (monodromy, Hill) on a smooth scene: their disagreement must lie
+// within the sum of their own error estimates (each estimate covers its own route's error).
+TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
+  const Outcome r = Ltp("floquet jeffcott --set c=0.02 --set Omega=0.8 --method both --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "both");
+  const double d = j["disagreement"].get<double>();
+  const double e1 = j["monodromy"]["error_estimate"].get<double>();
+  const double e2 = j["hill"]["error_estimate"].get<double>();
+  EXPECT_LE(d, e1 + e2);
+  EXPECT_LT(d, 1e-9);
+  const Outcome h = Ltp("floquet mathieu --set a=2.5 --set q=0.7 --method hill --harmonics 12 --json");
+  ASSERT_EQ(h.code, 0) << h.err;
+  const auto k = nlohmann::json::parse(h.out);
+  EXPECT_EQ(k["method"], "hill");
+  EXPECT_EQ(k["harmonics"], 12);
+  EXPECT_TRUE(k.contains("selection_margin"));
+  EXPECT_TRUE(k.contains("truncation_estimate"));
+}
+
 TEST(Cli, BadInputGivesExitTwoAndOneLine) {
   for (const std::string& args : std::vector<std::string>{
            "floquet nosuchscene", "floquet mathieu --set nosuch=1", "floquet mathieu --set a=nan",
         "floquet mathieu --integrator euler", "floquet mathieu --segments 0",
         "floquet mathieu --tol -1", "info " + Src("tests/data/does-not-exist.yaml"), "frobnicate",
-        "floquet mathieu --plot out.pdf"}) {
+        "floquet mathieu --plot out.pdf", "floquet mathieu --method magic",
+           "floquet mathieu --method hill --harmonics -3"}) {
     const Outcome r = Ltp(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("error"), std::string::npos) << args;

@@ -222,3 +222,14 @@ HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmon
 double KoopmanHillBound(const HillDecay& decay, int harmonics, double period);
 
 }  // namespace ltp
+
+namespace ltp {
+
+/// Hill analysis with the truncation chosen automatically: N = start, 2·start, … until the
+/// N vs N+Δ estimate is below `tol` · max(1, max|λ|), the matrix would exceed the memory
+/// limit, or N reaches `max_harmonics`. The result says which N was used; not reaching `tol`
+/// is a diagnostic, not an error.
+HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, double tol,
+                           int max_harmonics = 256);
+
+}  // namespace ltp
