@@ -38,9 +38,9 @@ struct HillArgs {
 std::string RateText(const HillStudy& s) {
   std::ostringstream t;
   if (s.rate_kind == "exponential")
-    t << "error ~ e^{-" << Num(s.rate, 3) << " N}";
+    t << "error ∝ e^{-" << Num(s.rate, 3) << " N}";
   else if (s.rate_kind == "algebraic")
-    t << "error ~ N^{-" << Num(s.rate, 3) << "}";
+    t << "error ∝ N^{-" << Num(s.rate, 3) << "}";
   else
     t << "rate not fitted";
   return t.str();
