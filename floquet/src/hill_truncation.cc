@@ -99,6 +99,51 @@ std::vector<int> StudyHarmonics(int max_harmonics) {
 
 }  // namespace
 
+namespace {
+
+// Exact coefficients given by the user (Fourier form): a short series is "finite"; a long one
+// (≥ 8 harmonics) may still be the truncation of an algebraically decaying series (a
+// discontinuous A(t) written as its Fourier series). Fit log||A_w|| against w and against
+// log w over the significant harmonics and keep the better fit.
+std::string ClassifyGivenCoefficients(const std::vector<double>& norms, double* rate) {
+  *rate = 0;
+  const double top = *std::max_element(norms.begin(), norms.end());
+  std::vector<double> w, y;
+  for (size_t k = 1; k < norms.size(); ++k)
+    if (norms[k] > 1e-13 * top) {
+      w.push_back(static_cast<double>(k));
+      y.push_back(std::log(norms[k]));
+    }
+  if (w.size() < 8) return "finite";
+  auto fit = [&](const std::vector<double>& x, double* slope) {
+    const double n = static_cast<double>(x.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      sx += x[i];
+      sy += y[i];
+      sxx += x[i] * x[i];
+      sxy += x[i] * y[i];
+    }
+    *slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    const double icpt = (sy - *slope * sx) / n;
+    double res = 0;
+    for (size_t i = 0; i < x.size(); ++i) res += std::pow(y[i] - icpt - *slope * x[i], 2);
+    return res;
+  };
+  std::vector<double> logw(w.size());
+  for (size_t i = 0; i < w.size(); ++i) logw[i] = std::log(w[i]);
+  double b = 0, p = 0;
+  const double res_exp = fit(w, &b), res_alg = fit(logw, &p);
+  if (res_alg < res_exp) {
+    *rate = -p;
+    return "algebraic";
+  }
+  *rate = -b;
+  return "exponential";
+}
+
+}  // namespace
+
 HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmonics, double period) {
   HillDecay d;
   d.harmonics = A.max_harmonic();
@@ -110,7 +155,7 @@ HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmon
     d.rate = fit->decay_rate;
     d.fourier_tail = fit->tail;
   } else {
-    d.kind = "finite";
+    d.kind = ClassifyGivenCoefficients(d.norms, &d.rate);
   }
   const double b_max = d.kind == "finite" ? kMaxB : d.kind == "exponential" ? d.rate : 0;
   const Envelope e = BestEnvelope(d.norms, b_max, harmonics, period);
@@ -190,6 +235,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       row.truncation_estimate = 0;
       for (double d : hill_internal::MatchModulo(exponents(r), exponents(r2), std::min(omega, omega2)))
         row.truncation_estimate = std::max(row.truncation_estimate, d);
+      if (r.decay.kind == "algebraic")  // see AnalyzeHill: algebraic convergence, scale up
+        row.truncation_estimate *= double(N + delta) / delta;
     } else {
       row.truncation_estimate = -1;
     }

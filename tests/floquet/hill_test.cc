@@ -206,6 +206,25 @@ TEST(HillMeissner, ConvergesAlgebraically) {
   EXPECT_NEAR(ratio, 8.0, 0.2 * 8.0);
 }
 
+// The N vs N+Δ estimate must cover the true error under algebraic convergence too (the raw
+// change is ~30 % short for an N^-3 law at Δ = N/2; AnalyzeHill scales it up).
+TEST(HillMeissner, TruncationEstimateCoversTrueError) {
+  const double a = 2.0, b = 0.5, c = 0.1;
+  const std::vector<cd> ref = MeissnerExponents(a, b, c);  // closed form (systems.h)
+  const PeriodicSystem s = MeissnerFourier(a, b, c, 512);
+  HillOptions o;
+  o.koopman_check = false;
+  for (int N : {16, 32, 64}) {
+    o.harmonics = N;
+    const HillResult r = AnalyzeHill(s, o);
+    ASSERT_TRUE(r.ok);
+    ASSERT_EQ(r.decay.kind, "algebraic") << "N=" << N;
+    const double err = MaxDistanceModulo(Exponents(r.modes), ref, 1.0);
+    EXPECT_GE(r.truncation_estimate, err) << "N=" << N;
+    EXPECT_LT(r.truncation_estimate, 10 * err) << "N=" << N;  // and stays informative
+  }
+}
+
 TEST(HillMeissner, FittedCoefficientsReportAlgebraicDecay) {
   const PeriodicSystem s = test::Meissner(2.0, 0.5, 0.1);
   HillOptions o;
