@@ -8,6 +8,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/scene.h"
+#include "scene_builders.h"
 
 namespace ltp {
 namespace {
@@ -119,6 +120,9 @@ std::vector<Scene> MakeBuiltins() {
         {"c", 0.0, "external (non-rotating) viscous damping c (N s/m)"},
         {"Omega", 1.1, "rotor speed Omega (rad/s), > 0"}},
        BuildJeffcott});
+  scenes.push_back(RotorScene());
+  scenes.push_back(FlapScene());
+  scenes.push_back(TowerRotorScene());
   return scenes;
 }
 

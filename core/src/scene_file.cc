@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -35,6 +36,14 @@ struct SceneModel {
   std::map<std::string, ExpressionMatrixText> matrices;
   int states = 0, inputs = 0, outputs = 0;
   SystemLabels labels;
+  // sampled: matrices at K times (or azimuths) over one period. Each of A, B, C, D holds K
+  // matrices, or one (constant) matrix; absent B, C, D hold none.
+  bool sampled = false;
+  bool fourier_interpolation = false;
+  std::string sampled_where;  // location of the sampled block, for messages at build time
+  std::vector<ExpressionEntry> sample_points;
+  bool points_are_azimuths = false;
+  std::map<std::string, std::vector<ExpressionMatrixText>> sample_matrices;
 };
 
 class Reader {
@@ -197,6 +206,90 @@ void ReadSecondOrder(const Reader& reader, const YAML::Node& root, SceneModel& m
   }
 }
 
+// sampled: {times: [...] | azimuths_deg: [...], interpolation: constant|fourier,
+//           A: [A_1, ..., A_K], B, C, D: K matrices or one constant matrix}.
+void ReadSampled(const Reader& reader, const YAML::Node& root, SceneModel& model) {
+  const std::string name = "sampled";
+  const YAML::Node block = root[name];
+  const YAML::Mark mark = Reader::KeyMark(root, name);
+  if (!block.IsMap())
+    reader.Fail(mark, name,
+                "expected a mapping with times (or azimuths_deg), interpolation and A, B, C, D");
+  reader.CheckKeys(block, name, {"times", "azimuths_deg", "interpolation", "A", "B", "C", "D"});
+  model.sampled = true;
+  model.sampled_where = reader.Where(mark, name);
+  if (block["times"] && block["azimuths_deg"])
+    reader.Fail(block["azimuths_deg"], name + ".azimuths_deg",
+                "give either times or azimuths_deg, not both");
+  const std::string points_key = block["times"] ? "times" : "azimuths_deg";
+  const YAML::Node points = block[points_key];
+  if (!points) reader.Fail(mark, name, "missing the sample times (times or azimuths_deg)");
+  if (!points.IsSequence() || points.size() == 0)
+    reader.Fail(points, name + "." + points_key, "expected a non-empty list of numbers");
+  model.points_are_azimuths = points_key == "azimuths_deg";
+  for (size_t k = 0; k < points.size(); ++k)
+    model.sample_points.push_back(
+        reader.Expression(points[k], name + "." + points_key + "[" + std::to_string(k) + "]"));
+  const int samples = static_cast<int>(points.size());
+
+  if (!block["interpolation"])
+    reader.Fail(mark, name, "missing 'interpolation' (constant or fourier)");
+  const std::string interpolation = reader.Scalar(block["interpolation"], name + ".interpolation");
+  if (interpolation != "constant" && interpolation != "fourier")
+    reader.Fail(block["interpolation"], name + ".interpolation",
+                "must be 'constant' (held between samples) or 'fourier' (trigonometric), got '" +
+                    interpolation + "'");
+  model.fourier_interpolation = interpolation == "fourier";
+
+  if (!block["A"]) reader.Fail(mark, name, "missing the state matrices A");
+  // Reads K matrices (or one, when `constant_allowed`), all of the size of the first.
+  auto read = [&](const std::string& key, bool constant_allowed, int rows, int cols) {
+    const YAML::Node node = block[key];
+    if (!node) return;
+    const std::string entry = name + "." + key;
+    const bool one_matrix = node.IsSequence() && node.size() > 0 && node[0].IsSequence() &&
+                            node[0].size() > 0 && !node[0][0].IsSequence();
+    std::vector<ExpressionMatrixText> matrices;
+    if (one_matrix) {
+      if (!constant_allowed)
+        reader.Fail(node, entry,
+                    "expected one matrix per sample (" + std::to_string(samples) +
+                        "), e.g. [[[0, 1], [-1, 0]], ...]");
+      matrices.push_back(reader.Matrix(node, entry));
+    } else {
+      if (!node.IsSequence() || static_cast<int>(node.size()) != samples)
+        reader.Fail(node, entry,
+                    "expected " + std::to_string(samples) + " matrices (one per sample" +
+                        (constant_allowed ? ") or one constant matrix" : ")"));
+      for (int k = 0; k < samples; ++k)
+        matrices.push_back(reader.Matrix(node[k], entry + "[" + std::to_string(k) + "]"));
+    }
+    for (size_t k = 0; k < matrices.size(); ++k) {
+      const int want_rows = rows >= 0 ? rows : Rows(matrices[0]);
+      const int want_cols = cols >= 0 ? cols : Cols(matrices[0]);
+      if (Rows(matrices[k]) != want_rows || Cols(matrices[k]) != want_cols)
+        reader.Fail(one_matrix ? node : node[k], entry,
+                    "is " + Size(matrices[k]) + " but must be " + std::to_string(want_rows) +
+                        "x" + std::to_string(want_cols));
+    }
+    model.sample_matrices[key] = std::move(matrices);
+  };
+  read("A", false, -1, -1);
+  const ExpressionMatrixText& a0 = model.sample_matrices["A"][0];
+  if (Rows(a0) != Cols(a0)) reader.Fail(block["A"], name + ".A", "must be square, got " + Size(a0));
+  const int n = Rows(a0);
+  read("B", true, n, -1);
+  read("C", true, -1, n);
+  model.states = n;
+  const auto& b = model.sample_matrices["B"];
+  const auto& c = model.sample_matrices["C"];
+  model.inputs = b.empty() ? 0 : Cols(b[0]);
+  model.outputs = c.empty() ? 0 : Rows(c[0]);
+  if (block["D"] && (model.inputs == 0 || model.outputs == 0))
+    reader.Fail(block["D"], name + ".D", "feedthrough D needs both B and C");
+  read("D", true, model.outputs, model.inputs);
+}
+
 void CheckLabels(const Reader& reader, const YAML::Node& root, const std::string& key,
                  std::vector<std::string>& names, int count) {
   const YAML::Node node = root[key];
@@ -238,6 +331,70 @@ std::vector<double> MergeBreakpoints(std::vector<double> explicit_times,
   return all;
 }
 
+// The sampled system: piecewise constant (exact product of exponentials) or the trigonometric
+// interpolant of equally spaced samples, M_w = (1/K) Σ_k M(t_k) e^{−j w Ωp t_k},
+// |w| < K/2, plus half of the Nyquist term ±K/2 on each side for even K (so the real
+// interpolant passes through every sample).
+PeriodicSystem BuildSampled(const SceneModel& model, const internal::Constants& constants,
+                            double period) {
+  const int samples = static_cast<int>(model.sample_points.size());
+  std::vector<double> times;
+  for (const ExpressionEntry& entry : model.sample_points) {
+    const double value = Value(entry, constants);
+    const double t = model.points_are_azimuths ? value / 360 * period : value;
+    const double limit = model.points_are_azimuths ? 360 : period;
+    if (value < 0 || value >= limit)
+      throw SceneError(entry.where + ": " + internal::FormatValue(value) + " is outside [0, " +
+                       internal::FormatValue(limit) + ")" +
+                       (model.points_are_azimuths ? " degrees" : " = [0, T)"));
+    if (!times.empty() && t <= times.back())
+      throw SceneError(entry.where + ": sample points must be strictly increasing");
+    times.push_back(t);
+  }
+  if (model.fourier_interpolation) {
+    for (int k = 0; k < samples; ++k)
+      if (std::abs(times[k] - times[0] - period * k / samples) > 1e-9 * period)
+        throw SceneError(model.sample_points[k].where +
+                         ": fourier interpolation needs equally spaced samples over one "
+                         "period (spacing T/K)");
+  }
+  // Sample k of matrix `key` (K matrices or one constant), evaluated; empty if absent.
+  auto value = [&](const std::string& key, int k) -> Eigen::MatrixXd {
+    const auto it = model.sample_matrices.find(key);
+    if (it == model.sample_matrices.end() || it->second.empty()) return {};
+    const ExpressionMatrixText& text = it->second.size() == 1 ? it->second[0] : it->second[k];
+    Eigen::MatrixXd m(Rows(text), Cols(text));
+    for (int r = 0; r < m.rows(); ++r)
+      for (int c = 0; c < m.cols(); ++c) m(r, c) = Value(text[r][c], constants);
+    return m;
+  };
+  std::vector<LtiSystem> systems(samples);
+  for (int k = 0; k < samples; ++k)
+    systems[k] = {value("A", k), value("B", k), value("C", k), value("D", k)};
+  if (!model.fourier_interpolation) return PeriodicSystem::FromSamples(period, times, systems);
+
+  const double omega_p = 2 * std::numbers::pi / period;
+  auto series = [&](auto member, int rows, int cols) {
+    if (rows == 0 || cols == 0 || (systems[0].*member).size() == 0) return FourierMatrix();
+    const int top = samples / 2;
+    FourierMatrix f(rows, cols, top);
+    for (int w = 0; w <= top; ++w) {
+      Eigen::MatrixXcd c = Eigen::MatrixXcd::Zero(rows, cols);
+      for (int k = 0; k < samples; ++k)
+        c += (systems[k].*member).template cast<std::complex<double>>() *
+             std::polar(1.0 / samples, -w * omega_p * times[k]);
+      if (2 * w == samples) c /= 2;  // Nyquist: split between +K/2 and −K/2
+      if (w == 0) c = c.real().cast<std::complex<double>>();
+      f.SetHarmonic(w, c);
+    }
+    return f;
+  };
+  const int n = model.states, m = model.inputs, p = model.outputs;
+  return PeriodicSystem::FromFourier(period, series(&LtiSystem::A, n, n),
+                                     series(&LtiSystem::B, n, m), series(&LtiSystem::C, p, n),
+                                     series(&LtiSystem::D, p, m));
+}
+
 PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& parameters) {
   const internal::Constants constants(parameters.begin(), parameters.end());
   const ExpressionEntry& period_entry = model.period ? *model.period : *model.omega;
@@ -254,6 +411,15 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
       throw SceneError(b.where + ": breakpoint " + internal::FormatValue(t) +
                        " is outside [0, T) = [0, " + internal::FormatValue(period) + ")");
     explicit_breakpoints.push_back(t);
+  }
+
+  if (model.sampled) {
+    if (!model.breakpoints.empty())
+      throw SceneError(model.breakpoints[0].where +
+                       ": a sampled scene has its breakpoints at the sample times");
+    PeriodicSystem system = BuildSampled(model, constants, period).WithLabels(model.labels);
+    if (model.rotor_speed) system = system.WithRotorSpeed(Value(*model.rotor_speed, constants));
+    return system;
   }
 
   internal::ExpressionMatrices compiler(constants, period);
@@ -315,11 +481,12 @@ Scene ParseSceneYaml(const std::string& text, const std::string& source) {
   if (!root.IsMap())
     throw SceneError(reader.Where(root, "") +
                      ": a scene file must be a mapping with period (or omega) and a "
-                     "state_space or second_order block");
+                     "state_space, second_order or sampled block");
   reader.CheckKeys(
       root, "",
       {"name", "description", "period", "omega", "parameters", "parameter_descriptions",
-       "breakpoints", "rotor_speed", "inputs", "outputs", "states", "state_space", "second_order"});
+       "breakpoints", "rotor_speed", "inputs", "outputs", "states", "state_space", "second_order",
+       "sampled"});
 
   Scene scene;
   scene.source = source;
@@ -379,13 +546,20 @@ Scene ParseSceneYaml(const std::string& text, const std::string& source) {
   if (root["state_space"] && root["second_order"])
     reader.Fail(Reader::KeyMark(root, "second_order"), "second_order",
                 "give either state_space or second_order, not both");
-  if (root["state_space"]) {
+  if (root["sampled"] && (root["state_space"] || root["second_order"]))
+    reader.Fail(Reader::KeyMark(root, "sampled"), "sampled",
+                "give one of state_space, second_order or sampled");
+  if (root["sampled"]) {
+    ReadSampled(reader, root, model);
+  } else if (root["state_space"]) {
     ReadStateSpace(reader, root, model);
   } else if (root["second_order"]) {
     model.second_order = true;
     ReadSecondOrder(reader, root, model);
   } else {
-    reader.Fail(root, "", "missing 'state_space' (A, B, C, D) or 'second_order' (M, D, K, F)");
+    reader.Fail(root, "",
+                "missing 'state_space' (A, B, C, D), 'second_order' (M, D, K, F) or 'sampled' "
+                "(matrices at sample times)");
   }
   CheckLabels(reader, root, "states", model.labels.states, model.states);
   CheckLabels(reader, root, "inputs", model.labels.inputs, model.inputs);

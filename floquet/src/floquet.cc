@@ -27,14 +27,21 @@ int NextPowerOfTwo(int x) {
   return p;
 }
 
-// Mode samples per period: enough to resolve the mode shapes, whose spectra are wider than
-// A's own (the coupling A_{±w} spreads them), but bounded so a discontinuous A(t) does not ask
-// for thousands.
+// Mode samples per period: enough to resolve the mode shapes on the principal branch, whose
+// spectra sit near harmonic Im λ/Ωp (up to the largest frozen frequency) and are wider than
+// A's own harmonic content; bounded so a discontinuous A(t) does not ask for thousands.
 int AutoModeSamples(const PeriodicSystem& system) {
   int harmonics = 8;
   if (const FourierMatrix* fa = system.fourier_A()) harmonics = fa->max_harmonic();
   else if (!system.breakpoints().empty()) harmonics = 16;
-  return std::clamp(NextPowerOfTwo(8 * (harmonics + 1)), 32, 256);
+  double top = 0;  // largest frozen frequency in units of Ωp
+  if (system.states() > 0) {
+    const Eigen::VectorXcd eig = system.A(0).eigenvalues();
+    for (Eigen::Index i = 0; i < eig.size(); ++i)
+      if (std::isfinite(eig(i).imag())) top = std::max(top, std::abs(eig(i).imag()) / system.omega());
+  }
+  const double wanted = std::min(4.0 * (harmonics + 2) + 2.0 * top, 4096.0);
+  return std::clamp(NextPowerOfTwo(static_cast<int>(std::ceil(wanted))), 32, 1024);
 }
 
 // Greedy order-free matching of two sets of log multipliers; returns the largest distance
@@ -273,7 +280,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
         const int i = static_cast<int>(it - grid.times.begin()) - 1;
         r.sample_times[s] = ts;
-        TransitionResult tr = StateTransition(system, grid.times[i], ts, options.integrator);
+        // ts can sit a rounding error below grid.times[i]: never integrate backwards.
+        TransitionResult tr =
+            StateTransition(system, grid.times[i], std::max(ts, grid.times[i]), options.integrator);
         r.rhs_evals += tr.rhs_evals;
         for (int k = 0; k < n; ++k)
           xi[s].col(k) = tr.phi.cast<cd>() * vecs[k].v[i] *

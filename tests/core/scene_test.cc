@@ -346,14 +346,16 @@ TEST(Scene, LoadSceneByNameOrPath) {
   EXPECT_EQ(LoadScene("jeffcott").source, "built-in");
   const std::string path = ScenesDir() + "/colaneri.yaml";
   EXPECT_EQ(LoadScene(path).source, path);
-  EXPECT_EQ(ThrownMessage<InputError>([] { LoadScene("nosuch"); }),
-            "unknown scene 'nosuch': not a built-in (mathieu, meissner, jeffcott) and no such "
-            "file");
+  // Later scenes (rotor, flap, tower-rotor, ...) are appended to the list.
+  const std::string message = ThrownMessage<InputError>([] { LoadScene("nosuch"); });
+  EXPECT_EQ(message.rfind("unknown scene 'nosuch': not a built-in (mathieu, meissner, jeffcott", 0),
+            0u) << message;
+  EXPECT_NE(message.find(") and no such file"), std::string::npos) << message;
 }
 
 TEST(Scene, BuiltinsInOrderWithDescriptions) {
   const auto& scenes = BuiltinScenes();
-  ASSERT_EQ(scenes.size(), 3u);
+  ASSERT_GE(scenes.size(), 3u);  // the first three in this order; others are appended
   EXPECT_EQ(scenes[0].name, "mathieu");
   EXPECT_EQ(scenes[1].name, "meissner");
   EXPECT_EQ(scenes[2].name, "jeffcott");
