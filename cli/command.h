@@ -16,5 +16,6 @@ Command AddScenesCommand(CLI::App& app);
 Command AddInfoCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddHillCommand(CLI::App& app);
+Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
 
 }  // namespace ltp::cli

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iomanip>
 #include <iostream>
 #include <numbers>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/fourier_fit.h"
+#include "ltp/core/tower_rotor.h"
 #include "scene_args.h"
 
 namespace ltp::cli {
@@ -87,6 +89,18 @@ int RunInfo(const InfoArgs& args) {
   row("A", fourier.A);
   if (sys.inputs()) row("B", fourier.B);
   if (sys.outputs()) row("C", fourier.C);
+  if (l.scene.name == "tower-rotor") {
+    const TowerRotorModel model = BuildTowerRotorModel(TowerRotorParams::FromMap(l.parameters));
+    std::cout << "reduction   " << model.reduction.Summary() << "\n"
+              << "non-rotating modes (Ω = 0, blades along ±z) beside the paper's table (§5.1):\n"
+              << "      #  model [Hz]  FE [Hz]  paper FEM  paper MBS   this model's mode shape\n";
+    for (const TowerRotorMode& m : TowerRotorModeTable(l.parameters))
+      std::cout << "    " << std::setw(3) << m.index << Num(m.frequency_hz, 5, 12)
+                << Num(m.fe_frequency_hz, 5, 9)
+                << (m.paper_fem_hz > 0 ? Num(m.paper_fem_hz, 4, 11) : std::string(11, ' '))
+                << (m.paper_mbs_hz > 0 ? Num(m.paper_mbs_hz, 4, 11) : std::string(11, ' '))
+                << "   " << m.description << "\n";
+  }
   std::cout << "snapshot eigenvalues at t = " << args.at << " (frozen LTI system; not the Floquet exponents):\n";
   for (auto z : ev)
     std::cout << "    " << Num(z.real(), 8, 14) << " " << (z.imag() < 0 ? "-" : "+") << " "

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
       ltp::cli::AddInfoCommand(app),
       ltp::cli::AddFloquetCommand(app),
       ltp::cli::AddHillCommand(app),
+      ltp::cli::AddPfrfCommand(app),
+      ltp::cli::AddSnapshotCommand(app),
   };
 
   try {

@@ -1,0 +1,280 @@
+// `ltp pfrf`: partial frequency response functions H_z of one input/output channel by the
+// chosen route, checked by the others on a subset of the frequencies.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "command.h"
+#include "format.h"
+#include "frf_args.h"
+#include "ltp/core/error.h"
+#include "ltp/htf/pfrf.h"
+#include "plot.h"
+#include "scene_args.h"
+
+namespace ltp::cli {
+
+namespace {
+
+using nlohmann::json;
+
+struct PfrfArgs {
+  SceneArgs scene;
+  std::string input = "0", output = "0";
+  std::string freq;
+  std::string orders = "-4:4";
+  std::string route = "modal";
+  int check_every = 10;
+  int htf_harmonics = 0;
+  double plot_threshold = 0.01;
+  std::string csv, plot;
+  bool json = false;
+};
+
+void WriteCsv(const PfrfResult& r, const std::string& file) {
+  std::ofstream csv(file);
+  if (!csv) throw InputError("cannot write '" + file + "'");
+  csv << "f_exc_hz,z,f_resp_hz,re,im,abs,phase_deg,error_estimate,checked\n" << std::setprecision(15);
+  for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
+    for (int z = r.min_order; z <= r.max_order; ++z) {
+      const std::complex<double> h = r.values[i][z - r.min_order];
+      csv << r.frequencies_hz[i] << "," << z << "," << r.frequencies_hz[i] + z * r.fp_hz << ","
+          << h.real() << "," << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag())
+          << "," << r.error_estimate[i][z - r.min_order] << "," << (r.checked[i] ? 1 : 0) << "\n";
+    }
+}
+
+void Plot(const PfrfResult& r, const std::string& title, double threshold, const std::string& file) {
+  double global = 0;
+  for (double m : r.order_max) global = std::max(global, m);
+  std::ostringstream s;
+  s << GnuplotTerminal(file, 1000, 560) << "set output '" << file << "'\n"
+    << "set title \"Partial FRFs " << title << "  (|H_z| with max |H_z| > " << Num(threshold, 3)
+    << " · max)\"\nset xlabel 'response frequency f + z f_p  [Hz]'\nset ylabel '|H_z|'\n"
+    << "set logscale y\nset format y '10^{%L}'\nset grid\nset key outside right\n";
+  std::vector<int> shown;
+  for (int z = r.min_order; z <= r.max_order; ++z) {
+    const double m = r.order_max[z - r.min_order];
+    if (m > 0 && m >= threshold * global) shown.push_back(z);
+  }
+  for (int z : shown) {
+    s << "$Z" << (z < 0 ? "m" : "p") << std::abs(z) << " << EOD\n";
+    for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
+      const double a = std::abs(r.values[i][z - r.min_order]);
+      s << r.frequencies_hz[i] + z * r.fp_hz << " " << (a > 0 ? a : 1e-300) << "\n";
+    }
+    s << "EOD\n";
+  }
+  if (shown.empty()) {
+    s << "plot NaN title 'all H_z are zero'\n";
+  } else {
+    s << "plot ";
+    for (size_t q = 0; q < shown.size(); ++q) {
+      const int z = shown[q];
+      s << (q ? ", " : "") << "$Z" << (z < 0 ? "m" : "p") << std::abs(z)
+        << " using 1:2 with lines lw 1.5 title 'z = " << z << "'";
+    }
+    s << "\n";
+  }
+  RunGnuplot(file, s.str());
+}
+
+int RunPfrf(PfrfArgs& args) {
+  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
+  if (args.freq.empty()) throw InputError("--freq F0:F1:DF is required");
+  LoadedScene l = LoadSceneArgs(args.scene);
+  const PeriodicSystem& sys = l.system;
+  if (sys.inputs() < 1 || sys.outputs() < 1)
+    throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
+  PfrfOptions o;
+  o.frequencies_hz = ParseFrequencyRange(args.freq);
+  std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders);
+  o.input = ResolveChannel(args.input, sys.labels().inputs, sys.inputs(), "input");
+  o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "output");
+  o.check_every = args.check_every;
+  o.htf.harmonics = args.htf_harmonics;
+  if (args.route == "all") {
+    o.primary = PfrfRoute::kModal;
+    o.checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};
+  } else if (auto route = ParsePfrfRoute(args.route)) {
+    o.primary = *route;
+    o.checks = {*route == PfrfRoute::kModal ? PfrfRoute::kHtf : PfrfRoute::kModal};
+  } else {
+    throw InputError("--route must be modal, htf, shooting, time or all, got '" + args.route + "'");
+  }
+  Progress progress("pfrf");
+  o.progress = [&progress](int done, int total) { progress(done, total); };
+  const PfrfResult r = ComputePartialFrf(sys, o);
+  const std::string in_name = o.input < static_cast<int>(sys.labels().inputs.size()) ? sys.labels().inputs[o.input] : "";
+  const std::string out_name = o.output < static_cast<int>(sys.labels().outputs.size()) ? sys.labels().outputs[o.output] : "";
+
+  if (!args.csv.empty()) WriteCsv(r, args.csv);
+  if (!args.plot.empty())
+    Plot(r, l.scene.name + " " + (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
+                (in_name.empty() ? std::to_string(o.input) : in_name),
+         args.plot_threshold, args.plot);
+
+  if (args.json) {
+    json routes = json::array(), res = json::array(), points = json::array(), exps = json::array();
+    for (const RouteRun& run : r.routes) {
+      double worst = 0;
+      for (double d : run.deviation) worst = std::max(worst, d);
+      routes.push_back({{"route", std::string(ToString(run.route))},
+                        {"points", run.points.size()},
+                        {"failures", run.failures},
+                        {"max_deviation_from_primary", JsonNumber(worst)},
+                        {"setup_s", run.setup_s},
+                        {"elapsed_s", run.elapsed_s},
+                        {"diagnostics", run.diagnostics}});
+    }
+    for (const Resonance& p : r.resonances)
+      res.push_back({{"z", p.order}, {"f_exc_hz", p.f_exc_hz}, {"f_resp_hz", p.f_resp_hz},
+                     {"abs", JsonNumber(p.magnitude)}, {"mode", p.mode + 1}, {"harmonic", p.harmonic},
+                     {"mode_line_hz", JsonNumber(p.mode_line_hz)}, {"share", JsonNumber(p.share)}});
+    for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
+      for (int z = r.min_order; z <= r.max_order; ++z) {
+        const auto h = r.values[i][z - r.min_order];
+        points.push_back({{"f_exc_hz", r.frequencies_hz[i]}, {"z", z},
+                          {"f_resp_hz", r.frequencies_hz[i] + z * r.fp_hz},
+                          {"re", JsonNumber(h.real())}, {"im", JsonNumber(h.imag())},
+                          {"error_estimate", JsonNumber(r.error_estimate[i][z - r.min_order])},
+                          {"checked", static_cast<bool>(r.checked[i])}});
+      }
+    for (const auto& m : r.floquet.modes)
+      exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
+                      {"frequency_hz", JsonNumber(m.frequency_hz)}});
+    json j = {{"scene", l.scene.name},
+              {"parameters", ParametersJson(l.parameters)},
+              {"input", o.input},
+              {"input_name", in_name},
+              {"output", o.output},
+              {"output_name", out_name},
+              {"period", r.period},
+              {"fp_hz", r.fp_hz},
+              {"orders", {r.min_order, r.max_order}},
+              {"primary_route", std::string(ToString(o.primary))},
+              {"check_every", o.check_every},
+              {"routes", routes},
+              {"max_disagreement", JsonNumber(r.max_disagreement)},
+              {"max_relative_disagreement", JsonNumber(r.max_relative_disagreement)},
+              {"htf_harmonics", r.htf_harmonics},
+              {"htf_truncation_change", JsonNumber(r.htf_truncation_change)},
+              {"modal_reliable", r.modal ? json(r.modal->reliable) : json(nullptr)},
+              {"modal_condition", r.modal ? JsonNumber(r.modal->condition) : json(nullptr)},
+              {"settle_time", JsonNumber(r.settle_time)},
+              {"floquet_exponents", exps},
+              {"stable", r.floquet.stable},
+              {"resonances", res},
+              {"values", points},
+              {"elapsed_s", r.elapsed_s},
+              {"ok", r.ok},
+              {"diagnostics", r.diagnostics}};
+    std::cout << j.dump(2) << "\n";
+    return r.ok ? 0 : 1;
+  }
+
+  const auto& f = r.frequencies_hz;
+  std::cout << "Partial FRFs of " << l.scene.name;
+  if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
+  std::cout << "\n  output " << o.output << (out_name.empty() ? "" : " (" + out_name + ")") << " / input "
+            << o.input << (in_name.empty() ? "" : " (" + in_name + ")") << ", " << sys.states()
+            << " states, T = " << Num(r.period, 10) << " s, fp = " << Num(r.fp_hz, 8) << " Hz\n  "
+            << f.size() << " excitation frequencies " << Num(f.front(), 6) << " … " << Num(f.back(), 6)
+            << " Hz, orders z = " << r.min_order << " … " << r.max_order
+            << "  (H_z indexed by the excitation frequency; response at f + z fp)\n\n";
+  std::cout << "  route       points  failures   max |Δ| vs primary    setup [ms]    total [ms]\n";
+  for (const RouteRun& run : r.routes) {
+    double worst = 0;
+    for (double d : run.deviation) worst = std::max(worst, d);
+    std::cout << "  " << std::left << std::setw(10) << ToString(run.route) << std::right
+              << std::setw(8) << run.points.size() << std::setw(10) << run.failures
+              << (run.route == o.primary ? std::string(21, ' ') + "(primary)" : Num(worst, 3, 21))
+              << Num(run.setup_s * 1e3, 4, 14) << Num(run.elapsed_s * 1e3, 4, 14) << "\n";
+  }
+  std::cout << "\n  max disagreement between routes " << Num(r.max_disagreement, 3) << " ("
+            << Num(r.max_relative_disagreement, 3) << " of max |H_z|), checked on every "
+            << o.check_every << "th frequency";
+  if (r.htf_harmonics > 0)
+    std::cout << "\n  htf truncation N = " << r.htf_harmonics << ", change against N + Δ "
+              << Num(r.htf_truncation_change, 3);
+  if (r.modal)
+    std::cout << "\n  modal: " << r.modal->samples << " samples/period, V = " << r.modal->harmonics
+              << " harmonics, cond Ξ = " << Num(r.modal->condition, 3) << ", "
+              << (r.modal->reliable ? "reliable" : "UNRELIABLE") << ", built in "
+              << Num(r.modal->elapsed_s * 1e3, 3) << " ms";
+  std::cout << "\n  Floquet: max Re λ = " << Num(r.floquet.max_real_exponent, 6) << " 1/s ("
+            << (r.floquet.stable ? "stable" : "UNSTABLE") << "), " << Num(r.floquet.elapsed_s * 1e3, 3)
+            << " ms\n";
+  std::cout << "\n  order z   max |H_z|\n";
+  for (int z = r.min_order; z <= r.max_order; ++z)
+    std::cout << std::setw(9) << z << Num(r.order_max[z - r.min_order], 4, 12) << "\n";
+  if (f.size() <= 12) {
+    std::cout << "\n   f_exc [Hz]    z   f_resp [Hz]          Re H_z          Im H_z           |H_z|   phase [°]     error est.\n";
+    for (size_t i = 0; i < f.size(); ++i)
+      for (int z = r.min_order; z <= r.max_order; ++z) {
+        const auto h = r.values[i][z - r.min_order];
+        std::cout << Num(f[i], 6, 13) << std::setw(5) << z << Num(f[i] + z * r.fp_hz, 6, 14)
+                  << Num(h.real(), 8, 16) << Num(h.imag(), 8, 16) << Num(std::abs(h), 6, 16)
+                  << Num(PhaseDeg(h.real(), h.imag()), 5, 12) << Num(r.error_estimate[i][z - r.min_order], 2, 15)
+                  << "\n";
+      }
+  } else if (args.csv.empty()) {
+    std::cout << "\n  (" << f.size() * (r.max_order - r.min_order + 1)
+              << " values: write them with --csv FILE, or --json)\n";
+  }
+  if (!r.resonances.empty()) {
+    std::cout << "\n  resonances (peaks of |H_z|; mode k and harmonic v of the resonant modal term, "
+                 "line f_k + v fp)\n    z    f_exc [Hz]   f_resp [Hz]         |H_z|   mode  v   line [Hz]   share\n";
+    for (const Resonance& p : r.resonances)
+      std::cout << std::setw(5) << p.order << Num(p.f_exc_hz, 6, 14) << Num(p.f_resp_hz, 6, 14)
+                << Num(p.magnitude, 4, 14) << std::setw(7) << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?")
+                << std::setw(3) << p.harmonic << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
+  }
+  std::vector<std::string> diags = r.diagnostics;
+  for (const RouteRun& run : r.routes)
+    for (const auto& d : run.diagnostics) diags.push_back(d);
+  if (!diags.empty()) {
+    std::cout << "\n  notes:\n";
+    for (const auto& d : diags) std::cout << "    - " << d << "\n";
+  }
+  std::cout << "\n  total " << Num(r.elapsed_s, 4) << " s\n";
+  return r.ok ? 0 : 1;
+}
+
+}  // namespace
+
+Command AddPfrfCommand(CLI::App& app) {
+  static PfrfArgs args;
+  auto* cmd = app.add_subcommand(
+      "pfrf", "Partial frequency response functions H_z(ω) by independent routes, with error estimates");
+  AddSceneArgs(cmd, args.scene);
+  cmd->add_option("--input", args.input, "input channel: index from 0 or name")->capture_default_str();
+  cmd->add_option("--output", args.output, "output channel: index from 0 or name")->capture_default_str();
+  cmd->add_option("--freq", args.freq, "excitation frequencies F0:F1:DF in Hz (F:F:DF = one)")
+      ->required();
+  cmd->add_option("--orders", args.orders, "orders z, ZMIN:ZMAX")->capture_default_str();
+  cmd->add_option("--route", args.route,
+                  "modal | htf | shooting | time | all (primary route; all: modal checked by the "
+                  "other three)")
+      ->capture_default_str();
+  cmd->add_option("--check-every", args.check_every,
+                  "run the check routes on every k-th frequency (1 = all)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--htf-harmonics", args.htf_harmonics, "HTF truncation N (0 = automatic)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--plot-threshold", args.plot_threshold,
+                  "plot the orders with max |H_z| above this fraction of the largest")
+      ->capture_default_str();
+  cmd->add_option("--csv", args.csv, "write every H_z to CSV");
+  cmd->add_option("--plot", args.plot, "draw |H_z| against the response frequency (FILE.svg or .png)");
+  cmd->add_flag("--json", args.json, "one JSON object on stdout");
+  return {cmd, [] { return RunPfrf(args); }};
+}
+
+}  // namespace ltp::cli

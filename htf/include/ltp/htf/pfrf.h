@@ -1,0 +1,287 @@
+#pragma once
+// Partial frequency response functions H_z(ω) of a linear T-periodic system (DESIGN.md,
+// "Partial FRF"): for u(t) = U e^{jωt} the steady-state output is
+//   y(t) = Σ_z Y_z e^{j(ω + zΩp)t},   Y_z = H_z(ω) U,
+// with H_z indexed by the *excitation* frequency ω. Four independent routes:
+//   modal     one Floquet decomposition, then H_z(ω) = Σ_{u+v=z} Ĉ_v (j(ω+uΩp)I − Λ)⁻¹ B̂_u + D_z
+//             (paper eq. 42–46); cheap per frequency;
+//   htf       truncated harmonic transfer function (Wereley), one banded solve per frequency;
+//   shooting  exact periodic steady state y(0) = (I − Φ e^{−jωT})⁻¹ y_p(T), no truncation of A;
+//   time      integration from rest until the transient has decayed, then projection of the
+//             response on e^{j(ω+zΩp)t} over whole periods (paper eq. 47).
+// The sweep runs a primary route on every frequency and check routes on a subset; their
+// disagreement (and the HTF truncation check N vs N+Δ) is the error estimate of every point.
+#include <Eigen/Dense>
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ltp/core/fourier_fit.h"
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp {
+
+enum class PfrfRoute { kModal, kHtf, kShooting, kTime };
+std::string_view ToString(PfrfRoute route);
+std::optional<PfrfRoute> ParsePfrfRoute(std::string_view name);
+
+/// H_z for z = min_order..max_order (index z − min_order), each outputs × inputs.
+using PartialFrfs = std::vector<Eigen::MatrixXcd>;
+
+// --- Route 1: Floquet modal ------------------------------------------------------------------
+
+struct ModalOptions {
+  /// Uniform samples of C(t)Ξ(t) and Ξ(t)⁻¹B(t) are doubled (new ones propagated from the
+  /// existing mode samples with StateTransition) until the Fourier amplitude in the upper half
+  /// of the harmonics is below tail_tol relative to the largest one, per mode.
+  double tail_tol = 1e-12;
+  int max_samples = 4096;  ///< power of two
+  /// The route counts as reliable only if the final tail is below this (systems with jumps
+  /// decay algebraically and may stop short of tail_tol while still being accurate).
+  double max_tail = 1e-8;
+  IntegratorOptions integrator;  ///< for propagating new samples
+  /// Above this condition number of the mode matrix Ξ (FloquetResult::mode_condition, and
+  /// max_t cond Ξ(t) over the samples) the route reports itself unreliable: near a defective
+  /// monodromy (a stability boundary) the exponents carry ~cond × their integration error and
+  /// the modal terms near a resonance inherit it divided by the distance to the resonance.
+  double max_condition = 1e4;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+/// The precomputed Floquet-modal form of the transfer behaviour; evaluation is cheap.
+struct ModalModel {
+  int states = 0, inputs = 0, outputs = 0;
+  double period = 0, omega_p = 0;
+  std::vector<std::complex<double>> exponents;  ///< λ_k (the branches given)
+  int harmonics = 0;                   ///< V: Ĉ_v, B̂_u, D_w kept for |v| <= V
+  std::vector<Eigen::MatrixXcd> c_hat;  ///< Ĉ_v (outputs × states), index v + V
+  std::vector<Eigen::MatrixXcd> b_hat;  ///< B̂_u (states × inputs), index u + V
+  std::vector<Eigen::MatrixXcd> d_hat;  ///< D_w (outputs × inputs), index w + V
+  int samples = 0;        ///< uniform samples per period finally used
+  double tail = 0;        ///< worst relative Fourier amplitude in the upper half (per mode)
+  double condition = 0;   ///< max(mode_condition, max_t cond Ξ(t))
+  bool reliable = false;  ///< tail <= max_tail and condition <= max_condition
+  long rhs_evals = 0;
+  double elapsed_s = 0;   ///< building the model (the Floquet analysis not included)
+  std::vector<std::string> diagnostics;
+
+  /// H_z(ω) for z = min_order..max_order.
+  PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
+  /// Scalar H_z(ω) of one channel.
+  std::complex<double> Evaluate(double omega, int z, int output, int input) const;
+  /// The term of mode k, harmonic pair (u, v = z − u): [Ĉ_v]_{o,k} [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k).
+  std::complex<double> Term(double omega, int k, int u, int v, int output, int input) const;
+};
+
+/// Builds the modal model from a Floquet decomposition (with modes) of `system`.
+/// @throws InputError when the system has no inputs or outputs, `floquet` has no mode samples
+/// or belongs to another system (state count or period differ), or options are invalid.
+ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& floquet,
+                           const ModalOptions& options = {});
+
+// --- Route 2: truncated harmonic transfer function -------------------------------------------
+
+struct HtfOptions {
+  /// Truncation N (harmonics −N..N of the state); 0 = automatic: from max(2·max|z|, |z|+2H_A, 8)
+  /// grown ×1.5 until the N vs N+Δ change at the probe frequencies is below `tol`.
+  int harmonics = 0;
+  /// Δ of the truncation check (0 = automatic: max(2, N/4)).
+  int delta = 0;
+  double tol = 1e-11;          ///< relative truncation target of the automatic choice
+  int max_harmonics = 128;     ///< upper bound of the automatic choice
+  FourierFitOptions fourier;   ///< for systems not in Fourier form
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+/// Harmonic transfer function: block system (jωI + 𝒩 − 𝒜) X = ℬ solved as banded
+/// (LAPACK zgbtrf/zgbtrs, bandwidth (min(H_A, N) + 1)n − 1), H_z = [𝒞 X]_z + D_z. Systems
+/// with jumps (algebraic Fourier decay) converge slowly in N: the truncation check says so.
+class HtfSolver {
+ public:
+  /// @throws InputError (no inputs/outputs, bad options).
+  HtfSolver(const PeriodicSystem& system, const HtfOptions& options = {});
+
+  /// Chooses N automatically (when options.harmonics == 0) for these orders, probing at the
+  /// given excitation frequencies (rad/s). Returns the N chosen.
+  int ChooseTruncation(int min_order, int max_order, const std::vector<double>& probe_omegas);
+  /// H_z(ω) at truncation N (0 = the current one). Never throws for a singular matrix: the
+  /// entries are then NaN and `last_ok()` is false.
+  PartialFrfs Evaluate(double omega, int min_order, int max_order, int harmonics = 0) const;
+
+  int harmonics() const { return harmonics_; }
+  int delta() const;
+  int coefficient_harmonics() const { return ha_; }  ///< H_A used (after capping)
+  double fourier_tail() const { return fourier_tail_; }
+  const std::vector<std::string>& diagnostics() const { return diagnostics_; }
+
+ private:
+  int n_ = 0, m_ = 0, p_ = 0;
+  double omega_p_ = 0;
+  HtfOptions options_;
+  int harmonics_ = 0, ha_ = 0;
+  double fourier_tail_ = 0;
+  SystemFourier fourier_;
+  std::vector<std::string> diagnostics_;
+};
+
+// --- Routes 3 and 4: shooting and time simulation --------------------------------------------
+
+struct ShootingOptions {
+  /// Tolerances of the Runge–Kutta–Fehlberg 7(8) integration of the forced ODE.
+  double rel_tol = 1e-12;
+  double abs_tol = 1e-15;
+  /// Uniform samples per period for the FFT of the periodic response (power of two);
+  /// 0 = automatic: doubled until the upper half of the spectrum is below sample_tol.
+  int samples = 0;
+  double sample_tol = 1e-12;
+  int max_samples = 8192;
+  long max_steps = 5'000'000;
+  /// Monodromy / Φ(t_s, 0) integration.
+  IntegratorOptions integrator;
+  // Time route only:
+  /// The transient is taken as decayed when cond(Ξ)·e^{max Re λ · t} <= settle_tol.
+  double settle_tol = 1e-9;
+  /// Whole periods of the record projected on e^{j(ω+zΩp)t} (after settling).
+  int record_periods = 4;
+  /// Refuse (mark failed) when the settling time exceeds this many periods.
+  double max_settle_periods = 1e5;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+/// Integrates the complex forced ODE y' = (A − jωI) y + B (all inputs at once) on the real
+/// 2n-dimensional form, restarting at breakpoints and landing on the samples.
+class ForcedResponseSolver {
+ public:
+  /// @throws InputError (no inputs/outputs, bad options).
+  ForcedResponseSolver(const PeriodicSystem& system, const ShootingOptions& options = {});
+
+  /// Shooting: exact periodic steady state, then FFT of C y + D. `ok` false (NaN entries) when
+  /// the integration failed or I − Φ e^{−jωT} is singular.
+  PartialFrfs Shooting(double omega, int min_order, int max_order, bool* ok = nullptr);
+  /// Step-sine simulation from rest (complex input e^{jωt}, i.e. a cos and a sin run):
+  /// `settle_time` (s) from the slowest Floquet exponent, then projection over whole periods.
+  PartialFrfs TimeSimulation(double omega, int min_order, int max_order, double settle_time,
+                             bool* ok = nullptr);
+
+  /// Settling time cond·e^{max Re λ t} = settle_tol; +inf when max Re λ >= 0.
+  static double SettlingTime(const FloquetResult& floquet, double settle_tol);
+
+  int samples() const { return samples_; }
+  /// Largest upper-half amplitude ratio of the response spectra so far (sampling check).
+  double sample_tail() const { return sample_tail_; }
+  long rhs_evals() const { return rhs_evals_; }
+  const std::vector<std::string>& diagnostics() const { return diagnostics_; }
+
+ private:
+  // y_p from y(t0) over [t0, t0 + periods·T], writing the samples of the last period (S per
+  // period) into `out` (samples × (n·m) complex, column-major per sample). Returns false on
+  // failure.
+  bool Integrate(double omega, const Eigen::MatrixXcd& y0, double t0, int periods,
+                 std::vector<Eigen::MatrixXcd>* last_period, Eigen::MatrixXcd* end_state,
+                 std::vector<Eigen::MatrixXcd>* average);
+  void PrepareTransitions();
+  PartialFrfs Project(const std::vector<Eigen::MatrixXcd>& y, double omega, int min_order,
+                      int max_order, double* tail) const;
+
+  PeriodicSystem system_;
+  ShootingOptions options_;
+  int n_ = 0, m_ = 0, p_ = 0;
+  int samples_ = 0;
+  double sample_tail_ = 0;
+  long rhs_evals_ = 0;
+  std::vector<Eigen::MatrixXd> phi_;  ///< Φ(t_s, 0), s = 0..S (Φ(T, 0) last)
+  std::vector<double> pieces_;        ///< sample times ∪ breakpoints in [0, T]
+  std::vector<std::string> diagnostics_;
+};
+
+// --- Sweeps ---------------------------------------------------------------------------------
+
+struct PfrfOptions {
+  std::vector<double> frequencies_hz;  ///< excitation frequencies f = ω/2π
+  int min_order = -4, max_order = 4;
+  int input = 0, output = 0;           ///< the channel reported
+  PfrfRoute primary = PfrfRoute::kModal;
+  /// Routes run on every `check_every`-th frequency (and the last) to estimate the error.
+  std::vector<PfrfRoute> checks = {PfrfRoute::kHtf};
+  int check_every = 10;
+  /// Resonance list: peaks of |H_z| above this fraction of the largest |H_z| of the sweep.
+  double peak_threshold = 1e-3;
+  int max_peaks_per_order = 8;
+  FloquetOptions floquet;
+  ModalOptions modal;
+  HtfOptions htf;
+  ShootingOptions shooting;
+  /// Called after every frequency of the primary route and every check point: (done, total).
+  std::function<void(int, int)> progress;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct RouteRun {
+  PfrfRoute route = PfrfRoute::kModal;
+  std::vector<int> points;  ///< indices into frequencies_hz where it ran
+  /// values[i][z − min_order] for points[i] (the selected channel)
+  std::vector<std::vector<std::complex<double>>> values;
+  /// max |H_route − H_primary| over orders at each point (0 for the primary)
+  std::vector<double> deviation;
+  int failures = 0;
+  double setup_s = 0;   ///< one-off work (decomposition, Fourier fit, Φ samples)
+  double elapsed_s = 0; ///< setup + all points
+  std::vector<std::string> diagnostics;
+};
+
+struct Resonance {
+  int order = 0;              ///< z
+  double f_exc_hz = 0;        ///< excitation frequency of the peak
+  double f_resp_hz = 0;       ///< f_exc + z fp
+  double magnitude = 0;       ///< |H_z| at the peak
+  int mode = -1;              ///< Floquet mode k (index into FloquetResult::modes), -1 unknown
+  int harmonic = 0;           ///< v: the response line f_k + v fp of that mode
+  double mode_line_hz = 0;    ///< Im λ_k/2π + v fp
+  double share = 0;           ///< |dominant modal term| / Σ |terms| at the peak
+};
+
+struct PfrfResult {
+  bool ok = false;
+  std::vector<double> frequencies_hz;
+  int min_order = 0, max_order = 0;
+  int input = 0, output = 0;
+  double period = 0, fp_hz = 0;
+  /// values[f][z − min_order]: H_z(2π f) of the selected channel from the primary route
+  std::vector<std::vector<std::complex<double>>> values;
+  /// Absolute error estimate of every value: the spread of the routes at the nearest check
+  /// points (and the HTF truncation change there), at least the modal tail.
+  std::vector<std::vector<double>> error_estimate;
+  std::vector<bool> checked;  ///< frequency f had check routes run on it
+  std::vector<RouteRun> routes;  ///< primary first
+  double max_disagreement = 0;           ///< max over check points and orders (absolute)
+  double max_relative_disagreement = 0;  ///< divided by max |H_z| of the sweep
+  int htf_harmonics = 0;                 ///< N, when the htf route ran
+  double htf_truncation_change = -1;     ///< max |H(N) − H(N+Δ)| at the check points
+  double settle_time = -1;               ///< time route: settling time (s)
+  FloquetResult floquet;                 ///< the decomposition (modes sorted as reported)
+  std::optional<ModalModel> modal;       ///< when the modal route ran
+  std::vector<double> order_max;         ///< max_f |H_z| per order
+  std::vector<Resonance> resonances;
+  double elapsed_s = 0;
+  std::vector<std::string> diagnostics;
+};
+
+/// Runs the sweep. Never throws for numerical trouble (see ok and diagnostics).
+/// @throws InputError for invalid options (channel out of range, empty sweep, ...).
+PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& options);
+
+/// Local maxima of every |H_z| (above threshold·max), attributed to a Floquet mode and
+/// harmonic by the largest modal term at the peak (nearest line when `modal` is null).
+std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel* modal,
+                                      double threshold, int max_per_order);
+
+}  // namespace ltp

@@ -1,0 +1,148 @@
+// Route 2: the truncated harmonic transfer function (Wereley). For u = U e^{jωt} and
+// x = Σ_u X_u e^{j(ω+uΩp)t}, harmonic balance gives for v = −N..N
+//   j(ω + vΩp) X_v − Σ_u A_{v−u} X_u = B_v U,
+// i.e. (jωI + 𝒩 − 𝒜) X = ℬ with block bandwidth H_A (the harmonics of A). The matrix is
+// solved as banded (LAPACK zgbtrf/zgbtrs, scalar bandwidth (H_A+1)n − 1): never densely.
+// Then Y_z = Σ_u C_{z−u} X_u + D_z U.
+#include <lapacke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "ltp/core/error.h"
+#include "ltp/htf/pfrf.h"
+
+namespace ltp {
+
+namespace {
+using cd = std::complex<double>;
+
+int MaxHarmonic(const FourierMatrix& f) { return f.rows() > 0 ? f.max_harmonic() : 0; }
+
+cd Entry(const FourierMatrix& f, int w, int i, int j) {
+  if (f.rows() == 0 || std::abs(w) > f.max_harmonic()) return 0;
+  return f[w](i, j);
+}
+}  // namespace
+
+void HtfOptions::Validate() const {
+  auto fail = [](const std::string& what) { throw InputError("htf options: " + what); };
+  if (harmonics < 0) fail("harmonics must be >= 0 (0 = automatic)");
+  if (delta < 0) fail("delta must be >= 0 (0 = automatic)");
+  if (!(tol > 0) || !std::isfinite(tol)) fail("tol must be a positive number");
+  if (max_harmonics < 1) fail("max_harmonics must be >= 1");
+}
+
+HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
+    : n_(system.states()), m_(system.inputs()), p_(system.outputs()), omega_p_(system.omega()),
+      options_(options) {
+  options.Validate();
+  if (m_ < 1 || p_ < 1)
+    throw InputError("partial FRFs need at least one input and one output; the system has " +
+                     std::to_string(m_) + " inputs and " + std::to_string(p_) + " outputs");
+  fourier_ = ToFourier(system, options.fourier);
+  ha_ = MaxHarmonic(fourier_.A.series);
+  fourier_tail_ = std::max({fourier_.A.tail, fourier_.B.tail, fourier_.C.tail, fourier_.D.tail});
+  if (!fourier_.A.converged || !fourier_.B.converged || !fourier_.C.converged ||
+      !fourier_.D.converged) {
+    std::ostringstream s;
+    s << "htf: Fourier fit of the coefficients not converged (tail " << fourier_tail_
+      << ", decay " << fourier_.A.decay << "): the truncated HTF carries that error";
+    diagnostics_.push_back(s.str());
+  }
+  harmonics_ = options.harmonics > 0 ? options.harmonics : 8;
+}
+
+int HtfSolver::delta() const {
+  return options_.delta > 0 ? options_.delta : std::max(2, harmonics_ / 4);
+}
+
+int HtfSolver::ChooseTruncation(int min_order, int max_order,
+                                const std::vector<double>& probe_omegas) {
+  const int Z = std::max(std::abs(min_order), std::abs(max_order));
+  if (options_.harmonics > 0) {
+    harmonics_ = std::max(options_.harmonics, Z);
+    return harmonics_;
+  }
+  int N = std::max({2 * Z, Z + 2 * std::min(ha_, 8), 8});
+  N = std::min(N, std::max(options_.max_harmonics, Z));
+  for (;;) {
+    harmonics_ = N;
+    double change = 0, scale = 0;
+    for (double w : probe_omegas) {
+      const PartialFrfs a = Evaluate(w, min_order, max_order, N);
+      const PartialFrfs b = Evaluate(w, min_order, max_order, N + delta());
+      for (size_t z = 0; z < a.size(); ++z) {
+        const double d = (a[z] - b[z]).cwiseAbs().maxCoeff();
+        change = std::max(change, std::isfinite(d) ? d : 0.0);
+        scale = std::max(scale, b[z].cwiseAbs().maxCoeff());
+      }
+    }
+    if (change <= options_.tol * scale) break;
+    if (N >= options_.max_harmonics) {
+      std::ostringstream s;
+      s << "htf: truncation N = " << N << " (max_harmonics) still changes H_z by " << change / scale
+        << " (relative) against N + " << delta();
+      diagnostics_.push_back(s.str());
+      break;
+    }
+    N = std::min(options_.max_harmonics, N + std::max(2, N / 2));
+  }
+  return harmonics_;
+}
+
+PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int harmonics) const {
+  const int N = harmonics > 0 ? harmonics : harmonics_;
+  const int n = n_;
+  const int size = (2 * N + 1) * n;
+  // Harmonics of A beyond N are dropped with the truncation (they would only couple X_u and
+  // X_v with |v − u| > N; for algebraically decaying A this keeps the band at ~2N + 1 blocks).
+  const int ha = std::min(ha_, N);
+  const int kl = std::min((ha + 1) * n - 1, size - 1), ku = kl;
+  const int ldab = 2 * kl + ku + 1;
+  std::vector<cd> ab(static_cast<size_t>(ldab) * size, cd(0));
+  auto at = [&](int i, int j) -> cd& { return ab[static_cast<size_t>(kl + ku + i - j) + static_cast<size_t>(j) * ldab]; };
+  const FourierMatrix& A = fourier_.A.series;
+  for (int v = -N; v <= N; ++v)
+    for (int u = std::max(-N, v - ha); u <= std::min(N, v + ha); ++u) {
+      const Eigen::MatrixXcd& a = A[v - u];
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) at((v + N) * n + i, (u + N) * n + j) = -a(i, j);
+    }
+  for (int v = -N; v <= N; ++v)
+    for (int i = 0; i < n; ++i) at((v + N) * n + i, (v + N) * n + i) += cd(0, omega + v * omega_p_);
+  // Right-hand side ℬ: block v holds B_v.
+  const FourierMatrix& B = fourier_.B.series;
+  std::vector<cd> rhs(static_cast<size_t>(size) * m_, cd(0));
+  for (int v = -N; v <= N; ++v)
+    for (int j = 0; j < m_; ++j)
+      for (int i = 0; i < n; ++i)
+        rhs[(v + N) * n + i + static_cast<size_t>(j) * size] = Entry(B, v, i, j);
+  std::vector<lapack_int> ipiv(size);
+  lapack_int info = LAPACKE_zgbtrf(LAPACK_COL_MAJOR, size, size, kl, ku,
+                                   reinterpret_cast<lapack_complex_double*>(ab.data()), ldab,
+                                   ipiv.data());
+  PartialFrfs h(max_order - min_order + 1, Eigen::MatrixXcd::Zero(p_, m_));
+  if (info != 0) {
+    for (auto& x : h) x.setConstant(cd(std::numeric_limits<double>::quiet_NaN(), 0));
+    return h;
+  }
+  LAPACKE_zgbtrs(LAPACK_COL_MAJOR, 'N', size, kl, ku, m_,
+                 reinterpret_cast<const lapack_complex_double*>(ab.data()), ldab, ipiv.data(),
+                 reinterpret_cast<lapack_complex_double*>(rhs.data()), size);
+  Eigen::Map<const Eigen::MatrixXcd> X(rhs.data(), size, m_);
+  const FourierMatrix& C = fourier_.C.series;
+  const FourierMatrix& D = fourier_.D.series;
+  const int hc = MaxHarmonic(C);
+  for (int z = min_order; z <= max_order; ++z) {
+    Eigen::MatrixXcd& y = h[z - min_order];
+    for (int u = std::max(-N, z - hc); u <= std::min(N, z + hc); ++u)
+      y.noalias() += C[z - u] * X.middleRows((u + N) * n, n);
+    if (D.rows() > 0 && std::abs(z) <= D.max_harmonic()) y += D[z];
+  }
+  return h;
+}
+
+}  // namespace ltp

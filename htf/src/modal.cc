@@ -1,0 +1,236 @@
+// Route 1: Floquet modal partial FRFs (paper eq. 42–46, DESIGN.md "Independent routes").
+// With x = Ξ(t) q the modal coordinates obey q' = Λ q + Ξ⁻¹B u, so for u = U e^{jωt}
+//   q_k = Σ_u [B̂_u]_k U e^{j(ω+uΩp)t} / (j(ω+uΩp) − λ_k),   y = CΞ q + D u
+// and grouping u + v = z gives H_z(ω) = Σ_{u+v=z} Ĉ_v (j(ω+uΩp)I − Λ)⁻¹ B̂_u + D_z.
+// The Fourier coefficients Ĉ_v of C(t)Ξ(t) and B̂_u of Ξ(t)⁻¹B(t) come from an FFT of uniform
+// samples; new samples are propagated from the Floquet mode samples until the spectra have
+// decayed (tail check). Any branch λ_k + jmΩp with ξ_k e^{−jmΩp t} gives the same H_z.
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "fft_util.h"
+#include "ltp/core/error.h"
+#include "ltp/htf/pfrf.h"
+
+namespace ltp {
+
+namespace {
+
+using cd = std::complex<double>;
+
+bool IsPowerOfTwo(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+// Worst per-mode ratio of the upper-half Fourier amplitude to the largest amplitude, for
+// column k of Ĉ and row k of B̂ (each mode is scaled arbitrarily, so mode by mode).
+double PerModeTail(const std::vector<Eigen::MatrixXcd>& c, const std::vector<Eigen::MatrixXcd>& b,
+                   int n) {
+  const int H = static_cast<int>(c.size()) / 2;
+  double worst = 0;
+  for (int k = 0; k < n; ++k) {
+    double c_all = 0, c_up = 0, b_all = 0, b_up = 0;
+    for (int v = -H; v <= H; ++v) {
+      const double cn = c[v + H].col(k).norm(), bn = b[v + H].row(k).norm();
+      c_all = std::max(c_all, cn);
+      b_all = std::max(b_all, bn);
+      if (2 * std::abs(v) > H) {
+        c_up = std::max(c_up, cn);
+        b_up = std::max(b_up, bn);
+      }
+    }
+    if (c_all > 0) worst = std::max(worst, c_up / c_all);
+    if (b_all > 0) worst = std::max(worst, b_up / b_all);
+  }
+  return worst;
+}
+
+}  // namespace
+
+std::string_view ToString(PfrfRoute route) {
+  switch (route) {
+    case PfrfRoute::kModal: return "modal";
+    case PfrfRoute::kHtf: return "htf";
+    case PfrfRoute::kShooting: return "shooting";
+    case PfrfRoute::kTime: return "time";
+  }
+  return "?";
+}
+
+std::optional<PfrfRoute> ParsePfrfRoute(std::string_view name) {
+  for (PfrfRoute r : {PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime})
+    if (name == ToString(r)) return r;
+  return std::nullopt;
+}
+
+void ModalOptions::Validate() const {
+  auto fail = [](const std::string& what) { throw InputError("modal options: " + what); };
+  if (!(tail_tol > 0) || !std::isfinite(tail_tol)) fail("tail_tol must be a positive number");
+  if (!IsPowerOfTwo(max_samples) || max_samples < 4) fail("max_samples must be a power of two >= 4");
+  if (!(max_condition >= 1)) fail("max_condition must be >= 1");
+  if (!(max_tail >= tail_tol)) fail("max_tail must be >= tail_tol");
+  integrator.Validate();
+}
+
+ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& floquet,
+                           const ModalOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  const int n = system.states(), m = system.inputs(), p = system.outputs();
+  const double T = system.period(), w = system.omega();
+  if (m < 1 || p < 1)
+    throw InputError("partial FRFs need at least one input and one output; the system has " +
+                     std::to_string(m) + " inputs and " + std::to_string(p) + " outputs");
+  if (floquet.states != n || std::abs(floquet.period - T) > 1e-12 * T)
+    throw InputError("modal model: the Floquet result belongs to another system");
+  if (floquet.mode_samples.empty() || static_cast<int>(floquet.modes.size()) != n)
+    throw InputError("modal model: the Floquet result has no mode shapes (compute_modes off?)");
+  if (!IsPowerOfTwo(static_cast<int>(floquet.mode_samples.size())))
+    throw InputError("modal model: mode samples must be a power of two per period");
+
+  ModalModel r;
+  r.states = n;
+  r.inputs = m;
+  r.outputs = p;
+  r.period = T;
+  r.omega_p = w;
+  for (const FloquetMode& mode : floquet.modes) r.exponents.push_back(mode.exponent);
+
+  std::vector<Eigen::MatrixXcd> xi = floquet.mode_samples;
+  std::vector<Eigen::MatrixXcd> c_hat, b_hat, d_hat;
+  double sample_condition = 1;
+  Eigen::MatrixXd a_buf(p, n), b_buf(n, m), d_buf(p, m);
+  for (;;) {
+    const int S = static_cast<int>(xi.size());
+    std::vector<Eigen::MatrixXcd> cxi(S), xib(S), dd(S);
+    sample_condition = 1;
+    for (int s = 0; s < S; ++s) {
+      const double t = T * s / S;
+      system.EvalC(t, a_buf);
+      system.EvalB(t, b_buf);
+      system.EvalD(t, d_buf);
+      cxi[s] = a_buf.cast<cd>() * xi[s];
+      // Column-normalised Ξ for the condition estimate; the scaling is undone on B̂.
+      Eigen::VectorXd scale = xi[s].colwise().norm().transpose();
+      for (int k = 0; k < n; ++k)
+        if (!(scale(k) > 0)) scale(k) = 1;
+      const Eigen::MatrixXcd xn = xi[s] * scale.cwiseInverse().asDiagonal();
+      Eigen::PartialPivLU<Eigen::MatrixXcd> lu(xn);
+      const double rc = lu.rcond();
+      sample_condition = std::max(sample_condition, rc > 0 ? 1.0 / rc : HUGE_VAL);
+      xib[s] = scale.cwiseInverse().asDiagonal() * lu.solve(b_buf.cast<cd>());
+      dd[s] = d_buf.cast<cd>();
+    }
+    c_hat = internal::SampledFourier(cxi);
+    b_hat = internal::SampledFourier(xib);
+    d_hat = internal::SampledFourier(dd);
+    r.samples = S;
+    r.tail = PerModeTail(c_hat, b_hat, n);
+    if (r.tail <= options.tail_tol || 2 * S > options.max_samples) break;
+    // Refine: ξ_k(t_s + h) = Φ(t_s + h, t_s) ξ_k(t_s) e^{−λ_k h}, h = T/(2S).
+    const double h = T / (2 * S);
+    Eigen::VectorXcd decay(n);
+    for (int k = 0; k < n; ++k) decay(k) = std::exp(-r.exponents[k] * h);
+    std::vector<Eigen::MatrixXcd> finer(2 * S);
+    bool ok = true;
+    for (int s = 0; s < S && ok; ++s) {
+      const double t = T * s / S;
+      TransitionResult tr = StateTransition(system, t, t + h, options.integrator);
+      r.rhs_evals += tr.rhs_evals;
+      ok = tr.ok;
+      finer[2 * s] = xi[s];
+      finer[2 * s + 1] = tr.phi.cast<cd>() * xi[s] * decay.asDiagonal();
+    }
+    if (!ok) {
+      r.diagnostics.push_back("modal: propagating mode samples failed; kept " +
+                              std::to_string(S) + " samples");
+      break;
+    }
+    xi = std::move(finer);
+  }
+  // Keep only the harmonics that matter (relative per mode, round-off level).
+  const int H = static_cast<int>(c_hat.size()) / 2;
+  std::vector<double> c_max(n, 0), b_max(n, 0);
+  double d_max = 0;
+  for (int v = -H; v <= H; ++v) {
+    for (int k = 0; k < n; ++k) {
+      c_max[k] = std::max(c_max[k], c_hat[v + H].col(k).norm());
+      b_max[k] = std::max(b_max[k], b_hat[v + H].row(k).norm());
+    }
+    d_max = std::max(d_max, d_hat[v + H].norm());
+  }
+  int V = 0;
+  for (int v = -H; v <= H; ++v) {
+    bool significant = d_hat[v + H].norm() > 1e-17 * d_max;
+    for (int k = 0; k < n && !significant; ++k)
+      significant = c_hat[v + H].col(k).norm() > 1e-17 * c_max[k] ||
+                    b_hat[v + H].row(k).norm() > 1e-17 * b_max[k];
+    if (significant) V = std::max(V, std::abs(v));
+  }
+  r.harmonics = V;
+  for (int v = -V; v <= V; ++v) {
+    r.c_hat.push_back(c_hat[v + H]);
+    r.b_hat.push_back(b_hat[v + H]);
+    r.d_hat.push_back(d_hat[v + H]);
+  }
+  r.condition = std::max(floquet.mode_condition, sample_condition);
+  r.reliable = floquet.ok && r.tail <= options.max_tail && r.condition <= options.max_condition;
+  std::ostringstream s;
+  if (!floquet.ok) r.diagnostics.push_back("modal: the Floquet analysis failed");
+  if (r.tail > options.tail_tol) {
+    s << "modal: Fourier series of CΞ and Ξ⁻¹B not resolved with " << r.samples
+      << " samples (upper-half amplitude " << r.tail << " > " << options.tail_tol << ")"
+      << (r.tail > options.max_tail ? ": UNRELIABLE" : "");
+    r.diagnostics.push_back(s.str());
+    s.str("");
+  }
+  if (r.condition > options.max_condition) {
+    s << "modal: UNRELIABLE — the mode matrix is ill-conditioned (cond Ξ = " << r.condition
+      << " > " << options.max_condition
+      << "): the monodromy is (near-)defective, e.g. close to a stability boundary; use the "
+         "htf or shooting route";
+    r.diagnostics.push_back(s.str());
+  }
+  r.elapsed_s = internal::SecondsSince(start);
+  return r;
+}
+
+PartialFrfs ModalModel::Evaluate(double omega, int min_order, int max_order) const {
+  const int V = harmonics;
+  PartialFrfs h(max_order - min_order + 1, Eigen::MatrixXcd::Zero(outputs, inputs));
+  Eigen::MatrixXcd scaled(states, inputs);
+  for (int u = -V; u <= V; ++u) {
+    // R_u = (j(ω+uΩp) I − Λ)⁻¹ B̂_u, reused for every z.
+    const cd s(0, omega + u * omega_p);
+    for (int k = 0; k < states; ++k) scaled.row(k) = b_hat[u + V].row(k) / (s - exponents[k]);
+    for (int z = min_order; z <= max_order; ++z) {
+      const int v = z - u;
+      if (std::abs(v) <= V) h[z - min_order].noalias() += c_hat[v + V] * scaled;
+    }
+  }
+  for (int z = min_order; z <= max_order; ++z)
+    if (std::abs(z) <= V) h[z - min_order] += d_hat[z + V];
+  return h;
+}
+
+std::complex<double> ModalModel::Evaluate(double omega, int z, int output, int input) const {
+  const int V = harmonics;
+  cd sum = std::abs(z) <= V ? d_hat[z + V](output, input) : cd(0);
+  for (int u = -V; u <= V; ++u) {
+    const int v = z - u;
+    if (std::abs(v) > V) continue;
+    const cd s(0, omega + u * omega_p);
+    for (int k = 0; k < states; ++k)
+      sum += c_hat[v + V](output, k) * b_hat[u + V](k, input) / (s - exponents[k]);
+  }
+  return sum;
+}
+
+std::complex<double> ModalModel::Term(double omega, int k, int u, int v, int output,
+                                      int input) const {
+  const int V = harmonics;
+  if (std::abs(u) > V || std::abs(v) > V) return 0;
+  return c_hat[v + V](output, k) * b_hat[u + V](k, input) /
+         (cd(0, omega + u * omega_p) - exponents[k]);
+}
+
+}  // namespace ltp

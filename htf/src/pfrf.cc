@@ -1,0 +1,358 @@
+// The partial-FRF sweep: a primary route on every frequency, check routes on a subset, the
+// spread between them (plus the HTF truncation check) as the error estimate of every point,
+// and the resonance list.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "fft_util.h"
+#include "ltp/core/error.h"
+#include "ltp/htf/pfrf.h"
+
+namespace ltp {
+
+namespace {
+using cd = std::complex<double>;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+}  // namespace
+
+void PfrfOptions::Validate() const {
+  auto fail = [](const std::string& what) { throw InputError("pfrf: " + what); };
+  if (frequencies_hz.empty()) fail("no frequencies to evaluate");
+  for (double f : frequencies_hz)
+    if (!std::isfinite(f)) fail("frequencies must be finite numbers");
+  if (min_order > max_order) fail("min_order must be <= max_order");
+  if (std::max(std::abs(min_order), std::abs(max_order)) > 1000) fail("orders beyond ±1000");
+  if (input < 0 || output < 0) fail("input and output indices must be >= 0");
+  if (check_every < 1) fail("check_every must be >= 1");
+  if (!(peak_threshold >= 0 && peak_threshold < 1)) fail("peak_threshold must be in [0, 1)");
+  if (max_peaks_per_order < 0) fail("max_peaks_per_order must be >= 0");
+  floquet.Validate();
+  modal.Validate();
+  htf.Validate();
+  shooting.Validate();
+}
+
+PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  if (system.inputs() < 1 || system.outputs() < 1)
+    throw InputError("partial FRFs need at least one input and one output; the system has " +
+                     std::to_string(system.inputs()) + " inputs and " +
+                     std::to_string(system.outputs()) + " outputs");
+  if (options.input >= system.inputs())
+    throw InputError("pfrf: input " + std::to_string(options.input) + " out of range (the system has " +
+                     std::to_string(system.inputs()) + ")");
+  if (options.output >= system.outputs())
+    throw InputError("pfrf: output " + std::to_string(options.output) +
+                     " out of range (the system has " + std::to_string(system.outputs()) + ")");
+
+  PfrfResult r;
+  const int F = static_cast<int>(options.frequencies_hz.size());
+  const int zmin = options.min_order, zmax = options.max_order, Z = zmax - zmin + 1;
+  const int in = options.input, out = options.output;
+  r.frequencies_hz = options.frequencies_hz;
+  r.min_order = zmin;
+  r.max_order = zmax;
+  r.input = in;
+  r.output = out;
+  r.period = system.period();
+  r.fp_hz = 1.0 / system.period();
+  r.values.assign(F, std::vector<cd>(Z, cd(0)));
+  r.error_estimate.assign(F, std::vector<double>(Z, 0.0));
+  r.checked.assign(F, false);
+
+  // Which routes run where.
+  std::vector<PfrfRoute> routes = {options.primary};
+  for (PfrfRoute c : options.checks)
+    if (std::find(routes.begin(), routes.end(), c) == routes.end()) routes.push_back(c);
+  std::vector<int> check_points;
+  for (int i = 0; i < F; i += options.check_every) check_points.push_back(i);
+  if (check_points.back() != F - 1) check_points.push_back(F - 1);
+  const bool any_checks = routes.size() > 1;
+  const int total = F + (any_checks ? static_cast<int>(check_points.size()) : 0);
+  int done = 0;
+  auto tick = [&] {
+    ++done;
+    if (options.progress) options.progress(done, total);
+  };
+
+  // One Floquet decomposition: the modal route, the time route's settling time and the
+  // resonance attribution all use it.
+  FloquetOptions fo = options.floquet;
+  fo.compute_modes = true;
+  r.floquet = AnalyzeFloquet(system, fo);
+  if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
+
+  std::unique_ptr<HtfSolver> htf;
+  std::unique_ptr<ForcedResponseSolver> forced;
+  const auto omega_of = [&](int i) { return kTwoPi * options.frequencies_hz[i]; };
+  for (PfrfRoute route : routes) {
+    RouteRun run;
+    run.route = route;
+    const bool primary = route == options.primary;
+    const std::vector<int>* points_ptr = &check_points;
+    std::vector<int> all;
+    if (primary) {
+      for (int i = 0; i < F; ++i) all.push_back(i);
+      points_ptr = &all;
+    }
+    const std::vector<int>& points = *points_ptr;
+    const auto route_start = std::chrono::steady_clock::now();
+    std::function<PartialFrfs(double, bool*)> eval;
+    std::vector<double> truncation;  // htf: N vs N+Δ per point
+    switch (route) {
+      case PfrfRoute::kModal: {
+        if (!r.floquet.ok) {
+          run.diagnostics.push_back("modal: no Floquet decomposition");
+          eval = [&](double, bool* ok) {
+            *ok = false;
+            return PartialFrfs(Z, Eigen::MatrixXcd::Constant(system.outputs(), system.inputs(),
+                                                              std::numeric_limits<double>::quiet_NaN()));
+          };
+          break;
+        }
+        r.modal = BuildModalModel(system, r.floquet, options.modal);
+        for (const auto& d : r.modal->diagnostics) run.diagnostics.push_back(d);
+        const ModalModel* model = &*r.modal;
+        eval = [model, zmin, zmax](double w, bool* ok) {
+          *ok = true;
+          return model->Evaluate(w, zmin, zmax);
+        };
+        break;
+      }
+      case PfrfRoute::kHtf: {
+        htf = std::make_unique<HtfSolver>(system, options.htf);
+        std::vector<double> probes;
+        for (int q = 0; q < 3; ++q) probes.push_back(omega_of((F - 1) * q / 2));
+        r.htf_harmonics = htf->ChooseTruncation(zmin, zmax, probes);
+        HtfSolver* solver = htf.get();
+        eval = [solver, zmin, zmax, &truncation, in, out](double w, bool* ok) {
+          PartialFrfs h = solver->Evaluate(w, zmin, zmax);
+          const PartialFrfs h2 = solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta());
+          double change = 0;
+          for (size_t z = 0; z < h.size(); ++z) change = std::max(change, std::abs(h[z](out, in) - h2[z](out, in)));
+          truncation.push_back(change);
+          *ok = std::isfinite(change);
+          return h;
+        };
+        break;
+      }
+      case PfrfRoute::kShooting:
+      case PfrfRoute::kTime: {
+        if (!forced) forced = std::make_unique<ForcedResponseSolver>(system, options.shooting);
+        ForcedResponseSolver* solver = forced.get();
+        if (route == PfrfRoute::kShooting) {
+          eval = [solver, zmin, zmax](double w, bool* ok) { return solver->Shooting(w, zmin, zmax, ok); };
+        } else {
+          r.settle_time = r.floquet.ok ? ForcedResponseSolver::SettlingTime(r.floquet, options.shooting.settle_tol)
+                                       : std::numeric_limits<double>::infinity();
+          std::ostringstream s;
+          s << "time: settling time " << r.settle_time << " s = ln(cond Ξ / " << options.shooting.settle_tol
+            << ") / |max Re λ| (slowest Floquet exponent " << r.floquet.max_real_exponent
+            << " 1/s), then " << options.shooting.record_periods << " periods projected";
+          run.diagnostics.push_back(s.str());
+          const double settle = r.settle_time;
+          eval = [solver, zmin, zmax, settle](double w, bool* ok) {
+            return solver->TimeSimulation(w, zmin, zmax, settle, ok);
+          };
+        }
+        break;
+      }
+    }
+    run.setup_s = internal::SecondsSince(route_start);
+    for (int i : points) {
+      bool ok = false;
+      const PartialFrfs h = eval(omega_of(i), &ok);
+      std::vector<cd> v(Z);
+      for (int z = 0; z < Z; ++z) v[z] = h[z](out, in);
+      if (!ok) ++run.failures;
+      run.points.push_back(i);
+      run.values.push_back(v);
+      tick();
+    }
+    if (route == PfrfRoute::kHtf) {
+      for (const auto& d : htf->diagnostics()) run.diagnostics.push_back(d);
+      double worst = 0;
+      for (double c : truncation) worst = std::max(worst, c);
+      r.htf_truncation_change = worst;
+      std::ostringstream s;
+      s << "htf: truncation N = " << htf->harmonics() << " (A has " << htf->coefficient_harmonics()
+        << " harmonics; banded solve), check against N + " << htf->delta() << ": max change " << worst;
+      run.diagnostics.push_back(s.str());
+    }
+    if ((route == PfrfRoute::kShooting || route == PfrfRoute::kTime) && forced) {
+      std::ostringstream s;
+      s << ToString(route) << ": " << forced->samples() << " samples per period, RKF78 rel tol "
+        << options.shooting.rel_tol << "; response spectrum upper-half amplitude "
+        << forced->sample_tail()
+        << (forced->sample_tail() > options.shooting.sample_tol ? " (NOT resolved: raise max_samples)" : "");
+      run.diagnostics.push_back(s.str());
+      for (const auto& d : forced->diagnostics())
+        if (d.rfind(std::string(ToString(route)), 0) == 0 || d.rfind("forced", 0) == 0)
+          run.diagnostics.push_back(d);
+    }
+    run.elapsed_s = internal::SecondsSince(route_start);
+    if (primary) {
+      for (int i = 0; i < F; ++i) r.values[i] = run.values[i];
+      run.deviation.assign(F, 0.0);
+      if (route == PfrfRoute::kHtf)  // its own N vs N+Δ change, at every point
+        for (int i = 0; i < F; ++i)
+          for (int z = 0; z < Z; ++z) r.error_estimate[i][z] = truncation[i];
+    } else {
+      // Per-point deviations from the primary; the HTF truncation change adds to them.
+      for (size_t q = 0; q < run.points.size(); ++q) {
+        const int i = run.points[q];
+        double worst = 0;
+        for (int z = 0; z < Z; ++z) {
+          double d = std::abs(run.values[q][z] - r.values[i][z]);
+          if (route == PfrfRoute::kHtf) d += truncation[q];
+          if (std::isfinite(d)) {
+            worst = std::max(worst, d);
+            r.error_estimate[i][z] = std::max(r.error_estimate[i][z], d);
+          }
+        }
+        run.deviation.push_back(worst);
+        r.checked[i] = true;
+        r.max_disagreement = std::max(r.max_disagreement, worst);
+      }
+    }
+    r.routes.push_back(std::move(run));
+  }
+
+  // Error estimate between check points: the larger of the neighbours' absolute error and
+  // their relative error times |H| here.
+  r.order_max.assign(Z, 0.0);
+  double global_max = 0;
+  for (int i = 0; i < F; ++i)
+    for (int z = 0; z < Z; ++z) {
+      r.order_max[z] = std::max(r.order_max[z], std::abs(r.values[i][z]));
+      global_max = std::max(global_max, std::abs(r.values[i][z]));
+    }
+  if (any_checks) {
+    for (int i = 0; i < F; ++i) {
+      if (r.checked[i]) continue;
+      auto it = std::upper_bound(check_points.begin(), check_points.end(), i);
+      const int hi = *it, lo = *(it - 1);
+      for (int z = 0; z < Z; ++z) {
+        double abs_e = 0, rel_e = 0;
+        for (int nb : {lo, hi}) {
+          abs_e = std::max(abs_e, r.error_estimate[nb][z]);
+          const double mag = std::abs(r.values[nb][z]);
+          if (mag > 0) rel_e = std::max(rel_e, r.error_estimate[nb][z] / mag);
+        }
+        r.error_estimate[i][z] =
+            std::max(r.error_estimate[i][z], std::max(abs_e, rel_e * std::abs(r.values[i][z])));
+      }
+    }
+  }
+  if (r.modal && options.primary == PfrfRoute::kModal) {
+    // The modal tail bounds what the primary's Fourier truncation can add anywhere.
+    for (int i = 0; i < F; ++i)
+      for (int z = 0; z < Z; ++z)
+        r.error_estimate[i][z] = std::max(r.error_estimate[i][z], r.modal->tail * std::abs(r.values[i][z]));
+  }
+  r.max_relative_disagreement = global_max > 0 ? r.max_disagreement / global_max : 0;
+
+  r.ok = r.routes.front().failures == 0;
+  if (!r.ok)
+    r.diagnostics.push_back("primary route " + std::string(ToString(options.primary)) + " failed at " +
+                            std::to_string(r.routes.front().failures) + " frequencies");
+  if (r.modal && !r.modal->reliable && options.primary == PfrfRoute::kModal)
+    r.diagnostics.push_back("the modal route reports itself unreliable (see its diagnostics); "
+                            "compare with --route htf or shooting");
+  if (r.floquet.ok && !r.floquet.stable)
+    r.diagnostics.push_back("the system is unstable (max Re λ = " +
+                            std::to_string(r.floquet.max_real_exponent) +
+                            " 1/s): H_z describes the formal periodic solution, which is not "
+                            "reached from rest");
+  r.resonances = FindResonances(r, r.modal ? &*r.modal : nullptr, options.peak_threshold,
+                                options.max_peaks_per_order);
+  r.elapsed_s = internal::SecondsSince(start);
+  return r;
+}
+
+std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel* modal,
+                                      double threshold, int max_per_order) {
+  std::vector<Resonance> out;
+  const int F = static_cast<int>(result.frequencies_hz.size());
+  const int Z = result.max_order - result.min_order + 1;
+  double global_max = 0;
+  for (const auto& row : result.values)
+    for (const cd& h : row) global_max = std::max(global_max, std::abs(h));
+  if (!(global_max > 0) || F < 3) return out;
+  const double fp = result.fp_hz;
+  for (int zi = 0; zi < Z; ++zi) {
+    const int z = result.min_order + zi;
+    std::vector<Resonance> peaks;
+    for (int i = 1; i + 1 < F; ++i) {
+      const double a = std::abs(result.values[i - 1][zi]), b = std::abs(result.values[i][zi]),
+                   c = std::abs(result.values[i + 1][zi]);
+      if (!(b > a && b >= c && b >= threshold * global_max)) continue;
+      Resonance p;
+      p.order = z;
+      p.f_exc_hz = result.frequencies_hz[i];
+      p.f_resp_hz = p.f_exc_hz + z * fp;
+      p.magnitude = b;
+      const double w = kTwoPi * p.f_exc_hz;
+      if (modal) {
+        // Among the terms that matter (>= 1% of the largest), the one closest to its
+        // resonance j(ω + uΩp) = λ_k in half-power bandwidths |Re λ_k|: an interference peak
+        // next to a small resonant term still belongs to that term's line.
+        const int V = modal->harmonics;
+        double largest = 0, sum = 0;
+        for (int k = 0; k < modal->states; ++k)
+          for (int u = -V; u <= V; ++u)
+            if (std::abs(z - u) <= V) {
+              const double t = std::abs(modal->Term(w, k, u, z - u, result.output, result.input));
+              largest = std::max(largest, t);
+              sum += t;
+            }
+        double best = std::numeric_limits<double>::infinity(), best_term = 0;
+        for (int k = 0; k < modal->states; ++k)
+          for (int u = -V; u <= V; ++u) {
+            if (std::abs(z - u) > V) continue;
+            const double t = std::abs(modal->Term(w, k, u, z - u, result.output, result.input));
+            if (!(t >= 1e-2 * largest)) continue;
+            const std::complex<double> lk = modal->exponents[k];
+            const double width = std::max(std::abs(lk.real()), 1e-9 * modal->omega_p);
+            const double distance = std::abs(w + u * modal->omega_p - lk.imag()) / width;
+            if (distance < best) {
+              best = distance;
+              best_term = t;
+              p.mode = k;
+              p.harmonic = z - u;
+            }
+          }
+        p.share = sum > 0 ? best_term / sum : 0;
+        if (p.mode >= 0) p.mode_line_hz = modal->exponents[p.mode].imag() / kTwoPi + p.harmonic * fp;
+      } else if (!result.floquet.modes.empty()) {
+        double best = std::numeric_limits<double>::infinity();
+        for (size_t k = 0; k < result.floquet.modes.size(); ++k)
+          for (int v = z - 20; v <= z + 20; ++v) {
+            const double line = result.floquet.modes[k].frequency_hz + v * fp;
+            if (std::abs(line - p.f_resp_hz) < best) {
+              best = std::abs(line - p.f_resp_hz);
+              p.mode = static_cast<int>(k);
+              p.harmonic = v;
+              p.mode_line_hz = line;
+            }
+          }
+      }
+      peaks.push_back(p);
+    }
+    std::sort(peaks.begin(), peaks.end(),
+              [](const Resonance& a, const Resonance& b) { return a.magnitude > b.magnitude; });
+    if (static_cast<int>(peaks.size()) > max_per_order) peaks.resize(max_per_order);
+    std::sort(peaks.begin(), peaks.end(),
+              [](const Resonance& a, const Resonance& b) { return a.f_exc_hz < b.f_exc_hz; });
+    out.insert(out.end(), peaks.begin(), peaks.end());
+  }
+  return out;
+}
+
+}  // namespace ltp

@@ -1,0 +1,137 @@
+#include "ltp/htf/snapshot.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "fft_util.h"
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+namespace {
+using cd = std::complex<double>;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+}  // namespace
+
+Eigen::MatrixXcd FrozenFrf(const LtiSystem& s, double omega) {
+  const Eigen::Index n = s.A.rows();
+  Eigen::MatrixXcd M = cd(0, omega) * Eigen::MatrixXcd::Identity(n, n) - s.A.cast<cd>();
+  Eigen::PartialPivLU<Eigen::MatrixXcd> lu(M);
+  Eigen::MatrixXcd h(s.C.rows(), s.B.cols());
+  if (!(lu.rcond() > 1e-15)) {
+    h.setConstant(cd(std::numeric_limits<double>::quiet_NaN(), 0));
+    return h;
+  }
+  h = s.C.cast<cd>() * lu.solve(s.B.cast<cd>());
+  if (s.D.size() == h.size()) h += s.D.cast<cd>();
+  return h;
+}
+
+void SnapshotOptions::Validate() const {
+  auto fail = [](const std::string& what) { throw InputError("snapshot: " + what); };
+  if (frequencies_hz.empty()) fail("no frequencies to evaluate");
+  for (double f : frequencies_hz)
+    if (!std::isfinite(f)) fail("frequencies must be finite numbers");
+  if (time.has_value() == angle_deg.has_value()) fail("give exactly one of --time and --angle");
+  if (time && !std::isfinite(*time)) fail("time must be a finite number");
+  if (angle_deg && !std::isfinite(*angle_deg)) fail("angle must be a finite number");
+  if (input < 0 || output < 0) fail("input and output indices must be >= 0");
+  if (min_order > max_order) fail("min_order must be <= max_order");
+  if (check_every < 1) fail("check_every must be >= 1");
+  floquet.Validate();
+  modal.Validate();
+  htf.Validate();
+}
+
+SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  if (system.inputs() < 1 || system.outputs() < 1)
+    throw InputError("FRFs need at least one input and one output");
+  if (options.input >= system.inputs())
+    throw InputError("snapshot: input " + std::to_string(options.input) + " out of range (the system has " +
+                     std::to_string(system.inputs()) + ")");
+  if (options.output >= system.outputs())
+    throw InputError("snapshot: output " + std::to_string(options.output) +
+                     " out of range (the system has " + std::to_string(system.outputs()) + ")");
+  SnapshotResult r;
+  r.frequencies_hz = options.frequencies_hz;
+  if (options.angle_deg) {
+    const double rad = *options.angle_deg * std::numbers::pi / 180;
+    r.frozen = system.SnapshotAtAngle(rad);  // throws InputError without a rotor speed
+    r.angle_deg = options.angle_deg;
+    r.time = rad / *system.rotor_speed();
+  } else {
+    r.time = *options.time;
+    r.frozen = system.Snapshot(r.time);
+  }
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(r.frozen.A.cast<cd>(), false);
+  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) r.eigenvalues.push_back(es.eigenvalues()(k));
+  std::sort(r.eigenvalues.begin(), r.eigenvalues.end(), [](cd a, cd b) {
+    return std::abs(a.imag()) != std::abs(b.imag()) ? std::abs(a.imag()) < std::abs(b.imag()) : a.imag() > b.imag();
+  });
+  const int F = static_cast<int>(options.frequencies_hz.size());
+  for (int i = 0; i < F; ++i)
+    r.snapshot.push_back(FrozenFrf(r.frozen, kTwoPi * options.frequencies_hz[i])(options.output, options.input));
+
+  if (options.compare) {
+    const int zmin = options.min_order, zmax = options.max_order;
+    FloquetOptions fo = options.floquet;
+    fo.compute_modes = true;
+    const FloquetResult fl = AnalyzeFloquet(system, fo);
+    for (const auto& m : fl.modes) r.floquet_exponents.push_back(m.exponent);
+    if (!fl.ok) {
+      r.diagnostics.push_back("Floquet analysis failed: no summed partial FRFs");
+    } else {
+      const ModalModel model = BuildModalModel(system, fl, options.modal);
+      r.modal_reliable = model.reliable;
+      for (const auto& d : model.diagnostics) r.diagnostics.push_back(d);
+      const double wp = system.omega();
+      auto summed_modal = [&](double w) {
+        cd g = 0;
+        for (int z = zmin; z <= zmax; ++z)
+          g += model.Evaluate(w - z * wp, z, options.output, options.input);
+        return g;
+      };
+      for (int i = 0; i < F; ++i) r.summed.push_back(summed_modal(kTwoPi * options.frequencies_hz[i]));
+      // Check by the harmonic transfer function on a subset.
+      HtfSolver htf(system, options.htf);
+      const double w0 = kTwoPi * options.frequencies_hz.front(), w1 = kTwoPi * options.frequencies_hz.back();
+      htf.ChooseTruncation(zmin, zmax, {w0, 0.5 * (w0 + w1), w1});
+      std::vector<int> checks;
+      for (int i = 0; i < F; i += options.check_every) checks.push_back(i);
+      if (checks.back() != F - 1) checks.push_back(F - 1);
+      r.summed_error.assign(F, 0.0);
+      std::vector<double> rel(F, 0.0);
+      double gmax = 0;
+      for (const cd& g : r.summed) gmax = std::max(gmax, std::abs(g));
+      for (int i : checks) {
+        const double w = kTwoPi * options.frequencies_hz[i];
+        cd g = 0;
+        for (int z = zmin; z <= zmax; ++z) {
+          const PartialFrfs h = htf.Evaluate(w - z * wp, z, z);
+          g += h[0](options.output, options.input);
+        }
+        r.summed_error[i] = std::abs(g - r.summed[i]);
+        rel[i] = std::abs(r.summed[i]) > 0 ? r.summed_error[i] / std::abs(r.summed[i]) : 0;
+        r.max_summed_disagreement = std::max(r.max_summed_disagreement, gmax > 0 ? r.summed_error[i] / gmax : 0);
+      }
+      for (size_t q = 0; q + 1 < checks.size(); ++q)
+        for (int i = checks[q] + 1; i < checks[q + 1]; ++i)
+          r.summed_error[i] = std::max({r.summed_error[checks[q]], r.summed_error[checks[q + 1]],
+                                        std::max(rel[checks[q]], rel[checks[q + 1]]) * std::abs(r.summed[i])});
+      std::ostringstream s;
+      s << "summed partials: orders " << zmin << ".." << zmax << " by the modal route, checked by "
+        << "the htf route (N = " << htf.harmonics() << ") on every " << options.check_every
+        << "th frequency: max disagreement " << r.max_summed_disagreement << " (relative to max |G|)";
+      r.diagnostics.push_back(s.str());
+    }
+  }
+  r.elapsed_s = internal::SecondsSince(start);
+  return r;
+}
+
+}  // namespace ltp
