@@ -114,8 +114,8 @@ int RunPfrf(PfrfArgs& args) {
 
   if (!args.csv.empty()) WriteCsv(r, args.csv);
   if (!args.plot.empty())
-    Plot(r, l.scene.name + " " + (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
-                (in_name.empty() ? std::to_string(o.input) : in_name),
+    Plot(r, GnuplotEscape(l.scene.name + " " + (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
+                (in_name.empty() ? std::to_string(o.input) : in_name)),
          args.plot_threshold, args.plot);
 
   if (args.json) {

@@ -15,6 +15,15 @@
 
 namespace ltp::cli {
 
+std::string GnuplotEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@') out += "\\\\";
+    out += c;
+  }
+  return out;
+}
+
 std::string GnuplotTerminal(const std::string& file, int width, int height) {
   const std::string ext = std::filesystem::path(file).extension().string();
   std::ostringstream s;

@@ -10,6 +10,10 @@ namespace ltp::cli {
 /// extension is not .svg/.png or gnuplot is missing or fails.
 void RunGnuplot(const std::string& output_file, const std::string& script);
 
+/// Text for a double-quoted gnuplot title in enhanced mode: '_', '^', '{', '}' and '@' are
+/// taken literally (names like z_tip otherwise turn into subscripts).
+std::string GnuplotEscape(const std::string& text);
+
 /// Terminal line for the extension of `file` ("set terminal svg ..." / "pngcairo").
 std::string GnuplotTerminal(const std::string& file, int width, int height);
 

@@ -95,7 +95,7 @@ int RunSnapshot(SnapshotArgs& args) {
   const std::string at = r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
                                      : "t = " + Num(r.time, 8) + " s";
   if (!args.csv.empty()) WriteCsv(r, o.compare, args.csv);
-  if (!args.plot.empty()) Plot(r, o.compare, l.scene.name + ": frozen at " + at, args.plot);
+  if (!args.plot.empty()) Plot(r, o.compare, GnuplotEscape(l.scene.name + ": frozen at " + at), args.plot);
 
   if (args.json) {
     json eig = json::array(), vals = json::array(), fl = json::array();
