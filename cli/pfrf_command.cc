@@ -1,5 +1,6 @@
 // `ltp pfrf`: partial frequency response functions H_z of one input/output channel by the
 // chosen route, checked by the others on a subset of the frequencies.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -238,8 +239,19 @@ int RunPfrf(PfrfArgs& args) {
   for (const RouteRun& run : r.routes)
     for (const auto& d : run.diagnostics) diags.push_back(d);
   if (!diags.empty()) {
+    // A note repeated for many frequencies is printed once, with its count.
+    std::vector<std::pair<std::string, int>> unique;
+    for (const auto& d : diags) {
+      auto it = std::find_if(unique.begin(), unique.end(), [&](const auto& u) { return u.first == d; });
+      if (it == unique.end()) {
+        unique.emplace_back(d, 1);
+      } else {
+        ++it->second;
+      }
+    }
     std::cout << "\n  notes:\n";
-    for (const auto& d : diags) std::cout << "    - " << d << "\n";
+    for (const auto& [d, count] : unique)
+      std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "") << "\n";
   }
   std::cout << "\n  total " << Num(r.elapsed_s, 4) << " s\n";
   return r.ok ? 0 : 1;
