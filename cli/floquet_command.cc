@@ -12,6 +12,8 @@
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/core/mbc.h"
+#include "ltp/core/rotor.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -249,6 +251,39 @@ double Disagreement(const std::vector<FloquetMode>& a, const std::vector<Floquet
   return worst;
 }
 
+// For the `rotor` scene: the multi-blade-coordinate cross-check (N >= 3 identical blades make
+// the rotor time-invariant; its eigenvalues equal the Floquet exponents modulo jΩ).
+json MbcCheck(const LoadedScene& l, const FloquetResult& r) {
+  if (l.scene.name != "rotor" || !r.ok) return nullptr;
+  const RotorParameters rotor = RotorParametersFrom(l.parameters);
+  if (auto reason = MbcNotApplicable(rotor)) return {{"applicable", false}, {"reason", *reason}};
+  const MbcRotorSystem mbc = RotorInMultiBladeCoordinates(rotor);
+  double worst = 0;
+  for (const FloquetMode& m : r.modes) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& e : mbc.eigenvalues)
+      best = std::min(best, std::hypot(m.exponent.real() - e.real(),
+                                       std::remainder(m.exponent.imag() - e.imag(), mbc.rotor_speed)));
+    worst = std::max(worst, best);
+  }
+  return {{"applicable", true}, {"blades", mbc.blades}, {"max_difference", JsonNumber(worst)}};
+}
+
+void PrintMbcCheck(const json& check) {
+  if (check.is_null()) return;
+  if (!check["applicable"].get<bool>()) {
+    std::cout << "  MBC cross-check: not applicable — " << check["reason"].get<std::string>()
+              << "\n";
+    return;
+  }
+  std::cout << "  MBC cross-check (" << check["blades"].get<int>()
+            << " blades): the Floquet exponents equal the eigenvalues of the constant "
+               "multi-blade-coordinate system modulo jΩ to "
+            << Num(check["max_difference"].is_number() ? check["max_difference"].get<double>()
+                                                       : std::numeric_limits<double>::infinity(), 2)
+            << " 1/s\n";
+}
+
 int RunFloquet(FloquetArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
   ResolveOptions(args);
@@ -292,6 +327,7 @@ int RunFloquet(FloquetArgs& args) {
     json j;
     if (args.method == "monodromy") {
       j = MonodromyJson(l, args, r);
+      if (const json mbc = MbcCheck(l, r); !mbc.is_null()) j["mbc_check"] = mbc;
     } else if (args.method == "hill") {
       j = HillJson(l, h);
     } else {
@@ -314,6 +350,7 @@ int RunFloquet(FloquetArgs& args) {
   std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
             << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
   if (run_mono) PrintMonodromy(args, r);
+  if (run_mono) PrintMbcCheck(MbcCheck(l, r));
   if (run_mono && run_hill) std::cout << "\n";
   if (run_hill) PrintHill(h);
   if (run_mono && run_hill)

@@ -134,6 +134,23 @@ TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
   EXPECT_TRUE(k.contains("truncation_estimate"));
 }
 
+// The rotor scene's multi-blade-coordinate cross-check: for N >= 3 identical blades the MBC
+// system is constant and its eigenvalues equal the Floquet exponents modulo jΩ (an independent
+// route: one constant eigenproblem, no integration); for N = 2 MBC does not apply.
+TEST(Cli, RotorMbcCrossCheck) {
+  for (int blades : {3, 4}) {
+    const Outcome r = Ltp("floquet rotor --set blades=" + std::to_string(blades) + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_TRUE(j.contains("mbc_check"));
+    EXPECT_TRUE(j["mbc_check"]["applicable"].get<bool>());
+    EXPECT_LT(j["mbc_check"]["max_difference"].get<double>(), 1e-9) << blades;
+  }
+  const Outcome two = Ltp("floquet rotor --set blades=2 --set Omega=0.9 --json");
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_FALSE(nlohmann::json::parse(two.out)["mbc_check"]["applicable"].get<bool>());
+}
+
 TEST(Cli, BadInputGivesExitTwoAndOneLine) {
   for (const std::string& args : std::vector<std::string>{
            "floquet nosuchscene", "floquet mathieu --set nosuch=1", "floquet mathieu --set a=nan",
