@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "support/throws.h"
 
 namespace ltp {
 namespace {
@@ -19,17 +20,7 @@ namespace {
 using Eigen::MatrixXd;
 using std::numbers::pi;
 
-// The message of the E thrown by f, or a test failure if nothing is thrown.
-template <typename E, typename F>
-std::string ThrownMessage(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an exception";
-  return "";
-}
+using test::ThrownMessage;
 
 std::string ScenesDir() {
   if (const char* dir = std::getenv("LTP_SOURCE_DIR")) return std::string(dir) + "/scenes";

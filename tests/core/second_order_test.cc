@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ltp/core/error.h"
+#include "support/throws.h"
 
 namespace ltp {
 namespace {
@@ -15,17 +16,7 @@ namespace {
 using Eigen::MatrixXd;
 using std::numbers::pi;
 
-// The message of the E thrown by f, or a test failure if nothing is thrown.
-template <typename E, typename F>
-std::string ThrownMessage(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an exception";
-  return "";
-}
+using test::ThrownMessage;
 
 PeriodicSystem::MatrixFunction Constant(const MatrixXd& m) {
   return [m](double, Eigen::Ref<MatrixXd> out) { out = m; };

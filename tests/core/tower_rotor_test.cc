@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "support/throws.h"
 #include "ltp/core/scene.h"
 
 namespace ltp {
@@ -18,16 +19,7 @@ namespace {
 using Eigen::MatrixXd;
 using std::numbers::pi;
 
-template <typename E, typename F>
-std::string ThrownMessage(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an exception";
-  return "";
-}
+using test::ThrownMessage;
 
 TowerRotorParams Defaults() { return TowerRotorParams{}; }
 
