@@ -98,6 +98,19 @@ void FloquetOptions::Validate() const {
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
 }
 
+std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes) {
+  std::vector<int> order(modes.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const double fa = std::abs(modes[a].exponent.imag()), fb = std::abs(modes[b].exponent.imag());
+    if (std::abs(fa - fb) > 1e-9 * (1 + fa)) return fa < fb;
+    if (modes[a].exponent.imag() != modes[b].exponent.imag())
+      return modes[a].exponent.imag() > modes[b].exponent.imag();
+    return modes[a].exponent.real() > modes[b].exponent.real();
+  });
+  return order;
+}
+
 double IntegralOfTrace(const PeriodicSystem& system) {
   const double T = system.period();
   if (const FourierMatrix* fa = system.fourier_A()) return T * (*fa)[0].real().trace();
@@ -409,15 +422,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   }
 
   // 5. Order the modes: by |frequency|, positive first, then by Re λ.
-  std::vector<int> order(n);
-  for (int k = 0; k < n; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    const double fa = std::abs(modes[a].exponent.imag()), fb = std::abs(modes[b].exponent.imag());
-    if (std::abs(fa - fb) > 1e-9 * (1 + fa)) return fa < fb;
-    if (modes[a].exponent.imag() != modes[b].exponent.imag())
-      return modes[a].exponent.imag() > modes[b].exponent.imag();
-    return modes[a].exponent.real() > modes[b].exponent.real();
-  });
+  const std::vector<int> order = ModeDisplayOrder(modes);
   for (int k : order) r.modes.push_back(modes[k]);
   if (options.compute_modes)
     for (int k = 0; k < n; ++k)

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <sstream>
 
 #include "hill_internal.h"
@@ -110,15 +109,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     modes.push_back(m);
     infos.push_back(info);
   }
-  std::vector<int> order(modes.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    const double fa = std::abs(modes[a].exponent.imag()), fb = std::abs(modes[b].exponent.imag());
-    if (std::abs(fa - fb) > 1e-9 * (1 + fa)) return fa < fb;
-    if (modes[a].exponent.imag() != modes[b].exponent.imag())
-      return modes[a].exponent.imag() > modes[b].exponent.imag();
-    return modes[a].exponent.real() > modes[b].exponent.real();
-  });
+  const std::vector<int> order = ModeDisplayOrder(modes);  // the monodromy route's order
   for (int k : order) {
     r.modes.push_back(modes[k]);
     r.info.push_back(infos[k]);

@@ -108,6 +108,10 @@ struct FloquetResult {
 /// (see ok and diagnostics); throws InputError for invalid options.
 FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& options = {});
 
+/// The order in which both routes (monodromy and Hill) report modes: by |Im λ|, positive
+/// frequency first, then by Re λ descending. Returns indices into `modes`.
+std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes);
+
 /// ∫_0^T tr A(t) dt: exact for Fourier and piecewise-constant systems, Gauss–Legendre on the
 /// smooth pieces between breakpoints otherwise.
 double IntegralOfTrace(const PeriodicSystem& system);
