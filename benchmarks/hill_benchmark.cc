@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "ltp/floquet/hill.h"
+#include "support/systems.h"
 
 namespace {
 
@@ -33,24 +34,6 @@ ltp::PeriodicSystem Jeffcott() {
   return ltp::PeriodicSystem::FromFourier(std::numbers::pi / omega, A);
 }
 
-// n/2 damped Mathieu oscillators with distinct stiffnesses, coupled by springs (n = 40).
-ltp::PeriodicSystem MathieuChain(int dofs) {
-  const int n = 2 * dofs;
-  ltp::FourierMatrix A(n, n, 1);
-  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
-  for (int i = 0; i < dofs; ++i) {
-    a0(i, dofs + i) = 1;
-    const double k = 1.0 + 0.37 * i;
-    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
-    if (i > 0) a0(dofs + i, i - 1) = 0.2;
-    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
-    a0(dofs + i, dofs + i) = -0.05;
-    a1(dofs + i, i) = 0.1 * k;
-  }
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return ltp::PeriodicSystem::FromFourier(std::numbers::pi, A);
-}
 
 void Run(benchmark::State& state, const ltp::PeriodicSystem& system, HillSolver solver) {
   HillOptions o;
@@ -72,8 +55,8 @@ void Run(benchmark::State& state, const ltp::PeriodicSystem& system, HillSolver 
 
 void BM_Dense_n4(benchmark::State& s) { Run(s, Jeffcott(), HillSolver::kDense); }
 void BM_Structured_n4(benchmark::State& s) { Run(s, Jeffcott(), HillSolver::kStructured); }
-void BM_Dense_n40(benchmark::State& s) { Run(s, MathieuChain(20), HillSolver::kDense); }
-void BM_Structured_n40(benchmark::State& s) { Run(s, MathieuChain(20), HillSolver::kStructured); }
+void BM_Dense_n40(benchmark::State& s) { Run(s, ltp::test::MathieuChain(20), HillSolver::kDense); }
+void BM_Structured_n40(benchmark::State& s) { Run(s, ltp::test::MathieuChain(20), HillSolver::kStructured); }
 
 BENCHMARK(BM_Dense_n4)->RangeMultiplier(2)->Range(2, 128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Structured_n4)->RangeMultiplier(2)->Range(2, 512)->Unit(benchmark::kMillisecond);

@@ -12,42 +12,13 @@
 #include <numbers>
 
 #include "ltp/floquet/floquet.h"
+#include "support/systems.h"
 
 namespace {
 
 using ltp::FloquetOptions;
 using ltp::IntegratorType;
 using cd = std::complex<double>;
-
-ltp::PeriodicSystem Mathieu(double a, double q, double c) {
-  ltp::FourierMatrix A(2, 2, 1);
-  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
-  a0 << 0, 1, -a, -c;
-  a1(1, 0) = q;
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return ltp::PeriodicSystem::FromFourier(std::numbers::pi, A);
-}
-
-// n/2 Mathieu oscillators with distinct stiffnesses, coupled by springs and a damper chain:
-// a rotor-size (n = 40) smooth periodic system with harmonics ±1.
-ltp::PeriodicSystem MathieuChain(int dofs) {
-  const int n = 2 * dofs;
-  ltp::FourierMatrix A(n, n, 1);
-  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
-  for (int i = 0; i < dofs; ++i) {
-    a0(i, dofs + i) = 1;
-    const double k = 1.0 + 0.37 * i;
-    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
-    if (i > 0) a0(dofs + i, i - 1) = 0.2;
-    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
-    a0(dofs + i, dofs + i) = -0.02;
-    a1(dofs + i, i) = 0.3 * k;  // parametric excitation 0.6k cos 2t
-  }
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return ltp::PeriodicSystem::FromFourier(std::numbers::pi, A);
-}
 
 double MaxLogError(const ltp::FloquetResult& r, const ltp::FloquetResult& ref) {
   double worst = 0;
@@ -100,7 +71,7 @@ FloquetOptions Calibrate(const ltp::PeriodicSystem& sys, IntegratorType type, do
 }
 
 void BM_MathieuMultipliers(benchmark::State& state, IntegratorType type) {
-  const ltp::PeriodicSystem sys = Mathieu(1.5, 2.0, 0.05);
+  const ltp::PeriodicSystem sys = ltp::test::Mathieu(1.5, 2.0, 0.05);
   double err = 0;
   const FloquetOptions o = Calibrate(sys, type, 1e-10, &err);
   ltp::FloquetResult r;
@@ -112,7 +83,7 @@ void BM_MathieuMultipliers(benchmark::State& state, IntegratorType type) {
 }
 
 void BM_Chain40(benchmark::State& state, IntegratorType type) {
-  const ltp::PeriodicSystem sys = MathieuChain(20);
+  const ltp::PeriodicSystem sys = ltp::test::MathieuChain(20, /*damping=*/0.02, /*excitation=*/0.3);
   double err = 0;
   const FloquetOptions o = Calibrate(sys, type, 1e-8, &err);
   ltp::FloquetResult r;
@@ -125,7 +96,7 @@ void BM_Chain40(benchmark::State& state, IntegratorType type) {
 // The full analysis a user gets from `ltp floquet` (auto segments on all cores, modes, branch
 // choice, error estimate by a second run).
 void BM_Chain40FullAnalysis(benchmark::State& state) {
-  const ltp::PeriodicSystem sys = MathieuChain(20);
+  const ltp::PeriodicSystem sys = ltp::test::MathieuChain(20, /*damping=*/0.02, /*excitation=*/0.3);
   FloquetOptions o;
   ltp::FloquetResult r;
   for (auto _ : state) benchmark::DoNotOptimize(r = ltp::AnalyzeFloquet(sys, o));

@@ -78,24 +78,6 @@ std::vector<cd> MeissnerExponents(double a, double b, double c) {
   return {std::log(rho(0)) / (2 * kPi), std::log(rho(1)) / (2 * kPi)};
 }
 
-// n/2 coupled damped Mathieu oscillators (n = 40 at dofs = 20): a rotor-size smooth system.
-PeriodicSystem MathieuChain(int dofs) {
-  const int n = 2 * dofs;
-  FourierMatrix A(n, n, 1);
-  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
-  for (int i = 0; i < dofs; ++i) {
-    a0(i, dofs + i) = 1;
-    const double k = 1.0 + 0.37 * i;
-    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
-    if (i > 0) a0(dofs + i, i - 1) = 0.2;
-    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
-    a0(dofs + i, dofs + i) = -0.05;
-    a1(dofs + i, i) = 0.1 * k;
-  }
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi, A);
-}
 
 // --- Hill matrix ---------------------------------------------------------------------------
 
@@ -347,7 +329,7 @@ TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {
 TEST(HillSolvers, DenseAndStructuredAgree) {
   const std::vector<PeriodicSystem> systems = {test::Mathieu(2.5, 1.0, 0.2),
                                                test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45),
-                                               test::Mathieu(1.5, 2.0), MathieuChain(20)};
+                                               test::Mathieu(1.5, 2.0), test::MathieuChain(20)};
   for (size_t i = 0; i < systems.size(); ++i) {
     HillOptions o;
     o.harmonics = systems[i].states() > 4 ? 8 : 12;

@@ -20,18 +20,6 @@ namespace {
 using cd = std::complex<double>;
 constexpr double kPi = std::numbers::pi;
 
-// Damped Mathieu with input and output: y'' + c y' + (a − 2q cos 2t) y = u, output y.
-PeriodicSystem MathieuIo(double a, double q, double c) {
-  FourierMatrix A(2, 2, 1);
-  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
-  a0 << 0, 1, -a, -c;
-  a1(1, 0) = q;
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi, A, FourierMatrix::Constant((Eigen::MatrixXd(2, 1) << 0, 1).finished()),
-                                     FourierMatrix::Constant((Eigen::MatrixXd(1, 2) << 1, 0).finished()));
-}
-
 // A 3-state LTI system written as a periodic one (T = 1.3, no harmonics), with feedthrough.
 PeriodicSystem Lti3() {
   Eigen::MatrixXd a(3, 3), b(3, 1), c(1, 3), d(1, 1);
@@ -126,7 +114,7 @@ TEST(PartialFrf, RoutesAgreeOnUndampedStableMathieu) {
   // c = 0, a = 1.5, q = 0.2: stable (above the first tongue, whose upper edge is
   // a_1(q) ≈ 1 + q − q²/8); multipliers on the unit circle, lines near ±1.22 + 2v rad/s.
   // Off-resonance points only.
-  const PeriodicSystem sys = MathieuIo(1.5, 0.2, 0.0);
+  const PeriodicSystem sys = test::MathieuIo(1.5, 0.2, 0.0);
   const FloquetResult fl = AnalyzeFloquet(sys);
   ASSERT_TRUE(fl.ok);
   EXPECT_LT(std::abs(fl.max_real_exponent), 1e-8);
@@ -149,7 +137,7 @@ TEST(PartialFrf, RoutesAgreeOnJeffcott) {
 
 TEST(PartialFrf, RealSystemSymmetry) {
   // H_{−z}(−ω) = conj(H_z(ω)) for real systems (DESIGN.md conventions).
-  const PeriodicSystem sys = MathieuIo(2.0, 0.3, 0.1);
+  const PeriodicSystem sys = test::MathieuIo(2.0, 0.3, 0.1);
   const FloquetResult fl = AnalyzeFloquet(sys);
   const ModalModel model = BuildModalModel(sys, fl);
   HtfSolver htf(sys);
@@ -166,7 +154,7 @@ TEST(PartialFrf, RealSystemSymmetry) {
 
 TEST(PartialFrf, ModalInvariantToBranchChoice) {
   // λ_k → λ_k + jΩp with ξ_k(t) → ξ_k(t) e^{−jΩp t} describes the same solution.
-  const PeriodicSystem sys = MathieuIo(2.0, 0.3, 0.1);
+  const PeriodicSystem sys = test::MathieuIo(2.0, 0.3, 0.1);
   const FloquetResult fl = AnalyzeFloquet(sys);
   ASSERT_TRUE(fl.ok);
   FloquetResult shifted = fl;
@@ -210,7 +198,7 @@ TEST(PartialFrf, NearDefectiveModalReportsUnreliable) {
   // instability tongue, where the multipliers meet at −1 and Φ becomes a Jordan block. The
   // boundary is located here by bisection on tr Φ = −2.
   const double q = 0.3;
-  auto trace = [&](double a) { return StateTransition(MathieuIo(a, q, 0), 0, kPi).phi.trace(); };
+  auto trace = [&](double a) { return StateTransition(test::MathieuIo(a, q, 0), 0, kPi).phi.trace(); };
   double lo = 1.1, hi = 1.6;  // tr Φ(1.1) < −2 (unstable tongue), tr Φ(1.6) > −2
   ASSERT_LT(trace(lo), -2);
   ASSERT_GT(trace(hi), -2);
@@ -219,10 +207,10 @@ TEST(PartialFrf, NearDefectiveModalReportsUnreliable) {
     (trace(mid) < -2 ? lo : hi) = mid;
   }
   // Well inside the stable region the modal route trusts itself ...
-  const PeriodicSystem far = MathieuIo(hi + 1e-3, q, 0);
+  const PeriodicSystem far = test::MathieuIo(hi + 1e-3, q, 0);
   EXPECT_TRUE(BuildModalModel(far, AnalyzeFloquet(far)).reliable);
   // ... 1e-9 from the boundary cond Ξ ≈ 3e4 > max_condition (1e4): it reports itself unreliable.
-  const PeriodicSystem sys = MathieuIo(hi + 1e-9, q, 0);
+  const PeriodicSystem sys = test::MathieuIo(hi + 1e-9, q, 0);
   const FloquetResult fl = AnalyzeFloquet(sys);
   ASSERT_TRUE(fl.ok);
   const ModalModel model = BuildModalModel(sys, fl);
@@ -240,7 +228,7 @@ TEST(PartialFrf, NearDefectiveModalReportsUnreliable) {
 
 TEST(PartialFrf, SweepErrorEstimateAndResonances) {
   // a = 2, q = 0.2, c = 0.05: stable, one Floquet frequency near √2/2π ≈ 0.225 Hz.
-  const PeriodicSystem sys = MathieuIo(2.0, 0.2, 0.05);
+  const PeriodicSystem sys = test::MathieuIo(2.0, 0.2, 0.05);
   PfrfOptions o;
   for (int i = 0; i <= 200; ++i) o.frequencies_hz.push_back(0.005 * i);  // 0..1 Hz
   o.min_order = -2;
@@ -266,7 +254,7 @@ TEST(PartialFrf, SweepErrorEstimateAndResonances) {
 }
 
 TEST(PartialFrf, SweepAllRoutes) {
-  const PeriodicSystem sys = MathieuIo(2.0, 0.3, 0.3);
+  const PeriodicSystem sys = test::MathieuIo(2.0, 0.3, 0.3);
   PfrfOptions o;
   for (int i = 0; i <= 20; ++i) o.frequencies_hz.push_back(0.05 * i + 0.013);
   o.checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};
@@ -280,7 +268,7 @@ TEST(PartialFrf, SweepAllRoutes) {
 }
 
 TEST(PartialFrf, BadInputThrows) {
-  const PeriodicSystem sys = MathieuIo(1.0, 0.3, 0.3);
+  const PeriodicSystem sys = test::MathieuIo(1.0, 0.3, 0.3);
   PfrfOptions o;
   EXPECT_THROW(ComputePartialFrf(sys, o), InputError);  // no frequencies
   o.frequencies_hz = {0.1};
@@ -296,7 +284,7 @@ TEST(PartialFrf, BadInputThrows) {
 TEST(Snapshot, FrozenMathieuClosedForm) {
   // Frozen at t = 0: y'' + c y' + (a − 2q) y = u, so H(ω) = 1 / (a − 2q − ω² + jcω).
   const double a = 1.0, q = 0.2, c = 0.05;
-  const PeriodicSystem sys = MathieuIo(a, q, c);
+  const PeriodicSystem sys = test::MathieuIo(a, q, c);
   SnapshotOptions o;
   o.time = 0.0;
   o.frequencies_hz = {0.0, 0.1, 0.3};

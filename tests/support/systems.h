@@ -24,6 +24,35 @@ inline PeriodicSystem Mathieu(double a, double q, double c = 0) {
   return PeriodicSystem::FromFourier(kPi, A);
 }
 
+/// The same with input u (B = [0; 1]) and output y (C = [1, 0]): y'' + c y' + (a − 2q cos 2t) y = u.
+inline PeriodicSystem MathieuIo(double a, double q, double c) {
+  const PeriodicSystem s = Mathieu(a, q, c);
+  return PeriodicSystem::FromFourier(s.period(), *s.fourier_A(),
+                                     FourierMatrix::Constant((Eigen::MatrixXd(2, 1) << 0, 1).finished()),
+                                     FourierMatrix::Constant((Eigen::MatrixXd(1, 2) << 1, 0).finished()));
+}
+
+/// `dofs` damped Mathieu oscillators with stiffnesses k_i = 1 + 0.37 i, coupled to their
+/// neighbours by springs 0.2, damping `damping`, parametric excitation 2·excitation·k_i cos 2t:
+/// a rotor-size (n = 2·dofs) smooth periodic system with harmonics ±1, period π.
+inline PeriodicSystem MathieuChain(int dofs, double damping = 0.05, double excitation = 0.1) {
+  const int n = 2 * dofs;
+  FourierMatrix A(n, n, 1);
+  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
+  for (int i = 0; i < dofs; ++i) {
+    a0(i, dofs + i) = 1;
+    const double k = 1.0 + 0.37 * i;
+    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
+    if (i > 0) a0(dofs + i, i - 1) = 0.2;
+    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
+    a0(dofs + i, dofs + i) = -damping;
+    a1(dofs + i, i) = excitation * k;
+  }
+  A.SetHarmonic(0, a0);
+  A.SetHarmonic(1, a1);
+  return PeriodicSystem::FromFourier(kPi, A);
+}
+
 /// Meissner y'' + c y' + (a + b·sign(cos t)) y = 0, period 2π, jumps at π/2 and 3π/2.
 inline PeriodicSystem Meissner(double a, double b, double c = 0) {
   PeriodicSystem::Functions f;
