@@ -17,5 +17,6 @@ Command AddInfoCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddHillCommand(CLI::App& app);
 Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
+Command AddChartCommand(CLI::App& app);
 
 }  // namespace ltp::cli

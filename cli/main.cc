@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       ltp::cli::AddHillCommand(app),
       ltp::cli::AddPfrfCommand(app),
       ltp::cli::AddSnapshotCommand(app),
+      ltp::cli::AddChartCommand(app),
   };
 
   try {

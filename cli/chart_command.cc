@@ -1,0 +1,431 @@
+// `ltp chart`: Campbell and damping diagrams over one parameter, stability maps over two, with
+// the unstable intervals (or boundary points) refined beyond the grid. Streams every point to
+// disk as it completes, resumes an interrupted sweep, and shows progress on a terminal.
+#include <omp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#ifdef LTP_WITH_MPI
+#include <mpi.h>
+#endif
+
+#include "chart_mpi.h"
+#include "chart_plot.h"
+#include "chart_record.h"
+#include "command.h"
+#include "format.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/stability_boundary.h"
+#include "ltp/floquet/sweep.h"
+#include "plot.h"
+#include "scene_args.h"
+
+namespace ltp::cli {
+
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct ChartArgs {
+  SceneArgs scene;
+  std::string sweep, sweep2;
+  std::string method = "monodromy";
+  std::string integrator = "rkf78";
+  double tol = 1e-10;
+  int threads = 0;
+  std::string csv, plot;
+  bool json = false, resume = false, compare = false, no_refine = false;
+  int check_every = -1;  // -1: 1 for 1-D sweeps, 97 for maps
+  int refine_lines = 50;
+  double refine_tol = 1e-8;
+  int sidebands = 2;
+  long stop_after = 0;  // tests: interrupt after this many points, as Ctrl-C would
+};
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void OnInterrupt(int) { g_interrupted = true; }
+
+// "rotor speed Omega (rad/s), > 0" → "Omega [rad/s]".
+std::string AxisLabel(const Scene& scene, const std::string& name) {
+  for (const auto& p : scene.parameters) {
+    if (p.name != name) continue;
+    const auto open = p.description.find('('), close = p.description.find(')');
+    if (open != std::string::npos && close != std::string::npos && close > open + 1)
+      return name + "  [" + p.description.substr(open + 1, close - open - 1) + "]";
+  }
+  return name;
+}
+
+// A one-line progress bar with ETA on stderr, redrawn at most 10 times a second; nothing when
+// stderr is not a terminal (logs and CI stay clean).
+class Progress {
+ public:
+  Progress(size_t total, size_t already, bool enabled)
+      : total_(total), done_(already), start_done_(already), enabled_(enabled && isatty(STDERR_FILENO)) {}
+  void Tick() {
+    ++done_;
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (now - last_ < std::chrono::milliseconds(100) && done_ < total_) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double rate = (done_ - start_done_) / std::max(elapsed, 1e-9);
+    const double eta = rate > 0 ? (total_ - done_) / rate : 0;
+    const int width = 30;
+    const int filled = static_cast<int>(width * double(done_) / double(std::max<size_t>(total_, 1)));
+    std::cerr << "\r  [" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
+              << std::setw(3) << (100 * done_ / std::max<size_t>(total_, 1)) << "%  " << done_ << "/"
+              << total_ << " points  " << Num(elapsed, 3) << " s, ETA " << Num(eta, 2) << " s   "
+              << std::flush;
+  }
+  void Finish() {
+    if (enabled_) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
+  }
+
+ private:
+  size_t total_, done_, start_done_;
+  bool enabled_;
+  Clock::time_point start_ = Clock::now(), last_{};
+};
+
+json BoundaryJson(const BoundaryEstimate& e) {
+  return {{"value", JsonNumber(e.value)}, {"refined", e.refined}, {"bracket", JsonNumber(e.bracket)},
+          {"at_sweep_edge", e.at_sweep_edge}, {"evaluations", e.evaluations}, {"note", e.note}};
+}
+
+SweepOptions MakeOptions(const ChartArgs& args, bool map) {
+  SweepOptions o;
+  if (args.method == "monodromy") o.method = SweepMethod::kMonodromy;
+  else if (args.method == "hill") o.method = SweepMethod::kHill;
+  else throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
+  const auto type = ParseIntegratorType(args.integrator);
+  if (!type) throw InputError("--integrator: unknown integrator '" + args.integrator + "'");
+  o.floquet.integrator.type = *type;
+  if (!(args.tol > 0 && args.tol < 1)) throw InputError("--tol must be in (0, 1)");
+  o.floquet.integrator.rel_tol = args.tol;
+  o.floquet.integrator.abs_tol = args.tol * 1e-3;
+  o.hill_tol = args.tol;
+  o.modes = !map;
+  o.snapshot = args.compare && !map;
+  o.check_every = args.check_every >= 0 ? args.check_every : (map ? 97 : 1);
+  if (args.threads < 0) throw InputError("--threads must be >= 0");
+  o.threads = args.threads;
+  o.Validate();
+  return o;
+}
+
+int RunChart(ChartArgs& args) {
+  const Ranks ranks = StartRanks();
+  struct StopAtExit {
+    ~StopAtExit() { StopRanks(); }
+  } stop_at_exit;
+  const bool root = ranks.rank == 0;
+  try {
+    if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // a bad extension fails first
+    if (args.sidebands < 0 || args.sidebands > 8) throw InputError("--sidebands must be in 0..8");
+    if (!(args.refine_tol > 0 && args.refine_tol < 1e-2)) throw InputError("--refine-tol must be in (0, 0.01)");
+    LoadedScene l = LoadSceneArgs(args.scene);
+    std::vector<SweepAxis> axes = {SweepAxis::Parse(args.sweep)};
+    if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
+    const SweepGrid grid = MakeSweepGrid(l.scene, axes);
+    const bool map = grid.axes.size() == 2;
+    const SweepOptions options = MakeOptions(args, map);
+    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+
+    json identity = {{"scene", l.scene.name}, {"source", l.scene.source},
+                     {"parameters", ParametersJson(l.parameters)}, {"method", args.method},
+                     {"integrator", args.integrator}, {"tol", args.tol},
+                     {"check_every", options.check_every}, {"compare", options.snapshot}};
+    for (const auto& a : grid.axes) identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
+
+    // Points already done (--resume), then the rest.
+    std::unique_ptr<ChartRecord> record;
+    if (root) record = std::make_unique<ChartRecord>(args.csv, grid, l.system.states(), identity, args.resume);
+    std::vector<SweepPoint> points(grid.size());
+    std::vector<char> have(grid.size(), 0);
+    size_t resumed = 0;
+    if (root)
+      for (const SweepPoint& p : record->resumed())
+        if (p.index < points.size() && !have[p.index]) {
+          points[p.index] = p;
+          have[p.index] = 1;
+          ++resumed;
+        }
+    // Every rank needs the same list of missing points.
+    std::vector<size_t> todo;
+    for (size_t i = 0; i < grid.size(); ++i)
+      if (!have[i]) todo.push_back(i);
+#ifdef LTP_WITH_MPI
+    if (ranks.size > 1) {
+      unsigned long count = todo.size();
+      MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+      todo.resize(count);
+      MPI_Bcast(todo.data(), static_cast<int>(count), MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+    }
+#endif
+
+    Progress progress(grid.size(), resumed, root && !args.json);
+    auto previous = std::signal(SIGINT, OnInterrupt);
+    const auto sweep_start = Clock::now();
+    std::mutex progress_mutex;
+    DistributedSweep(ranks, l.scene, l.parameters, grid, todo, options, [&](SweepPoint&& p) {
+      record->Add(p);
+      const size_t index = p.index;
+      points[index] = std::move(p);  // distinct indices: no two threads write one element
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      have[index] = 1;
+      progress.Tick();
+      if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
+    }, &g_interrupted);
+    std::signal(SIGINT, previous);
+    const double sweep_s = std::chrono::duration<double>(Clock::now() - sweep_start).count();
+    progress.Finish();
+    if (!root) return 0;
+
+    size_t done = 0;
+    for (char h : have) done += h;
+    if (done < grid.size()) {
+      std::cerr << "ltp chart: interrupted after " << done << " of " << grid.size() << " points";
+      if (!args.csv.empty())
+        std::cerr << "; '" << args.csv << "' holds them; finish with the same command and --resume";
+      std::cerr << "\n";
+      return 130;
+    }
+
+    // Mode tracking (1-D), refined boundaries.
+    ModeTracking tracking;
+    if (!map) tracking = TrackModes(points);
+    BoundaryOptions bopt;
+    bopt.rel_tol = args.refine_tol;
+    bopt.max_lines = args.refine_lines;
+    bopt.threads = options.threads;
+    const auto refine_start = Clock::now();
+    std::vector<UnstableInterval> intervals;
+    std::vector<BoundaryPoint> boundary;
+    if (!map) {
+      intervals = RefineUnstableIntervals(l.scene, l.parameters, grid, points, options, bopt);
+      if (args.no_refine)
+        for (auto& in : intervals) in.lo.refined = in.hi.refined = false;
+    }
+    if (map && !args.no_refine)
+      boundary = RefineBoundaryPoints(l.scene, l.parameters, grid, points, options, bopt);
+    const double refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
+    record->Finish(points, map ? nullptr : &tracking);
+
+    // Summary numbers.
+    std::map<StabilityVerdict, size_t> counts;
+    double max_error = -1;
+    size_t checked = 0;
+    for (const SweepPoint& p : points) {
+      ++counts[p.verdict];
+      if (p.ok && p.error_estimate >= 0) {
+        ++checked;
+        max_error = std::max(max_error, p.error_estimate);
+      }
+    }
+    // Title: the scene and what the user set (all parameters are in --json).
+    std::string title = l.scene.name;
+    if (!args.scene.set.empty()) {
+      title += " (";
+      for (size_t i = 0; i < args.scene.set.size(); ++i) title += (i ? ", " : "") + args.scene.set[i];
+      title += ")";
+    }
+    std::string plot_note;
+    if (!args.plot.empty()) {
+      ChartPlotInput in;
+      in.title = (map ? "Stability map: " : "Campbell diagram: ") + title;
+      for (const auto& a : grid.axes) in.axis_labels.push_back(AxisLabel(l.scene, a.name));
+      in.grid = &grid;
+      in.points = &points;
+      in.tracking = &tracking;
+      in.intervals = &intervals;
+      in.boundary = &boundary;
+      in.sidebands = args.sidebands;
+      in.compare = args.compare;
+      plot_note = DrawChart(in, args.plot);
+    }
+
+    if (args.json) {
+      json j = {{"scene", l.scene.name},
+                {"parameters", ParametersJson(l.parameters)},
+                {"states", l.system.states()},
+                {"method", args.method},
+                {"integrator", args.integrator},
+                {"tol", args.tol},
+                {"points", grid.size()},
+                {"resumed_points", resumed},
+                {"stable", counts[StabilityVerdict::kStable]},
+                {"marginal", counts[StabilityVerdict::kMarginal]},
+                {"unstable", counts[StabilityVerdict::kUnstable]},
+                {"failed", counts[StabilityVerdict::kFailed]},
+                {"checked_points", checked},
+                {"max_error_estimate", JsonNumber(max_error)},
+                {"threads", threads},
+                {"ranks", ranks.size},
+                {"sweep_s", sweep_s},
+                {"refine_s", refine_s},
+                {"csv", args.csv},
+                {"plot", args.plot}};
+      for (const auto& a : grid.axes)
+        j["sweep"].push_back({{"name", a.name}, {"start", a.start}, {"stop", a.stop}, {"step", a.step},
+                              {"count", a.Values().size()}});
+      json failures = json::array();
+      for (const SweepPoint& p : points)
+        if (!p.ok) failures.push_back({{"values", p.values}, {"reason", p.failure}});
+      j["failures"] = failures;
+      if (!map) {
+        json list = json::array(), detail = json::array();
+        for (const auto& in : intervals) {
+          list.push_back({JsonNumber(in.lo.value), JsonNumber(in.hi.value)});
+          detail.push_back({{"lo", BoundaryJson(in.lo)}, {"hi", BoundaryJson(in.hi)}});
+        }
+        j["unstable_intervals"] = list;
+        j["unstable_interval_details"] = detail;
+        j["mode_tracking"] = {{"min_mac", JsonNumber(tracking.min_mac)},
+                              {"ambiguous_points", tracking.ambiguous.size()}};
+      } else {
+        json list = json::array(), detail = json::array();
+        for (const auto& b : boundary) {
+          if (!b.estimate.refined) continue;
+          list.push_back({JsonNumber(b.values[0]), JsonNumber(b.values[1])});
+        }
+        for (const auto& b : boundary)
+          detail.push_back({{"values", {JsonNumber(b.values[0]), JsonNumber(b.values[1])}},
+                            {"refined_parameter", grid.axes[static_cast<size_t>(b.axis)].name},
+                            {"entering_unstable", b.entering_unstable},
+                            {"estimate", BoundaryJson(b.estimate)}});
+        j["boundary_points"] = list;
+        j["boundary_point_details"] = detail;
+      }
+      if (!plot_note.empty()) j["plot_note"] = plot_note;
+      std::cout << j.dump(2) << "\n";
+      return counts[StabilityVerdict::kFailed] == grid.size() ? 1 : 0;
+    }
+
+    std::cout << (map ? "Stability map of " : "Campbell sweep of ") << title << "\n  ";
+    for (size_t a = 0; a < grid.axes.size(); ++a)
+      std::cout << (a ? " × " : "") << grid.axes[a].name << " = " << Num(grid.axes[a].start, 8) << " … "
+                << Num(grid.values[a].back(), 8) << " (" << grid.values[a].size() << " points)";
+    std::cout << "; " << args.method << " route";
+    if (options.method == SweepMethod::kMonodromy) std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
+    std::cout << ", " << threads << (threads == 1 ? " thread" : " threads");
+    if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
+    std::cout << "\n  " << grid.size() << " points in " << Num(sweep_s, 3) << " s";
+    if (resumed) std::cout << " (" << resumed << " resumed from the journal)";
+    std::cout << ": " << counts[StabilityVerdict::kStable] << " stable, " << counts[StabilityVerdict::kMarginal]
+              << " marginal, " << counts[StabilityVerdict::kUnstable] << " unstable, "
+              << counts[StabilityVerdict::kFailed] << " failed\n  error estimate: ";
+    if (checked)
+      std::cout << "max " << Num(max_error, 2) << " 1/s over " << checked << " checked points (tighter rerun)\n";
+    else
+      std::cout << "not computed (--check-every 0)\n";
+    if (!map) {
+      std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(tracking.min_mac, 3);
+      if (!tracking.ambiguous.empty()) std::cout << ", ambiguous at " << tracking.ambiguous.size() << " points";
+      std::cout << "\n\n";
+      if (intervals.empty()) {
+        std::cout << "  no unstable interval in the sweep\n";
+      } else {
+        std::cout << "  unstable intervals of " << grid.axes[0].name << " (boundaries refined to "
+                  << Num(args.refine_tol, 2) << " relative; " << Num(refine_s, 3) << " s):\n"
+                  << "              from                 to      max Re λ inside [1/s]\n";
+        for (const auto& in : intervals) {
+          double peak = -INFINITY;
+          for (const SweepPoint& p : points)
+            if (p.ok && p.values[0] >= in.lo.value && p.values[0] <= in.hi.value)
+              peak = std::max(peak, p.max_real_exponent);
+          auto end = [](const BoundaryEstimate& e) {
+            std::ostringstream s;
+            s << Num(e.value, 12, 18) << (e.refined ? " " : (e.at_sweep_edge ? "<" : "?"));
+            return s.str();
+          };
+          std::cout << "    " << end(in.lo) << " " << end(in.hi) << Num(peak, 4, 14) << "\n";
+          for (const auto* e : {&in.lo, &in.hi})
+            if (!e->refined && !e->note.empty()) std::cout << "        note: " << e->note << "\n";
+        }
+        std::cout << "    (< : the instability continues beyond the sweep; ? : not refined)\n";
+      }
+    } else {
+      size_t refined = 0;
+      for (const auto& b : boundary) refined += b.estimate.refined;
+      std::cout << "  boundary points: " << refined << " refined of " << boundary.size()
+                << " grid crossings along " << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
+                << " lines per axis (" << Num(refine_s, 3) << " s)\n";
+    }
+    const int failed = static_cast<int>(counts[StabilityVerdict::kFailed]);
+    if (failed) {
+      std::cout << "  failed points (first 5):\n";
+      int shown = 0;
+      for (const SweepPoint& p : points)
+        if (!p.ok && shown++ < 5) {
+          std::cout << "    ";
+          for (size_t a = 0; a < p.values.size(); ++a)
+            std::cout << (a ? ", " : "") << grid.axes[a].name << " = " << Num(p.values[a], 8);
+          std::cout << ": " << p.failure << "\n";
+        }
+    }
+    if (!args.csv.empty()) std::cout << "  wrote " << args.csv << "\n";
+    if (!args.plot.empty()) std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
+    return failed == static_cast<int>(grid.size()) ? 1 : 0;
+  } catch (const std::exception& e) {
+    if (ranks.size > 1) {
+      std::string message = e.what();
+      for (char& ch : message)
+        if (ch == '\n') ch = ' ';
+      std::cerr << "ltp: error (rank " << ranks.rank << "): " << message << "\n";
+      AbortRanks(2);
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
+Command AddChartCommand(CLI::App& app) {
+  static ChartArgs args;
+  auto* cmd = app.add_subcommand(
+      "chart", "Campbell/damping diagrams (one --sweep) or stability maps (--sweep and --sweep2)");
+  AddSceneArgs(cmd, args.scene);
+  cmd->add_option("--sweep", args.sweep, "NAME=START:STOP:STEP, e.g. Omega=0.3:1.8:0.005")->required();
+  cmd->add_option("--sweep2", args.sweep2, "second parameter for a stability map, e.g. q=0:8:0.02");
+  cmd->add_option("--method", args.method, "monodromy | hill")->capture_default_str();
+  cmd->add_option("--integrator", args.integrator, "monodromy integrator (see `ltp floquet --help`)")
+      ->capture_default_str();
+  cmd->add_option("--tol", args.tol, "integrator relative tolerance (hill: truncation tolerance)")
+      ->capture_default_str();
+  cmd->add_option("--threads", args.threads, "threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--csv", args.csv, "one row per point, written as points complete");
+  cmd->add_flag("--resume", args.resume, "finish the interrupted sweep of --csv FILE");
+  cmd->add_option("--plot", args.plot, "Campbell + damping diagram or stability map (FILE.svg|.png)");
+  cmd->add_flag("--json", args.json, "one JSON summary on stdout");
+  cmd->add_flag("--compare", args.compare, "also snapshot A(0) and averaged-system frequencies (1-D)");
+  cmd->add_option("--check-every", args.check_every,
+                  "error estimate on every K-th point (default: all for 1-D, every 97th for maps; 0 = none)");
+  cmd->add_flag("--no-refine", args.no_refine, "do not refine boundaries beyond the grid");
+  cmd->add_option("--refine-tol", args.refine_tol, "relative tolerance of refined boundaries")
+      ->capture_default_str();
+  cmd->add_option("--refine-lines", args.refine_lines, "maps: grid lines per axis along which "
+                  "boundaries are refined (0 = all)")->capture_default_str();
+  cmd->add_option("--sidebands", args.sidebands, "Campbell: faint families f ± kΩp/2π, k = 1..K")
+      ->capture_default_str();
+  cmd->add_option("--stop-after", args.stop_after, "testing: stop after N points as if interrupted")
+      ->group("");  // hidden
+  return {cmd, [] { return RunChart(args); }};
+}
+
+}  // namespace ltp::cli

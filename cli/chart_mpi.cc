@@ -1,0 +1,126 @@
+#include "chart_mpi.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+
+#include "chart_record.h"
+
+#ifdef LTP_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace ltp::cli {
+
+#ifdef LTP_WITH_MPI
+
+Ranks StartRanks() {
+  // Not started by mpirun/srun: one rank, and no MPI start-up cost (a singleton MPI_Init
+  // spawns a helper daemon and takes a good fraction of a second).
+  if (!std::getenv("OMPI_COMM_WORLD_SIZE") && !std::getenv("PMIX_RANK") && !std::getenv("PMI_SIZE"))
+    return {};
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) {
+    int provided = 0;
+    // Only the main thread calls MPI; OpenMP threads compute.
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  }
+  Ranks r;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &r.size);
+  return r;
+}
+
+void StopRanks() {
+  int initialized = 0, finalized = 0;
+  MPI_Initialized(&initialized);
+  MPI_Finalized(&finalized);
+  if (initialized && !finalized) MPI_Finalize();
+}
+
+void AbortRanks(int code) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterMap& base,
+                        const SweepGrid& grid, const std::vector<size_t>& indices,
+                        const SweepOptions& options,
+                        const std::function<void(SweepPoint&&)>& on_point,
+                        const std::atomic<bool>* cancel) {
+  if (ranks.size == 1) return RunSweep(scene, base, grid, indices, options, on_point, cancel);
+  size_t done = 0, next = 0;
+  size_t round = static_cast<size_t>(ranks.size) * 16;
+  while (next < indices.size()) {
+    const size_t end = std::min(indices.size(), next + round);
+    // Round-robin within the round: neighbouring points (similar cost) go to different ranks.
+    std::vector<size_t> mine;
+    for (size_t i = next + static_cast<size_t>(ranks.rank); i < end; i += static_cast<size_t>(ranks.size))
+      mine.push_back(indices[i]);
+    const auto start = std::chrono::steady_clock::now();
+    std::string payload;
+    std::mutex payload_mutex;
+    done += RunSweep(scene, base, grid, mine, options, [&](SweepPoint&& p) {
+      if (ranks.rank == 0) {
+        on_point(std::move(p));
+      } else {
+        const std::string line = PointToJson(p).dump() + "\n";
+        std::lock_guard<std::mutex> lock(payload_mutex);
+        payload += line;
+      }
+    }, cancel);
+    // Gather the other ranks' points on rank 0.
+    int length = static_cast<int>(payload.size());
+    std::vector<int> lengths(static_cast<size_t>(ranks.size)), offsets(static_cast<size_t>(ranks.size));
+    MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::string all;
+    if (ranks.rank == 0) {
+      int total = 0;
+      for (int r = 0; r < ranks.size; ++r) {
+        offsets[static_cast<size_t>(r)] = total;
+        total += lengths[static_cast<size_t>(r)];
+      }
+      all.resize(static_cast<size_t>(total));
+    }
+    MPI_Gatherv(payload.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
+                MPI_CHAR, 0, MPI_COMM_WORLD);
+    if (ranks.rank == 0) {
+      size_t from = 0;
+      while (from < all.size()) {
+        const size_t nl = all.find('\n', from);
+        on_point(PointFromJson(nlohmann::json::parse(all.substr(from, nl - from))));
+        ++done;
+        from = nl + 1;
+      }
+    }
+    // Grow the rounds until one takes about two seconds: frequent enough that little is lost
+    // to a killed job, rare enough that the gathers cost nothing.
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    MPI_Allreduce(MPI_IN_PLACE, &elapsed, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    if (elapsed < 1.0) round *= 2;
+    next = end;
+  }
+  return done;
+}
+
+#else
+
+Ranks StartRanks() { return {}; }
+void StopRanks() {}
+void AbortRanks(int code) { std::exit(code); }
+
+size_t DistributedSweep(const Ranks&, const Scene& scene, const ParameterMap& base,
+                        const SweepGrid& grid, const std::vector<size_t>& indices,
+                        const SweepOptions& options,
+                        const std::function<void(SweepPoint&&)>& on_point,
+                        const std::atomic<bool>* cancel) {
+  return RunSweep(scene, base, grid, indices, options, on_point, cancel);
+}
+
+#endif
+
+}  // namespace ltp::cli

@@ -1,0 +1,32 @@
+#pragma once
+// Pictures of `ltp chart`: Campbell + damping diagrams (1-D sweeps) and stability maps
+// (2-D sweeps, the Ince–Strutt chart for Mathieu), through gnuplot.
+#include <string>
+#include <vector>
+
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/stability_boundary.h"
+#include "ltp/floquet/sweep.h"
+
+namespace ltp::cli {
+
+struct ChartPlotInput {
+  std::string title;
+  std::vector<std::string> axis_labels;  ///< "Omega [rad/s]"
+  const SweepGrid* grid = nullptr;
+  const std::vector<SweepPoint>* points = nullptr;  ///< whole grid, index order
+  const ModeTracking* tracking = nullptr;           ///< 1-D
+  const std::vector<UnstableInterval>* intervals = nullptr;  ///< 1-D
+  const std::vector<BoundaryPoint>* boundary = nullptr;      ///< 2-D
+  int sidebands = 2;   ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
+  bool compare = false;  ///< draw snapshot and averaged-system frequencies (1-D)
+};
+
+/// The gnuplot script (data inline) for the chart.
+std::string ChartPlotScript(const ChartPlotInput& in, const std::string& file);
+
+/// Draws the chart. Without gnuplot, writes the script to `file + ".gp"` and returns a message
+/// telling how to render it; returns "" when the picture was drawn.
+std::string DrawChart(const ChartPlotInput& in, const std::string& file);
+
+}  // namespace ltp::cli

@@ -1,0 +1,248 @@
+#include "chart_record.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "ltp/core/error.h"
+
+namespace ltp::cli {
+
+namespace {
+
+using nlohmann::json;
+
+// JSON has no NaN or infinity: those travel as strings.
+json Number(double x) {
+  if (std::isfinite(x)) return x;
+  return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+}
+double FromNumber(const json& j) {
+  if (j.is_number()) return j.get<double>();
+  const std::string s = j.get<std::string>();
+  if (s == "inf") return INFINITY;
+  if (s == "-inf") return -INFINITY;
+  return NAN;
+}
+
+StabilityVerdict VerdictFrom(const std::string& s) {
+  if (s == "stable") return StabilityVerdict::kStable;
+  if (s == "marginal") return StabilityVerdict::kMarginal;
+  if (s == "unstable") return StabilityVerdict::kUnstable;
+  return StabilityVerdict::kFailed;
+}
+
+std::string CsvText(std::string s) {
+  for (char& c : s)
+    if (c == '"' || c == '\n') c = '\'';
+  return "\"" + s + "\"";
+}
+
+std::string Full(double x) {
+  if (!std::isfinite(x)) return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+  std::ostringstream s;
+  s << std::setprecision(12) << x;
+  return s.str();
+}
+
+}  // namespace
+
+json PointToJson(const SweepPoint& p) {
+  json modes = json::array();
+  for (const FloquetMode& m : p.modes)
+    modes.push_back({Number(m.exponent.real()), Number(m.exponent.imag()), Number(m.frequency_hz),
+                     Number(m.damping_ratio), Number(m.log_multiplier.real()),
+                     Number(m.log_multiplier.imag()), m.branch});
+  json shapes = json::array();
+  for (Eigen::Index k = 0; k < p.shapes.cols(); ++k) {
+    json col = json::array();
+    for (Eigen::Index i = 0; i < p.shapes.rows(); ++i)
+      col.push_back({Number(p.shapes(i, k).real()), Number(p.shapes(i, k).imag())});
+    shapes.push_back(col);
+  }
+  json values = json::array();
+  for (double v : p.values) values.push_back(Number(v));
+  auto eigenvalues = [](const std::vector<std::complex<double>>& e) {
+    json a = json::array();
+    for (const auto& x : e) a.push_back({Number(x.real()), Number(x.imag())});
+    return a;
+  };
+  return {{"index", p.index},
+          {"values", values},
+          {"ok", p.ok},
+          {"failure", p.failure},
+          {"verdict", std::string(ToString(p.verdict))},
+          {"period", Number(p.period)},
+          {"max_real_exponent", Number(p.max_real_exponent)},
+          {"max_log_multiplier", Number(p.max_log_multiplier)},
+          {"error_estimate", Number(p.error_estimate)},
+          {"modes", modes},
+          {"shapes", shapes},
+          {"snapshot", eigenvalues(p.snapshot_eigenvalues)},
+          {"averaged", eigenvalues(p.averaged_eigenvalues)},
+          {"diagnostics", p.diagnostics},
+          {"elapsed_s", p.elapsed_s}};
+}
+
+SweepPoint PointFromJson(const json& j) {
+  SweepPoint p;
+  p.index = j.at("index").get<size_t>();
+  for (const auto& v : j.at("values")) p.values.push_back(FromNumber(v));
+  p.ok = j.at("ok").get<bool>();
+  p.failure = j.at("failure").get<std::string>();
+  p.verdict = VerdictFrom(j.at("verdict").get<std::string>());
+  p.period = FromNumber(j.at("period"));
+  p.max_real_exponent = FromNumber(j.at("max_real_exponent"));
+  p.max_log_multiplier = FromNumber(j.at("max_log_multiplier"));
+  p.error_estimate = FromNumber(j.at("error_estimate"));
+  for (const auto& m : j.at("modes")) {
+    FloquetMode mode;
+    mode.exponent = {FromNumber(m.at(0)), FromNumber(m.at(1))};
+    mode.frequency_hz = FromNumber(m.at(2));
+    mode.damping_ratio = FromNumber(m.at(3));
+    mode.log_multiplier = {FromNumber(m.at(4)), FromNumber(m.at(5))};
+    mode.branch = m.at(6).get<int>();
+    p.modes.push_back(mode);
+  }
+  const auto& shapes = j.at("shapes");
+  if (!shapes.empty()) {
+    p.shapes.resize(static_cast<Eigen::Index>(shapes.at(0).size()), static_cast<Eigen::Index>(shapes.size()));
+    for (size_t k = 0; k < shapes.size(); ++k)
+      for (size_t i = 0; i < shapes[k].size(); ++i)
+        p.shapes(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = {
+            FromNumber(shapes[k][i].at(0)), FromNumber(shapes[k][i].at(1))};
+  }
+  for (const auto& x : j.at("snapshot")) p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  for (const auto& x : j.at("averaged")) p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  p.diagnostics = j.at("diagnostics").get<std::vector<std::string>>();
+  p.elapsed_s = j.at("elapsed_s").get<double>();
+  return p;
+}
+
+ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
+                         const json& identity, bool resume)
+    : path_(std::move(path)), grid_(grid), states_(states) {
+  if (path_.empty()) {
+    if (resume) throw InputError("--resume needs --csv FILE: the file of the interrupted sweep");
+    return;
+  }
+  const std::string journal = journal_path();
+  if (resume) {
+    std::ifstream in(journal);
+    if (!in)
+      throw InputError("--resume: no journal '" + journal + "' (the sweep of '" + path_ +
+                       "' completed, or never started); run without --resume");
+    std::string line;
+    if (!std::getline(in, line)) throw InputError("--resume: journal '" + journal + "' is empty");
+    json header;
+    try {
+      header = json::parse(line);
+    } catch (const std::exception&) {
+      throw InputError("--resume: '" + journal + "' line 1 is not a journal header");
+    }
+    if (header.value("identity", json()) != identity)
+      throw InputError("--resume: '" + journal + "' belongs to a different sweep (scene, "
+                       "parameters, sweep ranges or method differ); run without --resume to start over");
+    while (std::getline(in, line)) {
+      // A line cut short by a kill is not a point: it is simply computed again.
+      try {
+        resumed_.push_back(PointFromJson(json::parse(line)));
+      } catch (const std::exception&) {
+      }
+    }
+    in.close();
+    // Rewrite the journal without a torn last line, then append to it.
+    {
+      std::ofstream out(journal, std::ios::trunc);
+      out << header.dump() << "\n";
+      for (const SweepPoint& p : resumed_) out << PointToJson(p).dump() << "\n";
+      if (!out) throw InputError("cannot write '" + journal + "'");
+    }
+    journal_.open(journal, std::ios::app);
+    csv_.open(path_, std::ios::trunc);
+    if (!csv_) throw InputError("cannot write '" + path_ + "'");
+    csv_ << Header();
+    for (const SweepPoint& p : resumed_) csv_ << Row(p, nullptr);
+    csv_.flush();
+  } else {
+    journal_.open(journal, std::ios::trunc);
+    if (!journal_) throw InputError("cannot write '" + journal + "'");
+    journal_ << json{{"identity", identity}}.dump() << "\n";
+    journal_.flush();
+    csv_.open(path_, std::ios::trunc);
+    if (!csv_) throw InputError("cannot write '" + path_ + "'");
+    csv_ << Header();
+    csv_.flush();
+  }
+}
+
+std::string ChartRecord::Header() const {
+  std::ostringstream h;
+  for (const auto& axis : grid_.axes) h << axis.name << ",";
+  h << "max_real_exponent,stable,verdict,error_estimate";
+  if (grid_.axes.size() == 1)
+    for (int k = 1; k <= states_; ++k) h << ",freq_hz_" << k << ",real_" << k << ",damping_" << k;
+  h << ",failure\n";
+  return h.str();
+}
+
+std::string ChartRecord::Row(const SweepPoint& p, const std::vector<int>* labels,
+                             const std::vector<double>* frequencies) const {
+  std::ostringstream r;
+  for (double v : p.values) r << Full(v) << ",";
+  r << Full(p.max_real_exponent) << ","
+    << (p.ok ? (p.verdict == StabilityVerdict::kUnstable ? "0" : "1") : "") << ","
+    << ToString(p.verdict) << "," << Full(p.error_estimate);
+  if (grid_.axes.size() == 1) {
+    for (int k = 0; k < states_; ++k) {
+      const int j = labels ? (k < static_cast<int>(labels->size()) ? (*labels)[k] : -1) : k;
+      if (j >= 0 && j < static_cast<int>(p.modes.size())) {
+        const FloquetMode& m = p.modes[j];
+        const double f = frequencies && k < static_cast<int>(frequencies->size()) ? (*frequencies)[k] : m.frequency_hz;
+        r << "," << Full(f) << "," << Full(m.exponent.real()) << "," << Full(m.damping_ratio);
+      } else {
+        r << ",,,";
+      }
+    }
+  }
+  r << "," << (p.failure.empty() ? "" : CsvText(p.failure)) << "\n";
+  return r.str();
+}
+
+void ChartRecord::Add(const SweepPoint& point) {
+  if (path_.empty()) return;
+  const std::string line = PointToJson(point).dump() + "\n";
+  const std::string row = Row(point, nullptr);
+  std::lock_guard<std::mutex> lock(mutex_);
+  journal_ << line;
+  csv_ << row;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ > std::chrono::milliseconds(200)) {
+    journal_.flush();
+    csv_.flush();
+    last_flush_ = now;
+  }
+  if (!journal_ || !csv_) throw InputError("cannot write '" + path_ + "' (disk full?)");
+}
+
+void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const ModeTracking* tracking) {
+  if (path_.empty()) return;
+  csv_.close();
+  journal_.close();
+  // Write beside, then rename: an interruption here leaves the old file and the journal.
+  const std::string tmp = path_ + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << Header();
+    for (size_t i = 0; i < sorted.size(); ++i)
+      out << Row(sorted[i], tracking && i < tracking->labels.size() ? &tracking->labels[i] : nullptr,
+                 tracking && i < tracking->frequency_hz.size() ? &tracking->frequency_hz[i] : nullptr);
+    if (!out) throw InputError("cannot write '" + tmp + "'");
+  }
+  std::filesystem::rename(tmp, path_);
+  std::filesystem::remove(journal_path());
+}
+
+}  // namespace ltp::cli

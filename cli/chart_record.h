@@ -1,0 +1,64 @@
+#pragma once
+// The files of `ltp chart --csv FILE`: nothing computed is lost.
+//
+//   FILE                 one CSV row per point, appended and flushed as points complete
+//                        (completion order, modes in each point's own order) and rewritten
+//                        sorted by grid index with tracked mode labels when the sweep ends;
+//   FILE.points.jsonl    the journal: every completed point in full (exponents, mode shapes)
+//                        as one JSON line, flushed; `--resume` reads it and computes only the
+//                        missing points. Removed when the sweep completes.
+#include <chrono>
+#include <cstddef>
+#include <mutex>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/sweep.h"
+
+namespace ltp::cli {
+
+/// A point as one JSON object (doubles to 17 digits, so a resumed sweep reproduces the
+/// uninterrupted one exactly) and back.
+nlohmann::json PointToJson(const SweepPoint& point);
+SweepPoint PointFromJson(const nlohmann::json& j);
+
+class ChartRecord {
+ public:
+  /// `path` empty: nothing is written. `resume`: load the journal of an interrupted run of
+  /// the same sweep (grid and scene checked against its header line).
+  /// @throws InputError when the files cannot be written, or on --resume without a journal
+  /// or with one from a different sweep.
+  ChartRecord(std::string path, const SweepGrid& grid, int states, const nlohmann::json& identity,
+              bool resume);
+
+  /// Points already done (from the journal on --resume), in no particular order.
+  const std::vector<SweepPoint>& resumed() const { return resumed_; }
+  /// Appends a completed point to the journal and the CSV; thread-safe (the formatting runs
+  /// outside the lock). Both files are flushed at least every 0.2 s and at Finish, so a killed
+  /// sweep loses at most the last fraction of a second.
+  void Add(const SweepPoint& point);
+  /// Rewrites the CSV sorted, with tracked labels (1-D), and removes the journal.
+  void Finish(const std::vector<SweepPoint>& sorted, const ModeTracking* tracking);
+  const std::string& path() const { return path_; }
+  std::string journal_path() const { return path_ + ".points.jsonl"; }
+
+ private:
+  std::string Header() const;
+  /// `labels`/`frequencies`: tracked order and unwrapped frequencies (final file), or null
+  /// (streamed rows: each point's own order and chosen branch).
+  std::string Row(const SweepPoint& point, const std::vector<int>* labels,
+                  const std::vector<double>* frequencies = nullptr) const;
+
+  std::string path_;
+  const SweepGrid& grid_;
+  int states_ = 0;
+  std::vector<SweepPoint> resumed_;
+  std::ofstream csv_, journal_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace ltp::cli

@@ -1,0 +1,34 @@
+#pragma once
+// Mode tracking along a 1-D sweep: which mode at one point is which mode at the next, so that
+// Campbell lines connect and two modes whose frequencies cross keep their labels.
+//
+// Modes are matched by the modal assurance criterion MAC(x, y) = |xᴴy|² / (|x|²|y|²) of their
+// shapes ξ(0) where shapes are available (monodromy route), and by the distance of the
+// exponents to their linear extrapolation from the two previous points otherwise (Hill route).
+#include <string>
+#include <vector>
+
+#include "ltp/floquet/sweep.h"
+
+namespace ltp {
+
+struct ModeTracking {
+  /// labels[p][k] = index into points[p].modes of the mode that carries label k (-1 for a
+  /// failed point). Labels follow the display order of the first successful point.
+  std::vector<std::vector<int>> labels;
+  /// frequency_hz[p][k]: label k's frequency at point p (Hz, NaN at a failed point). A Floquet
+  /// frequency is defined modulo Ωp/2π; the branch chosen per point can jump where a mode's
+  /// shape moves its energy between harmonics, so along a tracked line each value is shifted by
+  /// the multiple of Ωp/2π that keeps it nearest to the previous point's. The first point
+  /// keeps its chosen branch.
+  std::vector<std::vector<double>> frequency_hz;
+  /// Smallest MAC of an accepted match (1 when shapes were not used).
+  double min_mac = 1;
+  /// Points where a match was ambiguous (MAC < 0.5 or a runner-up within 10 %), by sweep order.
+  std::vector<size_t> ambiguous;
+};
+
+/// `points` must be in sweep order (ascending grid index of a 1-D sweep).
+ModeTracking TrackModes(const std::vector<SweepPoint>& points);
+
+}  // namespace ltp

@@ -1,0 +1,66 @@
+#pragma once
+// Stability boundaries of a sweep, refined beyond the grid: the grid only brackets a boundary
+// (a neighbour pair whose verdicts differ); the boundary itself is the root of
+//   g(p) = max log|ρ(p)| − level
+// in the swept parameter, found by TOMS 748 (Boost.Math) with every evaluation at a tighter
+// tolerance than the grid. `level` is a small positive number above the integration noise:
+// damped systems cross g = 0 with a finite slope (the root moves by level / slope), undamped
+// ones touch it with a square-root branch (the root moves by ~level²).
+#include <string>
+#include <vector>
+
+#include "ltp/floquet/sweep.h"
+
+namespace ltp {
+
+struct BoundaryOptions {
+  /// Bracket width at which a boundary counts as refined, relative to max(|p|, 1e-3 · span).
+  double rel_tol = 1e-8;
+  /// Root level in log|ρ| per period (see above).
+  double level = 1e-10;
+  /// Integrator tolerance of the evaluations during refinement (monodromy route) and Hill
+  /// tolerance (Hill route).
+  double rel_tol_integrator = 1e-13;
+  int max_iterations = 100;
+  /// 2-D maps: refine along at most this many grid lines per axis (evenly spread); 0 = all.
+  int max_lines = 50;
+  int threads = 0;
+};
+
+struct BoundaryEstimate {
+  double value = 0;          ///< boundary location in the swept parameter
+  bool refined = false;      ///< false: the grid value (reason in `note`)
+  double bracket = 0;        ///< width of the final bracket (or the grid step)
+  bool at_sweep_edge = false;  ///< the interval extends beyond the sweep: value is the sweep end
+  int evaluations = 0;
+  std::string note;
+};
+
+struct UnstableInterval {
+  BoundaryEstimate lo, hi;
+};
+
+/// Unstable intervals of a 1-D sweep (maximal runs of unstable grid points), both ends
+/// refined. `points` holds the whole grid in index order.
+std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const ParameterMap& base,
+                                                      const SweepGrid& grid,
+                                                      const std::vector<SweepPoint>& points,
+                                                      const SweepOptions& sweep,
+                                                      const BoundaryOptions& options = {});
+
+struct BoundaryPoint {
+  std::vector<double> values;  ///< both parameters; values[axis] is the refined one
+  int axis = 0;                ///< the parameter that was refined (the other is a grid value)
+  BoundaryEstimate estimate;
+  bool entering_unstable = false;  ///< unstable on the larger side of the refined parameter
+};
+
+/// Boundary points of a 2-D map: along grid lines of both axes, every neighbour pair that
+/// changes between unstable and not unstable, refined along that line.
+std::vector<BoundaryPoint> RefineBoundaryPoints(const Scene& scene, const ParameterMap& base,
+                                                const SweepGrid& grid,
+                                                const std::vector<SweepPoint>& points,
+                                                const SweepOptions& sweep,
+                                                const BoundaryOptions& options = {});
+
+}  // namespace ltp

@@ -1,0 +1,118 @@
+#include "ltp/floquet/mode_tracking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <tuple>
+
+namespace ltp {
+
+namespace {
+
+using cd = std::complex<double>;
+
+double Mac(const Eigen::VectorXcd& x, const Eigen::VectorXcd& y) {
+  const double xx = x.squaredNorm(), yy = y.squaredNorm();
+  if (!(xx > 0) || !(yy > 0)) return 0;
+  return std::norm(x.dot(y)) / (xx * yy);
+}
+
+}  // namespace
+
+ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
+  ModeTracking t;
+  t.labels.assign(points.size(), {});
+  int previous = -1, before_previous = -1;  // last two successful points
+  for (size_t p = 0; p < points.size(); ++p) {
+    const SweepPoint& point = points[p];
+    const int n = static_cast<int>(point.modes.size());
+    if (!point.ok || n == 0) {
+      t.labels[p].assign(n, -1);
+      continue;
+    }
+    if (previous < 0 || static_cast<int>(points[previous].modes.size()) != n) {
+      t.labels[p].resize(n);
+      for (int k = 0; k < n; ++k) t.labels[p][k] = k;
+      before_previous = -1;
+      previous = static_cast<int>(p);
+      continue;
+    }
+    const SweepPoint& prev = points[previous];
+    const bool shapes = point.shapes.cols() == n && prev.shapes.cols() == n;
+    // score(label k, candidate j): higher is better.
+    std::vector<std::tuple<double, int, int>> pairs;
+    pairs.reserve(static_cast<size_t>(n) * n);
+    std::vector<std::vector<double>> score(n, std::vector<double>(n));
+    for (int k = 0; k < n; ++k) {
+      const int pk = t.labels[previous][k];
+      cd expected = prev.modes[pk].exponent;
+      if (before_previous >= 0) {
+        // Linear extrapolation in the swept value (1-D).
+        const SweepPoint& pp = points[before_previous];
+        const double x0 = pp.values[0], x1 = prev.values[0], x2 = point.values[0];
+        if (x1 != x0) {
+          const cd older = pp.modes[t.labels[before_previous][k]].exponent;
+          expected += (expected - older) * ((x2 - x1) / (x1 - x0));
+        }
+      }
+      for (int j = 0; j < n; ++j) {
+        double s;
+        if (shapes) {
+          s = Mac(prev.shapes.col(pk), point.shapes.col(j));
+          // A mode and its complex conjugate have conjugate shapes: MAC alone cannot tell a
+          // nearly real shape from its conjugate, the sign of the frequency can.
+          const double f0 = prev.modes[pk].exponent.imag(), f1 = point.modes[j].exponent.imag();
+          if (f0 * f1 < 0) s *= 0.5;
+        } else {
+          s = -std::abs(point.modes[j].exponent - expected);
+        }
+        score[k][j] = s;
+        pairs.emplace_back(s, k, j);
+      }
+    }
+    // Greedy assignment, best pairs first.
+    std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+    std::vector<int> label_of(n, -1), taken(n, 0);
+    t.labels[p].assign(n, -1);
+    int assigned = 0;
+    for (const auto& [s, k, j] : pairs) {
+      if (assigned == n) break;
+      if (t.labels[p][k] >= 0 || taken[j]) continue;
+      t.labels[p][k] = j;
+      taken[j] = 1;
+      ++assigned;
+      if (shapes) {
+        t.min_mac = std::min(t.min_mac, s);
+        double runner_up = 0;
+        for (int jj = 0; jj < n; ++jj)
+          if (jj != j) runner_up = std::max(runner_up, score[k][jj]);
+        if (s < 0.5 || runner_up > 0.9 * s) {
+          if (t.ambiguous.empty() || t.ambiguous.back() != p) t.ambiguous.push_back(p);
+        }
+      }
+    }
+    before_previous = previous;
+    previous = static_cast<int>(p);
+  }
+  // Branch unwrapping along each tracked line.
+  t.frequency_hz.assign(points.size(), {});
+  std::vector<double> last;
+  for (size_t p = 0; p < points.size(); ++p) {
+    const auto& labels = t.labels[p];
+    t.frequency_hz[p].assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
+    if (!points[p].ok || labels.empty()) continue;
+    if (last.size() != labels.size()) last.assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
+    const double fp = 1.0 / points[p].period;
+    for (size_t k = 0; k < labels.size(); ++k) {
+      if (labels[k] < 0) continue;
+      double f = points[p].modes[labels[k]].frequency_hz;
+      if (std::isfinite(last[k]) && fp > 0) f += fp * std::round((last[k] - f) / fp);
+      t.frequency_hz[p][k] = f;
+      last[k] = f;
+    }
+  }
+  return t;
+}
+
+}  // namespace ltp

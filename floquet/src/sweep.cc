@@ -1,0 +1,277 @@
+#include "ltp/floquet/sweep.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+namespace {
+
+using cd = std::complex<double>;
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  const auto e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+// Monodromy route for one point.
+void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& options,
+                        bool check_error, SweepPoint& point) {
+  FloquetOptions o = options.floquet;
+  o.threads = 1;
+  o.compute_modes = options.modes;
+  o.estimate_error = check_error;
+  if (!options.modes && o.segments == 0) {
+    // Stability only: one segment. The largest multiplier — all a map needs — keeps its
+    // relative accuracy in the formed product however small the others are; only when the
+    // product over- or underflows do we fall back to the automatic segment grid.
+    o.segments = 1;
+  }
+  FloquetResult r = AnalyzeFloquet(system, o);
+  if (!r.ok && o.segments == 1 && options.floquet.segments == 0) {
+    o.segments = 0;
+    r = AnalyzeFloquet(system, o);
+  }
+  point.period = r.period;
+  point.diagnostics = r.diagnostics;
+  if (!r.ok) {
+    point.failure = r.diagnostics.empty() ? "Floquet analysis failed" : r.diagnostics.back();
+    return;
+  }
+  point.ok = true;
+  point.max_real_exponent = r.max_real_exponent;
+  point.max_log_multiplier = r.max_log_abs_multiplier;
+  point.error_estimate = r.error_estimate;
+  point.modes = std::move(r.modes);
+  if (options.modes && !r.mode_samples.empty()) {
+    point.shapes = r.mode_samples.front();
+    for (Eigen::Index k = 0; k < point.shapes.cols(); ++k) {
+      const double norm = point.shapes.col(k).norm();
+      if (norm > 0) point.shapes.col(k) /= norm;
+    }
+  }
+}
+
+void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bool check_error,
+                   SweepPoint& point) {
+  HillOptions o = options.hill;
+  o.koopman_check = false;  // a cross-check per point would dominate the sweep
+  HillResult r = AnalyzeHillAuto(system, o, options.hill_tol, options.hill_max_harmonics);
+  point.period = system.period();
+  point.diagnostics = r.diagnostics;
+  if (!r.ok) {
+    point.failure = r.diagnostics.empty() ? "Hill analysis failed" : r.diagnostics.back();
+    return;
+  }
+  point.ok = true;
+  point.max_real_exponent = r.max_real_exponent;
+  point.max_log_multiplier = r.max_real_exponent * system.period();
+  point.error_estimate = check_error ? r.truncation_estimate : -1;
+  point.modes = std::move(r.modes);
+}
+
+}  // namespace
+
+std::string_view ToString(SweepMethod method) {
+  return method == SweepMethod::kMonodromy ? "monodromy" : "hill";
+}
+
+std::string_view ToString(StabilityVerdict verdict) {
+  switch (verdict) {
+    case StabilityVerdict::kStable: return "stable";
+    case StabilityVerdict::kMarginal: return "marginal";
+    case StabilityVerdict::kUnstable: return "unstable";
+    case StabilityVerdict::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+std::vector<double> SweepAxis::Values() const {
+  std::vector<double> v;
+  if (step == 0) return {start};
+  const double count = (stop - start) / step;
+  const long n = static_cast<long>(std::floor(count + 1e-9)) + 1;
+  v.reserve(static_cast<size_t>(std::max(n, 1L)));
+  // start + i·step rather than repeated addition: no drift over thousands of points.
+  for (long i = 0; i < n; ++i) v.push_back(start + static_cast<double>(i) * step);
+  return v;
+}
+
+SweepAxis SweepAxis::Parse(const std::string& spec) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError("sweep '" + spec + "': " + why + " (expected NAME=START:STOP:STEP, e.g. a=-2:10:0.03)");
+  };
+  const auto equals = spec.find('=');
+  if (equals == std::string::npos) fail("no '='");
+  SweepAxis axis;
+  axis.name = Trim(spec.substr(0, equals));
+  if (axis.name.empty()) fail("missing parameter name");
+  std::vector<std::string> parts;
+  std::string rest = spec.substr(equals + 1);
+  size_t from = 0;
+  while (true) {
+    const auto colon = rest.find(':', from);
+    parts.push_back(Trim(rest.substr(from, colon == std::string::npos ? std::string::npos : colon - from)));
+    if (colon == std::string::npos) break;
+    from = colon + 1;
+  }
+  if (parts.size() != 3) fail("need three numbers separated by ':'");
+  // Evaluate each number as a scene-parameter expression (numbers and pi).
+  Scene scratch;
+  scratch.name = "sweep";
+  scratch.parameters = {{axis.name, 0.0, ""}};
+  double* fields[3] = {&axis.start, &axis.stop, &axis.step};
+  const char* names[3] = {"START", "STOP", "STEP"};
+  for (int i = 0; i < 3; ++i) {
+    if (parts[i].empty()) fail(std::string("missing ") + names[i]);
+    try {
+      *fields[i] = scratch.Resolve({{axis.name, parts[i]}}).at(axis.name);
+    } catch (const InputError& e) {
+      fail(std::string(names[i]) + " '" + parts[i] + "' is not a number");
+    }
+  }
+  if (!(axis.step > 0)) fail("STEP must be > 0");
+  if (!(axis.stop >= axis.start)) fail("STOP must be >= START");
+  if ((axis.stop - axis.start) / axis.step > 1e7) fail("more than 10^7 points on one axis");
+  return axis;
+}
+
+void SweepOptions::Validate() const {
+  auto fail = [](const std::string& field, double value, const std::string& constraint) {
+    std::ostringstream s;
+    s << "SweepOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
+    throw InputError(s.str());
+  };
+  floquet.Validate();
+  hill.Validate();
+  if (!(hill_tol > 0)) fail("hill_tol", hill_tol, "> 0");
+  if (hill_max_harmonics < 1) fail("hill_max_harmonics", hill_max_harmonics, ">= 1");
+  if (check_every < 0) fail("check_every", check_every, ">= 0");
+  if (!(marginal_log_multiplier >= 0)) fail("marginal_log_multiplier", marginal_log_multiplier, ">= 0");
+  if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
+}
+
+size_t SweepGrid::size() const {
+  size_t n = 1;
+  for (const auto& v : values) n *= v.size();
+  return n;
+}
+
+std::vector<double> SweepGrid::PointValues(size_t index) const {
+  std::vector<double> out(values.size());
+  for (size_t a = 0; a < values.size(); ++a) {
+    out[a] = values[a][index % values[a].size()];
+    index /= values[a].size();
+  }
+  return out;
+}
+
+SweepGrid MakeSweepGrid(const Scene& scene, std::vector<SweepAxis> axes) {
+  if (axes.empty() || axes.size() > 2)
+    throw InputError("a sweep needs one or two parameters, got " + std::to_string(axes.size()));
+  if (axes.size() == 2 && axes[0].name == axes[1].name)
+    throw InputError("both sweeps vary '" + axes[0].name + "'");
+  SweepGrid grid;
+  for (const auto& axis : axes) {
+    scene.Resolve({{axis.name, "0"}});  // throws for a name the scene does not have
+    grid.values.push_back(axis.Values());
+    if (grid.values.back().empty()) throw InputError("sweep of '" + axis.name + "' has no points");
+  }
+  grid.axes = std::move(axes);
+  return grid;
+}
+
+SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
+                             size_t index, const SweepOptions& options, bool check_error) {
+  const auto start = std::chrono::steady_clock::now();
+  SweepPoint point;
+  point.index = index;
+  point.values = grid.PointValues(index);
+  ParameterMap params = base;
+  for (size_t a = 0; a < grid.axes.size(); ++a) params[grid.axes[a].name] = point.values[a];
+  try {
+    const PeriodicSystem system = scene.build(params);
+    if (options.snapshot) {
+      const Eigen::VectorXcd frozen = system.A(0).eigenvalues();
+      point.snapshot_eigenvalues.assign(frozen.data(), frozen.data() + frozen.size());
+      Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(system.states(), system.states());
+      if (const FourierMatrix* fa = system.fourier_A()) {
+        mean = (*fa)[0].real();
+      } else {
+        const int samples = 256;  // midpoint rule: spectrally accurate for smooth A
+        for (int s = 0; s < samples; ++s) mean += system.A((s + 0.5) * system.period() / samples);
+        mean /= samples;
+      }
+      const Eigen::VectorXcd averaged = mean.eigenvalues();
+      point.averaged_eigenvalues.assign(averaged.data(), averaged.data() + averaged.size());
+    }
+    if (options.method == SweepMethod::kMonodromy)
+      AnalyzeByMonodromy(system, options, check_error, point);
+    else
+      AnalyzeByHill(system, options, check_error, point);
+  } catch (const std::exception& e) {
+    point.ok = false;
+    point.failure = e.what();
+  }
+  if (point.ok && !std::isfinite(point.max_log_multiplier)) {
+    point.ok = false;
+    point.failure = "max log|multiplier| is not finite";
+  }
+  if (point.ok) {
+    const double band = std::max(options.marginal_log_multiplier,
+                                 point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
+    point.verdict = point.max_log_multiplier > band     ? StabilityVerdict::kUnstable
+                    : point.max_log_multiplier < -band ? StabilityVerdict::kStable
+                                                        : StabilityVerdict::kMarginal;
+  } else {
+    point.verdict = StabilityVerdict::kFailed;
+    point.modes.clear();
+  }
+  point.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return point;
+}
+
+size_t RunSweep(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
+                const std::vector<size_t>& indices, const SweepOptions& options,
+                const std::function<void(SweepPoint&&)>& on_point,
+                const std::atomic<bool>* cancel) {
+  options.Validate();
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  size_t done = 0;
+  const long count = static_cast<long>(indices.size());
+  std::exception_ptr callback_error;  // rethrown after the loop: no exception leaves OpenMP
+  std::atomic<bool> stop{false};
+  // Dynamic schedule in small chunks: point costs vary by orders of magnitude across a map
+  // (deep in an instability tongue the integrator takes many more steps).
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (long i = 0; i < count; ++i) {
+    if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load()) continue;
+    const size_t index = indices[static_cast<size_t>(i)];
+    const bool check = options.check_every > 0 && index % static_cast<size_t>(options.check_every) == 0;
+    SweepPoint point = AnalyzeSweepPoint(scene, base, grid, index, options, check);
+    if (!stop.load()) {
+      try {
+        on_point(std::move(point));
+#pragma omp atomic
+        ++done;
+      } catch (...) {
+#pragma omp critical(ltp_sweep_error)
+        if (!callback_error) callback_error = std::current_exception();
+        stop = true;
+      }
+    }
+  }
+  if (callback_error) std::rethrow_exception(callback_error);
+  return done;
+}
+
+}  // namespace ltp

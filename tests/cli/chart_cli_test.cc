@@ -1,0 +1,101 @@
+// `ltp chart` end to end: intervals in the JSON summary, the CSV columns, failed points,
+// resume after an interruption, and MPI ranks against threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "support/ltp_cli.h"
+
+namespace {
+
+using nlohmann::json;
+using test::ReadFile;
+using test::RunLtp;
+
+std::string Tmp(const std::string& name) { return std::string(::testing::TempDir()) + name; }
+
+// Asymmetric shaft, undamped: unstable for 1 < Ω < sqrt(1.5) (closed form).
+TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
+  const std::string csv = Tmp("chart_jeffcott.csv");
+  const auto r = RunLtp("chart jeffcott --set k2=1.5 --sweep Omega=0.8:1.4:0.05 --csv " + csv + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["unstable_intervals"].size(), 1u);
+  EXPECT_NEAR(j["unstable_intervals"][0][0].get<double>(), 1.0, 1e-8);
+  EXPECT_NEAR(j["unstable_intervals"][0][1].get<double>(), std::sqrt(1.5), 1e-8);
+  EXPECT_EQ(j["points"].get<int>(), 13);
+  const std::string text = ReadFile(csv);
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "Omega,max_real_exponent,stable,verdict,error_estimate,freq_hz_1,real_1,damping_1,"
+            "freq_hz_2,real_2,damping_2,freq_hz_3,real_3,damping_3,freq_hz_4,real_4,damping_4,failure");
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);  // header + 13 rows
+  EXPECT_FALSE(std::filesystem::exists(csv + ".points.jsonl"));  // journal gone when complete
+}
+
+TEST(ChartCli, FailedPointsAreRowsWithTheirReason) {
+  const std::string csv = Tmp("chart_failed.csv");
+  const auto r = RunLtp("chart jeffcott --sweep m=-0.5:1:0.5 --csv " + csv);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 failed"), std::string::npos) << r.out;
+  const std::string text = ReadFile(csv);
+  EXPECT_NE(text.find(",failed,"), std::string::npos);
+}
+
+TEST(ChartCli, BadInputIsOneLineExitTwo) {
+  for (const char* args : {"chart mathieu --sweep a=1:0:0.1", "chart mathieu --sweep zz=0:1:0.1",
+                           "chart mathieu --sweep a=0:1:0.1 --plot x.pdf",
+                           "chart mathieu --sweep a=0:1:0.1 --resume"}) {
+    const auto r = RunLtp(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+// An interrupted 2-D sweep leaves a valid CSV and its journal; --resume computes only the
+// missing points and ends with exactly the file an uninterrupted run writes.
+TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
+  const std::string sweep = "chart mathieu --sweep a=-1:3:0.25 --sweep2 q=0:2:0.25 --threads 2 ";
+  const std::string whole = Tmp("chart_whole.csv"), cut = Tmp("chart_cut.csv");
+  ASSERT_EQ(RunLtp(sweep + "--csv " + whole).code, 0);
+  const auto first = RunLtp(sweep + "--csv " + cut + " --stop-after 40");
+  EXPECT_EQ(first.code, 130) << first.err;
+  EXPECT_NE(first.err.find("--resume"), std::string::npos) << first.err;
+  ASSERT_TRUE(std::filesystem::exists(cut + ".points.jsonl"));
+  const std::string partial = ReadFile(cut);
+  const long rows = std::count(partial.begin(), partial.end(), '\n') - 1;
+  EXPECT_GE(rows, 40);
+  EXPECT_LT(rows, 153);  // 17 × 9 points in all
+  const auto second = RunLtp(sweep + "--csv " + cut + " --resume --json");
+  ASSERT_EQ(second.code, 0) << second.err;
+  EXPECT_EQ(json::parse(second.out)["resumed_points"].get<long>(), rows);
+  EXPECT_EQ(ReadFile(cut), ReadFile(whole));
+  // A journal from another sweep is refused.
+  RunLtp(sweep + "--csv " + cut + " --stop-after 5");
+  const auto other = RunLtp("chart mathieu --sweep a=-1:3:0.5 --sweep2 q=0:2:0.25 --csv " + cut + " --resume");
+  EXPECT_EQ(other.code, 2);
+  EXPECT_NE(other.err.find("different sweep"), std::string::npos) << other.err;
+}
+
+// Two MPI ranks write the same file as one process with two threads.
+TEST(ChartCli, MpiRanksEqualThreads) {
+#ifndef LTP_WITH_MPI
+  GTEST_SKIP() << "built without -DLTP_WITH_MPI=ON";
+#else
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const std::string sweep = "chart mathieu --sweep a=-1:3:0.1 --sweep2 q=0:2:0.2 ";
+  const std::string threads = Tmp("chart_threads.csv"), ranks = Tmp("chart_ranks.csv");
+  ASSERT_EQ(RunLtp(sweep + "--threads 2 --csv " + threads).code, 0);
+  // Root in a container is common on CI machines; Open MPI refuses it unless told.
+  const auto r = RunLtp(sweep + "--threads 1 --csv " + ranks,
+                        "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                        "mpirun -n 2 --oversubscribe ");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("2 MPI ranks"), std::string::npos) << r.out;
+  EXPECT_EQ(ReadFile(ranks), ReadFile(threads));
+#endif
+}
+
+}  // namespace

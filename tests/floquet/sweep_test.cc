@@ -1,0 +1,209 @@
+// Parameter sweeps: refined stability boundaries against closed forms and GSL, mode tracking
+// through a crossing, failing points, and the monodromy and Hill routes against each other.
+#include <gsl/gsl_sf_mathieu.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <mutex>
+
+#include "ltp/core/error.h"
+#include "ltp/core/scene.h"
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/stability_boundary.h"
+#include "ltp/floquet/sweep.h"
+
+namespace ltp {
+namespace {
+
+double MathieuA(int n, double q) {
+  gsl_sf_result r;
+  EXPECT_EQ(gsl_sf_mathieu_a_e(n, q, &r), 0);
+  return r.val;
+}
+double MathieuB(int n, double q) {
+  gsl_sf_result r;
+  EXPECT_EQ(gsl_sf_mathieu_b_e(n, q, &r), 0);
+  return r.val;
+}
+
+std::vector<SweepPoint> Sweep(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
+                              const SweepOptions& options) {
+  std::vector<size_t> all(grid.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  std::vector<SweepPoint> points(grid.size());
+  std::mutex m;
+  RunSweep(scene, base, grid, all, options, [&](SweepPoint&& p) {
+    std::lock_guard<std::mutex> lock(m);
+    points[p.index] = std::move(p);
+  });
+  return points;
+}
+
+TEST(SweepAxis, ParsesAndRejects) {
+  const SweepAxis a = SweepAxis::Parse("a=-2:10:0.03");
+  EXPECT_EQ(a.name, "a");
+  EXPECT_EQ(a.Values().size(), 401u);  // (10 − (−2)) / 0.03 + 1, stop included
+  EXPECT_DOUBLE_EQ(a.Values().back(), 10.0);
+  EXPECT_NEAR(SweepAxis::Parse("w=0:2*pi:pi/2").Values().back(), 2 * M_PI, 1e-15);
+  for (const char* bad : {"a", "a=1:2", "a=1:0:0.1", "a=0:1:0", "a=0:1:x", "=0:1:0.1"})
+    EXPECT_THROW(SweepAxis::Parse(bad), InputError) << bad;
+  EXPECT_THROW(MakeSweepGrid(LoadScene("mathieu"), {SweepAxis::Parse("nope=0:1:0.5")}), InputError);
+}
+
+// Undamped Mathieu y'' + (a − 2q cos 2t) y = 0 at q = 1: unstable for a < a_0, b_1 < a < a_1,
+// b_2 < a < a_2 (GSL's characteristic values). The grid (step 0.1) only brackets them; the
+// refined ends must match to 1e-8 relative.
+TEST(UnstableIntervals, MathieuTonguesMatchGsl) {
+  const Scene scene = LoadScene("mathieu");
+  ParameterMap base = scene.Resolve({{"c", "0"}, {"q", "1"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("a=-2:6:0.1")});
+  SweepOptions o;
+  o.modes = false;
+  o.floquet.integrator.type = IntegratorType::kRkf78;
+  const auto points = Sweep(scene, base, grid, o);
+  const auto intervals = RefineUnstableIntervals(scene, base, grid, points, o);
+  ASSERT_EQ(intervals.size(), 3u);
+  EXPECT_TRUE(intervals[0].lo.at_sweep_edge);
+  const double expected[][2] = {{-2, MathieuA(0, 1)}, {MathieuB(1, 1), MathieuA(1, 1)}, {MathieuB(2, 1), MathieuA(2, 1)}};
+  for (size_t i = 0; i < 3; ++i) {
+    for (int end = 0; end < 2; ++end) {
+      const BoundaryEstimate& e = end ? intervals[i].hi : intervals[i].lo;
+      if (e.at_sweep_edge) continue;
+      EXPECT_TRUE(e.refined) << e.note;
+      EXPECT_NEAR(e.value, expected[i][end], 1e-8 * std::max(1.0, std::abs(expected[i][end])))
+          << "interval " << i << (end ? " hi" : " lo");
+    }
+  }
+}
+
+// The same boundaries found in a 2-D map: every refined point lies on one of the curves
+// a_n(q), b_n(q) at its own q (or, refined along q, at its own a).
+TEST(BoundaryPoints, InceStruttChartMatchesGsl) {
+  const Scene scene = LoadScene("mathieu");
+  ParameterMap base = scene.Resolve({{"c", "0"}});
+  const SweepGrid grid =
+      MakeSweepGrid(scene, {SweepAxis::Parse("a=-1:5:0.25"), SweepAxis::Parse("q=0.5:3:0.5")});
+  SweepOptions o;
+  o.modes = false;
+  o.floquet.integrator.type = IntegratorType::kRkf78;
+  const auto points = Sweep(scene, base, grid, o);
+  BoundaryOptions b;
+  b.max_lines = 0;
+  const auto boundary = RefineBoundaryPoints(scene, base, grid, points, o, b);
+  int along_a = 0;
+  for (const BoundaryPoint& p : boundary) {
+    ASSERT_TRUE(p.estimate.refined) << p.estimate.note;
+    if (p.axis != 0) continue;  // along q the curves are checked by the 1-D test's logic
+    ++along_a;
+    const double a = p.values[0], q = p.values[1];
+    double nearest = INFINITY;
+    for (int n = 0; n <= 4; ++n) {
+      nearest = std::min(nearest, std::abs(a - MathieuA(n, q)));
+      if (n >= 1) nearest = std::min(nearest, std::abs(a - MathieuB(n, q)));
+    }
+    EXPECT_LT(nearest, 1e-8 * std::max(1.0, std::abs(a))) << "a = " << a << ", q = " << q;
+  }
+  // Every row (q ≥ 0.5) crosses a_0, b_1 and a_1 in a ∈ [−1, 5] with tongue 1 wider than the
+  // step; the narrower higher tongues may fall between grid points.
+  EXPECT_GE(along_a, 6 * 3);
+}
+
+// Asymmetric shaft (Jeffcott, undamped): unstable exactly for sqrt(k1/m) < Ω < sqrt(k2/m).
+// The grid has a point exactly on the lower edge (Ω = 1), where the monodromy is defective.
+TEST(UnstableIntervals, AsymmetricShaftBandEdges) {
+  const Scene scene = LoadScene("jeffcott");
+  ParameterMap base = scene.Resolve({{"k1", "1"}, {"k2", "1.5"}, {"m", "1"}, {"c", "0"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("Omega=0.6:1.6:0.05")});
+  SweepOptions o;
+  o.modes = true;
+  const auto points = Sweep(scene, base, grid, o);
+  const auto intervals = RefineUnstableIntervals(scene, base, grid, points, o);
+  ASSERT_EQ(intervals.size(), 1u);
+  EXPECT_TRUE(intervals[0].lo.refined && intervals[0].hi.refined);
+  EXPECT_NEAR(intervals[0].lo.value, 1.0, 1e-8);
+  EXPECT_NEAR(intervals[0].hi.value, std::sqrt(1.5), 1e-8 * std::sqrt(1.5));
+}
+
+// A rotor with two blades (ground resonance, light damping): the unstable interval of the
+// monodromy route equals the one found independently by Hill's method.
+TEST(UnstableIntervals, TwoBladedRotorMonodromyEqualsHill) {
+  const Scene scene = LoadScene("rotor");
+  ParameterMap base = scene.Resolve({{"blades", "2"}, {"C_zeta", "0.02"}, {"cx", "0.2"}, {"cy", "0.2"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("Omega=0.57:0.63:0.02")});
+  std::vector<std::vector<UnstableInterval>> found;
+  for (SweepMethod method : {SweepMethod::kMonodromy, SweepMethod::kHill}) {
+    SweepOptions o;
+    o.method = method;
+    o.modes = false;
+    const auto points = Sweep(scene, base, grid, o);
+    found.push_back(RefineUnstableIntervals(scene, base, grid, points, o));
+    ASSERT_EQ(found.back().size(), 1u) << ToString(method);
+    EXPECT_TRUE(found.back()[0].lo.refined && found.back()[0].hi.refined) << ToString(method);
+  }
+  EXPECT_NEAR(found[0][0].lo.value, found[1][0].lo.value, 1e-8);
+  EXPECT_NEAR(found[0][0].hi.value, found[1][0].hi.value, 1e-8);
+  EXPECT_GT(found[0][0].hi.value - found[0][0].lo.value, 0.01);  // a real interval, not a point
+}
+
+// A point whose system cannot be built (m = 0: singular mass) fails with its reason; the
+// others go on.
+TEST(RunSweep, FailingPointIsRecordedNotFatal) {
+  const Scene scene = LoadScene("jeffcott");
+  ParameterMap base = scene.Resolve({});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("m=-1:1:0.5")});
+  SweepOptions o;
+  o.modes = false;
+  const auto points = Sweep(scene, base, grid, o);
+  int failed = 0;
+  for (const SweepPoint& p : points) {
+    if (p.values[0] <= 0) {
+      EXPECT_FALSE(p.ok);
+      EXPECT_EQ(p.verdict, StabilityVerdict::kFailed);
+      EXPECT_FALSE(p.failure.empty());
+      ++failed;
+    } else {
+      EXPECT_TRUE(p.ok) << p.failure;
+    }
+  }
+  EXPECT_EQ(failed, 3);
+}
+
+// Two uncoupled oscillators whose frequencies cross: the display order (by frequency) swaps at
+// the crossing, the tracked labels must not (shapes e1 and e2 never change).
+TEST(TrackModes, CrossingKeepsLabels) {
+  std::vector<SweepPoint> points;
+  for (int i = 0; i <= 10; ++i) {
+    const double x = 0.5 + 0.1 * i;   // oscillator 1: ω = x; oscillator 2: ω = 1
+    SweepPoint p;
+    p.ok = true;
+    p.period = 1;
+    p.values = {x};
+    struct M {
+      double w;
+      int axis;
+    };
+    std::vector<M> ms = {{x, 0}, {1.0, 1}};
+    std::sort(ms.begin(), ms.end(), [](const M& a, const M& b) { return a.w < b.w; });
+    p.shapes = Eigen::MatrixXcd::Zero(2, 2);
+    for (int k = 0; k < 2; ++k) {
+      FloquetMode m;
+      m.exponent = {-0.01, ms[k].w};
+      m.frequency_hz = ms[k].w / (2 * M_PI);
+      p.modes.push_back(m);
+      p.shapes(ms[k].axis, k) = 1;
+    }
+    points.push_back(p);
+  }
+  const ModeTracking t = TrackModes(points);
+  for (size_t i = 0; i < points.size(); ++i) {
+    // Label 0 is oscillator 1 (smaller frequency at x = 0.5): frequency x/2π throughout.
+    const double x = points[i].values[0];
+    EXPECT_NEAR(t.frequency_hz[i][0], x / (2 * M_PI), 1e-12) << "x = " << x;
+    EXPECT_NEAR(t.frequency_hz[i][1], 1 / (2 * M_PI), 1e-12) << "x = " << x;
+  }
+  EXPECT_NEAR(t.min_mac, 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace ltp
