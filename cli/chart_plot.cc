@@ -155,7 +155,7 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
     << "set xlabel \"" << GnuplotEscape(in.axis_labels.at(0)) << "\"\n"
     << "set ylabel \"" << GnuplotEscape(in.axis_labels.at(1)) << "\"\n"
     << "set cblabel 'max Re λ  [1/s]   (blue: stable, white: marginal, red: unstable)'\n"
-    << "set palette defined (-1 '#2166ac', -0.35 '#92c5de', 0 '#f7f7f7', 0.35 '#f4a582', 1 '#b2182b')\n"
+    << "set palette defined (-1 '#2166ac', -1e-4 '#a6cee3', 0 '#ffffff', 1e-4 '#fddbc7', 1 '#b2182b')\n"
     << "set cbrange [" << V(-scale) << ":" << V(scale) << "]\n"
     << "set xrange [" << V(grid.values[0].front()) << ":" << V(grid.values[0].back()) << "]\n"
     << "set yrange [" << V(grid.values[1].front()) << ":" << V(grid.values[1].back()) << "]\n"

@@ -1,0 +1,112 @@
+// Stability charts: the 400 × 400 Mathieu map (a ∈ [−2, 10] step 0.03, q ∈ [0, 8] step 0.02,
+// c = 0.02: 401 × 401 points) on all cores, and the same analysis written the usual way in
+// Python (benchmarks/peers/mathieu_map_scipy.py: solve_ivp DOP853 + eigvals) on an evenly
+// spread subset of 400 points, run in the same process run so the ratio is measured under the
+// same machine load. Counters: per-point times, the ratios, and the largest difference of
+// max log|ρ| between the two (both aim at 1e-8).
+//
+//   build/benchmarks/chart_benchmark
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ltp/core/scene.h"
+#include "ltp/floquet/sweep.h"
+
+namespace {
+
+ltp::SweepOptions MapOptions(int threads) {
+  ltp::SweepOptions o;
+  o.modes = false;
+  o.check_every = 0;
+  o.threads = threads;
+  o.floquet.integrator.type = ltp::IntegratorType::kRkf78;
+  o.floquet.integrator.rel_tol = 1e-10;  // `ltp chart` defaults: max log|ρ| error below 1e-8
+  o.floquet.integrator.abs_tol = 1e-13;
+  return o;
+}
+
+struct Map {
+  ltp::Scene scene = ltp::LoadScene("mathieu");
+  ltp::ParameterMap base = scene.Resolve({{"c", "0.02"}});
+  ltp::SweepGrid grid = ltp::MakeSweepGrid(
+      scene, {ltp::SweepAxis::Parse("a=-2:10:0.03"), ltp::SweepAxis::Parse("q=0:8:0.02")});
+};
+
+double RunMap(const Map& m, const std::vector<size_t>& indices, int threads,
+              std::vector<double>* values = nullptr) {
+  std::mutex mutex;
+  if (values) values->assign(indices.size(), NAN);
+  std::vector<size_t> position(m.grid.size());
+  for (size_t i = 0; i < indices.size(); ++i) position[indices[i]] = i;
+  const auto start = std::chrono::steady_clock::now();
+  ltp::RunSweep(m.scene, m.base, m.grid, indices, MapOptions(threads), [&](ltp::SweepPoint&& p) {
+    if (!values) return;
+    std::lock_guard<std::mutex> lock(mutex);
+    (*values)[position[p.index]] = p.max_log_multiplier;
+  });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_MathieuMap400(benchmark::State& state) {
+  const Map m;
+  std::vector<size_t> all(m.grid.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  double seconds = 0;
+  for (auto _ : state) {
+    seconds = RunMap(m, all, 0);
+    state.SetIterationTime(seconds);
+  }
+  state.counters["points"] = static_cast<double>(all.size());
+  state.counters["us_per_point_wall"] = 1e6 * seconds / static_cast<double>(all.size());
+}
+BENCHMARK(BM_MathieuMap400)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+void BM_VersusScipy(benchmark::State& state) {
+  const Map m;
+  const std::string script = std::string(LTP_SOURCE_DIR) + "/benchmarks/peers/mathieu_map_scipy.py";
+  const int count = 400;
+  for (auto _ : state) {
+    FILE* p = popen(("/usr/bin/python3 " + script + " " + std::to_string(count) + " 0.02 2>&1").c_str(), "r");
+    std::string out;
+    std::array<char, 65536> buf;
+    while (p && fgets(buf.data(), buf.size(), p)) out += buf.data();
+    const int status = p ? pclose(p) : -1;
+    if (status != 0) {
+      state.SkipWithError(("SciPy peer unavailable: " + out).c_str());
+      return;
+    }
+    const auto peer = nlohmann::json::parse(out);
+    // The same points (same index rule as the script), one thread and all threads.
+    const size_t total = m.grid.size(), stride = total / count;
+    std::vector<size_t> indices;
+    for (size_t i = 0; i < total && indices.size() < static_cast<size_t>(count); i += stride) indices.push_back(i);
+    std::vector<double> values;
+    const double one_thread = RunMap(m, indices, 1, &values);
+    const double all_threads = RunMap(m, indices, 0);
+    double worst = 0;
+    for (size_t i = 0; i < indices.size(); ++i)
+      worst = std::max(worst, std::abs(values[i] - peer["results"][i][2].get<double>()));
+    const double scipy = peer["per_point_s"].get<double>();
+    const double ltp1 = one_thread / static_cast<double>(indices.size());
+    const double ltpn = all_threads / static_cast<double>(indices.size());
+    state.SetIterationTime(one_thread);
+    state.counters["scipy_us_per_point"] = 1e6 * scipy;
+    state.counters["ltp_us_per_point_1thread"] = 1e6 * ltp1;
+    state.counters["ltp_us_per_point_all_threads"] = 1e6 * ltpn;
+    state.counters["ratio_1thread"] = scipy / ltp1;
+    state.counters["ratio_all_threads"] = scipy / ltpn;
+    state.counters["max_abs_diff_log_rho"] = worst;
+  }
+}
+BENCHMARK(BM_VersusScipy)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
