@@ -18,5 +18,6 @@ Command AddFloquetCommand(CLI::App& app);
 Command AddHillCommand(CLI::App& app);
 Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
 Command AddChartCommand(CLI::App& app);
+Command AddMbcCommand(CLI::App& app);
 
 }  // namespace ltp::cli

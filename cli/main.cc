@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
       ltp::cli::AddPfrfCommand(app),
       ltp::cli::AddSnapshotCommand(app),
       ltp::cli::AddChartCommand(app),
+      ltp::cli::AddMbcCommand(app),
   };
 
   try {

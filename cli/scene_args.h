@@ -11,16 +11,21 @@ namespace ltp::cli {
 
 struct SceneArgs {
   std::string scene;
-  std::vector<std::string> set;  ///< "name=value"
+  std::vector<std::string> more_files;  ///< further OpenFAST .lin files after the first
+  std::vector<std::string> set;         ///< "name=value"
 };
 
-/// Adds the positional SCENE and the repeatable --set NAME=VALUE to `cmd`.
+/// Adds the positional SCENE (a built-in, a YAML file, or OpenFAST .lin files: several files,
+/// a directory or a glob) and the repeatable --set NAME=VALUE to `cmd`.
 void AddSceneArgs(CLI::App* cmd, SceneArgs& args);
 
 struct LoadedScene {
   Scene scene;
   ParameterMap parameters;
   PeriodicSystem system;
+  /// Caveats that belong beside any result (for .lin input: what K azimuth samples resolve,
+  /// the rigid rotation). LoadSceneArgs also prints them on stderr ("ltp: note: ...").
+  std::vector<std::string> notes;
 };
 
 /// Loads the scene, applies the overrides and builds the system. @throws ltp::InputError.

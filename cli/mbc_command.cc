@@ -1,0 +1,297 @@
+// `ltp mbc FILES...`: the MBC3 Campbell table of OpenFAST linearisation files at one operating
+// point, with the Floquet analysis of the same samples beside it.
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "format.h"
+#include "ltp/core/error.h"
+#include "ltp/core/mbc3.h"
+#include "ltp/core/openfast_lin.h"
+#include "ltp/floquet/sampled_floquet.h"
+
+namespace ltp::cli {
+
+namespace {
+
+using nlohmann::json;
+constexpr double kPi = std::numbers::pi;
+constexpr const char* kFormulation =
+    "MBC3 after G. Bir, NREL/CP-500-42553 (2008), eq. 29-32 (as OpenFAST's MBC3): "
+    "A_NR = T^-1 (A_R T - dT/dt) at each azimuth, plain mean over the azimuths, eigenvalues of "
+    "the mean";
+
+struct MbcArgs {
+  std::vector<std::string> files;
+  bool json = false;
+  std::string csv;
+  bool floquet = true;
+  std::string speed = "operating-point";
+  double tol = 1e-10;
+};
+
+std::string Hz(double rad_per_s) { return Num(rad_per_s / (2 * kPi), 6); }
+
+std::string Fixed(double x, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
+json ModeJson(const MbcMode& m, const Mbc3Result& r) {
+  json dominant = json::array();
+  for (const auto& s : m.dominant)
+    dominant.push_back({{"state", r.states[s.state].description}, {"share", JsonNumber(s.share)}});
+  return {{"natural_frequency_hz", JsonNumber(m.natural_frequency_hz)},
+          {"damped_frequency_hz", JsonNumber(m.damped_frequency_hz)},
+          {"damping_ratio", m.rigid_body ? json(nullptr) : JsonNumber(m.damping_ratio)},
+          {"re", JsonNumber(m.eigenvalue.real())},
+          {"im", JsonNumber(m.eigenvalue.imag())},
+          {"kind", m.kind},
+          {"rigid_body", m.rigid_body},
+          {"whirl", m.whirl.empty() ? json(nullptr) : json(m.whirl)},
+          {"description", m.description},
+          {"dominant_states", dominant}};
+}
+
+json ExponentJson(std::complex<double> l) {
+  const double mag = std::abs(l);
+  return {{"re", JsonNumber(l.real())},
+          {"im", JsonNumber(l.imag())},
+          {"natural_frequency_hz", JsonNumber(mag / (2 * kPi))},
+          {"damping_ratio", JsonNumber(mag > 0 ? -l.real() / mag : 0.0)}};
+}
+
+json FloquetJson(const SampledFloquetResult& f) {
+  json modes = json::array();
+  for (const SampledFloquetMode& m : f.modes)
+    modes.push_back({{"mbc_mode", m.mbc_mode >= 0 ? json(m.mbc_mode) : json(nullptr)},
+                     {"hold", ExponentJson(m.hold)},
+                     {"trig", ExponentJson(m.trig)},
+                     {"difference", JsonNumber(m.difference)},
+                     {"to_mbc", m.mbc_mode >= 0 ? JsonNumber(m.to_reference) : json(nullptr)},
+                     {"rigid_body", m.rigid_body}});
+  return {{"ok", f.ok},
+          {"coordinates", f.coordinates},
+          {"samples", f.samples},
+          {"resolved_harmonics", f.resolved_harmonics},
+          {"modes", modes},
+          {"max_real_exponent_hold", JsonNumber(f.max_real_hold)},
+          {"max_real_exponent_trig", JsonNumber(f.max_real_trig)},
+          {"stable", f.stable},
+          {"max_difference", JsonNumber(f.max_difference)},
+          {"max_difference_to_mbc", f.max_to_reference >= 0 ? JsonNumber(f.max_to_reference) : json(nullptr)},
+          {"error_estimate_hold", JsonNumber(f.hold.error_estimate)},
+          {"error_estimate_trig", JsonNumber(f.trig.error_estimate)},
+          {"elapsed_s", f.hold.elapsed_s + f.trig.elapsed_s},
+          {"diagnostics_hold", f.hold.diagnostics},
+          {"diagnostics_trig", f.trig.diagnostics},
+          {"notes", f.notes}};
+}
+
+void WriteCsv(const std::string& file, const Mbc3Result& r, const SampledFloquetResult* f) {
+  std::ofstream csv(file);
+  if (!csv) throw InputError("cannot write '" + file + "'");
+  csv << "mode,natural_frequency_hz,damped_frequency_hz,damping_ratio,re,im,kind,rigid_body,whirl,"
+         "description";
+  if (f) csv << ",floquet_hold_re,floquet_hold_im,floquet_trig_re,floquet_trig_im";
+  csv << "\n" << std::setprecision(12);
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const MbcMode& m = r.modes[k];
+    std::string d = m.description;
+    for (char& c : d)
+      if (c == '"') c = '\'';
+    csv << k + 1 << "," << m.natural_frequency_hz << "," << m.damped_frequency_hz << ","
+        << m.damping_ratio << "," << m.eigenvalue.real() << "," << m.eigenvalue.imag() << ","
+        << m.kind << "," << (m.rigid_body ? 1 : 0) << "," << m.whirl << ",\"" << d << "\"";
+    if (f) {
+      const SampledFloquetMode* match = nullptr;
+      for (const auto& fm : f->modes)
+        if (fm.mbc_mode == static_cast<int>(k)) match = &fm;
+      if (match)
+        csv << "," << match->hold.real() << "," << match->hold.imag() << "," << match->trig.real()
+            << "," << match->trig.imag();
+      else
+        csv << ",,,,";
+    }
+    csv << "\n";
+  }
+}
+
+void PrintHeader(const LinOperatingPoint& op, const Mbc3Result& r) {
+  std::cout << "MBC3 Campbell table: OpenFAST linearisation at one operating point\n";
+  std::cout << "  files      ";
+  for (int k = 0; k < op.size(); ++k)
+    std::cout << (k ? ", " : "") << std::filesystem::path(op.files[k]).filename().string() << " ("
+              << Fixed(op.azimuths[k] * 180 / kPi, 1) << "°)";
+  std::cout << "\n  rotor      Ω = " << Num(op.rotor_speed, 6) << " rad/s = "
+            << Num(op.rotor_speed * 30 / kPi, 6) << " rpm (1P = " << Hz(op.rotor_speed)
+            << " Hz); " << op.states.size() << " states, " << r.blades << " blades ("
+            << r.state_coordinates.groups.size() << " blade tuples of states)\n";
+}
+
+void PrintTable(const Mbc3Result& r) {
+  std::cout << "  transform  multi-blade coordinates after Bir (2008, NREL/CP-500-42553) eq. 29, as "
+               "OpenFAST's MBC3;\n             ";
+  if (r.transformed.size() == 1)
+    std::cout << "one azimuth: its transformed state matrix, nothing to average\n\n";
+  else
+    std::cout << "mean of the " << r.transformed.size()
+              << " transformed state matrices (their periodic part, "
+              << Num(100 * r.periodic_part, 3) << "% of the mean, is dropped)\n\n";
+  std::cout << "  mode   nat. freq [Hz]  damped [Hz]   damping ζ    Re λ [1/s]   description\n";
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const MbcMode& m = r.modes[k];
+    std::cout << "  " << std::setw(4) << k + 1 << Num(m.natural_frequency_hz, 6, 17)
+              << Num(m.damped_frequency_hz, 6, 13)
+              << (m.rigid_body ? std::string("  rigid body") : Num(m.damping_ratio, 5, 12))
+              << Num(m.eigenvalue.real(), 5, 14) << "   " << m.description
+              << (m.kind == "real" ? "  [real eigenvalue]" : "") << "\n";
+  }
+  std::cout << "\n  max Re λ = " << Num(r.max_real_part, 6) << " 1/s"
+            << (r.rigid_body_modes ? " (rigid-body mode excluded)" : "") << "  →  "
+            << (r.max_real_part < 0 ? "STABLE" : "UNSTABLE") << " (MBC3, azimuth-averaged)\n";
+  if (!r.diagnostics.empty()) {
+    std::cout << "  diagnostics:\n";
+    for (const auto& d : r.diagnostics) std::cout << "    - " << d << "\n";
+  }
+}
+
+void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
+  std::cout << "\nFloquet analysis of the same " << f.samples << (f.samples == 1 ? " sample (" : " samples (")
+            << f.coordinates
+            << ", not averaged)\n"
+            << "  hold: each sample held over the nearest azimuths (exact product of exponentials, "
+            << f.hold.segments << " segments)\n"
+            << "  trig: trigonometric interpolation through the samples (" << f.trig.integrator
+            << ", error estimate " << Num(f.trig.error_estimate, 2) << " 1/s)\n";
+  if (!f.ok) {
+    std::cout << "  FAILED\n";
+    for (const auto& d : f.hold.diagnostics) std::cout << "    - hold: " << d << "\n";
+    for (const auto& d : f.trig.diagnostics) std::cout << "    - trig: " << d << "\n";
+    return;
+  }
+  const bool with_mbc = !f.modes.empty() && f.modes.front().mbc_mode >= 0;
+  std::cout << "\n  mode" << (with_mbc ? "   MBC f_n [Hz]    MBC ζ" : "")
+            << "   hold f_n [Hz]   hold ζ   trig f_n [Hz]   trig ζ   |hold−trig| [1/s]"
+            << (with_mbc ? "   to MBC [1/s]" : "") << "\n";
+  auto freq = [](std::complex<double> l) { return std::abs(l) / (2 * kPi); };
+  auto zeta = [](std::complex<double> l) {
+    return std::abs(l) > 0 ? -l.real() / std::abs(l) : 0.0;
+  };
+  for (size_t k = 0; k < f.modes.size(); ++k) {
+    const SampledFloquetMode& m = f.modes[k];
+    std::cout << "  " << std::setw(4) << (with_mbc ? m.mbc_mode + 1 : static_cast<int>(k) + 1);
+    if (with_mbc)
+      std::cout << Num(freq(m.reference), 6, 15)
+                << (m.rigid_body ? std::string("  rigid") : Num(zeta(m.reference), 4, 9));
+    std::cout << Num(freq(m.hold), 6, 16)
+              << (m.rigid_body ? std::string("    rigid") : Num(zeta(m.hold), 4, 9))
+              << Num(freq(m.trig), 6, 16)
+              << (m.rigid_body ? std::string("    rigid") : Num(zeta(m.trig), 4, 9))
+              << Num(m.difference, 3, 20);
+    if (with_mbc) std::cout << Num(m.to_reference, 3, 15);
+    std::cout << "\n";
+  }
+  (void)r;
+  bool rigid = false;
+  for (const SampledFloquetMode& m : f.modes) rigid = rigid || m.rigid_body;
+  std::cout << "\n  max Re λ" << (rigid ? " (rigid body excluded)" : "") << ": hold "
+            << Num(f.max_real_hold, 6) << ", trig "
+            << Num(f.max_real_trig, 6) << " 1/s  →  " << (f.stable ? "STABLE" : "UNSTABLE")
+            << "\n  the routes differ by up to " << Num(f.max_difference, 3) << " 1/s";
+  if (f.max_to_reference >= 0)
+    std::cout << "; Floquet vs MBC3 up to " << Num(f.max_to_reference, 3) << " 1/s";
+  std::cout << "\n  notes:\n";
+  for (const auto& n : f.notes) std::cout << "    - " << n << "\n";
+}
+
+int RunMbc(const MbcArgs& args) {
+  if (args.speed != "operating-point" && args.speed != "header")
+    throw InputError("--speed must be operating-point or header, got '" + args.speed + "'");
+  const LinOperatingPoint op = ReadLinOperatingPoint(args.files);
+  Mbc3Options options;
+  options.speed_from_operating_point = args.speed == "operating-point";
+  const Mbc3Result r = Mbc3(op, options);
+
+  std::optional<SampledFloquetResult> f;
+  std::string floquet_skipped;
+  if (args.floquet && op.rotor_speed > 0) {
+    SampledFloquetOptions fo;
+    fo.floquet.integrator.rel_tol = args.tol;
+    f = AnalyzeSampledFloquet(op, r, fo);
+  } else if (args.floquet) {
+    floquet_skipped = "rotor speed 0: a parked rotor is time-invariant, so there is no period "
+                      "and no Floquet analysis";
+  }
+  if (!args.csv.empty()) WriteCsv(args.csv, r, f ? &*f : nullptr);
+  const bool ok = (r.applicable || f) && (!f || f->ok);
+
+  if (args.json) {
+    json modes = json::array();
+    for (const MbcMode& m : r.modes) modes.push_back(ModeJson(m, r));
+    json j = {{"files", op.files},
+              {"rotor_speed_rad_s", JsonNumber(op.rotor_speed)},
+              {"azimuths_rad", op.azimuths},
+              {"blades", r.blades},
+              {"states", op.states.size()},
+              {"mbc_applicable", r.applicable},
+              {"formulation", kFormulation},
+              {"periodic_part", JsonNumber(r.periodic_part)},
+              {"modes", modes},
+              {"rigid_body_modes", r.rigid_body_modes},
+              {"max_real_part", r.applicable && !r.modes.empty() ? JsonNumber(r.max_real_part)
+                                                                 : json(nullptr)},
+              {"diagnostics", r.diagnostics},
+              {"notes", LinCaveats(op)}};
+    if (!r.applicable) j["reason"] = r.reason;
+    if (f) j["floquet"] = FloquetJson(*f);
+    if (!floquet_skipped.empty()) j["floquet_skipped"] = floquet_skipped;
+    std::cout << j.dump(2) << "\n";
+    return ok ? 0 : 1;
+  }
+  PrintHeader(op, r);
+  if (r.applicable) {
+    PrintTable(r);
+  } else {
+    std::cout << "\n  MBC3: not applicable — " << r.reason << "\n";
+  }
+  if (f) PrintFloquet(*f, r);
+  if (!floquet_skipped.empty()) std::cout << "\n  Floquet analysis: " << floquet_skipped << "\n";
+  return ok ? 0 : 1;
+}
+
+}  // namespace
+
+Command AddMbcCommand(CLI::App& app) {
+  static MbcArgs args;
+  auto* cmd = app.add_subcommand(
+      "mbc", "Campbell table (MBC3 with azimuth averaging) of OpenFAST .lin files, with the "
+             "Floquet analysis of the same azimuth samples");
+  cmd->add_option("files", args.files,
+                  "OpenFAST .lin files at one operating point (one per azimuth), a directory of "
+                  "them, or a glob")
+      ->required();
+  cmd->add_flag("--json", args.json, "one JSON object on stdout");
+  cmd->add_option("--csv", args.csv, "write the Campbell table to CSV");
+  cmd->add_flag("!--no-floquet", args.floquet, "skip the Floquet analysis of the samples");
+  cmd->add_option("--speed", args.speed,
+                  "rotor speed in the transform: operating-point (OpenFAST's MBC3: Ω and dΩ/dt "
+                  "of the generator azimuth) or header")
+      ->capture_default_str();
+  cmd->add_option("--tol", args.tol, "relative tolerance of the Floquet integrations")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  return {cmd, [] { return RunMbc(args); }};
+}
+
+}  // namespace ltp::cli

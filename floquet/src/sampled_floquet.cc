@@ -1,0 +1,179 @@
+// Floquet analysis from azimuth samples beside MBC3 (see ltp/floquet/sampled_floquet.h).
+#include "ltp/floquet/sampled_floquet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+namespace {
+
+using std::complex;
+
+// Distance of two exponents modulo jΩ.
+double ModDistance(complex<double> a, complex<double> b, double omega) {
+  return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), omega));
+}
+
+// `x` moved by a multiple of jΩ onto the branch nearest `target`.
+complex<double> OntoBranch(complex<double> x, complex<double> target, double omega) {
+  const double m = std::round((target.imag() - x.imag()) / omega);
+  return {x.real(), x.imag() + m * omega};
+}
+
+// match[i] = index in `b` assigned to a[i]: smallest distances first (modulo jΩ).
+std::vector<int> Match(const std::vector<complex<double>>& a, const std::vector<complex<double>>& b,
+                       double omega) {
+  std::vector<std::pair<double, std::pair<int, int>>> pairs;
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j)
+      pairs.push_back({ModDistance(a[i], b[j], omega), {static_cast<int>(i), static_cast<int>(j)}});
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> match(a.size(), -1);
+  std::vector<bool> used(b.size(), false);
+  for (const auto& [d, ij] : pairs)
+    if (match[ij.first] < 0 && !used[ij.second]) {
+      match[ij.first] = ij.second;
+      used[ij.second] = true;
+    }
+  return match;
+}
+
+std::vector<complex<double>> Exponents(const FloquetResult& r) {
+  std::vector<complex<double>> e;
+  for (const FloquetMode& m : r.modes) e.push_back(m.exponent);
+  return e;
+}
+
+// Without MBC: the rigid rotation is the exponent with a positive real multiplier, nearest 0,
+// whose mode shape at t = 0 is led by the azimuth state.
+int RigidExponent(const FloquetResult& r, const LinOperatingPoint& op, double omega) {
+  if (!op.azimuth_state) return -1;
+  const std::vector<int> rate_of = RateOf(op.states);
+  int best = -1;
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const complex<double> l = r.modes[k].exponent;
+    if (std::abs(std::remainder(l.imag(), omega)) > 1e-6 * omega) continue;
+    if (!r.mode_samples.empty()) {
+      const Eigen::VectorXcd xi = r.mode_samples.front().col(static_cast<int>(k));
+      int lead = -1;
+      for (int i = 0; i < xi.size(); ++i)
+        if (rate_of[i] < 0 && (lead < 0 || std::abs(xi[i]) > std::abs(xi[lead]))) lead = i;
+      if (lead != *op.azimuth_state) continue;
+    }
+    if (best < 0 || std::abs(l.real()) < std::abs(r.modes[best].exponent.real())) best = static_cast<int>(k);
+  }
+  return best;
+}
+
+std::string Format(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+}  // namespace
+
+SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mbc3Result& mbc,
+                                           const SampledFloquetOptions& options) {
+  if (!(op.rotor_speed > 0))
+    throw InputError("rotor speed 0: a parked rotor is time-invariant, so there is no period and "
+                     "no Floquet analysis (the MBC eigen-analysis still applies)");
+  SampledFloquetResult r;
+  const bool use_mbc = mbc.applicable && options.multiblade_coordinates;
+  const LinOperatingPoint used = use_mbc ? InMultiBladeCoordinates(op, mbc) : op;
+  r.coordinates = use_mbc ? "multi-blade coordinates" : "the files' coordinates";
+  r.samples = op.size();
+  r.resolved_harmonics = (op.size() - 1) / 2;
+  const double omega = op.rotor_speed;
+
+  FloquetOptions hold_options = options.floquet;
+  hold_options.integrator.type = IntegratorType::kExpm;  // exact for the held samples
+  r.hold = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
+  r.trig = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), options.floquet);
+  r.ok = r.hold.ok && r.trig.ok;
+  r.notes = LinCaveats(used);
+  if (!r.ok) {
+    r.notes.push_back("a Floquet route failed: see its diagnostics");
+    return r;
+  }
+  const std::vector<complex<double>> hold = Exponents(r.hold), trig = Exponents(r.trig);
+
+  // References: every MBC eigenvalue (both members of a complex pair), or the hold route's.
+  std::vector<complex<double>> refs;
+  std::vector<int> ref_mode;  // MBC mode of each reference, −1 for a conjugate
+  std::vector<bool> ref_rigid;
+  if (mbc.applicable && !mbc.modes.empty()) {
+    for (size_t k = 0; k < mbc.modes.size(); ++k) {
+      refs.push_back(mbc.modes[k].eigenvalue);
+      ref_mode.push_back(static_cast<int>(k));
+      ref_rigid.push_back(mbc.modes[k].rigid_body);
+      if (mbc.modes[k].eigenvalue.imag() > 0) {
+        refs.push_back(std::conj(mbc.modes[k].eigenvalue));
+        ref_mode.push_back(-1);
+        ref_rigid.push_back(false);
+      }
+    }
+  } else {
+    const int rigid = RigidExponent(r.hold, used, omega);
+    for (size_t k = 0; k < hold.size(); ++k) {
+      refs.push_back(hold[k]);
+      ref_mode.push_back(hold[k].imag() >= 0 ? static_cast<int>(k) : -1);
+      ref_rigid.push_back(static_cast<int>(k) == rigid);
+    }
+  }
+  const std::vector<int> to_hold = Match(refs, hold, omega), to_trig = Match(refs, trig, omega);
+  const bool with_mbc = mbc.applicable && !mbc.modes.empty();
+  r.max_real_hold = r.max_real_trig = -std::numeric_limits<double>::infinity();
+  r.max_to_reference = with_mbc ? 0 : -1;
+  for (size_t i = 0; i < refs.size(); ++i) {
+    if (to_hold[i] < 0 || to_trig[i] < 0) continue;
+    const complex<double> h = OntoBranch(hold[to_hold[i]], refs[i], omega);
+    const complex<double> t = OntoBranch(trig[to_trig[i]], h, omega);
+    if (!ref_rigid[i]) {
+      r.max_real_hold = std::max(r.max_real_hold, h.real());
+      r.max_real_trig = std::max(r.max_real_trig, t.real());
+    }
+    if (ref_mode[i] < 0) continue;
+    SampledFloquetMode m;
+    m.mbc_mode = with_mbc ? ref_mode[i] : -1;
+    m.reference = refs[i];
+    m.hold = h;
+    m.trig = t;
+    m.difference = std::abs(h - t);
+    m.rigid_body = ref_rigid[i];
+    if (with_mbc) m.to_reference = std::max(std::abs(h - refs[i]), std::abs(t - refs[i]));
+    r.max_difference = std::max(r.max_difference, m.difference);
+    if (with_mbc) r.max_to_reference = std::max(r.max_to_reference, m.to_reference);
+    r.modes.push_back(m);
+  }
+  std::stable_sort(r.modes.begin(), r.modes.end(), [](const SampledFloquetMode& a, const SampledFloquetMode& b) {
+    if (a.mbc_mode >= 0 && b.mbc_mode >= 0) return a.mbc_mode < b.mbc_mode;
+    return std::abs(a.hold) < std::abs(b.hold);
+  });
+  r.stable = r.max_real_hold < 0 && r.max_real_trig < 0;
+
+  r.notes.push_back("each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +
+                    std::string(with_mbc ? "MBC eigenvalue" : "hold route's exponent") +
+                    " it is matched to" +
+                    (with_mbc ? " (modes whose exponents coincide modulo jΩ, such as the backward "
+                                "and forward whirl of a nearly isotropic rotor, are told apart by "
+                                "proximity only)"
+                              : std::string()));
+  for (const SampledFloquetMode& m : r.modes)
+    if (m.rigid_body)
+      r.notes.push_back("rigid-body mode: exponent " + Format("%.3g", m.hold.real()) +
+                        " (hold) and " + Format("%.3g", m.trig.real()) +
+                        " (trig) 1/s instead of 0 — the sampling error on the rigid rotation; "
+                        "excluded from max Re λ");
+  if (with_mbc)
+    r.notes.push_back("distance to the MBC eigenvalues up to " + Format("%.3g", r.max_to_reference) +
+                      " 1/s: the periodicity that azimuth averaging discards, plus sampling error");
+  return r;
+}
+
+}  // namespace ltp

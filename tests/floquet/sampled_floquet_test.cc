@@ -1,0 +1,167 @@
+// Floquet analysis from azimuth samples (OpenFAST .lin files) against independent references:
+// the exact constant multi-blade system of the rotor scene, the continuous rotor integrated
+// without sampling, and the product of matrix exponentials formed directly.
+#include "ltp/floquet/sampled_floquet.h"
+
+#include <gtest/gtest.h>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "ltp/core/error.h"
+#include "ltp/core/mbc.h"
+#include "ltp/core/rotor.h"
+#include "support/rotor_lin.h"
+
+namespace ltp {
+namespace {
+
+using Eigen::MatrixXd;
+using std::complex;
+using std::numbers::pi;
+
+std::string FiveMwDir() {
+  const char* dir = std::getenv("LTP_SOURCE_DIR");
+  const std::string root = dir ? dir
+                               : std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().string();
+  return root + "/tests/data/openfast/nrel5mw-rotating";
+}
+
+double ModDistance(complex<double> a, complex<double> b, double omega) {
+  return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), omega));
+}
+
+// Largest distance of each of `a` to the nearest of `b`, modulo jΩ.
+double MaxDistanceModulo(const std::vector<complex<double>>& a, const std::vector<complex<double>>& b,
+                         double omega) {
+  double worst = 0;
+  for (const auto& x : a) {
+    double best = 1e300;
+    for (const auto& y : b) best = std::min(best, ModDistance(x, y, omega));
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+std::vector<complex<double>> Exponents(const FloquetResult& r) {
+  std::vector<complex<double>> e;
+  for (const FloquetMode& m : r.modes) e.push_back(m.exponent);
+  return e;
+}
+
+RotorParameters Rotor(int blades) {
+  RotorParameters r;
+  r.blades = blades;
+  r.omega = 1.3;
+  r.stiffness_y = 3.5;  // anisotropic support: the rotating-frame A(t) is truly periodic
+  r.lag_stiffness = 0.4;
+  return r;
+}
+
+// MBC makes the identical-blade rotor constant, so both interpolations of the transformed
+// samples are exact for any K; in the files' coordinates A(t) has harmonics up to 3 (rotor.h),
+// so the trigonometric interpolant through K = 7 samples (degree 3) is exact too, even with
+// uneven azimuths. Reference: the exact constant MBC system of core/mbc.h, modulo jΩ.
+TEST(LinSampledFloquet, RotorFromLinSamplesGivesItsExactExponents) {
+  const RotorParameters rotor = Rotor(3);
+  const std::vector<double> azimuths{0.05, 0.8, 1.9, 2.6, 3.7, 4.9, 5.6};
+  const LinOperatingPoint op = MakeLinOperatingPoint(test::RotorLinFiles(rotor, azimuths));
+  const MbcRotorSystem exact = RotorInMultiBladeCoordinates(rotor);
+  const Mbc3Result mbc = Mbc3(op);
+
+  const SampledFloquetResult in_mbc = AnalyzeSampledFloquet(op, mbc);
+  ASSERT_TRUE(in_mbc.ok);
+  EXPECT_EQ(in_mbc.coordinates, "multi-blade coordinates");
+  EXPECT_EQ(in_mbc.resolved_harmonics, 3);
+  EXPECT_LT(MaxDistanceModulo(Exponents(in_mbc.hold), exact.eigenvalues, rotor.omega), 1e-8);
+  EXPECT_LT(MaxDistanceModulo(Exponents(in_mbc.trig), exact.eigenvalues, rotor.omega), 1e-8);
+  EXPECT_LT(in_mbc.max_to_reference, 1e-8);
+  EXPECT_LT(in_mbc.max_difference, 1e-8);
+
+  SampledFloquetOptions files_frame;
+  files_frame.multiblade_coordinates = false;
+  const SampledFloquetResult raw = AnalyzeSampledFloquet(op, mbc, files_frame);
+  ASSERT_TRUE(raw.ok);
+  EXPECT_EQ(raw.coordinates, "the files' coordinates");
+  EXPECT_LT(MaxDistanceModulo(Exponents(raw.trig), exact.eigenvalues, rotor.omega), 1e-8);
+  // Each reported mode sits on its MBC eigenvalue's branch.
+  for (const SampledFloquetMode& m : raw.modes) {
+    ASSERT_GE(m.mbc_mode, 0);
+    EXPECT_LT(std::abs(m.trig - mbc.modes[m.mbc_mode].eigenvalue), 1e-8);
+  }
+  // Holding 7 samples of a periodic A(t) is not exact: the routes must disagree visibly.
+  EXPECT_GT(raw.max_difference, 1e-4);
+}
+
+// A two-bladed rotor has no MBC; its Floquet exponents come from the samples alone. With
+// K = 25 evenly spaced samples of the smooth (analytic) A(t) the trigonometric interpolant
+// converges geometrically; reference: the continuous rotor system integrated directly
+// (rkf78, tolerance 1e-12, no sampling).
+TEST(LinSampledFloquet, TwoBladedRotorFromSamples) {
+  const RotorParameters rotor = Rotor(2);
+  std::vector<double> azimuths;
+  for (int k = 0; k < 25; ++k) azimuths.push_back(2 * pi * k / 25);
+  const LinOperatingPoint op = MakeLinOperatingPoint(test::RotorLinFiles(rotor, azimuths));
+  const Mbc3Result mbc = Mbc3(op);
+  ASSERT_FALSE(mbc.applicable);
+  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.coordinates, "the files' coordinates");
+  EXPECT_LT(r.max_to_reference, 0);  // no MBC reference
+  FloquetOptions tight;
+  tight.integrator.type = IntegratorType::kRkf78;
+  tight.integrator.rel_tol = 1e-12;
+  const FloquetResult continuous = AnalyzeFloquet(BuildRotorSystem(rotor), tight);
+  ASSERT_TRUE(continuous.ok);
+  EXPECT_LT(MaxDistanceModulo(Exponents(r.trig), Exponents(continuous), rotor.omega), 1e-7);
+  EXPECT_GT(MaxDistanceModulo(Exponents(r.hold), Exponents(continuous), rotor.omega), 1e-5);
+}
+
+// The hold route on the 5 MW samples (in MBC coordinates) against the monodromy formed here
+// directly: Φ = Π_k expm(A_k Δt_k), each sample held from the midpoint with its predecessor
+// to the midpoint with its successor; exponents log(eig Φ)/T modulo jΩ.
+TEST(LinSampledFloquet, FiveMwHoldRouteIsTheProductOfExponentials) {
+  const LinOperatingPoint op = ReadLinOperatingPoint({FiveMwDir()});
+  const Mbc3Result mbc = Mbc3(op);
+  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
+  ASSERT_TRUE(r.ok);
+  const double omega = op.rotor_speed, T = 2 * pi / omega;
+  const int K = op.size();
+  MatrixXd phi = MatrixXd::Identity(20, 20);
+  for (int k = 0; k < K; ++k) {
+    const double prev = k > 0 ? op.azimuths[k - 1] : op.azimuths[K - 1] - 2 * pi;
+    const double next = k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi;
+    const double dt = (next - prev) / 2 / omega;
+    phi = MatrixXd((mbc.transformed[k].A * dt).exp()) * phi;
+  }
+  const Eigen::VectorXcd rho = phi.eigenvalues();
+  std::vector<complex<double>> direct;
+  for (int i = 0; i < rho.size(); ++i) direct.push_back(std::log(rho[i]) / T);
+  EXPECT_LT(MaxDistanceModulo(Exponents(r.hold), direct, omega), 1e-9);
+  EXPECT_LT(MaxDistanceModulo(direct, Exponents(r.hold), omega), 1e-9);
+
+  // The rigid rotation is matched to MBC's rigid-body mode and kept out of max Re λ.
+  int rigid = 0;
+  for (const SampledFloquetMode& m : r.modes)
+    if (m.rigid_body) {
+      ++rigid;
+      EXPECT_TRUE(mbc.modes[m.mbc_mode].rigid_body);
+      EXPECT_LT(std::abs(m.hold), 1e-2);
+    }
+  EXPECT_EQ(rigid, 1);
+  EXPECT_LT(r.max_real_hold, 0);
+  EXPECT_LT(r.max_real_trig, 0);
+  EXPECT_TRUE(r.stable);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes[0].find("3 azimuths hold only harmonics 0 and ±1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ltp
