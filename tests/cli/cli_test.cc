@@ -1,6 +1,8 @@
 // End-to-end: run the `ltp` binary as a user would and check its output and exit codes.
 #include <gtest/gtest.h>
 
+#include "support/ltp_cli.h"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -10,27 +12,8 @@
 
 namespace {
 
-struct Outcome {
-  int code = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
-
-Outcome Ltp(const std::string& args) {
-  const std::string err_file = std::string(::testing::TempDir()) + "ltp_stderr.txt";
-  const std::string cmd = std::string(LTP_BINARY) + " " + args + " 2>" + err_file;
-  Outcome r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (p && fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = p ? pclose(p) : -1;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (FILE* e = std::fopen(err_file.c_str(), "r")) {
-    while (fgets(buf.data(), buf.size(), e)) r.err += buf.data();
-    std::fclose(e);
-  }
-  return r;
-}
+using Outcome = test::LtpRun;
+Outcome Ltp(const std::string& args) { return test::RunLtp(args); }
 
 std::string Src(const std::string& rel) { return std::string(LTP_SOURCE_DIR) + "/" + rel; }
 

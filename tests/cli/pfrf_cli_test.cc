@@ -1,6 +1,8 @@
 // End-to-end: `ltp pfrf` and `ltp snapshot` as a user runs them.
 #include <gtest/gtest.h>
 
+#include "support/ltp_cli.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -11,26 +13,8 @@
 
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun Ltp(const std::string& args) {
-  const std::string err_file = std::string(::testing::TempDir()) + "ltp_pfrf_stderr.txt";
-  const std::string cmd = std::string(LTP_BINARY) + " " + args + " 2>" + err_file;
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (p && fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = p ? pclose(p) : -1;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+using CliRun = test::LtpRun;
+CliRun Ltp(const std::string& args) { return test::RunLtp(args); }
 
 TEST(PfrfCli, JsonAndCsv) {
   const std::string csv = std::string(::testing::TempDir()) + "pfrf.csv";

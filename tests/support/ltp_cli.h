@@ -2,6 +2,7 @@
 // Runs the `ltp` binary (LTP_BINARY, set by tests/CMakeLists.txt) as a user would.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -18,7 +19,10 @@ struct LtpRun {
 };
 
 inline LtpRun RunLtp(const std::string& args, const std::string& prefix = "") {
-  const std::string err_file = std::string(::testing::TempDir()) + "ltp_run_stderr.txt";
+  // One stderr file per process and call: ctest runs tests in parallel processes.
+  static int calls = 0;
+  const std::string err_file = std::string(::testing::TempDir()) + "ltp_stderr_" +
+                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
   const std::string cmd = prefix + std::string(LTP_BINARY) + " " + args + " 2>" + err_file;
   LtpRun r;
   FILE* p = popen(cmd.c_str(), "r");
@@ -30,6 +34,7 @@ inline LtpRun RunLtp(const std::string& args, const std::string& prefix = "") {
   std::stringstream s;
   s << e.rdbuf();
   r.err = s.str();
+  std::remove(err_file.c_str());
   return r;
 }
 
