@@ -88,7 +88,7 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
                             {"im", JsonNumber(mag * std::sin(m.log_multiplier.imag()))},
                             {"log_abs", JsonNumber(m.log_multiplier.real())},
                             {"arg", JsonNumber(m.log_multiplier.imag())}});
-    extra->push_back({{"branch", m.branch}, {"central_weight", JsonNumber(m.central_weight)},
+    extra->push_back({{"branch", m.branch}, {"rigid_body", m.rigid_body}, {"central_weight", JsonNumber(m.central_weight)},
                       {"branch_margin", JsonNumber(m.branch_margin)},
                       {"eigenvector_residual", JsonNumber(m.eigvec_residual)}});
   }
@@ -172,7 +172,8 @@ void PrintModeTable(const std::vector<FloquetMode>& modes) {
     std::cout << "  " << std::setw(4) << k + 1 << Num(m.exponent.real(), 7, 15)
               << Num(m.exponent.imag(), 7, 16) << Num(m.frequency_hz, 6, 14)
               << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 11)
-              << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch << "\n";
+              << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch
+              << (m.rigid_body ? "  rigid body" : "") << "\n";
   }
 }
 

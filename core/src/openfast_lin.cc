@@ -830,6 +830,7 @@ PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation i
   for (const LinChannel& c : op.states) labels.states.push_back(c.description);
   for (const LinChannel& c : op.inputs) labels.inputs.push_back(c.description);
   for (const LinChannel& c : op.outputs) labels.outputs.push_back(c.description);
+  if (op.azimuth_state) labels.rigid_body_states.push_back(*op.azimuth_state);
   PeriodicSystem system =
       BuildAzimuthSampledSystem(op.rotor_speed, op.azimuths, op.samples, interpolation);
   if (static_cast<int>(labels.inputs.size()) != system.inputs()) labels.inputs.clear();

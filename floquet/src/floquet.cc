@@ -450,10 +450,39 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     for (auto& m : r.mode_fourier) permute(m);
   }
 
-  // 6. Summary numbers and checks.
+  // 6. Summary numbers and checks. A state labelled rigid-body (a free rotation angle) owns
+  // one exponent that is 0 in theory: among the modes whose shape lies mostly in that state
+  // (without shapes: all modes), the exponent nearest 0 is flagged and left out of the verdict.
+  // Nearest 0, not largest share: a slow real mode of the rotor speed also lies mostly in the
+  // angle (its angle amplitude is the speed amplitude divided by λ).
+  for (int state : system.labels().rigid_body_states) {
+    if (state < 0 || state >= n) continue;
+    int best = -1;
+    for (int pass = 0; pass < 2 && best < 0; ++pass) {
+      for (int k = 0; k < n; ++k) {
+        if (r.modes[k].rigid_body) continue;
+        if (pass == 0) {
+          if (r.mode_samples.empty()) continue;
+          const double norm = r.mode_samples.front().col(k).norm();
+          if (!(norm > 0) || std::abs(r.mode_samples.front()(state, k)) < 0.5 * norm) continue;
+        }
+        if (best < 0 || std::abs(r.modes[k].exponent) < std::abs(r.modes[best].exponent)) best = k;
+      }
+    }
+    if (best < 0) continue;
+    r.modes[best].rigid_body = true;
+    std::ostringstream s;
+    s << "mode " << best + 1 << " is the rigid rotation of state " << state + 1
+      << (state < static_cast<int>(system.labels().states.size()) ? " (" + system.labels().states[state] + ")" : "")
+      << ": exponent " << r.modes[best].exponent.real()
+      << " 1/s, exactly 0 for the exact periodic system; its distance from 0 is the model's "
+         "error (e.g. azimuth sampling); left out of max Re λ and the stability verdict";
+    r.diagnostics.push_back(s.str());
+  }
   r.max_real_exponent = -std::numeric_limits<double>::infinity();
-  for (const auto& mode : r.modes) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
-  if (n == 0) r.max_real_exponent = 0;
+  for (const auto& mode : r.modes)
+    if (!mode.rigid_body) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
+  if (!std::isfinite(r.max_real_exponent)) r.max_real_exponent = 0;  // n = 0, or all rigid
   r.max_log_abs_multiplier = r.max_real_exponent * T;
   double max_abs_log = 0;
   double sum_log_abs = 0;

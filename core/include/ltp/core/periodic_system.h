@@ -25,6 +25,10 @@ struct LtiSystem {
 /// Names of states, inputs and outputs, for output and for selecting channels by name.
 struct SystemLabels {
   std::vector<std::string> states, inputs, outputs;
+  /// States that are a free rotation angle (e.g. OpenFAST's generator azimuth): each gives a
+  /// Floquet exponent that is exactly 0 in theory; the analyses flag that mode as rigid-body
+  /// and leave it out of the stability verdict.
+  std::vector<int> rigid_body_states;
 };
 
 class PeriodicSystem {

@@ -60,6 +60,9 @@ struct FloquetMode {
   /// e.g. a negative real multiplier, whose exponent sits on the strip edge).
   double branch_margin = 0;
   double eigvec_residual = 0;  ///< cyclic residual of the periodic eigenvector
+  /// The free rotation of a state in SystemLabels::rigid_body_states: exponent 0 in theory
+  /// (its distance from 0 is the model's error), left out of max_real_exponent and stable.
+  bool rigid_body = false;
 };
 
 struct FloquetResult {
@@ -71,7 +74,7 @@ struct FloquetResult {
   int segments = 0;              ///< K actually used
   std::vector<double> segment_times;   ///< t_0 = 0 < t_1 < … < t_K = T
   std::vector<FloquetMode> modes;      ///< sorted by frequency (|Im λ|), then Re λ
-  double max_real_exponent = 0;        ///< max Re λ (1/s)
+  double max_real_exponent = 0;        ///< max Re λ (1/s), rigid-body modes excluded
   double max_log_abs_multiplier = 0;   ///< max log|ρ| = T · max Re λ
   bool stable = false;                 ///< max Re λ < 0 beyond the error estimate
   /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
