@@ -7,6 +7,7 @@
 #include <exception>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "ltp/core/error.h"
@@ -23,19 +24,54 @@ std::string Trim(const std::string& s) {
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
+// Stability only (maps): Φ(T, 0) in one integration and the eigenvalues of the 2..n matrix.
+// The largest multiplier keeps its relative accuracy in the formed product however small the
+// others are, and it is all a map needs; AnalyzeFloquet's segment grid, periodic Schur and
+// bookkeeping would cost a quarter of the point. Returns false (caller falls back to the full
+// analysis) when the integration fails or the product over- or underflows.
+bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& options,
+                           SweepPoint& point) {
+  const int n = system.states();
+  if (n == 0) return false;
+  const TransitionResult phi = StateTransition(system, 0, system.period(), options.floquet.integrator);
+  if (!phi.ok || !phi.phi.allFinite()) return false;
+  const Eigen::VectorXcd rho = phi.phi.eigenvalues();
+  const double T = system.period();
+  point.modes.resize(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    if (!(std::abs(rho(k)) > 0)) return false;  // underflow: the full analysis keeps it
+    const cd log_rho = std::log(rho(k));
+    FloquetMode& m = point.modes[static_cast<size_t>(k)];
+    m.log_multiplier = log_rho;
+    m.exponent = log_rho / T;
+    m.frequency_hz = m.exponent.imag() / (2 * std::numbers::pi);
+    const double mag = std::abs(m.exponent);
+    m.damping_ratio = mag > 0 ? -m.exponent.real() / mag : 0;
+  }
+  const std::vector<int> order = ModeDisplayOrder(point.modes);
+  std::vector<FloquetMode> sorted;
+  for (int k : order) sorted.push_back(point.modes[static_cast<size_t>(k)]);
+  point.modes = std::move(sorted);
+  point.period = T;
+  point.max_real_exponent = -std::numeric_limits<double>::infinity();
+  for (const auto& m : point.modes) point.max_real_exponent = std::max(point.max_real_exponent, m.exponent.real());
+  point.max_log_multiplier = point.max_real_exponent * T;
+  point.ok = true;
+  return true;
+}
+
 // Monodromy route for one point.
 void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& options,
                         bool check_error, SweepPoint& point) {
+  // Rigid-body states need the full analysis, which flags their mode.
+  if (!options.modes && !check_error && options.floquet.segments == 0 &&
+      system.labels().rigid_body_states.empty() && LargestMultiplierOnly(system, options, point))
+    return;
   FloquetOptions o = options.floquet;
   o.threads = 1;
   o.compute_modes = options.modes;
   o.estimate_error = check_error;
-  if (!options.modes && o.segments == 0) {
-    // Stability only: one segment. The largest multiplier — all a map needs — keeps its
-    // relative accuracy in the formed product however small the others are; only when the
-    // product over- or underflows do we fall back to the automatic segment grid.
-    o.segments = 1;
-  }
+  if (!options.modes && o.segments == 0) o.segments = 1;  // as above, with the error estimate
   FloquetResult r = AnalyzeFloquet(system, o);
   if (!r.ok && o.segments == 1 && options.floquet.segments == 0) {
     o.segments = 0;
