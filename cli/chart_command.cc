@@ -45,7 +45,7 @@ struct ChartArgs {
   SceneArgs scene;
   std::string sweep, sweep2;
   std::string method = "monodromy";
-  std::string integrator = "rkf78";
+  std::string integrator;  // default: bs for maps, rkf78 for 1-D sweeps (see MakeOptions)
   double tol = 1e-10;
   int threads = 0;
   std::string csv, plot;
@@ -144,6 +144,9 @@ int RunChart(ChartArgs& args) {
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
     const SweepGrid grid = MakeSweepGrid(l.scene, axes);
     const bool map = grid.axes.size() == 2;
+    // Maps: Bulirsch–Stoer, the cheapest route to 1e-8 multipliers on smooth small systems
+    // (README, stability-chart benchmark). 1-D sweeps: rkf78, which suits their short segments.
+    if (args.integrator.empty()) args.integrator = map ? "bs" : "rkf78";
     const SweepOptions options = MakeOptions(args, map);
     const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 
@@ -404,8 +407,8 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_option("--sweep", args.sweep, "NAME=START:STOP:STEP, e.g. Omega=0.3:1.8:0.005")->required();
   cmd->add_option("--sweep2", args.sweep2, "second parameter for a stability map, e.g. q=0:8:0.02");
   cmd->add_option("--method", args.method, "monodromy | hill")->capture_default_str();
-  cmd->add_option("--integrator", args.integrator, "monodromy integrator (see `ltp floquet --help`)")
-      ->capture_default_str();
+  cmd->add_option("--integrator", args.integrator,
+                  "monodromy integrator (see `ltp floquet --help`); default bs for maps, rkf78 for 1-D");
   cmd->add_option("--tol", args.tol, "integrator relative tolerance (hill: truncation tolerance)")
       ->capture_default_str();
   cmd->add_option("--threads", args.threads, "threads (0 = all cores)")->capture_default_str();

@@ -258,6 +258,12 @@ LtiSystem PeriodicSystem::SnapshotAtAngle(double angle_rad) const {
 }
 
 const std::vector<double>& PeriodicSystem::breakpoints() const { return impl_->breakpoints; }
+const double* PeriodicSystem::RealSeriesA(int* harmonics) const {
+  if (impl_->form != Form::kFourier) return nullptr;
+  if (harmonics) *harmonics = impl_->a_harmonics;
+  return impl_->a_series.data();
+}
+
 const FourierMatrix* PeriodicSystem::fourier_A() const {
   return impl_->form == Form::kFourier ? &impl_->fa : nullptr;
 }

@@ -21,9 +21,10 @@ struct NamedType {
   std::string_view name;
 };
 
-constexpr std::array<NamedType, 7> kNames = {{
+constexpr std::array<NamedType, 8> kNames = {{
     {IntegratorType::kDopri5, "dopri5"},
     {IntegratorType::kRkf78, "rkf78"},
+    {IntegratorType::kBulirschStoer, "bs"},
     {IntegratorType::kCvodeBdf, "cvode"},
     {IntegratorType::kCvodeAdams, "cvode-adams"},
     {IntegratorType::kMagnus4, "magnus4"},
@@ -206,6 +207,7 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
   switch (options.type) {
     case IntegratorType::kDopri5:
     case IntegratorType::kRkf78:
+    case IntegratorType::kBulirschStoer:
       result = internal::OdeintTransition(system, points, options);
       break;
     case IntegratorType::kCvodeBdf:

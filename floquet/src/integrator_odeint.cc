@@ -35,8 +35,12 @@ class MatrixRhs {
  public:
   MatrixRhs(const PeriodicSystem& system, long* evals)
       : system_(system), n_(system.states()), a_(n_, n_), evals_(evals) {
-    if constexpr (N == Eigen::Dynamic) a_.setZero(n_, n_);
-    else a_.setZero();
+    if constexpr (N == Eigen::Dynamic) {
+      a_.setZero(n_, n_);
+    } else {
+      a_.setZero();
+      series_ = system.RealSeriesA(&harmonics_);
+    }
   }
   MatrixRhs(const MatrixRhs&) = delete;  // passed by std::ref: no copy (and allocation) per step
   MatrixRhs& operator=(const MatrixRhs&) = delete;
@@ -49,24 +53,49 @@ class MatrixRhs {
   void operator()(const State& x, State& dxdt, double t) {
     const double tw = window_(t);
     if constexpr (N != Eigen::Dynamic) {
-      // Runge–Kutta–Fehlberg 7(8) evaluates at 13 stage times of which only 9 are distinct
-      // (c = 0, 1/6 and 1 repeat, and the next step starts where this one ended): remembering
-      // the last few A(t) saves about 30 % of the evaluations of small systems, where A(t)
-      // (a sincos per harmonic) costs as much as the stage arithmetic.
-      for (const auto& slot : cache_)
-        if (slot.t == tw) {
-          a_ = slot.a;
-          Multiply(x, dxdt);
-          return;
-        }
-      system_.EvalA(tw, a_);
-      cache_[next_slot_] = {tw, a_};
-      next_slot_ = (next_slot_ + 1) % kCacheSlots;
+      if (cache_stages_) {
+        // Runge–Kutta–Fehlberg 7(8) evaluates at 13 stage times of which only 9 are distinct
+        // (c = 0, 1/6 and 1 repeat, and the next step starts where this one ended): remember
+        // the last few A(t).
+        for (const auto& slot : cache_)
+          if (slot.t == tw) {
+            a_ = slot.a;
+            Multiply(x, dxdt);
+            return;
+          }
+      }
+      // Fourier form: A(t) from the real series with fixed-size arithmetic, inline (the
+      // general EvalA costs as much as the sincos for n = 2).
+      if (series_) EvalSeries(tw);
+      else system_.EvalA(tw, a_);
+      if (cache_stages_) {
+        cache_[next_slot_] = {tw, a_};
+        next_slot_ = (next_slot_ + 1) % kCacheSlots;
+      }
     } else {
       system_.EvalA(tw, a_);
     }
     ++*evals_;
     Multiply(x, dxdt);
+  }
+
+  void CacheStages(bool on) { cache_stages_ = on; }
+
+  void EvalSeries(double t) {
+    using Block = Eigen::Map<const Eigen::Matrix<double, N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>;
+    constexpr int nn = N == Eigen::Dynamic ? 1 : N * N;
+    a_ = Block(series_);
+    if (harmonics_ == 0) return;
+    const double theta = system_.omega() * t;
+    const double c1 = std::cos(theta), s1 = std::sin(theta);
+    double c = c1, s = s1;
+    for (int w = 1; w <= harmonics_; ++w) {
+      const double* cw = series_ + nn * (2 * w - 1);
+      a_ += c * Block(cw) + s * Block(cw + nn);
+      const double next_c = c * c1 - s * s1;
+      s = s * c1 + c * s1;
+      c = next_c;
+    }
   }
 
   void Multiply(const State& x, State& dxdt) const {
@@ -95,12 +124,22 @@ class MatrixRhs {
   static constexpr int kCacheSlots = 16;
   std::array<Slot, N == Eigen::Dynamic ? 1 : kCacheSlots> cache_{};
   int next_slot_ = 0;
+  bool cache_stages_ = false;
+  const double* series_ = nullptr;  // Fourier form with fixed N: evaluated inline
+  int harmonics_ = 0;
 };
 
 template <class State>
 bool AllFinite(const State& x) {
   for (double v : x)
     if (!std::isfinite(v)) return false;
+  return true;
+}
+
+template <class State>
+bool BelowOverflow(const State& x) {
+  for (double v : x)
+    if (!(std::abs(v) < 1e300)) return false;
   return true;
 }
 
@@ -116,6 +155,8 @@ TransitionResult Run(Controlled stepper, int order, const PeriodicSystem& system
   Eigen::Map<Eigen::Matrix<double, N, N>> piece_phi(x.data(), n, n);
   Eigen::MatrixXd product(n, n);
   MatrixRhs<State, N> rhs(system, &result.rhs_evals);
+  // Repeated stage times: Runge–Kutta tableaus (rkf78, dopri5), not Bulirsch–Stoer's substeps.
+  rhs.CacheStages(options.type != IntegratorType::kBulirschStoer);
   long attempts = 0;
 
   for (size_t p = 0; p + 1 < points.size(); ++p) {
@@ -148,6 +189,13 @@ TransitionResult Run(Controlled stepper, int order, const PeriodicSystem& system
           result.message = kNotFiniteMessage;
           return result;
         }
+      } else if (!BelowOverflow(x)) {
+        // A rejected step of a state near the double range: the error estimate itself
+        // overflows (inf − inf), so every smaller step is rejected too (seen with
+        // Bulirsch–Stoer's extrapolation). Report the overflow instead of spinning.
+        result.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
+        result.message = kNotFiniteMessage;
+        return result;
       }
       dt = h;  // the controller's proposal (larger after success, smaller after a rejection)
       if (t < b && t + dt == t) {
@@ -170,6 +218,11 @@ TransitionResult RunOdeint(const PeriodicSystem& system, const std::vector<doubl
                            const IntegratorOptions& options) {
   using Algebra = std::conditional_t<N == Eigen::Dynamic, odeint::range_algebra,
                                      odeint::vector_space_algebra>;
+  if (options.type == IntegratorType::kBulirschStoer) {
+    return Run<State, N>(odeint::bulirsch_stoer<State, double, State, double, Algebra>(
+                             options.abs_tol, options.rel_tol),
+                         8, system, points, options);
+  }
   if (options.type == IntegratorType::kRkf78) {
     return Run<State, N>(
         odeint::make_controlled(options.abs_tol, options.rel_tol,

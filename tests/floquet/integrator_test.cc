@@ -104,7 +104,7 @@ PeriodicSystem RandomFourier(double period, FourierMatrix* coefficients = nullpt
 // ---------------------------------------------------------------- names and options
 
 TEST(IntegratorNames, RoundTrip) {
-  EXPECT_EQ(AllIntegrators().size(), 7u);
+  EXPECT_EQ(AllIntegrators().size(), 8u);
   for (IntegratorType t : AllIntegrators()) {
     auto parsed = ParseIntegratorType(ToString(t));
     ASSERT_TRUE(parsed.has_value()) << ToString(t);

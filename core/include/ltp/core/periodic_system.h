@@ -91,6 +91,10 @@ class PeriodicSystem {
 
   /// Exact Fourier coefficients, when the system was built from them; nullptr otherwise.
   const FourierMatrix* fourier_A() const;
+  /// Fourier form: A(t) = A_0 + Σ_{w=1..H} (C_w cos wΩt + S_w sin wΩt) as flat column-major
+  /// n×n blocks [A_0 | C_1 | S_1 | ... | C_H | S_H] (trailing zero harmonics dropped), for inner
+  /// loops that evaluate A(t) themselves; nullptr for the other forms. `harmonics` gets H.
+  const double* RealSeriesA(int* harmonics) const;
   const FourierMatrix* fourier_B() const;
   const FourierMatrix* fourier_C() const;
   const FourierMatrix* fourier_D() const;
