@@ -369,7 +369,7 @@ Command AddFloquetCommand(CLI::App& app) {
       "floquet", "Floquet exponents, multipliers and periodic modes via the monodromy matrix");
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--integrator", args.integrator,
-                  "dopri5 | rkf78 | cvode | cvode-adams | magnus4 | magnus6 | expm")
+                  "dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm")
       ->capture_default_str();
   cmd->add_option("--tol", args.options.integrator.rel_tol, "relative tolerance")
       ->capture_default_str()
