@@ -54,6 +54,18 @@ TEST(ChartCli, BadInputIsOneLineExitTwo) {
   }
 }
 
+// Without gnuplot on PATH the picture is a script with the data inline, and ltp says so.
+TEST(ChartCli, WithoutGnuplotWritesTheScript) {
+  const std::string png = Tmp("chart_nognuplot.png");
+  std::filesystem::remove(png + ".gp");
+  const auto r = RunLtp("chart mathieu --sweep a=0:2:0.5 --plot " + png, "PATH=/nonexistent ");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("gnuplot " + png + ".gp"), std::string::npos) << r.out;
+  const std::string script = ReadFile(png + ".gp");
+  EXPECT_NE(script.find("set output '" + png + "'"), std::string::npos);
+  EXPECT_NE(script.find("$M << EOD"), std::string::npos);
+}
+
 // An interrupted 2-D sweep leaves a valid CSV and its journal; --resume computes only the
 // missing points and ends with exactly the file an uninterrupted run writes.
 TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
