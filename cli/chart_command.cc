@@ -90,7 +90,8 @@ class Progress {
     const int filled = static_cast<int>(width * double(done_) / double(std::max<size_t>(total_, 1)));
     std::cerr << "\r  [" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
               << std::setw(3) << (100 * done_ / std::max<size_t>(total_, 1)) << "%  " << done_ << "/"
-              << total_ << " points  " << Num(elapsed, 3) << " s, ETA " << Num(eta, 2) << " s   "
+              << total_ << " points  " << std::fixed << std::setprecision(1) << elapsed << " s, ETA "
+              << eta << " s   " << std::defaultfloat << std::setprecision(6)
               << std::flush;
   }
   void Finish() {
