@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
                "ltp"};
   app.set_version_flag("--version", std::string("ltp ") + LTP_VERSION);
   app.require_subcommand(1);
-  app.footer("SCENE is a built-in scene (`ltp scenes`) or a YAML scene file (examples in scenes/).");
+  app.footer("SCENE is a built-in scene (`ltp scenes`), a YAML scene file (examples in scenes/), or OpenFAST .lin files (files, a directory or a quoted glob).");
 
   const std::vector<ltp::cli::Command> commands = {
       ltp::cli::AddScenesCommand(app),
