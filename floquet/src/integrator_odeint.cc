@@ -40,6 +40,7 @@ class MatrixRhs {
     } else {
       a_.setZero();
       series_ = system.RealSeriesA(&harmonics_);
+      omega_ = system.omega();
     }
   }
   MatrixRhs(const MatrixRhs&) = delete;  // passed by std::ref: no copy (and allocation) per step
@@ -101,12 +102,13 @@ class MatrixRhs {
   // cos Ωt, sin Ωt. Bulirsch–Stoer's modified-midpoint sequences evaluate at equally spaced
   // times (th += h), so the phasor usually is the previous one turned by the same angle: one
   // complex multiplication instead of a sincos, which otherwise is a third of a small system's
-  // cost. The difference of two nearby doubles is exact (Sterbenz), so the turn is by exactly
-  // the step taken; a fresh sincos every 32 turns keeps the rounding drift below 1e-14.
+  // cost. th += h rounds to the grid of t, so successive differences agree only to a few ulps
+  // of t: turning by the cached angle then evaluates A at a time within those ulps — what
+  // rounding t itself does. A fresh sincos every 32 turns bounds the drift by ~1e-14.
   void BasePhasor(double t, double& c1, double& s1) {
-    const double omega = system_.omega();
+    const double omega = omega_;
     const double d = t - last_t_;
-    if (turns_ < 32 && d == turn_d_) {
+    if (turns_ < 32 && std::abs(d - turn_d_) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t)) {
       c1 = last_c_ * turn_c_ - last_s_ * turn_s_;
       s1 = last_s_ * turn_c_ + last_c_ * turn_s_;
       ++turns_;
@@ -114,7 +116,7 @@ class MatrixRhs {
       c1 = std::cos(omega * t);
       s1 = std::sin(omega * t);
       turns_ = 0;
-      if (std::isfinite(d) && d != turn_d_) {
+      if (std::isfinite(d)) {
         turn_d_ = d;
         turn_c_ = std::cos(omega * d);
         turn_s_ = std::sin(omega * d);
@@ -158,6 +160,7 @@ class MatrixRhs {
   double last_t_ = std::numeric_limits<double>::quiet_NaN(), last_c_ = 1, last_s_ = 0;
   double turn_d_ = std::numeric_limits<double>::quiet_NaN(), turn_c_ = 1, turn_s_ = 0;
   int turns_ = 0;
+  double omega_ = 0;
 };
 
 template <class State>
