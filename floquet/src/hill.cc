@@ -200,6 +200,34 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     r.diagnostics.push_back("Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
                             std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
   }
+  // Liouville: Σ Re λ_k = (1/T) ∫ tr A = Re tr A_0 for the true exponents, whatever the
+  // truncation. A selection that picked spurious eigenvalues (or missed a mode, as on stiff
+  // systems whose exponents differ by far more than Ωp) breaks it even when N vs N+Δ agree.
+  if (r.ok && std::max(r.truncation_estimate, r.koopman_discrepancy) >= 0) {
+    double sum = 0, scale = 1;
+    for (const FloquetMode& m : r.modes) {
+      sum += m.exponent.real();
+      scale = std::max(scale, std::abs(m.exponent));
+    }
+    const double trace = A[0].trace().real();
+    const double estimate = std::max(r.truncation_estimate, r.koopman_discrepancy);
+    const double allowed = n * std::max(estimate, 1e-9 * scale);
+    if (std::abs(sum - trace) > allowed) {
+      std::ostringstream s;
+      s << "Liouville check failed: Σ Re λ = " << sum << " 1/s but the mean of tr A(t) is " << trace
+        << " 1/s, so the selected eigenvalues are not all Floquet exponents (raise N, or use the "
+           "monodromy route)";
+      r.diagnostics.push_back(s.str());
+      // The sum's error is a lower bound on the worst exponent error: never report less.
+      const double lower = std::abs(sum - trace) / n;
+      if (r.truncation_estimate >= 0) r.truncation_estimate = std::max(r.truncation_estimate, lower);
+      if (r.koopman_discrepancy >= 0) r.koopman_discrepancy = std::max(r.koopman_discrepancy, lower);
+    }
+  }
+  // The verdict needs max Re λ beyond the error estimate (as the monodromy route reports it).
+  const double estimate = std::max(r.truncation_estimate, r.koopman_discrepancy);
+  if (r.ok && estimate >= 0 && std::abs(r.max_real_exponent) <= estimate)
+    r.diagnostics.push_back("stability undecided: |max Re λ| is within the error estimate");
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -204,12 +204,25 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
         for (int i = 0; i < F; ++i)
           for (int z = 0; z < Z; ++z) r.error_estimate[i][z] = truncation[i];
     } else {
-      // Per-point deviations from the primary; the HTF truncation change adds to them.
+      // Per-point deviations from the primary bound the primary's error only up to the check
+      // route's own error, so that is added: the HTF's truncation change, and for the other
+      // routes their tolerance relative to the largest response at this frequency (errors
+      // spread over all orders, so a tiny H_z is not known better than that). Without it the
+      // estimate fell just below the true error whenever both routes erred the same way.
       for (size_t q = 0; q < run.points.size(); ++q) {
         const int i = run.points[q];
-        double worst = 0;
+        double worst = 0, hmax = 0;
+        for (int z = 0; z < Z; ++z)
+          if (std::isfinite(std::abs(run.values[q][z]))) hmax = std::max(hmax, std::abs(run.values[q][z]));
+        double own = 0;
+        if (route == PfrfRoute::kModal)
+          own = std::max(options.floquet.integrator.rel_tol, r.modal ? r.modal->tail : 0.0) * hmax;
+        else if (route == PfrfRoute::kShooting)
+          own = options.shooting.rel_tol * hmax;
+        else if (route == PfrfRoute::kTime)
+          own = options.shooting.settle_tol * hmax;
         for (int z = 0; z < Z; ++z) {
-          double d = std::abs(run.values[q][z] - r.values[i][z]);
+          double d = std::abs(run.values[q][z] - r.values[i][z]) + own;
           if (route == PfrfRoute::kHtf) d += truncation[q];
           if (std::isfinite(d)) {
             worst = std::max(worst, d);
@@ -247,6 +260,30 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
         }
         r.error_estimate[i][z] =
             std::max(r.error_estimate[i][z], std::max(abs_e, rel_e * std::abs(r.values[i][z])));
+      }
+    }
+  }
+  if (r.floquet.ok) {
+    // Excitation exactly at a Floquet resonance of an (un)damped mode: H_z has a pole where
+    // j(ω + uΩp) = λ_k, so when ω is within the exponent's own error of it the value is not
+    // determined by the data at all — every route still returns a large finite number, and
+    // their spread says nothing. Flag it and make the estimate infinite.
+    double scale = 1;
+    for (const auto& m : r.floquet.modes) scale = std::max(scale, std::abs(m.exponent));
+    const double dl = std::max(r.floquet.error_estimate, 0.0) + 1e-13 * scale;
+    const double wp = kTwoPi / system.period();
+    for (int i = 0; i < F; ++i) {
+      for (size_t k = 0; k < r.floquet.modes.size(); ++k) {
+        const cd lam = r.floquet.modes[k].exponent;
+        const double d = std::hypot(lam.real(), std::remainder(omega_of(i) - lam.imag(), wp));
+        if (d > dl) continue;
+        for (int z = 0; z < Z; ++z) r.error_estimate[i][z] = std::numeric_limits<double>::infinity();
+        std::ostringstream msg;
+        msg << "resonance: the excitation at " << options.frequencies_hz[i] << " Hz is within "
+            << d << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error "
+            << dl << " 1/s): H_z is unbounded there and the values are not meaningful";
+        r.diagnostics.push_back(msg.str());
+        break;
       }
     }
   }

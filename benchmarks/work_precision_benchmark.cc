@@ -1,0 +1,783 @@
+// Work–precision study (issue 9): for each scene, every method over its accuracy knob — the
+// monodromy integrators × tolerance or step count (automatic segments), the segment count K,
+// Hill's truncation N (dense and structured), Koopman–Hill, and the partial-FRF routes — with the
+// error against a near-machine-precision reference computed by a *different* method, and the
+// median CPU and wall time of repeated runs. Writes a CSV, one gnuplot script per scene (error
+// against CPU time, one line per method), the honesty figures of ltp's own error estimates and
+// the generated failure map (Markdown).
+//
+//   build/benchmarks/work_precision_benchmark --out out/work-precision [--quick] [--scenes a,b]
+//   scripts/work-precision     (runs this, then gnuplot → docs/work-precision-*.svg)
+//
+// Timing: threads = 1 for the segments (OPENBLAS_NUM_THREADS=1 is set by the script), so
+// CPU time ≈ wall time when the machine is idle; CPU time is what the charts show because the
+// machine is shared. Library code is untouched by this program: everything goes through the
+// public API with the options a user would set.
+#include <Eigen/Eigenvalues>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ltp/core/error.h"
+#include "ltp/core/fourier_fit.h"
+#include "ltp/core/scene.h"
+#include "ltp/htf/pfrf.h"
+#include "support/systems.h"
+#include "work_precision_common.h"
+#include "work_precision_failure_map.h"
+
+namespace {
+
+using namespace ltp;
+using namespace ltp::wp;
+constexpr double kPi = std::numbers::pi;
+
+struct Row {
+  std::string scene, panel, method, knob_name;
+  double knob = 0;
+  bool ok = false;
+  double error_abs = kInf, error_rel = kInf;
+  Timing t;
+  double estimate = -1;        ///< ltp's error estimate (estimate run), -1 = none offered
+  double estimate_error = -1;  ///< true error of the numbers the estimate run reported
+  /// Below this (absolute) the true error is not measurable: the reference's own uncertainty
+  /// (disagreement of two independent references) or 1e-14 of the scale.
+  double floor = 0;
+  std::string note;
+};
+
+struct Config {
+  std::string out = "out/work-precision";
+  bool quick = false;
+  std::set<std::string> scenes;
+  int repeats = 5;
+  double budget_s = 0.25;  ///< per point: repeats stop once this much wall time is spent
+};
+
+struct StudyScene {
+  std::string name, title;
+  PeriodicSystem sys = test::Mathieu(1, 0);  // placeholder: PeriodicSystem has no default
+  /// Reference exponents for the monodromy methods (closed form, or Hill) and for Hill's
+  /// methods (closed form, or the monodromy route): never the method being measured.
+  std::vector<cd> ref_for_mono, ref_for_hill;
+  std::string ref_mono_source, ref_hill_source;
+  double reference_agreement = -1;  ///< |Hill ref − monodromy ref| when both were computed
+  double scale = 1;                 ///< max(1, max |λ|) on the physical branch
+  int max_dense_size = 900, max_koopman_size = 600, max_structured_n = 256;
+  // PFRF
+  bool pfrf = false;
+  std::vector<double> freqs_hz;
+  bool time_route = false;
+};
+
+std::string Fmt(double x) {
+  std::ostringstream s;
+  s << std::setprecision(6) << x;
+  return s.str();
+}
+
+FloquetOptions MonoOptions(IntegratorType type) {
+  FloquetOptions o;
+  o.integrator.type = type;
+  o.estimate_error = false;
+  o.compute_modes = false;
+  o.threads = 1;
+  return o;
+}
+
+// --- references --------------------------------------------------------------------------
+
+std::vector<cd> MonoReference(const PeriodicSystem& s, double tol) {
+  FloquetOptions o = MonoOptions(IntegratorType::kRkf78);
+  o.integrator.rel_tol = tol;
+  o.integrator.abs_tol = tol * 1e-3;
+  o.compute_modes = true;  // physical branch, for the scale
+  const FloquetResult r = AnalyzeFloquet(s, o);
+  if (!r.ok) throw std::runtime_error("monodromy reference failed on " + r.BriefReport());
+  return Exponents(r.modes);
+}
+
+std::vector<cd> HillReference(const PeriodicSystem& s, int n, const std::vector<cd>& shifts) {
+  HillOptions o;
+  o.harmonics = n;
+  o.solver = HillSolver::kStructured;
+  o.expected = shifts;  // shifts only say where to look; the eigenvalues are Hill's own
+  o.koopman_check = false;
+  o.delta_harmonics = -1;
+  o.fourier.tol = 1e-15;
+  // Exponents on the strip edge: either branch is the same mod jΩp (doubling the period would
+  // return them mod jΩp/2 instead).
+  o.period_doubling = PeriodDoubling::kNever;
+  const HillResult h = AnalyzeHill(s, o);
+  if (!h.ok) throw std::runtime_error("Hill reference failed: " + h.BriefReport());
+  return Exponents(h.modes);
+}
+
+double Scale(const std::vector<cd>& e) {
+  double m = 1;
+  for (const cd& x : e) m = std::max(m, std::abs(x));
+  return m;
+}
+
+std::vector<StudyScene> MakeScenes(const Config& cfg) {
+  std::vector<StudyScene> scenes;
+  auto want = [&](const std::string& n) { return cfg.scenes.empty() || cfg.scenes.count(n); };
+  if (want("mathieu")) {
+    StudyScene sc;
+    sc.name = "mathieu";
+    sc.title = "Mathieu a=1.5, q=0.5, c=0.05 (n = 2, smooth, stable)";
+    sc.sys = LoadScene("mathieu").Build({{"a", "1.5"}, {"q", "0.5"}, {"c", "0.05"}});
+    // Two independent near-exact references: rkf78 at 1e-14 and Hill N = 40 (exact Fourier
+    // coefficients, error ~e^{-6.4 N}, i.e. at round-off from N ≈ 6).
+    const auto mono = MonoReference(sc.sys, 1e-14);
+    const auto hill = HillReference(sc.sys, 40, mono);
+    sc.ref_for_mono = hill;
+    sc.ref_mono_source = "Hill structured N = 40";
+    sc.ref_for_hill = mono;
+    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-14";
+    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
+    sc.scale = Scale(mono);
+    sc.pfrf = true;
+    sc.time_route = true;
+    sc.freqs_hz = {0.05, 0.13, 0.21, 0.29, 0.37, 0.45, 0.53};
+    scenes.push_back(std::move(sc));
+  }
+  if (want("meissner")) {
+    StudyScene sc;
+    sc.name = "meissner";
+    sc.title = "Meissner a=2, b=0.5, c=0.05 (n = 2, jumps)";
+    sc.sys = LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}});
+    // Closed form: Φ = E₊(π/2) E₋(π) E₊(π/2) (tests/support/systems.h), eigenvalues of a 2×2.
+    const Eigen::Matrix2d phi = test::MeissnerMonodromy(2, 0.5, 0.05);
+    std::vector<cd> exact;
+    for (int k = 0; k < 2; ++k) exact.push_back(std::log(cd(phi.eigenvalues()(k))) / sc.sys.period());
+    sc.ref_for_mono = sc.ref_for_hill = exact;
+    sc.ref_mono_source = sc.ref_hill_source = "closed-form monodromy (product of 3 matrix exponentials)";
+    sc.scale = Scale(MonoReference(sc.sys, 1e-13));
+    sc.pfrf = true;
+    sc.time_route = true;
+    sc.freqs_hz = {0.03, 0.11, 0.19, 0.27, 0.35, 0.43};
+    sc.max_dense_size = 700;
+    scenes.push_back(std::move(sc));
+  }
+  if (want("stiff")) {
+    StudyScene sc;
+    sc.name = "stiff";
+    sc.title = "stiff.yaml: exponents -800, 150, -3 (ρ = e^{-5027}, e^{942})";
+    sc.sys = LoadScene(std::string(LTP_SOURCE_DIR) + "/tests/data/stiff.yaml").Build();
+    // Upper triangular: the exponents are the period averages of the diagonal (closed form).
+    sc.ref_for_mono = sc.ref_for_hill = {cd(-800, 0), cd(150, 0), cd(-3, 0)};
+    sc.ref_mono_source = sc.ref_hill_source = "closed form (triangular: averages of the diagonal)";
+    sc.scale = 800;
+    scenes.push_back(std::move(sc));
+  }
+  if (want("rotor")) {
+    StudyScene sc;
+    sc.name = "rotor";
+    sc.title = "rotor, 2 blades (n = 8, time-function form)";
+    sc.sys = LoadScene("rotor").Build({{"blades", "2"}});
+    const auto mono = MonoReference(sc.sys, 1e-14);
+    const auto hill = HillReference(sc.sys, 48, mono);
+    sc.ref_for_mono = hill;
+    sc.ref_mono_source = "Hill structured N = 48 (FFT fit to 1e-15)";
+    sc.ref_for_hill = mono;
+    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-14";
+    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
+    sc.scale = Scale(mono);
+    sc.pfrf = true;
+    sc.freqs_hz = {0.02, 0.05, 0.08, 0.11, 0.14, 0.2};
+    scenes.push_back(std::move(sc));
+  }
+  if (want("tower-rotor")) {
+    StudyScene sc;
+    sc.name = "tower-rotor";
+    sc.title = "tower-rotor (n = 22, the reference paper system)";
+    sc.sys = LoadScene("tower-rotor").Build();
+    const auto mono = MonoReference(sc.sys, 1e-13);
+    const auto hill = HillReference(sc.sys, 64, mono);
+    sc.ref_for_mono = hill;
+    sc.ref_mono_source = "Hill structured N = 64 (FFT fit to 1e-15)";
+    sc.ref_for_hill = mono;
+    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-13";
+    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
+    sc.scale = Scale(mono);
+    sc.max_dense_size = 800;
+    sc.max_koopman_size = 500;
+    sc.max_structured_n = 128;
+    sc.pfrf = true;
+    sc.freqs_hz = {10, 60, 95, 130, 170, 240};
+    scenes.push_back(std::move(sc));
+  }
+  return scenes;
+}
+
+// --- Floquet exponent methods ------------------------------------------------------------------
+
+void Finish(Row& row, const StudyScene& sc) {
+  row.error_rel = row.error_abs / sc.scale;
+  row.floor = std::max(sc.reference_agreement, 1e-14 * sc.scale);
+  if (!std::isfinite(row.error_abs)) row.ok = false;
+}
+
+void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+  const PeriodicSystem& s = sc.sys;
+  struct Line {
+    IntegratorType type;
+    bool fixed;
+  };
+  const std::vector<Line> lines = {{IntegratorType::kDopri5, false}, {IntegratorType::kRkf78, false},
+                                   {IntegratorType::kCvodeBdf, false}, {IntegratorType::kCvodeAdams, false},
+                                   {IntegratorType::kMagnus4, true}, {IntegratorType::kMagnus6, true}};
+  for (const Line& line : lines) {
+    const int points = cfg.quick ? 3 : (line.fixed ? 5 : 6);
+    for (int i = 0; i < points; ++i) {
+      Row row;
+      row.scene = sc.name;
+      row.panel = "exponents";
+      row.method = std::string(ToString(line.type));
+      FloquetOptions o = MonoOptions(line.type);
+      if (line.fixed) {
+        o.integrator.steps_per_period = 16 << (cfg.quick ? 3 * i : 2 * i);
+        row.knob_name = "steps_per_period";
+        row.knob = o.integrator.steps_per_period;
+      } else {
+        o.integrator.rel_tol = std::pow(10.0, -3.0 - (cfg.quick ? 4 * i : 2 * i));
+        o.integrator.abs_tol = o.integrator.rel_tol * 1e-3;
+        row.knob_name = "rel_tol";
+        row.knob = o.integrator.rel_tol;
+      }
+      FloquetResult r;
+      row.t = TimeIt([&] { r = AnalyzeFloquet(s, o); }, cfg.repeats, cfg.budget_s);
+      row.ok = r.ok;
+      row.error_abs = r.ok ? ExponentError(Exponents(r.modes), sc.ref_for_mono, s.omega()) : kInf;
+      if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front();
+      // The analysis a user gets (modes, branch, error estimate by the refined run): honesty.
+      // Its refined run is 100× tighter, so it is skipped where one plain run already took
+      // over a second (the study has to fit in 10 minutes).
+      if (row.t.wall_s < 1) {
+        FloquetOptions e = o;
+        e.estimate_error = true;
+        e.compute_modes = true;
+        const FloquetResult re = AnalyzeFloquet(s, e);
+        row.estimate = re.ok ? re.error_estimate : -1;
+        row.estimate_error = re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
+      }
+      Finish(row, sc);
+      rows.push_back(row);
+      std::cerr << "  " << sc.name << " " << row.method << " " << row.knob_name << "=" << row.knob
+                << " err " << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
+      if (row.t.wall_s > 1) break;  // the remaining points would be slower still
+    }
+  }
+  // The segment count K at fixed integrator and tolerance (rkf78, 1e-12): where K matters.
+  for (int k : {1, 4, 16, 64, 256}) {
+    if (cfg.quick && k > 4) break;
+    Row row;
+    row.scene = sc.name;
+    row.panel = "exponents";
+    row.method = "rkf78 1e-12 over K segments";
+    row.knob_name = "segments";
+    row.knob = k;
+    FloquetOptions o = MonoOptions(IntegratorType::kRkf78);
+    o.integrator.rel_tol = 1e-12;
+    o.integrator.abs_tol = 1e-15;
+    o.segments = k;
+    FloquetResult r;
+    row.t = TimeIt([&] { r = AnalyzeFloquet(s, o); }, cfg.repeats, cfg.budget_s);
+    row.ok = r.ok;
+    row.error_abs = r.ok ? ExponentError(Exponents(r.modes), sc.ref_for_mono, s.omega()) : kInf;
+    if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front();
+    FloquetOptions e = o;
+    e.estimate_error = true;
+    e.compute_modes = true;
+    const FloquetResult re = AnalyzeFloquet(s, e);
+    row.estimate = re.ok ? re.error_estimate : -1;
+    row.estimate_error = re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
+    if (re.ok && !re.diagnostics.empty() && row.note.empty()) row.note = re.diagnostics.front();
+    Finish(row, sc);
+    rows.push_back(row);
+  }
+}
+
+void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+  const PeriodicSystem& s = sc.sys;
+  const int n = s.states();
+  std::vector<int> ns = {1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128, 256};
+  if (cfg.quick) ns = {2, 8, 16};
+  for (HillSolver solver : {HillSolver::kDense, HillSolver::kStructured}) {
+    for (int N : ns) {
+      const int size = (2 * N + 1) * n;
+      if (solver == HillSolver::kDense && size > sc.max_dense_size) break;
+      if (solver == HillSolver::kStructured && N > sc.max_structured_n) break;
+      Row row;
+      row.scene = sc.name;
+      row.panel = "exponents";
+      row.method = std::string("hill ") + std::string(ToString(solver));
+      row.knob_name = "harmonics";
+      row.knob = N;
+      HillOptions o;
+      o.harmonics = N;
+      o.solver = solver;
+      o.delta_harmonics = -1;  // timed run: one solve, as in a sweep
+      o.koopman_check = false;
+      o.structured_fallback = false;  // time the structured solver itself
+      HillResult h;
+      try {
+        row.t = TimeIt([&] { h = AnalyzeHill(s, o); }, cfg.repeats, cfg.budget_s);
+      } catch (const Error& e) {
+        row.note = e.what();
+      }
+      row.ok = h.ok;
+      row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, HillOmega(s, h)) : kInf;
+      if (!h.ok && row.note.empty()) row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front();
+      // What `ltp floquet --method hill --harmonics N` reports (N vs N+Δ, Koopman–Hill).
+      HillOptions e;
+      e.harmonics = N;
+      e.solver = solver;
+      // The Koopman–Hill check is a dense expm of the Hill matrix: ~40 s at 2000 rows. Above
+      // 600 rows the study relies on the N vs N+Δ estimate alone (ltp does so above 2500).
+      e.koopman_max_size = 600;
+      try {
+        const HillResult he = AnalyzeHill(s, e);
+        row.estimate = he.ok ? HillEstimate(he) : -1;
+        row.estimate_error =
+            he.ok ? ExponentError(Exponents(he.modes), sc.ref_for_hill, HillOmega(s, he)) : kInf;
+      } catch (const Error& ex) {
+        row.estimate = -1;
+      }
+      Finish(row, sc);
+      rows.push_back(row);
+      std::cerr << "  " << sc.name << " " << row.method << " N=" << N << " err " << Fmt(row.error_rel)
+                << " cpu " << Fmt(row.t.cpu_s) << " s\n";
+      if (row.t.wall_s > 3) break;
+    }
+  }
+  // Koopman–Hill: Φ(T) ≈ C expm(H_N T) W, then eig; no selection among Hill eigenvalues.
+  for (int N : ns) {
+    const int size = (2 * N + 1) * n;
+    if (size > sc.max_koopman_size) break;
+    Row row;
+    row.scene = sc.name;
+    row.panel = "exponents";
+    row.method = "koopman-hill";
+    row.knob_name = "harmonics";
+    row.knob = N;
+    std::vector<cd> exps;
+    bool finite = true;
+    row.t = TimeIt(
+        [&] {
+          FourierMatrix A = s.fourier_A() ? *s.fourier_A() : ToFourier(s).A.series;
+          const Eigen::MatrixXcd phi = KoopmanHillTransition(A, s.omega(), N, s.period());
+          finite = phi.allFinite();
+          exps.clear();
+          if (!finite) return;
+          Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(phi, false);
+          for (int k = 0; k < es.eigenvalues().size(); ++k)
+            exps.push_back(std::log(es.eigenvalues()(k)) / s.period());
+        },
+        cfg.repeats, cfg.budget_s);
+    row.ok = finite;
+    row.error_abs = finite ? ExponentError(exps, sc.ref_for_hill, s.omega()) : kInf;
+    if (!finite) row.note = "expm(H T) not finite (multipliers beyond the double range)";
+    Finish(row, sc);
+    rows.push_back(row);
+  }
+}
+
+// --- partial FRFs ---------------------------------------------------------------------------
+
+constexpr int kMinOrder = -2, kMaxOrder = 2;
+
+using Values = std::vector<PartialFrfs>;  // per frequency
+
+double FrfError(const Values& got, const Values& ref, double* scale_out = nullptr) {
+  double scale = 0, err = 0;
+  for (size_t f = 0; f < ref.size(); ++f)
+    for (size_t z = 0; z < ref[f].size(); ++z) scale = std::max(scale, ref[f][z].cwiseAbs().maxCoeff());
+  for (size_t f = 0; f < ref.size(); ++f) {
+    if (f >= got.size()) return kInf;
+    for (size_t z = 0; z < ref[f].size(); ++z) {
+      const double d = (got[f][z] - ref[f][z]).cwiseAbs().maxCoeff();
+      if (!std::isfinite(d)) return kInf;
+      err = std::max(err, d);
+    }
+  }
+  if (scale_out) *scale_out = scale;
+  return err;
+}
+
+Values ShootingValues(const PeriodicSystem& s, const std::vector<double>& fhz, double tol, bool* ok) {
+  ShootingOptions so;
+  so.rel_tol = tol;
+  so.abs_tol = tol * 1e-3;
+  so.integrator.type = IntegratorType::kRkf78;
+  so.integrator.rel_tol = std::max(tol, 1e-14);
+  so.integrator.abs_tol = so.integrator.rel_tol * 1e-3;
+  ForcedResponseSolver solver(s, so);
+  Values v;
+  *ok = true;
+  for (double f : fhz) {
+    bool pt = true;
+    v.push_back(solver.Shooting(2 * kPi * f, kMinOrder, kMaxOrder, &pt));
+    *ok = *ok && pt;
+  }
+  return v;
+}
+
+Values ModalValues(const PeriodicSystem& s, const std::vector<double>& fhz, double tol, bool* ok,
+                   double* condition = nullptr) {
+  FloquetOptions fo = MonoOptions(IntegratorType::kRkf78);
+  fo.integrator.rel_tol = tol;
+  fo.integrator.abs_tol = tol * 1e-3;
+  fo.compute_modes = true;
+  const FloquetResult fl = AnalyzeFloquet(s, fo);
+  *ok = fl.ok;
+  if (!fl.ok) return {};
+  ModalOptions mo;
+  mo.integrator = fo.integrator;
+  const ModalModel model = BuildModalModel(s, fl, mo);
+  if (condition) *condition = model.condition;
+  Values v;
+  for (double f : fhz) v.push_back(model.Evaluate(2 * kPi * f, kMinOrder, kMaxOrder));
+  return v;
+}
+
+void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, std::ostream& log) {
+  const PeriodicSystem& s = sc.sys;
+  const auto& fhz = sc.freqs_hz;
+  // References: shooting (no Fourier truncation, rkf78 at 1e-13) for modal / htf / time;
+  // the modal route at 1e-13 for shooting itself. Their agreement is printed.
+  bool ok1 = false, ok2 = false;
+  const Values ref_shoot = ShootingValues(s, fhz, 1e-13, &ok1);
+  const Values ref_modal = ModalValues(s, fhz, 1e-13, &ok2);
+  double hscale = 0;
+  const double agree = FrfError(ref_modal, ref_shoot, &hscale);
+  log << sc.name << ": PFRF references shooting (rkf78 1e-13) vs modal (rkf78 1e-13) agree to "
+      << Fmt(agree / hscale) << " relative (max |H_z| " << Fmt(hscale) << ")\n";
+  auto add = [&](Row row, const Values& v, const Values& ref) {
+    row.scene = sc.name;
+    row.panel = "pfrf";
+    row.error_abs = row.ok ? FrfError(v, ref) : kInf;
+    row.error_rel = row.error_abs / hscale;
+    if (!std::isfinite(row.error_abs)) row.ok = false;
+    rows.push_back(row);
+    std::cerr << "  " << sc.name << " pfrf " << row.method << " " << row.knob_name << "=" << row.knob
+              << " err " << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
+  };
+  const std::vector<double> tols = cfg.quick ? std::vector<double>{1e-5, 1e-10}
+                                             : std::vector<double>{1e-4, 1e-8, 1e-12};
+  for (double tol : tols) {
+    Row row;
+    row.method = "modal (Floquet rkf78)";
+    row.knob_name = "rel_tol";
+    row.knob = tol;
+    Values v;
+    row.t = TimeIt([&] { v = ModalValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
+    add(row, v, ref_shoot);
+  }
+  for (int N : cfg.quick ? std::vector<int>{4, 16} : std::vector<int>{2, 4, 8, 16, 32, 64}) {
+    Row row;
+    row.method = "htf (banded)";
+    row.knob_name = "harmonics";
+    row.knob = N;
+    Values v;
+    row.ok = true;
+    row.t = TimeIt(
+        [&] {
+          HtfOptions ho;
+          ho.harmonics = N;
+          HtfSolver htf(s, ho);
+          v.clear();
+          for (double f : fhz) v.push_back(htf.Evaluate(2 * kPi * f, kMinOrder, kMaxOrder));
+        },
+        cfg.repeats, cfg.budget_s);
+    add(row, v, ref_shoot);
+    if (row.t.wall_s > 3) break;
+  }
+  for (double tol : tols) {
+    Row row;
+    row.method = "shooting (rkf78)";
+    row.knob_name = "rel_tol";
+    row.knob = tol;
+    Values v;
+    row.t = TimeIt([&] { v = ShootingValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
+    add(row, v, ref_modal);
+    if (row.t.wall_s > 5) break;
+  }
+  if (sc.time_route) {
+    FloquetOptions fo = MonoOptions(IntegratorType::kRkf78);
+    fo.compute_modes = true;
+    const FloquetResult fl = AnalyzeFloquet(s, fo);
+    for (double settle : cfg.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
+      Row row;
+      row.method = "time (step-sine)";
+      row.knob_name = "settle_tol";
+      row.knob = settle;
+      Values v;
+      row.t = TimeIt(
+          [&] {
+            ShootingOptions so;
+            so.settle_tol = settle;
+            so.rel_tol = std::min(1e-6, settle * 1e-2);
+            so.abs_tol = so.rel_tol * 1e-3;
+            ForcedResponseSolver solver(s, so);
+            const double ts = ForcedResponseSolver::SettlingTime(fl, settle);
+            v.clear();
+            row.ok = true;
+            for (double f : fhz) {
+              bool pt = true;
+              v.push_back(solver.TimeSimulation(2 * kPi * f, kMinOrder, kMaxOrder, ts, &pt));
+              row.ok = row.ok && pt;
+            }
+          },
+          1, cfg.budget_s);
+      add(row, v, ref_shoot);
+    }
+  }
+  // Honesty of the sweep a user runs (`ltp pfrf`: modal everywhere, htf checks), here with a
+  // check at every frequency so every value has its own estimate.
+  PfrfOptions po;
+  po.frequencies_hz = fhz;
+  po.min_order = kMinOrder;
+  po.max_order = kMaxOrder;
+  po.check_every = 1;
+  const PfrfResult pr = ComputePartialFrf(s, po);
+  for (size_t f = 0; f < fhz.size(); ++f) {
+    for (int z = kMinOrder; z <= kMaxOrder; ++z) {
+      Row row;
+      row.scene = sc.name;
+      row.panel = "pfrf-honesty";
+      row.method = "ltp pfrf default (modal + htf checks)";
+      row.knob_name = "freq_hz,order";
+      row.knob = fhz[f] + 1e-3 * z;  // informative only
+      row.ok = pr.ok;
+      const cd got = pr.values[f][z - kMinOrder];
+      const cd ref = ref_shoot[f][z - kMinOrder](po.output, po.input);
+      row.estimate_error = std::abs(got - ref);
+      row.estimate = pr.error_estimate[f][z - kMinOrder];
+      row.floor = std::max(agree, 1e-14 * hscale);
+      row.error_abs = row.estimate_error;
+      row.error_rel = row.error_abs / hscale;
+      row.t = {pr.elapsed_s, pr.elapsed_s, 1};
+      rows.push_back(row);
+    }
+  }
+}
+
+// --- output ---------------------------------------------------------------------------------
+
+void WriteCsv(const std::vector<Row>& rows, const std::string& path) {
+  std::ofstream f(path);
+  f << "scene,panel,method,knob_name,knob,ok,error_abs,error_rel,cpu_s,wall_s,repeats,estimate,"
+       "estimate_error,note\n";
+  f << std::setprecision(6);
+  for (const Row& r : rows) {
+    std::string note = r.note;
+    for (char& c : note)
+      if (c == ',' || c == '\n' || c == '"') c = ';';
+    f << r.scene << "," << r.panel << "," << r.method << "," << r.knob_name << "," << r.knob << ","
+      << r.ok << "," << r.error_abs << "," << r.error_rel << "," << r.t.cpu_s << "," << r.t.wall_s << ","
+      << r.t.repeats << "," << r.estimate << "," << r.estimate_error << "," << note << "\n";
+  }
+}
+
+// One gnuplot script per scene: error (log) against CPU time (log), one line per method;
+// exponents left, partial FRFs right (when the scene has inputs and outputs).
+void WriteGnuplot(const StudyScene& sc, const std::vector<Row>& rows, const std::string& dir,
+                  const std::string& svg) {
+  const std::string dat = dir + "/" + sc.name + ".dat";
+  std::ofstream d(dat);
+  d << std::setprecision(6);
+  std::vector<std::pair<std::string, std::string>> blocks;  // (panel, method), in order
+  for (const std::string panel : {"exponents", "pfrf"}) {
+    std::vector<std::string> methods;
+    for (const Row& r : rows)
+      if (r.scene == sc.name && r.panel == panel &&
+          std::find(methods.begin(), methods.end(), r.method) == methods.end())
+        methods.push_back(r.method);
+    for (const auto& m : methods) {
+      int written = 0;
+      d << "# " << panel << " / " << m << "\n";
+      for (const Row& r : rows)
+        if (r.scene == sc.name && r.panel == panel && r.method == m && r.ok && std::isfinite(r.error_rel)) {
+          // Errors below 1e-16 relative are round-off: drawn at the floor of the chart.
+          d << r.t.cpu_s << " " << std::max(r.error_rel, 1e-16) << " " << r.knob << "\n";
+          ++written;
+        }
+      if (!written) d << "nan nan nan\n";
+      d << "\n\n";
+      blocks.push_back({panel, m});
+    }
+  }
+  const bool two = sc.pfrf;
+  std::ofstream g(dir + "/" + sc.name + ".gp");
+  g << "set terminal svg size " << (two ? 1200 : 640) << ",480 dynamic font 'sans,11' background rgb 'white'\n"
+    << "set output '" << svg << "'\n"
+    << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
+    << "set grid\nset key outside below maxrows 4 font ',9'\n"
+    << "set xlabel 'CPU time per analysis [s] (median)'\n";
+  if (two) g << "set multiplot layout 1,2 title '" << sc.title << "'\n";
+  int idx = 0;
+  for (const std::string panel : {"exponents", "pfrf"}) {
+    std::vector<std::string> cmds;
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      if (blocks[i].first != panel) continue;
+      cmds.push_back("'" + dat + "' index " + std::to_string(i) + " using 1:2 with linespoints pt " +
+                     std::to_string(idx % 13 + 1) + " lw 1.5 title '" + blocks[i].second + "'");
+      ++idx;
+    }
+    if (cmds.empty()) continue;
+    if (panel == "exponents") {
+      g << "set title '" << (two ? "Floquet exponents" : sc.title) << "'\n"
+        << "set ylabel 'max exponent error / max(1, max|λ|)'\n";
+    } else {
+      g << "set title 'partial FRFs H_z, z = -2..2, " << sc.freqs_hz.size() << " frequencies'\n"
+        << "set ylabel 'max |H_z - H_z,ref| / max |H_z,ref|'\n";
+    }
+    g << "plot ";
+    for (size_t i = 0; i < cmds.size(); ++i) g << (i ? ", \\\n     " : "") << cmds[i];
+    g << "\n";
+  }
+  if (two) g << "unset multiplot\n";
+}
+
+void Honesty(const std::vector<Row>& rows, std::ostream& out) {
+  // Every point with an estimate: under-estimate when estimate < true error. Over-estimation
+  // factor = estimate / max(true error, round-off floor 1e-15·scale-free) on points above the
+  // floor: below ~1e-14 the "true error" is itself round-off of the reference.
+  struct Acc {
+    int points = 0, under = 0, none = 0, at_floor = 0;
+    std::vector<double> factors;
+    std::vector<std::string> worst;
+  };
+  std::map<std::string, Acc> by;
+  for (const Row& r : rows) {
+    if (r.estimate_error < 0) continue;
+    const std::string key = r.panel == "pfrf-honesty" ? "partial FRF (ltp pfrf default)"
+                                                      : r.method;
+    Acc& a = by[key];
+    if (r.estimate < 0 || !std::isfinite(r.estimate_error)) {
+      ++a.none;
+      continue;
+    }
+    ++a.points;
+    if (r.estimate_error <= r.floor) {
+      ++a.at_floor;  // the true error is below what the reference can resolve
+      continue;
+    }
+    if (r.estimate < r.estimate_error) {
+      ++a.under;
+      std::ostringstream w;
+      w << r.scene << " " << r.knob_name << "=" << r.knob << ": estimate " << Fmt(r.estimate)
+        << " < error " << Fmt(r.estimate_error);
+      a.worst.push_back(w.str());
+    } else if (r.estimate_error > 0) {
+      a.factors.push_back(r.estimate / r.estimate_error);
+    }
+  }
+  out << "| method | points | under-estimates | median over-estimation | error at the reference floor | "
+         "no estimate / failed |\n"
+      << "|---|---|---|---|---|---|\n";
+  int total = 0, under = 0, measurable = 0;
+  std::vector<double> all;
+  for (const auto& [k, a] : by) {
+    total += a.points;
+    under += a.under;
+    measurable += a.points - a.at_floor;
+    all.insert(all.end(), a.factors.begin(), a.factors.end());
+    out << "| " << k << " | " << a.points << " | " << a.under << " ("
+        << Fmt(a.points > a.at_floor ? 100.0 * a.under / (a.points - a.at_floor) : 0) << " %) | "
+        << (a.factors.empty() ? std::string("—") : Fmt(Median(a.factors)) + "×") << " | " << a.at_floor
+        << " | " << a.none << " |\n";
+  }
+  out << "| **all** | " << total << " | " << under << " (" << Fmt(measurable ? 100.0 * under / measurable : 0)
+      << " %) | " << (all.empty() ? std::string("—") : Fmt(Median(all)) + "×") << " | | |\n\n";
+  for (const auto& [k, a] : by)
+    for (size_t i = 0; i < a.worst.size() && i < 6; ++i) out << "- under-estimate, " << k << ": " << a.worst[i] << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Config cfg;
+  bool run_study = true, run_map = true;
+  std::string only_regime;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--out" && i + 1 < argc) {
+      cfg.out = argv[++i];
+    } else if (a == "--failure-map-only") {
+      run_study = false;
+    } else if (a == "--regime" && i + 1 < argc) {
+      only_regime = argv[++i];
+    } else if (a == "--no-failure-map") {
+      run_map = false;
+    } else if (a == "--quick") {
+      cfg.quick = true;
+      cfg.repeats = 3;
+      cfg.budget_s = 0.1;
+    } else if (a == "--scenes" && i + 1 < argc) {
+      std::stringstream ss(argv[++i]);
+      std::string item;
+      while (std::getline(ss, item, ',')) cfg.scenes.insert(item);
+    } else if (a == "--repeats" && i + 1 < argc) {
+      cfg.repeats = std::atoi(argv[++i]);
+    } else if (a == "--help" || a == "-h") {
+      std::cout << "usage: work_precision_benchmark [--out DIR] [--quick] [--scenes a,b,...] [--repeats R]\n"
+                   "       [--failure-map-only | --no-failure-map]\n"
+                   "scenes: mathieu meissner stiff rotor tower-rotor; writes DIR/work_precision.csv, "
+                   "DIR/<scene>.gp, DIR/honesty.md, DIR/failure_map.md, DIR/references.txt\n";
+      return 0;
+    } else {
+      std::cerr << "work_precision_benchmark: error: unrecognized argument '" << a << "'\n";
+      return 2;
+    }
+  }
+  std::filesystem::create_directories(cfg.out);
+  std::ofstream log(cfg.out + "/references.txt");
+  const double t0 = WallNow();
+  std::vector<Row> rows;
+  std::vector<StudyScene> scenes;
+  try {
+    if (run_study) scenes = MakeScenes(cfg);
+  } catch (const std::exception& e) {
+    std::cerr << "work_precision_benchmark: error: " << e.what() << "\n";
+    return 1;
+  }
+  for (const StudyScene& sc : scenes) {
+    log << sc.name << ": " << sc.title << "\n  monodromy methods measured against: " << sc.ref_mono_source
+        << "\n  Hill methods measured against: " << sc.ref_hill_source
+        << "\n  scale max(1, max|λ|) = " << Fmt(sc.scale);
+    if (sc.reference_agreement >= 0)
+      log << "\n  the two references agree to " << Fmt(sc.reference_agreement) << " 1/s ("
+          << Fmt(sc.reference_agreement / sc.scale) << " relative)";
+    log << "\n";
+    std::cerr << "scene " << sc.name << " (" << Fmt(WallNow() - t0) << " s)\n";
+    RunMonodromy(sc, cfg, rows);
+    RunHill(sc, cfg, rows);
+    if (sc.pfrf) RunPfrf(sc, cfg, rows, log);
+    WriteCsv(rows, cfg.out + "/work_precision.csv");  // after every scene: partial results survive
+  }
+  for (const StudyScene& sc : scenes)
+    WriteGnuplot(sc, rows, cfg.out, cfg.out + "/work-precision-" + sc.name + ".svg");
+  if (run_study) {
+    std::ofstream h(cfg.out + "/honesty.md");
+    Honesty(rows, h);
+  }
+  if (run_map) {
+    std::ofstream m(cfg.out + "/failure_map.md");
+    const auto map = RunFailureMap(cfg.quick, &std::cerr, only_regime);
+    WriteFailureMap(map, m);
+  }
+  std::cerr << "done in " << Fmt(WallNow() - t0) << " s; results in " << cfg.out << "\n";
+  return 0;
+}

@@ -1,0 +1,120 @@
+#pragma once
+// Shared pieces of the work–precision study (benchmarks/work_precision_benchmark.cc) and the
+// failure map (benchmarks/work_precision_failure_map.h, also run by tests/htf/failure_map_test.cc):
+// exponent errors modulo jΩp, and median CPU / wall timing of repeated runs.
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
+
+namespace ltp::wp {
+
+using cd = std::complex<double>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// |x − y| with the imaginary part reduced modulo `omega` (exponents are defined mod jΩp).
+inline double ModDistance(cd x, cd y, double omega) {
+  const cd d = x - y;
+  return std::hypot(d.real(), std::remainder(d.imag(), omega));
+}
+
+/// Largest error of `got` against `ref` (both sets of exponents, 1/s), modulo jΩ: every
+/// reference exponent is matched to the nearest unused computed one (greedy, closest pairs
+/// first). +inf when fewer exponents were computed than the reference has, or any is not finite.
+inline double ExponentError(const std::vector<cd>& got, const std::vector<cd>& ref, double omega) {
+  if (got.size() < ref.size()) return kInf;
+  for (const cd& g : got)
+    if (!std::isfinite(g.real()) || !std::isfinite(g.imag())) return kInf;
+  struct Pair {
+    double d;
+    size_t i, j;
+  };
+  std::vector<Pair> pairs;
+  for (size_t i = 0; i < ref.size(); ++i)
+    for (size_t j = 0; j < got.size(); ++j) pairs.push_back({ModDistance(ref[i], got[j], omega), i, j});
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d < b.d; });
+  std::vector<bool> used_i(ref.size()), used_j(got.size());
+  double worst = 0;
+  size_t matched = 0;
+  for (const Pair& p : pairs) {
+    if (used_i[p.i] || used_j[p.j]) continue;
+    used_i[p.i] = used_j[p.j] = true;
+    worst = std::max(worst, p.d);
+    if (++matched == ref.size()) break;
+  }
+  return worst;
+}
+
+inline std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
+  std::vector<cd> e;
+  for (const auto& m : modes) e.push_back(m.exponent);
+  return e;
+}
+
+/// Exponents from log-multipliers of a period `period`.
+inline std::vector<cd> FromLogMultipliers(const std::vector<cd>& logs, double period) {
+  std::vector<cd> e;
+  for (const cd& l : logs) e.push_back(l / period);
+  return e;
+}
+
+/// Hill's error estimate as `ltp floquet --method hill` reports it: the N vs N+Δ change, or the
+/// Koopman–Hill disagreement if larger; +inf when neither was computed.
+inline double HillEstimate(const HillResult& h) {
+  double e = std::max(h.truncation_estimate, h.koopman_discrepancy);
+  return e < 0 ? kInf : e;
+}
+
+/// Analysed-period fundamental: exponents of a period-doubled Hill run are defined mod jΩp/2.
+inline double HillOmega(const PeriodicSystem& s, const HillResult& h) {
+  return h.period_doubled ? s.omega() / 2 : s.omega();
+}
+
+inline double CpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+inline double WallNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+struct Timing {
+  double cpu_s = 0, wall_s = 0;  ///< medians
+  int repeats = 0;
+};
+
+inline double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+/// Runs `fn` at least once and repeats it (up to `max_repeats`) while the total stays under
+/// `budget_s`; returns the median CPU and wall time. CPU time is the whole process's (all
+/// threads), so a parallel method is not flattered.
+inline Timing TimeIt(const std::function<void()>& fn, int max_repeats, double budget_s) {
+  std::vector<double> cpu, wall;
+  double spent = 0;
+  while (static_cast<int>(cpu.size()) < max_repeats) {
+    const double c0 = CpuNow(), w0 = WallNow();
+    fn();
+    cpu.push_back(CpuNow() - c0);
+    wall.push_back(WallNow() - w0);
+    spent += wall.back();
+    if (cpu.size() >= 3 && spent > budget_s) break;
+    if (cpu.size() >= 1 && spent > 3 * budget_s) break;  // one slow run is all we can afford
+  }
+  return {Median(cpu), Median(wall), static_cast<int>(cpu.size())};
+}
+
+}  // namespace ltp::wp
