@@ -27,6 +27,7 @@
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/htf/pfrf.h"
+#include "support/systems.h"
 #include "work_precision_common.h"
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -117,55 +118,12 @@ inline PeriodicSystem MathieuSystem(double a, double q, double c, double omega_p
 }
 
 /// Jeffcott rotor (fixed frame) at speed Ω: closed-form exponents s + jΩ (mod 2jΩ), s the
-/// eigenvalues of the time-invariant rotating-frame system.
+/// eigenvalues of the time-invariant rotating-frame system (tests/support/systems.h).
 inline std::vector<cd> JeffcottExact(double m, double k1, double k2, double c, double omega) {
-  Eigen::Matrix2d J, I = Eigen::Matrix2d::Identity(), K;
-  J << 0, -1, 1, 0;
-  const Eigen::Matrix2d D = 2 * m * omega * J + c * I;
-  K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
-  K += c * omega * J;
-  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
-  A.block(0, 2, 2, 2) = I;
-  A.block(2, 0, 2, 2) = -K / m;
-  A.block(2, 2, 2, 2) = -D / m;
+  const Eigen::VectorXcd s = test::JeffcottRotatingEigenvalues(m, k1, k2, c, omega);
   std::vector<cd> e;
-  const Eigen::Vector4cd ev = A.eigenvalues();
-  for (int k = 0; k < 4; ++k) e.push_back(ev(k) + cd(0, omega));
+  for (Eigen::Index k = 0; k < s.size(); ++k) e.push_back(s(k) + cd(0, omega));
   return e;
-}
-
-inline PeriodicSystem JeffcottSystem(double m, double k1, double k2, double c, double omega) {
-  const double k0 = (k1 + k2) / 2, dk = (k1 - k2) / 2;
-  FourierMatrix A(4, 4, 1);
-  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(4, 4), a1 = Eigen::MatrixXcd::Zero(4, 4);
-  a0(0, 2) = a0(1, 3) = 1;
-  a0(2, 0) = a0(3, 1) = -k0 / m;
-  a0(2, 2) = a0(3, 3) = -c / m;
-  Eigen::Matrix2cd k1m;
-  k1m << cd(1, 0), cd(0, -1), cd(0, -1), cd(-1, 0);
-  a1.block(2, 0, 2, 2) = -dk / 2 / m * k1m;
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi / omega, A);
-}
-
-/// `dofs` coupled damped Mathieu oscillators (tests/support/systems.h MathieuChain).
-inline PeriodicSystem Chain(int dofs) {
-  const int n = 2 * dofs;
-  FourierMatrix A(n, n, 1);
-  Eigen::MatrixXcd a0 = Eigen::MatrixXcd::Zero(n, n), a1 = Eigen::MatrixXcd::Zero(n, n);
-  for (int i = 0; i < dofs; ++i) {
-    a0(i, dofs + i) = 1;
-    const double k = 1.0 + 0.37 * i;
-    a0(dofs + i, i) = -k - (i > 0) * 0.2 - (i + 1 < dofs) * 0.2;
-    if (i > 0) a0(dofs + i, i - 1) = 0.2;
-    if (i + 1 < dofs) a0(dofs + i, i + 1) = 0.2;
-    a0(dofs + i, dofs + i) = -0.05;
-    a1(dofs + i, i) = 0.3 * k;
-  }
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi, A);
 }
 
 /// Very high harmonic content: y'' + 0.1 y' + (2 + 0.5 · 0.19/(1.01 − cos t)) y = 0 — a sharp
@@ -277,12 +235,12 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
     r.push_back(res);
   }
   r.push_back({"very slow rotation (Jeffcott, Ω = 0.02: Ωp/ω₀ ≈ 0.04)", "closed form: rotating-frame eigenvalues",
-               WithIo(JeffcottSystem(1, 1, 1.5, 0.05, 0.02)), JeffcottExact(1, 1, 1.5, 0.05, 0.02), {0.1, 0.2}});
+               WithIo(test::Jeffcott(1, 1, 1.5, 0.05, 0.02)), JeffcottExact(1, 1, 1.5, 0.05, 0.02), {0.1, 0.2}});
   r.push_back({"very high harmonic content (stiffness pulse, ‖A_w‖ ~ e^{−0.14|w|})", "monodromy rkf78 1e-13 vs Hill N = 256",
                WithIo(Pulse()), {}, {0.1, 0.3}});
   r.back().hill_ref_harmonics = 256;
   r.push_back({quick ? "large n (chain of 10 Mathieu oscillators, n = 20)" : "large n (chain of 20 Mathieu oscillators, n = 40)",
-               "monodromy rkf78 1e-13 vs Hill structured N = 24", WithIo(Chain(quick ? 10 : 20)), {}, {0.1, 0.2}});
+               "monodromy rkf78 1e-13 vs Hill structured N = 24", WithIo(test::MathieuChain(quick ? 10 : 20, 0.05, 0.3)), {}, {0.1, 0.2}});
   r.back().hill_ref_harmonics = 24;
   return r;
 }

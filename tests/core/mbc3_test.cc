@@ -26,11 +26,8 @@ using std::complex;
 using std::numbers::pi;
 using test::ThrownMessage;
 
-std::string SourceDir() {
-  if (const char* dir = std::getenv("LTP_SOURCE_DIR")) return dir;
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().string();
-}
-std::string FiveMwDir() { return SourceDir() + "/tests/data/openfast/nrel5mw-rotating"; }
+using test::FiveMwDir;
+using test::SourceDir;
 
 // All eigenvalues of an MBC3 result (both members of each complex pair).
 std::vector<complex<double>> AllEigenvalues(const Mbc3Result& r) {

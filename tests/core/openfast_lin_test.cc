@@ -21,11 +21,8 @@ using Eigen::MatrixXd;
 using std::numbers::pi;
 using test::ThrownMessage;
 
-std::string SourceDir() {
-  if (const char* dir = std::getenv("LTP_SOURCE_DIR")) return dir;
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().string();
-}
-std::string FiveMwDir() { return SourceDir() + "/tests/data/openfast/nrel5mw-rotating"; }
+using test::FiveMwDir;
+using test::SourceDir;
 
 // A small file in the OpenFAST v3 layout, one variant per test below. Line numbers matter:
 // the malformed-file tests name them.

@@ -29,12 +29,7 @@ using Eigen::MatrixXd;
 using std::complex;
 using std::numbers::pi;
 
-std::string FiveMwDir() {
-  const char* dir = std::getenv("LTP_SOURCE_DIR");
-  const std::string root = dir ? dir
-                               : std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().string();
-  return root + "/tests/data/openfast/nrel5mw-rotating";
-}
+using test::FiveMwDir;
 
 double ModDistance(complex<double> a, complex<double> b, double omega) {
   return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), omega));

@@ -4,6 +4,8 @@
 // angles in the rotating frame ("... of blade b"), hub displacements in the fixed frame,
 // displacements first and then their rates (second-order states), inputs f_x, f_y and
 // outputs x, y in the fixed frame.
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,14 @@
 #include "ltp/core/rotor.h"
 
 namespace ltp::test {
+
+/// The source tree (LTP_SOURCE_DIR when set, else two levels above tests/support/).
+inline std::string SourceDir() {
+  if (const char* dir = std::getenv("LTP_SOURCE_DIR")) return dir;
+  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path().string();
+}
+/// The shipped NREL 5 MW linearisation files (tests/data/openfast/README.md).
+inline std::string FiveMwDir() { return SourceDir() + "/tests/data/openfast/nrel5mw-rotating"; }
 
 inline std::vector<LinFile> RotorLinFiles(const RotorParameters& rotor,
                                           const std::vector<double>& azimuths) {
