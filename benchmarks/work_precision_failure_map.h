@@ -107,16 +107,6 @@ inline PeriodicSystem Defective(double rate) {
   return PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f);
 }
 
-inline PeriodicSystem MathieuSystem(double a, double q, double c, double omega_p = 2) {
-  FourierMatrix A(2, 2, 1);
-  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
-  a0 << 0, 1, -a, -c;
-  a1(1, 0) = q;
-  A.SetHarmonic(0, a0);
-  A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(2 * kPi / omega_p, A);
-}
-
 /// Jeffcott rotor (fixed frame) at speed Ω: closed-form exponents s + jΩ (mod 2jΩ), s the
 /// eigenvalues of the time-invariant rotating-frame system (tests/support/systems.h).
 inline std::vector<cd> JeffcottExact(double m, double k1, double k2, double c, double omega) {
@@ -201,7 +191,7 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
                {cd(-800, 0), cd(150, 0), cd(-3, 0)}, {0.1, 1.3}});
   // Overdamped y'' + 2000 y' + (1 − 2·0.5 cos Ωp t) y, Ωp = 200: exponents ≈ −2000 and ≈ −5e-4.
   r.push_back({"stiff damping, fast rotation (c = 2000, Ωp = 200)", "monodromy rkf78 1e-13 vs Hill N = 32",
-               WithIo(MathieuSystem(1, 0.5, 2000, 200)), {}, {1.0, 40.0}});
+               WithIo(test::Mathieu(1, 0.5, 2000, 200)), {}, {1.0, 40.0}});
   r.push_back({"discontinuous coefficients (Meissner a=2, b=0.5, c=0.05)", "closed-form monodromy",
                WithIo(LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}})), {}, {0.1, 0.3}});
   {
@@ -216,7 +206,7 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
     for (int k = 0; k < 2; ++k) r.back().exact.push_back(std::log(cd(phi.eigenvalues()(k))) / (2 * kPi));
   }
   r.push_back({"exponents on the strip edge (Mathieu a=1.5, q=2: negative real multipliers)",
-               "monodromy rkf78 1e-13 vs Hill N = 32", WithIo(MathieuSystem(1.5, 2, 0.05)), {}, {0.1, 0.25}});
+               "monodromy rkf78 1e-13 vs Hill N = 32", WithIo(test::Mathieu(1.5, 2, 0.05)), {}, {0.1, 0.25}});
   r.push_back({"defective double multiplier at +1 (Jordan block, Lyapunov-reducible)", "closed form: λ = 0, 0",
                WithIo(Defective(1.0)), {cd(0, 0), cd(0, 0)}, {0.3, 0.7}});
   r.push_back({"defective double multiplier at −1 (Jordan block, Lyapunov-reducible)", "closed form: λ = j/2, j/2",
@@ -224,7 +214,7 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
   {
     // Undamped stable Mathieu excited exactly at its Floquet frequency: H is infinite there.
     Regime res{"undamped, excited exactly at a resonance (Mathieu a=1.5, q=0.2, c=0)",
-               "H is infinite: any finite value must come with a warning", WithIo(MathieuSystem(1.5, 0.2, 0)), {}, {}, true};
+               "H is infinite: any finite value must come with a warning", WithIo(test::Mathieu(1.5, 0.2, 0)), {}, {}, true};
     FloquetOptions o;
     o.integrator.type = IntegratorType::kRkf78;
     o.integrator.rel_tol = 1e-14;

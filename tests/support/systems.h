@@ -14,14 +14,15 @@ constexpr double kPi = std::numbers::pi;
 
 /// Damped Mathieu y'' + c y' + (a − 2q cos 2t) y = 0, period π, exact Fourier form:
 /// A_0 = [[0,1],[−a,−c]], A_{±1} = [[0,0],[q,0]] (2q cos 2t = q e^{j2t} + q e^{−j2t}, Ωp = 2).
-inline PeriodicSystem Mathieu(double a, double q, double c = 0) {
+/// `omega_p` ≠ 2 rescales time: the excitation becomes 2q cos Ωp t, period 2π/Ωp.
+inline PeriodicSystem Mathieu(double a, double q, double c = 0, double omega_p = 2) {
   FourierMatrix A(2, 2, 1);
   Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
   a0 << 0, 1, -a, -c;
   a1(1, 0) = q;
   A.SetHarmonic(0, a0);
   A.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi, A);
+  return PeriodicSystem::FromFourier(2 * kPi / omega_p, A);  // 2π/2 = π exactly
 }
 
 /// The same with input u (B = [0; 1]) and output y (C = [1, 0]): y'' + c y' + (a − 2q cos 2t) y = u.
