@@ -27,7 +27,7 @@ constexpr double kPi = std::numbers::pi;
 struct HillArgs {
   SceneArgs scene;
   int max_harmonics = 32;
-  std::string solver = "dense";
+  std::string solver = "auto";
   std::string selection = "centroid";
   bool no_reference = false;
   bool json = false;
@@ -86,7 +86,7 @@ int RunHill(HillArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
   HillOptions options;
   const auto solver = ParseHillSolver(args.solver);
-  if (!solver) throw InputError("--solver must be 'dense' or 'structured', got '" + args.solver + "'");
+  if (!solver) throw InputError("--solver must be 'auto', 'dense' or 'structured', got '" + args.solver + "'");
   options.solver = *solver;
   const auto rule = ParseHillSelectionRule(args.selection);
   if (!rule)
@@ -217,7 +217,8 @@ Command AddHillCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--max-harmonics", args.max_harmonics, "largest truncation N (harmonics -N..N)")
       ->capture_default_str();
-  cmd->add_option("--solver", args.solver, "dense (zgeev, full spectrum) | structured (banded shift-invert)")
+  cmd->add_option("--solver", args.solver, "auto | dense (zgeev, full spectrum) | structured (banded shift-invert); auto: per N, "
+                  "as the work-precision study found")
       ->capture_default_str();
   cmd->add_option("--selection", args.selection, "centroid | central-weight | strip")
       ->capture_default_str();

@@ -11,6 +11,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "segment_grid.h"
 
@@ -170,10 +171,16 @@ std::string FloquetResult::BriefReport() const {
   return s.str();
 }
 
-FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& options) {
-  options.Validate();
+FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& requested) {
+  requested.Validate();
   const auto start = std::chrono::steady_clock::now();
   FloquetResult r;
+  std::string choice;
+  FloquetOptions options = requested;
+  options.integrator = ResolveIntegrator(system, requested.integrator, &choice);
+  if (!choice.empty())
+    r.diagnostics.push_back("integrator auto → " + std::string(ToString(options.integrator.type)) +
+                            ": " + choice);
   const int n = system.states();
   const double T = system.period();
   const double omega = system.omega();

@@ -14,9 +14,7 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   if (options.delta_harmonics < 0) options.delta_harmonics = 0;  // the estimate drives the loop
   HillResult best;
   for (;;) {
-    // The banded shift-invert solver wins once the Hill matrix passes a few hundred rows
-    // (measured: N ≈ 24–32 for n = 4, N ≈ 7 for n = 40; see the README).
-    if ((2 * options.harmonics + 1) * system.states() > 200) options.solver = HillSolver::kStructured;
+    // HillSolver::kAuto is resolved per N by AnalyzeHill (the study's crossover rule).
     // The Koopman–Hill cross-check needs a dense expm of the whole Hill matrix (O(size³)); in
     // the automatic loop keep it to sizes where it costs well under a second.
     options.koopman_max_size = std::min(options.koopman_max_size, 600);

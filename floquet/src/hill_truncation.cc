@@ -17,6 +17,7 @@
 
 #include "hill_internal.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/hill.h"
 
 namespace ltp {
@@ -188,7 +189,11 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   }
   // Fail up front (not after hours of smaller truncations) when the largest one cannot fit.
   const int largest = max_harmonics + std::max(options.delta_harmonics, (max_harmonics + 1) / 2);
-  if (options.solver == HillSolver::kDense)
+  const HillSolver largest_solver =
+      options.solver == HillSolver::kAuto
+          ? ChooseHillSolver(MeasureSystemTraits(system), largest).solver
+          : options.solver;
+  if (largest_solver == HillSolver::kDense)
     hill_internal::CheckDenseMemory(system.states(), largest, options.max_dense_bytes);
   else if (const FourierMatrix* fa = system.fourier_A())
     hill_internal::CheckBandMemory(system.states(), hill_internal::BlockBandwidth(*fa, largest), largest);

@@ -11,6 +11,7 @@
 
 #include "integrator_internal.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 
 namespace ltp {
 
@@ -21,7 +22,7 @@ struct NamedType {
   std::string_view name;
 };
 
-constexpr std::array<NamedType, 8> kNames = {{
+constexpr std::array<NamedType, 9> kNames = {{
     {IntegratorType::kDopri5, "dopri5"},
     {IntegratorType::kRkf78, "rkf78"},
     {IntegratorType::kBulirschStoer, "bs"},
@@ -30,6 +31,7 @@ constexpr std::array<NamedType, 8> kNames = {{
     {IntegratorType::kMagnus4, "magnus4"},
     {IntegratorType::kMagnus6, "magnus6"},
     {IntegratorType::kExpm, "expm"},
+    {IntegratorType::kAuto, "auto"},
 }};
 
 // Automatic resolution: start coarse, double until two successive results agree to rel_tol.
@@ -128,7 +130,8 @@ std::optional<IntegratorType> ParseIntegratorType(std::string_view name) {
 
 std::vector<IntegratorType> AllIntegrators() {
   std::vector<IntegratorType> all;
-  for (const auto& named : kNames) all.push_back(named.type);
+  for (const auto& named : kNames)
+    if (named.type != IntegratorType::kAuto) all.push_back(named.type);
   return all;
 }
 
@@ -182,8 +185,9 @@ double InitialStep(double norm_a, double length, double rel_tol, int order) {
 }  // namespace internal
 
 TransitionResult StateTransition(const PeriodicSystem& system, double t0, double t1,
-                                 const IntegratorOptions& options) {
-  options.Validate();
+                                 const IntegratorOptions& requested) {
+  requested.Validate();
+  const IntegratorOptions options = ResolveIntegrator(system, requested);
   if (!std::isfinite(t0) || !std::isfinite(t1)) {
     std::ostringstream s;
     s << "StateTransition: t0 = " << t0 << ", t1 = " << t1 << " must be finite";
@@ -218,6 +222,8 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
     case IntegratorType::kMagnus6:
     case IntegratorType::kExpm:
       result = FixedStepTransition(system, points, options);
+      break;
+    case IntegratorType::kAuto:  // resolved above
       break;
   }
   if (!IsFixedStep(options.type)) result.error_estimate = -1;

@@ -27,6 +27,9 @@ namespace ltp {
 enum class HillSolver {
   kDense,       ///< all (2N+1)n eigenpairs by LAPACK zgeev
   kStructured,  ///< banded LU (zgbtrf) + shift-invert Arnoldi around the expected exponents
+  /// Chosen per N by the work–precision study's rule (ChooseHillSolver in method_choice.h);
+  /// the result's diagnostics say which and why.
+  kAuto,
 };
 std::string_view ToString(HillSolver solver);
 std::optional<HillSolver> ParseHillSolver(std::string_view name);
@@ -140,6 +143,10 @@ struct HillResult {
   /// Koopman–Hill check ran).
   double apriori_phi_bound = std::numeric_limits<double>::infinity();
   HillDecay decay;
+  /// The error estimate reported for every exponent (1/s): max(truncation_estimate,
+  /// koopman_discrepancy) plus the round-off floor of the eigen-residuals; +inf when neither
+  /// check ran, -1 when !ok.
+  double error_estimate = -1;
 
   // Koopman–Hill cross-check (sorting-free).
   std::vector<std::complex<double>> koopman_log_multipliers;  ///< log eig(C e^{H T} W)

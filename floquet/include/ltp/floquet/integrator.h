@@ -22,10 +22,14 @@ enum class IntegratorType {
   kMagnus4,     ///< fixed-step 4th-order Magnus, 2 Gauss–Legendre nodes + expm
   kMagnus6,     ///< fixed-step 6th-order Magnus, 3 Gauss–Legendre nodes + expm
   kExpm,        ///< product of matrix exponentials: exact for piecewise-constant systems
+  /// The study's cheapest for the system at hand (ltp/floquet/method_choice.h); analyses
+  /// report the integrator actually used and why.
+  kAuto,
 };
 
 std::string_view ToString(IntegratorType type);
 std::optional<IntegratorType> ParseIntegratorType(std::string_view name);
+/// Every concrete integrator (not kAuto).
 std::vector<IntegratorType> AllIntegrators();
 
 struct IntegratorOptions {

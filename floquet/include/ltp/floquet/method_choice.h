@@ -1,0 +1,56 @@
+#pragma once
+// Automatic method choice (`--integrator auto`, Hill's solver `auto`): the rules the
+// work–precision study found (README, "Work–precision study"; scripts/work-precision), applied
+// to features of the system that cost a few evaluations of A(t) to measure. Every choice
+// carries the reason, which the analyses put in their diagnostics.
+#include <string>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/hill.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp {
+
+/// What the choice looked at.
+struct SystemTraits {
+  int states = 0;
+  /// A(t) is constant between its breakpoints (piecewise-constant form, or sampled at three
+  /// interior points of every piece and found equal): products of matrix exponentials are exact.
+  bool constant_pieces = false;
+  bool has_jumps = false;  ///< breakpoints inside the period
+  /// T · max_t ||A(t)||_∞ over 16 samples: the number of steps an explicit method needs per
+  /// period for stability alone is about this divided by its stability radius (~3–4).
+  double stiffness = 0;
+  /// max |Re eig(A_0)| / Ωp of the averaged system (Hill: exponents far from their jΩp copies).
+  double hill_stiffness = 0;
+};
+SystemTraits MeasureSystemTraits(const PeriodicSystem& system);
+
+struct IntegratorChoice {
+  IntegratorType type = IntegratorType::kRkf78;
+  std::string reason;  ///< one sentence: the trait and the study result behind the choice
+};
+
+/// The integrator the study found cheapest for systems like this one at this tolerance:
+/// constant pieces → expm (exact); stiff (T·max||A|| > 500) or n > 4 → magnus6 (one
+/// expm per step instead of 13 matrix products, no stability limit); else Bulirsch–Stoer.
+IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol);
+IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
+
+/// `options` with IntegratorType::kAuto replaced by the choice (unchanged otherwise);
+/// `reason` (if given) receives the choice's reason, or stays empty.
+IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOptions options,
+                                    std::string* reason = nullptr);
+
+struct HillSolverChoice {
+  HillSolver solver = HillSolver::kDense;
+  std::string reason;
+};
+
+/// Dense below N = max(n, 12) for non-stiff systems (one LAPACK call beats n shift-invert
+/// Arnoldi runs there: tower-rotor, n = 22, dense 2–4× faster up to N = 16); structured from
+/// N = max(n, 12) (cost ~N instead of ~N³) and whenever max|Re eig A_0| > 10 Ωp (the dense selection missed
+/// stiff.yaml's +150 exponent at every N; shift-invert around A_0's eigenvalues found it).
+HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics);
+
+}  // namespace ltp

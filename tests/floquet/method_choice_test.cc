@@ -1,0 +1,172 @@
+// Automatic method choice (integrator and Hill solver `auto`): what it picks on the kinds of
+// system the work–precision study covered, and that the analyses it drives are accurate
+// against closed forms (Meissner's monodromy, the triangular stiff scene, a Lyapunov-reducible
+// stiff system) and say which method they used and why.
+#include "ltp/floquet/method_choice.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "ltp/core/rotor.h"
+#include "ltp/core/scene.h"
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
+#include "support/rotor_lin.h"
+#include "support/systems.h"
+
+namespace ltp {
+namespace {
+
+using cd = std::complex<double>;
+using test::kPi;
+
+bool Mentions(const std::vector<std::string>& diagnostics, const std::string& what) {
+  return std::any_of(diagnostics.begin(), diagnostics.end(),
+                     [&](const std::string& d) { return d.find(what) != std::string::npos; });
+}
+
+// Largest distance from each exponent to the nearest of `exact`, imaginary parts modulo Ωp.
+double MaxDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact, double omega) {
+  double worst = 0;
+  for (const FloquetMode& m : modes) {
+    double best = INFINITY;
+    for (const cd& e : exact)
+      best = std::min(best, std::hypot(m.exponent.real() - e.real(),
+                                       std::remainder(m.exponent.imag() - e.imag(), omega)));
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+PeriodicSystem StiffYaml() {
+  return LoadScene(test::SourceDir() + "/tests/data/stiff.yaml").Build({});
+}
+
+TEST(MethodChoice, PicksTheStudysWinnerPerKindOfSystem) {
+  // Rules from the study (README): small smooth → bs; constant between jumps → expm (exact);
+  // n > 4 → magnus6; stiff → magnus6.
+  EXPECT_EQ(ChooseIntegrator(test::Mathieu(1.5, 0.5, 0.05), 1e-10).type, IntegratorType::kBulirschStoer);
+  EXPECT_EQ(ChooseIntegrator(test::Meissner(2, 0.5, 0.05), 1e-10).type, IntegratorType::kExpm);
+  RotorParameters rotor;
+  rotor.blades = 2;
+  EXPECT_EQ(ChooseIntegrator(BuildRotorSystem(rotor), 1e-10).type, IntegratorType::kMagnus6);
+  const SystemTraits stiff = MeasureSystemTraits(StiffYaml());
+  EXPECT_GT(stiff.stiffness, 500);  // T·max‖A‖ ≥ 2π·(800 − 100) by the first row alone
+  EXPECT_EQ(ChooseIntegrator(stiff, 1e-10).type, IntegratorType::kMagnus6);
+  // Jumps between non-constant pieces are not "constant pieces".
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, -(1 + (std::cos(t) > 0 ? 0.3 : -0.3) * std::sin(t)), -0.1;
+  };
+  const PeriodicSystem jumpy = PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f, {kPi / 2, 3 * kPi / 2});
+  const SystemTraits t = MeasureSystemTraits(jumpy);
+  EXPECT_TRUE(t.has_jumps);
+  EXPECT_FALSE(t.constant_pieces);
+  EXPECT_EQ(ChooseIntegrator(t, 1e-10).type, IntegratorType::kBulirschStoer);
+}
+
+TEST(MethodChoice, AutoIsNotAConcreteIntegrator) {
+  const auto all = AllIntegrators();
+  EXPECT_EQ(std::count(all.begin(), all.end(), IntegratorType::kAuto), 0);
+  EXPECT_EQ(ParseIntegratorType("auto"), IntegratorType::kAuto);
+  EXPECT_EQ(ParseHillSolver("auto"), HillSolver::kAuto);
+}
+
+TEST(MethodChoice, AutoMonodromyOnMeissnerIsExactAndSaysWhy) {
+  // Closed form: Φ = E₊(π/2) E₋(π) E₊(π/2) (tests/support/systems.h).
+  const PeriodicSystem s = test::Meissner(2, 0.5, 0.05);
+  const Eigen::Matrix2d phi = test::MeissnerMonodromy(2, 0.5, 0.05);
+  std::vector<cd> exact;
+  for (int k = 0; k < 2; ++k) exact.push_back(std::log(cd(phi.eigenvalues()(k))) / s.period());
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kAuto;
+  const FloquetResult r = AnalyzeFloquet(s, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.integrator, "expm");
+  EXPECT_TRUE(Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
+  const double err = MaxDistance(r.modes, exact, s.omega());
+  EXPECT_LT(err, 1e-13);
+  EXPECT_GE(r.error_estimate, err);
+}
+
+TEST(MethodChoice, AutoMonodromyIsTheChosenIntegratorsRun) {
+  // Same integrator, same options: the auto run must be the explicit run, bit for bit.
+  const PeriodicSystem s = test::Mathieu(1.5, 0.5, 0.05);
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kAuto;
+  const FloquetResult a = AnalyzeFloquet(s, o);
+  o.integrator.type = IntegratorType::kBulirschStoer;
+  const FloquetResult b = AnalyzeFloquet(s, o);
+  ASSERT_TRUE(a.ok && b.ok);
+  EXPECT_EQ(a.integrator, "bs");
+  ASSERT_EQ(a.modes.size(), b.modes.size());
+  for (size_t k = 0; k < a.modes.size(); ++k) EXPECT_EQ(a.modes[k].exponent, b.modes[k].exponent);
+  EXPECT_EQ(a.error_estimate, b.error_estimate);
+}
+
+TEST(MethodChoice, AutoOnAStiffNonTriangularSystemMeetsTheClosedForm) {
+  // Lyapunov-reducible, exponents exactly diag(Λ) (tests/support/systems.h): stiff like
+  // stiff.yaml (ρ = e^{−5027} and e^{942}) but fully coupled, so Magnus is not exact by
+  // structure here and has to earn its accuracy.
+  const PeriodicSystem s = test::Reducible4(Eigen::Vector4d(-800, 150, -3, -0.5));
+  EXPECT_EQ(ChooseIntegrator(s, 1e-10).type, IntegratorType::kMagnus6);
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kAuto;
+  const FloquetResult r = AnalyzeFloquet(s, o);
+  ASSERT_TRUE(r.ok) << r.BriefReport();
+  EXPECT_EQ(r.integrator, "magnus6");
+  const double err = MaxDistance(r.modes, {-800.0, 150.0, -3.0, -0.5}, s.omega());
+  EXPECT_LT(err, 1e-8 * 800);
+  EXPECT_GE(r.error_estimate, err);
+}
+
+TEST(MethodChoice, HillAutoSolverOnStiffYamlFindsEveryExponent) {
+  // Closed form: the period averages of the triangular diagonal, −800, 150, −3. The dense
+  // selection misses +150 (study); the automatic choice goes structured and must not.
+  const PeriodicSystem s = StiffYaml();
+  HillOptions o;
+  o.solver = HillSolver::kAuto;
+  o.harmonics = 8;
+  const HillResult h = AnalyzeHill(s, o);
+  ASSERT_TRUE(h.ok);
+  EXPECT_TRUE(Mentions(h.diagnostics, "solver auto → structured"));
+  const double err = MaxDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
+  EXPECT_LT(err, 1e-6 * 800);
+  EXPECT_GE(h.error_estimate, err);
+}
+
+TEST(MethodChoice, DenseHillOnStiffYamlDoesNotUnderstateItsError) {
+  // Where the dense selection does miss an exponent, the Liouville deficit (Σ Re λ against the
+  // mean of tr A) must carry into the estimate: estimate ≥ true error (closed form).
+  const PeriodicSystem s = StiffYaml();
+  for (int N : {4, 8, 16}) {
+    HillOptions o;
+    o.solver = HillSolver::kDense;
+    o.harmonics = N;
+    const HillResult h = AnalyzeHill(s, o);
+    if (!h.ok) continue;  // "fails, says so" is also acceptable
+    const double err = MaxDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
+    EXPECT_GE(h.error_estimate, err) << "N = " << N;
+  }
+}
+
+TEST(MethodChoice, HillSolverRuleFollowsTheStudysCrossover) {
+  SystemTraits small;
+  small.states = 2;
+  EXPECT_EQ(ChooseHillSolver(small, 8).solver, HillSolver::kDense);
+  EXPECT_EQ(ChooseHillSolver(small, 12).solver, HillSolver::kStructured);
+  SystemTraits large;
+  large.states = 22;
+  EXPECT_EQ(ChooseHillSolver(large, 16).solver, HillSolver::kDense);
+  EXPECT_EQ(ChooseHillSolver(large, 22).solver, HillSolver::kStructured);
+  large.hill_stiffness = 800;
+  EXPECT_EQ(ChooseHillSolver(large, 2).solver, HillSolver::kStructured);
+}
+
+}  // namespace
+}  // namespace ltp
