@@ -28,7 +28,7 @@ struct PfrfArgs {
   std::string input = "0", output = "0";
   std::string freq;
   std::string orders = "-4:4";
-  std::string route = "modal";
+  std::string route = "auto";
   int check_every = 10;
   int htf_harmonics = 0;
   double plot_threshold = 0.01;
@@ -98,14 +98,17 @@ int RunPfrf(PfrfArgs& args) {
   o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "output");
   o.check_every = args.check_every;
   o.htf.harmonics = args.htf_harmonics;
+  // The decomposition and the modal samples by the study's cheapest integrator for this system.
+  o.floquet.integrator.type = IntegratorType::kAuto;
+  o.modal.integrator.type = IntegratorType::kAuto;
   if (args.route == "all") {
     o.primary = PfrfRoute::kModal;
     o.checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};
   } else if (auto route = ParsePfrfRoute(args.route)) {
     o.primary = *route;
-    o.checks = {*route == PfrfRoute::kModal ? PfrfRoute::kHtf : PfrfRoute::kModal};
+    o.checks = {PfrfRoute::kAuto};
   } else {
-    throw InputError("--route must be modal, htf, shooting, time or all, got '" + args.route + "'");
+    throw InputError("--route must be auto, modal, htf, shooting, time or all, got '" + args.route + "'");
   }
   Progress progress("pfrf");
   o.progress = [&progress](int done, int total) { progress(done, total); };
@@ -157,7 +160,8 @@ int RunPfrf(PfrfArgs& args) {
               {"period", r.period},
               {"fp_hz", r.fp_hz},
               {"orders", {r.min_order, r.max_order}},
-              {"primary_route", std::string(ToString(o.primary))},
+              {"primary_route", std::string(ToString(r.routes.front().route))},
+              {"route_choice", r.route_choice},
               {"check_every", o.check_every},
               {"routes", routes},
               {"max_disagreement", JsonNumber(r.max_disagreement)},
@@ -193,7 +197,7 @@ int RunPfrf(PfrfArgs& args) {
     for (double d : run.deviation) worst = std::max(worst, d);
     std::cout << "  " << std::left << std::setw(10) << ToString(run.route) << std::right
               << std::setw(8) << run.points.size() << std::setw(10) << run.failures
-              << (run.route == o.primary ? std::string(21, ' ') + "(primary)" : Num(worst, 3, 21))
+              << (&run == &r.routes.front() ? std::string(21, ' ') + "(primary)" : Num(worst, 3, 21))
               << Num(run.setup_s * 1e3, 4, 14) << Num(run.elapsed_s * 1e3, 4, 14) << "\n";
   }
   std::cout << "\n  max disagreement between routes " << Num(r.max_disagreement, 3) << " ("
@@ -270,8 +274,9 @@ Command AddPfrfCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--orders", args.orders, "orders z, ZMIN:ZMAX")->capture_default_str();
   cmd->add_option("--route", args.route,
-                  "modal | htf | shooting | time | all (primary route; all: modal checked by the "
-                  "other three)")
+                  "auto | modal | htf | shooting | time | all (primary route; auto: modal unless it "
+                  "reports itself unreliable, checked by htf, or by shooting when A(t) jumps; all: "
+                  "modal checked by the other three)")
       ->capture_default_str();
   cmd->add_option("--check-every", args.check_every,
                   "run the check routes on every k-th frequency (1 = all)")

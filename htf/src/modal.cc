@@ -52,12 +52,14 @@ std::string_view ToString(PfrfRoute route) {
     case PfrfRoute::kHtf: return "htf";
     case PfrfRoute::kShooting: return "shooting";
     case PfrfRoute::kTime: return "time";
+    case PfrfRoute::kAuto: return "auto";
   }
   return "?";
 }
 
 std::optional<PfrfRoute> ParsePfrfRoute(std::string_view name) {
-  for (PfrfRoute r : {PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime})
+  for (PfrfRoute r : {PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime,
+                      PfrfRoute::kAuto})
     if (name == ToString(r)) return r;
   return std::nullopt;
 }

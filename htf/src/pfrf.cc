@@ -18,6 +18,62 @@ namespace ltp {
 namespace {
 using cd = std::complex<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
+
+struct RouteChoice {
+  PfrfRoute primary = PfrfRoute::kModal;
+  std::vector<PfrfRoute> checks;
+  std::string reason;
+};
+
+// The automatic choice (PfrfRoute::kAuto), from the study: with the Floquet decomposition
+// computed anyway, the modal route is the cheapest per frequency and accurate to ~1e-13 on
+// every study scene, jumps included; it says when it is not to be trusted (near-defective
+// monodromy, unresolved mode shapes), and then the HTF (smooth A) or shooting (jumps) takes
+// over. Checks: the HTF for smooth A(t) (exponential convergence, cheapest per point), shooting
+// for jumps (no truncation; the HTF reached only 2e-7 at N = 64 on Meissner). Builds the
+// modal model into `r` when it needs it.
+RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, PfrfResult& r) {
+  bool jumps = false;
+  for (double b : system.breakpoints())
+    if (b > 0 && b < system.period()) jumps = true;
+  if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) jumps = true;
+  const PfrfRoute fallback = jumps ? PfrfRoute::kShooting : PfrfRoute::kHtf;
+  const char* shape = jumps ? "A(t) jumps" : "A(t) is smooth";
+  RouteChoice c;
+  std::string why;
+  if (o.primary != PfrfRoute::kAuto) {
+    c.primary = o.primary;
+    why = "as requested";
+  } else if (!r.floquet.ok) {
+    c.primary = fallback;
+    why = std::string("no Floquet decomposition, and ") + shape;
+  } else {
+    r.modal = BuildModalModel(system, r.floquet, o.modal);
+    if (r.modal->reliable) {
+      c.primary = PfrfRoute::kModal;
+      why = "the Floquet decomposition is needed anyway and its modal model is reliable "
+            "(cond Ξ, mode-shape tail within limits): cheapest per frequency";
+    } else {
+      c.primary = fallback;
+      why = std::string("the modal model reports itself unreliable, and ") + shape;
+    }
+  }
+  const bool auto_checks = std::find(o.checks.begin(), o.checks.end(), PfrfRoute::kAuto) != o.checks.end();
+  for (PfrfRoute k : o.checks)
+    if (k != PfrfRoute::kAuto && k != c.primary) c.checks.push_back(k);
+  if (auto_checks) {
+    PfrfRoute k = c.primary == PfrfRoute::kModal ? fallback : PfrfRoute::kModal;
+    // An unreliable modal model is no check: use the other truncation-free route.
+    if (k == PfrfRoute::kModal && r.modal && !r.modal->reliable)
+      k = c.primary == PfrfRoute::kHtf ? PfrfRoute::kShooting : PfrfRoute::kHtf;
+    if (std::find(c.checks.begin(), c.checks.end(), k) == c.checks.end() && k != c.primary)
+      c.checks.push_back(k);
+  }
+  std::string checks;
+  for (PfrfRoute k : c.checks) checks += (checks.empty() ? "" : ", ") + std::string(ToString(k));
+  c.reason = std::string(ToString(c.primary)) + (checks.empty() ? "" : " checked by " + checks) + ": " + why;
+  return c;
+}
 }  // namespace
 
 void PfrfOptions::Validate() const {
@@ -66,9 +122,20 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
   r.error_estimate.assign(F, std::vector<double>(Z, 0.0));
   r.checked.assign(F, false);
 
+  // One Floquet decomposition: the modal route, the time route's settling time, the resonance
+  // attribution and the automatic route choice all use it.
+  FloquetOptions fo = options.floquet;
+  fo.compute_modes = true;
+  r.floquet = AnalyzeFloquet(system, fo);
+  if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
+
   // Which routes run where.
-  std::vector<PfrfRoute> routes = {options.primary};
-  for (PfrfRoute c : options.checks)
+  const RouteChoice choice = ChooseRoutes(system, options, r);
+  const PfrfRoute primary_route = choice.primary;
+  r.route_choice = choice.reason;
+  if (options.primary == PfrfRoute::kAuto) r.diagnostics.push_back("route auto → " + choice.reason);
+  std::vector<PfrfRoute> routes = {primary_route};
+  for (PfrfRoute c : choice.checks)
     if (std::find(routes.begin(), routes.end(), c) == routes.end()) routes.push_back(c);
   std::vector<int> check_points;
   for (int i = 0; i < F; i += options.check_every) check_points.push_back(i);
@@ -81,20 +148,13 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
     if (options.progress) options.progress(done, total);
   };
 
-  // One Floquet decomposition: the modal route, the time route's settling time and the
-  // resonance attribution all use it.
-  FloquetOptions fo = options.floquet;
-  fo.compute_modes = true;
-  r.floquet = AnalyzeFloquet(system, fo);
-  if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
-
   std::unique_ptr<HtfSolver> htf;
   std::unique_ptr<ForcedResponseSolver> forced;
   const auto omega_of = [&](int i) { return kTwoPi * options.frequencies_hz[i]; };
   for (PfrfRoute route : routes) {
     RouteRun run;
     run.route = route;
-    const bool primary = route == options.primary;
+    const bool primary = route == primary_route;
     const std::vector<int>* points_ptr = &check_points;
     std::vector<int> all;
     if (primary) {
@@ -116,7 +176,7 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
           };
           break;
         }
-        r.modal = BuildModalModel(system, r.floquet, options.modal);
+        if (!r.modal) r.modal = BuildModalModel(system, r.floquet, options.modal);
         for (const auto& d : r.modal->diagnostics) run.diagnostics.push_back(d);
         const ModalModel* model = &*r.modal;
         eval = [model, zmin, zmax](double w, bool* ok) {
@@ -142,6 +202,7 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
         };
         break;
       }
+      case PfrfRoute::kAuto:  // resolved by ChooseRoutes, never in `routes`
       case PfrfRoute::kShooting:
       case PfrfRoute::kTime: {
         if (!forced) forced = std::make_unique<ForcedResponseSolver>(system, options.shooting);
@@ -287,7 +348,7 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
       }
     }
   }
-  if (r.modal && options.primary == PfrfRoute::kModal) {
+  if (r.modal && primary_route == PfrfRoute::kModal) {
     // The modal tail bounds what the primary's Fourier truncation can add anywhere.
     for (int i = 0; i < F; ++i)
       for (int z = 0; z < Z; ++z)
@@ -297,9 +358,9 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
 
   r.ok = r.routes.front().failures == 0;
   if (!r.ok)
-    r.diagnostics.push_back("primary route " + std::string(ToString(options.primary)) + " failed at " +
+    r.diagnostics.push_back("primary route " + std::string(ToString(primary_route)) + " failed at " +
                             std::to_string(r.routes.front().failures) + " frequencies");
-  if (r.modal && !r.modal->reliable && options.primary == PfrfRoute::kModal)
+  if (r.modal && !r.modal->reliable && primary_route == PfrfRoute::kModal)
     r.diagnostics.push_back("the modal route reports itself unreliable (see its diagnostics); "
                             "compare with --route htf or shooting");
   if (r.floquet.ok && !r.floquet.stable)

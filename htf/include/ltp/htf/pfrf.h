@@ -26,7 +26,17 @@
 
 namespace ltp {
 
-enum class PfrfRoute { kModal, kHtf, kShooting, kTime };
+enum class PfrfRoute {
+  kModal,
+  kHtf,
+  kShooting,
+  kTime,
+  /// Primary: modal (the Floquet decomposition is computed anyway, so every frequency costs a
+  /// few complex products) unless the modal model reports itself unreliable; then htf for
+  /// smooth A(t), shooting when A(t) jumps. Checks: htf for smooth A(t), shooting when it
+  /// jumps (the HTF converges algebraically there: 2e-7 at N = 64 on Meissner, study).
+  kAuto,
+};
 std::string_view ToString(PfrfRoute route);
 std::optional<PfrfRoute> ParsePfrfRoute(std::string_view name);
 
@@ -208,9 +218,10 @@ struct PfrfOptions {
   std::vector<double> frequencies_hz;  ///< excitation frequencies f = ω/2π
   int min_order = -4, max_order = 4;
   int input = 0, output = 0;           ///< the channel reported
-  PfrfRoute primary = PfrfRoute::kModal;
+  PfrfRoute primary = PfrfRoute::kAuto;
   /// Routes run on every `check_every`-th frequency (and the last) to estimate the error.
-  std::vector<PfrfRoute> checks = {PfrfRoute::kHtf};
+  /// kAuto in this list: the check the automatic choice pairs with the primary.
+  std::vector<PfrfRoute> checks = {PfrfRoute::kAuto};
   int check_every = 10;
   /// Resonance list: peaks of |H_z| above this fraction of the largest |H_z| of the sweep.
   double peak_threshold = 1e-3;
@@ -262,6 +273,8 @@ struct PfrfResult {
   std::vector<std::vector<double>> error_estimate;
   std::vector<bool> checked;  ///< frequency f had check routes run on it
   std::vector<RouteRun> routes;  ///< primary first
+  /// Why these routes (automatic choice), or "as requested".
+  std::string route_choice;
   double max_disagreement = 0;           ///< max over check points and orders (absolute)
   double max_relative_disagreement = 0;  ///< divided by max |H_z| of the sweep
   int htf_harmonics = 0;                 ///< N, when the htf route ran
