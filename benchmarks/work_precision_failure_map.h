@@ -240,9 +240,9 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
                                 const std::string& only = "") {
   using namespace fm;
   FailureMap map;
-  map.methods = {"monodromy (ltp floquet)", "monodromy single-shot", "Hill dense (auto N)",
-                 "Hill structured (auto N)", "Koopman–Hill", "PFRF modal", "PFRF htf", "PFRF shooting",
-                 "PFRF time"};
+  map.methods = {"monodromy (ltp floquet)", "monodromy single-shot", "Hill auto solver (auto N)",
+                 "Hill structured (auto N)", "Koopman–Hill", "PFRF auto (ltp pfrf)", "PFRF modal",
+                 "PFRF htf", "PFRF shooting", "PFRF time"};
   map.regimes = FailureRegimes(quick);
   if (!only.empty())
     map.regimes.erase(std::remove_if(map.regimes.begin(), map.regimes.end(),
@@ -281,9 +281,11 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
     double scale = 1;
     for (const cd& x : ref_for_hill) scale = std::max(scale, std::abs(x));
     std::vector<Cell> row;
-    // 1, 2: monodromy route (defaults of `ltp floquet`), and the single-shot multipliers.
+    // 1, 2: monodromy route (defaults of `ltp floquet`: integrator auto), and the single-shot
+    // multipliers.
     for (MultiplierMethod mm : {MultiplierMethod::kPeriodicSchur, MultiplierMethod::kSingleShot}) {
       FloquetOptions o;
+      o.integrator.type = IntegratorType::kAuto;
       o.multipliers = mm;
       const double t0 = WallNow();
       const FloquetResult r = AnalyzeFloquet(s, o);
@@ -292,10 +294,11 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       c.elapsed_s = WallNow() - t0;
       row.push_back(c);
     }
-    // 3, 4: Hill with the truncation chosen automatically (`--method hill`, tol 1e-10); 5: its
-    // Koopman–Hill projection (estimate: the disagreement with Hill's exponents).
-    HillResult hill_dense;
-    for (HillSolver solver : {HillSolver::kDense, HillSolver::kStructured}) {
+    // 3, 4: Hill with the truncation chosen automatically (`--method hill`, tol 1e-10; solver
+    // auto as `ltp floquet` picks it, and structured); 5: its Koopman–Hill projection
+    // (estimate: the disagreement with Hill's exponents).
+    HillResult hill_auto;
+    for (HillSolver solver : {HillSolver::kAuto, HillSolver::kStructured}) {
       HillOptions ho;
       ho.solver = solver;
       const double t0 = WallNow();
@@ -310,11 +313,11 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       }
       c.elapsed_s = WallNow() - t0;
       row.push_back(c);
-      if (solver == HillSolver::kDense) hill_dense = h;
+      if (solver == HillSolver::kAuto) hill_auto = h;
     }
     {
       Cell c;
-      const HillResult& h = hill_dense;
+      const HillResult& h = hill_auto;
       if (h.koopman_log_multipliers.empty()) {
         c = Judge(false, kInf, -1, scale, {}, h.koopman_discrepancy < 0 ? "skipped (matrix too large), says so" : "no result");
       } else {
@@ -376,20 +379,27 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       *ok = false;
       return ref_shoot;
     };
-    for (PfrfRoute route : {PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime}) {
+    for (PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting,
+                            PfrfRoute::kTime}) {
       PfrfOptions po;
       po.frequencies_hz = reg.freqs_hz;
       po.min_order = -2;
       po.max_order = 2;
       po.primary = route;
       po.checks = {route == PfrfRoute::kModal ? PfrfRoute::kHtf : PfrfRoute::kModal};
+      if (route == PfrfRoute::kAuto) {  // exactly `ltp pfrf`'s defaults
+        po.checks = {PfrfRoute::kAuto};
+        po.floquet.integrator.type = IntegratorType::kAuto;
+        po.modal.integrator.type = IntegratorType::kAuto;
+      }
       po.check_every = 1;
       const double t0 = WallNow();
       Cell c;
       try {
         const PfrfResult pr = ComputePartialFrf(s, po);
         bool ref_ok = false;
-        const auto& ref = reference_for(route, &ref_ok);
+        // Auto: measured against a reference from a route other than the one it picked.
+        const auto& ref = reference_for(route == PfrfRoute::kAuto ? pr.routes.front().route : route, &ref_ok);
         double hscale = 0, err = 0, est = kInf, worst_ratio = kInf;
         std::string worst_at;
         bool finite = pr.ok;

@@ -12,7 +12,7 @@ central-block-weight selection ("dense Hill"). Scenes: mathieu (a=1.5, q=0.5, c=
 (a=2, b=0.5, c=0.05; solve_ivp restarted at the jumps, as ltp does), stiff (tests/data/stiff.yaml).
 References: closed form for meissner and stiff; for mathieu the monodromy peers are measured
 against the dense Hill peer at N = 40 and vice versa (different methods; they agree to ~1e-15).
-Writes OUT_DIR/peers.csv and OUT_DIR/peers.md. The PFRF step-sine peer is not implemented yet.
+Writes OUT_DIR/peers.csv and OUT_DIR/peers.md. The PFRF step-sine peer: pfrf_stepsine_scipy.py.
 """
 import csv
 import math
