@@ -122,6 +122,12 @@ void ForcedResponseSolver::PrepareTransitions() {
     if (unique.empty() || t - unique.back() > 1e-13 * T) unique.push_back(t);
   unique.back() = T;
   pieces_ = std::move(unique);
+  jump_pieces_ = {0.0};
+  for (double t : pieces_)
+    if (t > 0 && t < T && std::any_of(system_.breakpoints().begin(), system_.breakpoints().end(),
+                                      [&](double b) { return std::abs(b - t) <= 1e-13 * T; }))
+      jump_pieces_.push_back(t);
+  jump_pieces_.push_back(T);
   phi_.clear();
 }
 
@@ -147,9 +153,10 @@ bool ForcedResponseSolver::Integrate(double omega, const Eigen::MatrixXcd& y0, d
   const int record_from = periods - (average ? options_.record_periods : 1);
   for (int period = 0; period < periods; ++period) {
     const bool record = period >= record_from;
+    const std::vector<double>& grid = record ? pieces_ : jump_pieces_;
     int sample = 0;
-    for (size_t piece = 0; piece + 1 < pieces_.size(); ++piece) {
-      const double a = pieces_[piece], b = pieces_[piece + 1];
+    for (size_t piece = 0; piece + 1 < grid.size(); ++piece) {
+      const double a = grid[piece], b = grid[piece + 1];
       // Samples sit on piece starts (the grid includes every sample time).
       if (record && sample < S && std::abs(a - T * sample / S) <= 1e-12 * T) {
         Eigen::MatrixXcd y(n, m);

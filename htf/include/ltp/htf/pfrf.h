@@ -209,6 +209,9 @@ class ForcedResponseSolver {
   long rhs_evals_ = 0;
   std::vector<Eigen::MatrixXd> phi_;  ///< Φ(t_s, 0), s = 0..S (Φ(T, 0) last)
   std::vector<double> pieces_;        ///< sample times ∪ breakpoints in [0, T]
+  /// Breakpoints only, with 0 and T: the grid of the periods that record nothing (settling),
+  /// where landing on every sample would only cut the steps short.
+  std::vector<double> jump_pieces_;
   std::vector<std::string> diagnostics_;
 };
 
