@@ -608,6 +608,11 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
   // frequency), over the Floquet tolerance, beside the same sweep with each route forced
   // (`--route R`; its check chosen as auto would): the Floquet decomposition, the checks and the
   // resonance attribution are in every one of them.
+  Values ref_channel;  // channel (0, 0) of the reference
+  for (const PartialFrfs& h : ref_shoot) {
+    ref_channel.emplace_back();
+    for (const auto& m : h) ref_channel.back().push_back(m.block(0, 0, 1, 1));
+  }
   for (const PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting})
   for (double tol : cfg.quick ? std::vector<double>{1e-10} : std::vector<double>{1e-6, 1e-10}) {
     Row row;
@@ -637,7 +642,7 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
       v.push_back(h);
     }
     row.note = "picked " + pr.route_choice.substr(0, pr.route_choice.find(':'));
-    add(row, v, ref_shoot);
+    add(row, v, ref_channel);  // a sweep reports one channel: compared on that channel
   }
   // Honesty of the sweep a user runs (`ltp pfrf`: automatic route and checks), here with a
   // check at every frequency so every value has its own estimate.

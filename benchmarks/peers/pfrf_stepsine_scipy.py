@@ -32,6 +32,7 @@ try:
     import numpy as np
     import scipy
     from scipy.integrate import solve_ivp
+    from peer_common import timed, write_markdown
 except ImportError as e:  # the study runs without peers
     print(f"pfrf_stepsine_scipy: skipped ({e}); apt-get install python3-scipy", file=sys.stderr)
     sys.exit(0)
@@ -168,19 +169,6 @@ def all_frequencies(sc, fhz, method, rtol, K):
             return None, nfev
         out.append(h)
     return np.array(out), nfev
-
-
-def timed(fn, repeats=3, budget=1.0):
-    """Median CPU (time.process_time) and wall time of repeated runs; fewer repeats for slow ones."""
-    cpu, wall, out = [], [], None
-    while len(cpu) < repeats:
-        c0, w0 = time.process_time(), time.perf_counter()
-        out = fn()
-        cpu.append(time.process_time() - c0)
-        wall.append(time.perf_counter() - w0)
-        if sum(wall) > budget:
-            break
-    return out, float(np.median(cpu)), float(np.median(wall)), len(cpu)
 
 
 def read_reference(out):
@@ -320,9 +308,7 @@ def main():
         lines.append("")
     lines.append(f"Peer run: {time.perf_counter() - t_start:.0f} s wall; SciPy {scipy.__version__}, "
                  f"NumPy {np.__version__}.")
-    with open(os.path.join(out, "peers_pfrf.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines), file=sys.stderr)
+    write_markdown(out, "peers_pfrf.md", lines)
 
 
 if __name__ == "__main__":

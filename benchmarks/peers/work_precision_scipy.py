@@ -18,13 +18,12 @@ import csv
 import math
 import os
 import sys
-import time
 
 try:
     import numpy as np
-    import scipy
     from scipy.integrate import solve_ivp
     from scipy.linalg import expm
+    from peer_common import timed, write_markdown
 except ImportError as e:  # the study runs without peers
     print(f"work_precision_scipy: skipped ({e}); apt-get install python3-scipy", file=sys.stderr)
     sys.exit(0)
@@ -120,20 +119,6 @@ def hill_exponents(sc, N):
     return vals[np.argsort(-central)[:n]]
 
 
-def timed(fn, repeats=5, budget=0.25):
-    cpu, wall, out = [], [], None
-    while len(cpu) < repeats:
-        c0, w0 = time.process_time(), time.perf_counter()
-        out = fn()
-        cpu.append(time.process_time() - c0)
-        wall.append(time.perf_counter() - w0)
-        if sum(wall) > budget and len(cpu) >= 3:
-            break
-        if sum(wall) > 3 * budget:
-            break
-    return out, float(np.median(cpu)), float(np.median(wall)), len(cpu)
-
-
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/work-precision"
     os.makedirs(out, exist_ok=True)
@@ -154,7 +139,7 @@ def main():
                     continue  # below what these reach in double precision per step
                 if method == "RK45" and rtol < 1e-9:
                     continue  # 5th order at 1e-11: tens of thousands of Python-level steps
-                e, cpu, wall, rep = timed(lambda: monodromy_exponents(sc, method, rtol))
+                e, cpu, wall, rep = timed(lambda: monodromy_exponents(sc, method, rtol), min_repeats=3)
                 err = math.inf if e is None else exponent_error(e, ref_for_mono, omega)
                 rows.append([sc["name"], "exponents", f"scipy {method}", "rtol", rtol, int(math.isfinite(err)),
                              err, err / scale, cpu, wall, rep])
@@ -164,7 +149,7 @@ def main():
                     break
         if "fourier" in sc:
             for N in (2, 4, 8, 16, 32, 64):
-                e, cpu, wall, rep = timed(lambda: hill_exponents(sc, N))
+                e, cpu, wall, rep = timed(lambda: hill_exponents(sc, N), min_repeats=3)
                 err = exponent_error(e, ref_for_hill, omega)
                 rows.append([sc["name"], "exponents", "numpy dense Hill", "harmonics", N, 1, err, err / scale,
                              cpu, wall, rep])
@@ -191,9 +176,7 @@ def main():
             fmt = lambda b: (f"{b[1]}", f"{b[0] * 1e3:.3g} ms") if b else ("none reaches it", "—")
             lines.append(f"| {scene} | {target:g} | {fmt(best_l)[0]} | {fmt(best_l)[1]} | {fmt(best_p)[0]} | "
                          f"{fmt(best_p)[1]} | {ratio} |")
-    with open(os.path.join(out, "peers.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines), file=sys.stderr)
+    write_markdown(out, "peers.md", lines)
 
 
 if __name__ == "__main__":

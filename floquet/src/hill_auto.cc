@@ -13,6 +13,7 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   options.harmonics = std::clamp(options.harmonics, 1, std::max(1, max_harmonics));
   if (options.delta_harmonics < 0) options.delta_harmonics = 0;  // the estimate drives the loop
   HillResult best;
+  const int start = options.harmonics;
   for (;;) {
     // HillSolver::kAuto is resolved per N by AnalyzeHill (the study's crossover rule).
     // The Koopman–Hill cross-check needs a dense expm of the whole Hill matrix (O(size³)); in
@@ -30,7 +31,14 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     for (const auto& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
     const bool converged = r.ok && r.truncation_estimate >= 0 && r.truncation_estimate <= tol * scale;
     best = std::move(r);
-    if (converged) return best;
+    if (converged) {
+      std::ostringstream s;
+      s << "harmonics auto → N = " << best.harmonics << ": the N vs N+Δ change "
+        << best.truncation_estimate << " 1/s met the tolerance " << tol << " × max(1, max|λ|)"
+        << (best.harmonics > start ? " (N doubled from " + std::to_string(start) + ")" : "");
+      best.diagnostics.push_back(s.str());
+      return best;
+    }
     if (options.harmonics >= max_harmonics) break;
     options.harmonics = std::min(2 * options.harmonics, max_harmonics);
   }

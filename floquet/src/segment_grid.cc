@@ -128,6 +128,9 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
     grid.factors.push_back(p.tr.phi);
   }
   grid.times.push_back(pieces.empty() ? T : pieces.back().t1);
+  grid.initial_segments = options.fixed_times.empty() ? std::max(1, options.uniform_segments)
+                                                      : static_cast<int>(options.fixed_times.size()) - 1;
+  grid.worst_condition = worst;
   return grid;
 }
 

@@ -26,6 +26,8 @@ struct SegmentGrid {
   std::vector<double> times;              ///< K + 1 points, 0 … T
   std::vector<Eigen::MatrixXd> factors;   ///< K factors
   long rhs_evals = 0;
+  int initial_segments = 0;        ///< the uniform grid it started from
+  double worst_condition = 1;      ///< max over the factors of σmax/σmin
   std::vector<std::string> diagnostics;
 };
 

@@ -336,6 +336,28 @@ TEST(TransitionFixedStep, UnreachableToleranceFailsWithLastResult) {
   EXPECT_TRUE(r.phi.allFinite());
 }
 
+TEST(TransitionFixedStep, RoundOffPlateauStopsTheDoubling) {
+  // A fast oscillator (ω = 100 rad/s, 314 radians per period): Magnus 6 converges quickly, then
+  // each doubling only adds expm round-off. At rel_tol 1e-15 the loop used to run to 2^20 steps
+  // per period; now it stops at the plateau, ok, with the plateau as its estimate — and the
+  // result matches rkf78 at 1e-13 (independent reference) to within a few times that estimate.
+  const PeriodicSystem sys = Mathieu(100.0 * 100.0, 20.0);
+  IntegratorOptions o = With(IntegratorType::kMagnus6);
+  o.rel_tol = 1e-15;
+  const TransitionResult r = StateTransition(sys, 0, kPi, o);
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_NE(r.message.find("round-off plateau"), std::string::npos) << r.message;
+  EXPECT_LT(r.steps_per_period, 1 << 20);
+  EXPECT_LT(r.error_estimate, 1e-9);
+  IntegratorOptions ref = With(IntegratorType::kRkf78);
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-16;
+  const TransitionResult want = StateTransition(sys, 0, kPi, ref);
+  ASSERT_TRUE(want.ok);
+  EXPECT_LT(RelErr(r.phi, want.phi), 10 * r.error_estimate + 1e-11)
+      << r.message << "; " << r.steps_per_period << " steps per period";
+}
+
 // Observed order log2(err(N)/err(2N)) of a fixed-step Magnus method on the Mathieu system.
 double ObservedOrder(IntegratorType type, int steps) {
   const PeriodicSystem sys = Mathieu(1.3, 0.6);

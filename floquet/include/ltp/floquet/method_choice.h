@@ -18,8 +18,8 @@ struct SystemTraits {
   /// interior points of every piece and found equal): products of matrix exponentials are exact.
   bool constant_pieces = false;
   bool has_jumps = false;  ///< breakpoints inside the period
-  /// T · max_t ||A(t)||_∞ over 16 samples: the number of steps an explicit method needs per
-  /// period for stability alone is about this divided by its stability radius (~3–4).
+  /// T · max_t max|Re eig A(t)| over 16 samples: how many e-folds of decay (or growth) an
+  /// explicit method has to follow per period with steps bound by stability, not accuracy.
   double stiffness = 0;
   /// max |Re eig(A_0)| / Ωp of the averaged system (Hill: exponents far from their jΩp copies).
   double hill_stiffness = 0;
@@ -32,8 +32,8 @@ struct IntegratorChoice {
 };
 
 /// The integrator the study found cheapest for systems like this one at this tolerance:
-/// constant pieces → expm (exact); stiff (T·max||A|| > 500) or n > 4 → magnus6 (one
-/// expm per step instead of 13 matrix products, no stability limit); else Bulirsch–Stoer.
+/// constant pieces → expm (exact); stiff (T·max|Re eig A| > 500) → magnus6 (no stability
+/// limit); else Bulirsch–Stoer.
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol);
 IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
 
