@@ -181,8 +181,8 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
 
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   std::cout << "  monodromy by " << r.integrator
-            << (args.integrator == "auto" ? " (chosen automatically, see the diagnostics)" : "")
-            << " (rel tol " << args.options.integrator.rel_tol
+            << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (")
+            << "rel tol " << args.options.integrator.rel_tol
             << ") over K = " << r.segments << " segments; multipliers by " << r.multiplier_method
             << "\n";
   if (!r.ok) {

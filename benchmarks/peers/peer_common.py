@@ -1,5 +1,6 @@
 """Shared by the SciPy peers of the work-precision study: timing by the same rule as ltp's
 (median of repeated runs, CPU and wall) and writing a markdown table to OUT_DIR and stderr."""
+import csv
 import os
 import sys
 import time
@@ -29,3 +30,13 @@ def write_markdown(out_dir, name, lines):
     with open(os.path.join(out_dir, name), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines), file=sys.stderr)
+
+
+def study_rows(out_dir, panel):
+    """ltp's successful rows of one panel of OUT_DIR/work_precision.csv (csv.DictReader rows;
+    empty when the study has not written it)."""
+    path = os.path.join(out_dir, "work_precision.csv")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [r for r in csv.DictReader(f) if r["panel"] == panel and r["ok"] == "1"]

@@ -23,7 +23,7 @@ try:
     import numpy as np
     from scipy.integrate import solve_ivp
     from scipy.linalg import expm
-    from peer_common import timed, write_markdown
+    from peer_common import study_rows, timed, write_markdown
 except ImportError as e:  # the study runs without peers
     print(f"work_precision_scipy: skipped ({e}); apt-get install python3-scipy", file=sys.stderr)
     sys.exit(0)
@@ -159,13 +159,8 @@ def main():
                     "wall_s", "repeats"])
         w.writerows(rows)
     # Side by side: cheapest run reaching each target, ltp vs peers (CPU time, same machine).
-    ltp = []
-    path = os.path.join(out, "work_precision.csv")
-    if os.path.exists(path):
-        with open(path) as f:
-            for r in csv.DictReader(f):
-                if r["panel"] == "exponents" and r["ok"] == "1":
-                    ltp.append((r["scene"], r["method"], float(r["error_rel"]), float(r["cpu_s"])))
+    ltp = [(r["scene"], r["method"], float(r["error_rel"]), float(r["cpu_s"]))
+           for r in study_rows(out, "exponents")]
     lines = ["| scene | target error | fastest ltp method | CPU | fastest peer | CPU | peer / ltp |",
              "|---|---|---|---|---|---|---|"]
     for scene in ("mathieu", "meissner", "stiff"):

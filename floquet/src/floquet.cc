@@ -211,7 +211,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     // segments only cost time once every factor is below the limit, and fewer lose the small
     // multipliers (stiff.yaml: K = 1 overflows, K = 4 is off by 327 1/s).
     std::ostringstream s;
-    s << "segments auto → K = " << grid.times.size() - 1 << ": ";
+    s << "segments auto → K = " << grid.times.size() - 1
+      << (options.estimate_error ? " (halved again in the refined run that gives the numbers)" : "") << ": ";
     if (static_cast<int>(grid.times.size()) - 1 == grid.initial_segments)
       s << "the " << grid.initial_segments
         << (grid.initial_segments == 1 ? " segment" : " uniform segments")

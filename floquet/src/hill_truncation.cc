@@ -191,7 +191,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   const int largest = max_harmonics + std::max(options.delta_harmonics, (max_harmonics + 1) / 2);
   const HillSolver largest_solver =
       options.solver == HillSolver::kAuto
-          ? ChooseHillSolver(MeasureSystemTraits(system), largest).solver
+          ? ChooseHillSolver(MeasureSystemTraits(system), largest,
+                             system.fourier_A() ? system.fourier_A()->max_harmonic() : largest).solver
           : options.solver;
   if (largest_solver == HillSolver::kDense)
     hill_internal::CheckDenseMemory(system.states(), largest, options.max_dense_bytes);

@@ -43,6 +43,23 @@ double MaxDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>&
   return worst;
 }
 
+// One-to-one: the smallest, over pairings of modes with exact values, of the largest distance
+// (a missed exponent cannot hide behind another mode's nearest value). Small n only.
+double MatchedDistance(const std::vector<FloquetMode>& modes, std::vector<cd> exact, double omega) {
+  EXPECT_EQ(modes.size(), exact.size());
+  std::sort(exact.begin(), exact.end(), [](cd a, cd b) { return a.real() < b.real(); });
+  double best = INFINITY;
+  do {
+    double worst = 0;
+    for (size_t k = 0; k < modes.size() && k < exact.size(); ++k)
+      worst = std::max(worst, std::hypot(modes[k].exponent.real() - exact[k].real(),
+                                         std::remainder(modes[k].exponent.imag() - exact[k].imag(), omega)));
+    best = std::min(best, worst);
+  } while (std::next_permutation(exact.begin(), exact.end(),
+                                 [](cd a, cd b) { return a.real() < b.real(); }));
+  return best;
+}
+
 PeriodicSystem StiffYaml() {
   return LoadScene(test::SourceDir() + "/tests/data/stiff.yaml").Build({});
 }
@@ -124,7 +141,7 @@ TEST(MethodChoice, AutoOnAStiffNonTriangularSystemMeetsTheClosedForm) {
   const FloquetResult r = AnalyzeFloquet(s, o);
   ASSERT_TRUE(r.ok) << r.BriefReport();
   EXPECT_EQ(r.integrator, "magnus6");
-  const double err = MaxDistance(r.modes, {-800.0, 150.0, -3.0, -0.5}, s.omega());
+  const double err = MatchedDistance(r.modes, {-800.0, 150.0, -3.0, -0.5}, s.omega());
   EXPECT_LT(err, 1e-8 * 800);
   EXPECT_GE(r.error_estimate, err);
 }
@@ -139,7 +156,7 @@ TEST(MethodChoice, HillAutoSolverOnStiffYamlFindsEveryExponent) {
   const HillResult h = AnalyzeHill(s, o);
   ASSERT_TRUE(h.ok);
   EXPECT_TRUE(Mentions(h.diagnostics, "solver auto → structured"));
-  const double err = MaxDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
+  const double err = MatchedDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
   EXPECT_LT(err, 1e-6 * 800);
   EXPECT_GE(h.error_estimate, err);
 }
@@ -153,23 +170,28 @@ TEST(MethodChoice, DenseHillOnStiffYamlDoesNotUnderstateItsError) {
     o.solver = HillSolver::kDense;
     o.harmonics = N;
     const HillResult h = AnalyzeHill(s, o);
-    if (!h.ok) continue;  // "fails, says so" is also acceptable
-    const double err = MaxDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
+    ASSERT_TRUE(h.ok) << "N = " << N;  // it does return three exponents, one of them wrong
+    const double err = MatchedDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
+    EXPECT_GT(err, 100) << "N = " << N;  // the miss this test is about
     EXPECT_GE(h.error_estimate, err) << "N = " << N;
   }
 }
 
 TEST(MethodChoice, HillSolverRuleFollowsTheStudysCrossover) {
-  SystemTraits small;
-  small.states = 2;
-  EXPECT_EQ(ChooseHillSolver(small, 8).solver, HillSolver::kDense);
-  EXPECT_EQ(ChooseHillSolver(small, 12).solver, HillSolver::kStructured);
-  SystemTraits large;
-  large.states = 22;
-  EXPECT_EQ(ChooseHillSolver(large, 16).solver, HillSolver::kDense);
-  EXPECT_EQ(ChooseHillSolver(large, 22).solver, HillSolver::kStructured);
-  large.hill_stiffness = 800;
-  EXPECT_EQ(ChooseHillSolver(large, 2).solver, HillSolver::kStructured);
+  // Crossovers measured in the study (dense vs structured CPU time at fixed N).
+  SystemTraits mathieu;  // n = 2, H_A = 1: dense 1.4× faster at N = 8, structured 2× at N = 16
+  mathieu.states = 2;
+  EXPECT_EQ(ChooseHillSolver(mathieu, 8, 1).solver, HillSolver::kDense);
+  EXPECT_EQ(ChooseHillSolver(mathieu, 16, 1).solver, HillSolver::kStructured);
+  SystemTraits tower;  // n = 22, H_A = 10: dense 2× faster at N = 16, structured ahead by N = 32
+  tower.states = 22;
+  EXPECT_EQ(ChooseHillSolver(tower, 16, 10).solver, HillSolver::kDense);
+  EXPECT_EQ(ChooseHillSolver(tower, 32, 10).solver, HillSolver::kStructured);
+  SystemTraits meissner;  // n = 2, fitted H_A = 128: structured 1.4–2× faster from N = 32
+  meissner.states = 2;
+  EXPECT_EQ(ChooseHillSolver(meissner, 32, 128).solver, HillSolver::kStructured);
+  tower.hill_stiffness = 800;  // far from the jΩp copies: structured whatever the size
+  EXPECT_EQ(ChooseHillSolver(tower, 2, 10).solver, HillSolver::kStructured);
 }
 
 }  // namespace

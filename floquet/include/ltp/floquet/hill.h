@@ -143,9 +143,11 @@ struct HillResult {
   /// Koopman–Hill check ran).
   double apriori_phi_bound = std::numeric_limits<double>::infinity();
   HillDecay decay;
-  /// The error estimate reported for every exponent (1/s): max(truncation_estimate,
-  /// koopman_discrepancy) plus the round-off floor of the eigen-residuals; +inf when neither
-  /// check ran, -1 when !ok.
+  /// The error estimate reported for every exponent (1/s): the N vs N+Δ change (doubled when
+  /// the eigenvectors reach the truncation edge), at least the Liouville deficit
+  /// |Σ Re λ − mean tr A|, the Koopman–Hill gap where it exceeds that projection's own bound
+  /// (a suspect selection), plus the round-off floor of the eigen-residuals; the Koopman–Hill
+  /// gap alone when there is no N+Δ run; +inf when neither check ran, -1 when !ok.
   double error_estimate = -1;
 
   // Koopman–Hill cross-check (sorting-free).

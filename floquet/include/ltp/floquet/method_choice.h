@@ -47,10 +47,10 @@ struct HillSolverChoice {
   std::string reason;
 };
 
-/// Dense below N = max(n, 12) for non-stiff systems (one LAPACK call beats n shift-invert
-/// Arnoldi runs there: tower-rotor, n = 22, dense 2–4× faster up to N = 16); structured from
-/// N = max(n, 12) (cost ~N instead of ~N³) and whenever max|Re eig A_0| > 10 Ωp (the dense selection missed
-/// stiff.yaml's +150 exponent at every N; shift-invert around A_0's eigenvalues found it).
-HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics);
+/// Structured (banded shift-invert) when its cost model n·(band/m)²·0.5 ≤ 1 × dense (m =
+/// (2N+1)n rows, band = (min(H_A, 2N)+1)n) and m ≥ 50, or whenever max|Re eig A_0| > 10 Ωp (the
+/// dense selection missed stiff.yaml's +150 exponent at every N; shift-invert around A_0's
+/// eigenvalues found it); dense otherwise. `coefficient_harmonics` = H_A of the series used.
+HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics, int coefficient_harmonics);
 
 }  // namespace ltp
