@@ -9,7 +9,10 @@
 namespace ltp {
 namespace {
 
-constexpr int kTraitSamples = 16;
+// Samples of A(t) for the traits: stiff systems are stiff over most of the period, so a few
+// suffice, and each costs an evaluation plus an n×n eig (on the rotor scene 16 samples cost as
+// much as the whole Bulirsch–Stoer analysis they chose).
+constexpr int kTraitSamples = 4;
 // T·max|Re eig A(t)| above this: the fast decay (or growth) bounds an explicit method's steps
 // while Magnus follows it exactly (study: stiff.yaml 5027 and stiff-coupled, Magnus 6 the
 // cheapest integrator at every accuracy). Fast *oscillation* (tower-rotor's undamped modes at
@@ -60,7 +63,7 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
   t.constant_pieces = ConstantBetweenBreakpoints(system);
   Eigen::MatrixXd a(t.states, t.states), mean = Eigen::MatrixXd::Zero(t.states, t.states);
   double rate = 0;
-  const int samples = t.states <= 100 ? kTraitSamples : 4;  // eig costs n³ per sample
+  const int samples = kTraitSamples;
   for (int s = 0; s < samples; ++s) {
     system.EvalA((s + 0.5) * T / samples, a);
     const Eigen::VectorXcd eig = a.eigenvalues();

@@ -18,7 +18,7 @@ struct SystemTraits {
   /// interior points of every piece and found equal): products of matrix exponentials are exact.
   bool constant_pieces = false;
   bool has_jumps = false;  ///< breakpoints inside the period
-  /// T · max_t max|Re eig A(t)| over 16 samples: how many e-folds of decay (or growth) an
+  /// T · max_t max|Re eig A(t)| over 4 samples: how many e-folds of decay (or growth) an
   /// explicit method has to follow per period with steps bound by stability, not accuracy.
   double stiffness = 0;
   /// max |Re eig(A_0)| / Ωp of the averaged system (Hill: exponents far from their jΩp copies).
