@@ -143,11 +143,12 @@ struct HillResult {
   /// Koopman–Hill check ran).
   double apriori_phi_bound = std::numeric_limits<double>::infinity();
   HillDecay decay;
-  /// The error estimate reported for every exponent (1/s): the N vs N+Δ change (doubled when
-  /// the eigenvectors reach the truncation edge), at least the Liouville deficit
-  /// |Σ Re λ − mean tr A|, the Koopman–Hill gap where it exceeds that projection's own bound
-  /// (a suspect selection), plus the round-off floor of the eigen-residuals; the Koopman–Hill
-  /// gap alone when there is no N+Δ run; +inf when neither check ran, -1 when !ok.
+  /// The error estimate reported for every exponent (1/s): the N vs N+Δ change (pre-asymptotic,
+  /// with the eigenvectors at the truncation edge: change/(1 − q) from a third solve at N+2Δ,
+  /// +inf when the changes do not shrink), at least the Liouville deficit |Σ Re λ − mean tr A|
+  /// (+inf when that check fails), the Koopman–Hill gap where it exceeds that projection's own
+  /// bound (a suspect selection), plus the round-off floor of the eigen-residuals; the
+  /// Koopman–Hill gap alone when there is no N+Δ run; +inf when neither check ran; -1 if !ok.
   double error_estimate = -1;
 
   // Koopman–Hill cross-check (sorting-free).
