@@ -95,8 +95,8 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
   } else {
     c.type = IntegratorType::kBulirschStoer;
     c.reason = "smooth, not stiff (T·max|Re eig A(t)| = " + Format(t.stiffness) +
-               "): Bulirsch–Stoer extrapolation was the cheapest or within 1.1× of it on Mathieu, "
-               "rotor and tower-rotor (study)";
+               "): Bulirsch–Stoer extrapolation was the cheapest adaptive integrator at tight "
+               "tolerances on Mathieu, rotor and tower-rotor (study)";
   }
   return c;
 }
