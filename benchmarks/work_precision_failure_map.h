@@ -164,7 +164,11 @@ inline Cell Judge(bool ok, double err, double estimate, double scale,
     c.verdict = Verdict::kWorks;
   } else if (!ok) {
     c.verdict = Verdict::kFailsSaysSo;
-    c.how = failure.empty() ? (diagnostics.empty() ? "not ok" : diagnostics.front().substr(0, 90)) : failure;
+    // What it said: its warning if it gave one (the first diagnostics may be informational,
+    // such as which integrator `auto` picked), else its last word.
+    c.how = !failure.empty() ? failure
+            : warns          ? warning
+            : diagnostics.empty() ? "not ok" : diagnostics.back().substr(0, 90);
   } else if (covers) {
     c.verdict = Verdict::kFailsSaysSo;
     c.how = "estimate covers the error";
@@ -460,8 +464,7 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
           hscale = std::max(hscale, 1e-300);
           // Per-value estimates: "covers" means every value's estimate covers its error.
           est = covered ? err : 0;
-          c = Judge(finite, err, covered ? est : 0, hscale, pr.diagnostics,
-                    pr.diagnostics.empty() ? "" : pr.diagnostics.front().substr(0, 90));
+          c = Judge(finite, err, covered ? est : 0, hscale, pr.diagnostics);
           if (c.verdict == Verdict::kFailsSilently) {
             std::ostringstream h;
             h << "error " << std::setprecision(2) << c.error_rel << " relative; smallest estimate/error "
