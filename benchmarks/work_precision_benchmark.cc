@@ -128,41 +128,62 @@ double Scale(const std::vector<cd>& e) {
   return m;
 }
 
+// A scene whose exponents are known in closed form: both method families measured against them.
+StudyScene ClosedFormScene(const std::string& name, const std::string& title, PeriodicSystem sys,
+                           std::vector<cd> exact, const std::string& source) {
+  StudyScene sc;
+  sc.name = name;
+  sc.title = title;
+  sc.sys = std::move(sys);
+  sc.ref_for_mono = sc.ref_for_hill = std::move(exact);
+  sc.ref_mono_source = sc.ref_hill_source = source;
+  sc.scale = Scale(sc.ref_for_mono);
+  return sc;
+}
+
+// A scene without a closed form: the monodromy methods are measured against Hill at
+// `hill_harmonics` (structured, FFT fit to 1e-15), Hill's against rkf78 at `mono_tol`; their
+// agreement is the floor below which no error is measurable.
+StudyScene CrossReferencedScene(const std::string& name, const std::string& title, PeriodicSystem sys,
+                                double mono_tol, int hill_harmonics) {
+  StudyScene sc;
+  sc.name = name;
+  sc.title = title;
+  sc.sys = std::move(sys);
+  const auto mono = MonoReference(sc.sys, mono_tol);
+  const auto hill = HillReference(sc.sys, hill_harmonics, mono);
+  sc.ref_for_mono = hill;
+  sc.ref_mono_source = "Hill structured N = " + std::to_string(hill_harmonics) + " (FFT fit to 1e-15 when not in Fourier form)";
+  sc.ref_for_hill = mono;
+  sc.ref_hill_source = "monodromy rkf78 rel tol " + Fmt(mono_tol);
+  sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
+  sc.scale = Scale(mono);
+  return sc;
+}
+
 std::vector<StudyScene> MakeScenes(const Config& cfg) {
   std::vector<StudyScene> scenes;
   auto want = [&](const std::string& n) { return cfg.scenes.empty() || cfg.scenes.count(n); };
   if (want("mathieu")) {
-    StudyScene sc;
-    sc.name = "mathieu";
-    sc.title = "Mathieu a=1.5, q=0.5, c=0.05 (n = 2, smooth, stable)";
-    sc.sys = LoadScene("mathieu").Build({{"a", "1.5"}, {"q", "0.5"}, {"c", "0.05"}});
     // Two independent near-exact references: rkf78 at 1e-14 and Hill N = 40 (exact Fourier
     // coefficients, error ~e^{-6.4 N}, i.e. at round-off from N ≈ 6).
-    const auto mono = MonoReference(sc.sys, 1e-14);
-    const auto hill = HillReference(sc.sys, 40, mono);
-    sc.ref_for_mono = hill;
-    sc.ref_mono_source = "Hill structured N = 40";
-    sc.ref_for_hill = mono;
-    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-14";
-    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
-    sc.scale = Scale(mono);
+    StudyScene sc = CrossReferencedScene(
+        "mathieu", "Mathieu a=1.5, q=0.5, c=0.05 (n = 2, smooth, stable)",
+        LoadScene("mathieu").Build({{"a", "1.5"}, {"q", "0.5"}, {"c", "0.05"}}), 1e-14, 40);
     sc.pfrf = true;
     sc.time_route = true;
     sc.freqs_hz = {0.05, 0.13, 0.21, 0.29, 0.37, 0.45, 0.53};
     scenes.push_back(std::move(sc));
   }
   if (want("meissner")) {
-    StudyScene sc;
-    sc.name = "meissner";
-    sc.title = "Meissner a=2, b=0.5, c=0.05 (n = 2, jumps)";
-    sc.sys = LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}});
     // Closed form: Φ = E₊(π/2) E₋(π) E₊(π/2) (tests/support/systems.h), eigenvalues of a 2×2.
     const Eigen::Matrix2d phi = test::MeissnerMonodromy(2, 0.5, 0.05);
     std::vector<cd> exact;
-    for (int k = 0; k < 2; ++k) exact.push_back(std::log(cd(phi.eigenvalues()(k))) / sc.sys.period());
-    sc.ref_for_mono = sc.ref_for_hill = exact;
-    sc.ref_mono_source = sc.ref_hill_source = "closed-form monodromy (product of 3 matrix exponentials)";
-    sc.scale = Scale(MonoReference(sc.sys, 1e-13));
+    for (int k = 0; k < 2; ++k) exact.push_back(std::log(cd(phi.eigenvalues()(k))) / (2 * kPi));
+    StudyScene sc = ClosedFormScene("meissner", "Meissner a=2, b=0.5, c=0.05 (n = 2, jumps)",
+                                    LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}}),
+                                    exact, "closed-form monodromy (product of 3 matrix exponentials)");
+    sc.scale = Scale(MonoReference(sc.sys, 1e-13));  // |λ| on the physical branch, not the principal log
     sc.pfrf = true;
     sc.time_route = true;
     sc.freqs_hz = {0.03, 0.11, 0.19, 0.27, 0.35, 0.43};
@@ -170,61 +191,34 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
     scenes.push_back(std::move(sc));
   }
   if (want("stiff")) {
-    StudyScene sc;
-    sc.name = "stiff";
-    sc.title = "stiff.yaml: exponents -800, 150, -3 (ρ = e^{-5027}, e^{942})";
-    sc.sys = LoadScene(std::string(LTP_SOURCE_DIR) + "/tests/data/stiff.yaml").Build();
     // Upper triangular: the exponents are the period averages of the diagonal (closed form).
-    sc.ref_for_mono = sc.ref_for_hill = {cd(-800, 0), cd(150, 0), cd(-3, 0)};
-    sc.ref_mono_source = sc.ref_hill_source = "closed form (triangular: averages of the diagonal)";
-    sc.scale = 800;
-    scenes.push_back(std::move(sc));
+    scenes.push_back(ClosedFormScene("stiff", "stiff.yaml: exponents -800, 150, -3 (ρ = e^{-5027}, e^{942})",
+                                     LoadScene(std::string(LTP_SOURCE_DIR) + "/tests/data/stiff.yaml").Build(),
+                                     {cd(-800, 0), cd(150, 0), cd(-3, 0)},
+                                     "closed form (triangular: averages of the diagonal)"));
   }
   if (want("stiff-coupled")) {
     // stiff.yaml is triangular, which makes Magnus exact at any step count; this one has the
     // same exponents' range but every state coupled (tests/support/systems.h: Lyapunov-
     // reducible, exponents exactly diag Λ), so each method has to earn its accuracy.
-    StudyScene sc;
-    sc.name = "stiff-coupled";
-    sc.title = "stiff, coupled: R(t) Λ R(t)ᵀ + Ṙ Rᵀ, exponents -800, 150, -3, -0.5 (n = 4)";
-    sc.sys = test::Reducible4(Eigen::Vector4d(-800, 150, -3, -0.5));
-    sc.ref_for_mono = sc.ref_for_hill = {cd(-800, 0), cd(150, 0), cd(-3, 0), cd(-0.5, 0)};
-    sc.ref_mono_source = sc.ref_hill_source = "closed form (Lyapunov-reducible: diag Λ)";
-    sc.scale = 800;
+    StudyScene sc = ClosedFormScene(
+        "stiff-coupled", "stiff, coupled: R(t) Λ R(t)ᵀ + Ṙ Rᵀ, exponents -800, 150, -3, -0.5 (n = 4)",
+        test::Reducible4(Eigen::Vector4d(-800, 150, -3, -0.5)),
+        {cd(-800, 0), cd(150, 0), cd(-3, 0), cd(-0.5, 0)}, "closed form (Lyapunov-reducible: diag Λ)");
     sc.max_dense_size = 400;
     sc.max_structured_n = 64;
     scenes.push_back(std::move(sc));
   }
   if (want("rotor")) {
-    StudyScene sc;
-    sc.name = "rotor";
-    sc.title = "rotor, 2 blades (n = 8, time-function form)";
-    sc.sys = LoadScene("rotor").Build({{"blades", "2"}});
-    const auto mono = MonoReference(sc.sys, 1e-14);
-    const auto hill = HillReference(sc.sys, 48, mono);
-    sc.ref_for_mono = hill;
-    sc.ref_mono_source = "Hill structured N = 48 (FFT fit to 1e-15)";
-    sc.ref_for_hill = mono;
-    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-14";
-    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
-    sc.scale = Scale(mono);
+    StudyScene sc = CrossReferencedScene("rotor", "rotor, 2 blades (n = 8, time-function form)",
+                                         LoadScene("rotor").Build({{"blades", "2"}}), 1e-14, 48);
     sc.pfrf = true;
     sc.freqs_hz = {0.02, 0.05, 0.08, 0.11, 0.14, 0.2};
     scenes.push_back(std::move(sc));
   }
   if (want("tower-rotor")) {
-    StudyScene sc;
-    sc.name = "tower-rotor";
-    sc.title = "tower-rotor (n = 22, the reference paper system)";
-    sc.sys = LoadScene("tower-rotor").Build();
-    const auto mono = MonoReference(sc.sys, 1e-13);
-    const auto hill = HillReference(sc.sys, 64, mono);
-    sc.ref_for_mono = hill;
-    sc.ref_mono_source = "Hill structured N = 64 (FFT fit to 1e-15)";
-    sc.ref_for_hill = mono;
-    sc.ref_hill_source = "monodromy rkf78 rel tol 1e-13";
-    sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
-    sc.scale = Scale(mono);
+    StudyScene sc = CrossReferencedScene("tower-rotor", "tower-rotor (n = 22, the reference paper system)",
+                                         LoadScene("tower-rotor").Build(), 1e-13, 64);
     sc.max_dense_size = 800;
     sc.max_koopman_size = 500;
     sc.max_structured_n = 128;
