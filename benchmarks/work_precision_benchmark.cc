@@ -231,10 +231,11 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
 
 // --- Floquet exponent methods ------------------------------------------------------------------
 
-Row NewRow(const StudyScene& sc, const std::string& method, const std::string& knob_name, double knob) {
+Row NewRow(const StudyScene& sc, const std::string& method, const std::string& knob_name, double knob,
+           const std::string& panel = "exponents") {
   Row row;
   row.scene = sc.name;
-  row.panel = "exponents";
+  row.panel = panel;
   row.method = method;
   row.knob_name = knob_name;
   row.knob = knob;
@@ -265,10 +266,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
   for (const Line& line : lines) {
     const int points = cfg.quick ? 3 : (line.fixed ? 5 : 6);
     for (int i = 0; i < points; ++i) {
-      Row row;
-      row.scene = sc.name;
-      row.panel = "exponents";
-      row.method = std::string(ToString(line.type));
+      Row row = NewRow(sc, std::string(ToString(line.type)), "", 0);
       FloquetOptions o = MonoOptions(line.type);
       if (line.fixed) {
         o.integrator.steps_per_period = 16 << (cfg.quick ? 3 * i : 2 * i);
@@ -509,8 +507,6 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
       }
   }
   auto add = [&](Row row, const Values& v, const Values& ref) {
-    row.scene = sc.name;
-    row.panel = "pfrf";
     row.error_abs = row.ok ? FrfError(v, ref) : kInf;
     row.error_rel = row.error_abs / hscale;
     if (!std::isfinite(row.error_abs)) row.ok = false;
@@ -521,19 +517,13 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
   const std::vector<double> tols = cfg.quick ? std::vector<double>{1e-5, 1e-10}
                                              : std::vector<double>{1e-4, 1e-8, 1e-12};
   for (double tol : tols) {
-    Row row;
-    row.method = "modal (Floquet rkf78)";
-    row.knob_name = "rel_tol";
-    row.knob = tol;
+    Row row = NewRow(sc, "modal (Floquet rkf78)", "rel_tol", tol, "pfrf");
     Values v;
     row.t = TimeIt([&] { v = ModalValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
     add(row, v, ref_shoot);
   }
   for (int N : cfg.quick ? std::vector<int>{4, 16} : std::vector<int>{2, 4, 8, 16, 32, 64}) {
-    Row row;
-    row.method = "htf (banded)";
-    row.knob_name = "harmonics";
-    row.knob = N;
+    Row row = NewRow(sc, "htf (banded)", "harmonics", N, "pfrf");
     Values v;
     row.ok = true;
     row.t = TimeIt(
@@ -549,10 +539,7 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
     if (row.t.wall_s > 3) break;
   }
   for (double tol : tols) {
-    Row row;
-    row.method = "shooting (rkf78)";
-    row.knob_name = "rel_tol";
-    row.knob = tol;
+    Row row = NewRow(sc, "shooting (rkf78)", "rel_tol", tol, "pfrf");
     Values v;
     row.t = TimeIt([&] { v = ShootingValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
     add(row, v, ref_modal);
@@ -563,10 +550,7 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
     fo.compute_modes = true;
     const FloquetResult fl = AnalyzeFloquet(s, fo);
     for (double settle : cfg.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
-      Row row;
-      row.method = "time (step-sine)";
-      row.knob_name = "settle_tol";
-      row.knob = settle;
+      Row row = NewRow(sc, "time (step-sine)", "settle_tol", settle, "pfrf");
       Values v;
       row.t = TimeIt(
           [&] {
@@ -599,11 +583,9 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
   }
   for (const PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting})
   for (double tol : {1e-10}) {
-    Row row;
-    row.method = route == PfrfRoute::kAuto ? "ltp pfrf auto (default)"
-                                           : "ltp pfrf --route " + std::string(ToString(route));
-    row.knob_name = "rel_tol";
-    row.knob = tol;
+    const std::string method = route == PfrfRoute::kAuto ? "ltp pfrf auto (default)"
+                                                         : "ltp pfrf --route " + std::string(ToString(route));
+    Row row = NewRow(sc, method, "rel_tol", tol, "pfrf");
     Values v;
     PfrfResult pr;
     row.t = TimeIt(
@@ -640,12 +622,8 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
   const PfrfResult pr = ComputePartialFrf(s, po);
   for (size_t f = 0; f < fhz.size(); ++f) {
     for (int z = kMinOrder; z <= kMaxOrder; ++z) {
-      Row row;
-      row.scene = sc.name;
-      row.panel = "pfrf-honesty";
-      row.method = "ltp pfrf default (auto route + checks)";
-      row.knob_name = "freq_hz,order";
-      row.knob = fhz[f] + 1e-3 * z;  // informative only
+      Row row = NewRow(sc, "ltp pfrf default (auto route + checks)", "freq_hz,order",
+                       fhz[f] + 1e-3 * z /* informative only */, "pfrf-honesty");
       row.ok = pr.ok;
       const cd got = pr.values[f][z - kMinOrder];
       const cd ref = ref_shoot[f][z - kMinOrder](po.output, po.input);
