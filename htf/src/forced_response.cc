@@ -17,6 +17,7 @@
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 #include "ltp/htf/pfrf.h"
 
 namespace ltp {
@@ -90,6 +91,7 @@ ForcedResponseSolver::ForcedResponseSolver(const PeriodicSystem& system,
     : system_(system), options_(options), n_(system.states()), m_(system.inputs()),
       p_(system.outputs()) {
   options.Validate();
+  options_.integrator = ResolveIntegrator(system, options.integrator);  // kAuto: once, not per sample
   if (m_ < 1 || p_ < 1)
     throw InputError("partial FRFs need at least one input and one output; the system has " +
                      std::to_string(m_) + " inputs and " + std::to_string(p_) + " outputs");

@@ -11,6 +11,7 @@
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 #include "ltp/htf/pfrf.h"
 
 namespace ltp {
@@ -74,8 +75,11 @@ void ModalOptions::Validate() const {
 }
 
 ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& floquet,
-                           const ModalOptions& options) {
-  options.Validate();
+                           const ModalOptions& requested) {
+  requested.Validate();
+  // IntegratorType::kAuto resolved once, not on every sample propagation below.
+  ModalOptions options = requested;
+  options.integrator = ResolveIntegrator(system, requested.integrator);
   const auto start = std::chrono::steady_clock::now();
   const int n = system.states(), m = system.inputs(), p = system.outputs();
   const double T = system.period(), w = system.omega();
