@@ -194,6 +194,25 @@ std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, doubl
   return points;
 }
 
+std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vector<double>& times) {
+  std::vector<Piece> pieces;
+  const double period = system.period();
+  for (size_t i = 0; i + 1 < times.size(); ++i) {
+    const std::vector<double> points = RestartPoints(system, times[i], times[i + 1]);
+    // Does times[i] itself sit on a breakpoint copy (within the merge distance)?
+    bool on_jump = i == 0;
+    const double merge = 64 * std::numeric_limits<double>::epsilon() *
+                         std::max({std::abs(times[i]), std::abs(times[i + 1]), period});
+    for (double b : system.breakpoints()) {
+      const double copy = b + std::round((times[i] - b) / period) * period;
+      on_jump = on_jump || std::abs(copy - times[i]) <= merge;
+    }
+    for (size_t p = 0; p + 1 < points.size(); ++p)
+      pieces.push_back({points[p], points[p + 1], p > 0 || on_jump, p + 2 == points.size()});
+  }
+  return pieces;
+}
+
 PieceWindow::PieceWindow(double a, double b) {
   const double margin =
       8 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
@@ -236,9 +255,14 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
   switch (options.type) {
     case IntegratorType::kDopri5:
     case IntegratorType::kRkf78:
-    case IntegratorType::kBulirschStoer:
-      result = internal::OdeintTransition(system, points, options);
+    case IntegratorType::kBulirschStoer: {
+      std::vector<internal::Piece> pieces;
+      for (size_t p = 0; p + 1 < points.size(); ++p)
+        pieces.push_back({points[p], points[p + 1], true, p + 2 == points.size()});
+      std::vector<TransitionResult> results = internal::OdeintTransitions(system, pieces, options);
+      result = std::move(results.back());
       break;
+    }
     case IntegratorType::kCvodeBdf:
     case IntegratorType::kCvodeAdams:
       result = internal::CvodeTransition(system, points, options);
@@ -257,6 +281,39 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
     result.message = internal::kNotFiniteMessage;
   }
   return result;
+}
+
+std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& system,
+                                                     const std::vector<double>& times,
+                                                     const IntegratorOptions& requested) {
+  requested.Validate();
+  const IntegratorOptions options = ResolveIntegrator(system, requested);
+  for (size_t i = 0; i < times.size(); ++i) {
+    if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1]))) {
+      std::ostringstream s;
+      s << "ConsecutiveTransitions: times must be finite and strictly increasing (entry " << i
+        << " = " << times[i] << ")";
+      throw InputError(s.str());
+    }
+  }
+  std::vector<TransitionResult> results;
+  if (times.size() < 2) return results;
+  const bool adaptive_odeint = options.type == IntegratorType::kDopri5 ||
+                               options.type == IntegratorType::kRkf78 ||
+                               options.type == IntegratorType::kBulirschStoer;
+  if (!adaptive_odeint || system.states() == 0) {
+    for (size_t i = 0; i + 1 < times.size(); ++i)
+      results.push_back(StateTransition(system, times[i], times[i + 1], options));
+    return results;
+  }
+  results = internal::OdeintTransitions(system, internal::TransitionPieces(system, times), options);
+  for (TransitionResult& r : results) {
+    if (r.ok && !r.phi.allFinite()) {
+      r.ok = false;
+      r.message = internal::kNotFiniteMessage;
+    }
+  }
+  return results;
 }
 
 }  // namespace ltp

@@ -40,10 +40,24 @@ class PieceWindow {
 /// "state transition is not finite (overflow?)" — one wording for every integrator.
 inline constexpr const char* kNotFiniteMessage = "state transition is not finite (overflow?)";
 
-/// kDopri5 / kRkf78 via Boost.Odeint controlled steppers; max_steps bounds the attempted
-/// steps over the whole interval.
-TransitionResult OdeintTransition(const PeriodicSystem& system, const std::vector<double>& points,
-                                  const IntegratorOptions& options);
+/// One smooth stretch [t0, t1] of an integration. `restart`: A(t) may jump at t0 (or it is the
+/// first piece), so adaptive steppers start afresh; `output`: a transition factor ends at t1.
+struct Piece {
+  double t0 = 0, t1 = 0;
+  bool restart = true;
+  bool output = true;
+};
+
+/// The pieces of Φ(t_{i+1}, t_i) for consecutive `times`: each interval cut at the breakpoint
+/// copies inside it (restart pieces); an interval starting on a breakpoint restarts too.
+std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vector<double>& times);
+
+/// kDopri5 / kRkf78 / kBulirschStoer via Boost.Odeint steppers: one result per output piece
+/// (fewer, the last not ok, when the integration failed); max_steps bounds the attempted steps
+/// over all pieces.
+std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
+                                                const std::vector<Piece>& pieces,
+                                                const IntegratorOptions& options);
 
 /// kCvodeBdf / kCvodeAdams via SUNDIALS CVODE on the n² vector vec(Φ).
 TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector<double>& points,

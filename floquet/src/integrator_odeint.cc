@@ -177,79 +177,107 @@ bool BelowOverflow(const State& x) {
   return true;
 }
 
-// Integrates every piece from Φ = I and multiplies the pieces' transitions.
+// Integrates every piece from Φ = I and multiplies the pieces' transitions into the current
+// factor; a piece ending at an output point closes the factor (one TransitionResult each).
+// At a jump of A (a piece with `restart`) the stepper starts afresh from an initial step; across
+// an output point that is not a jump it keeps its step size and order, so splitting a period
+// into many factors costs little more than integrating it in one go.
 template <class State, int N, class Controlled>
-TransitionResult Run(Controlled stepper, int order, const PeriodicSystem& system,
-                     const std::vector<double>& points, const IntegratorOptions& options) {
+std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicSystem& system,
+                                  const std::vector<Piece>& pieces, const IntegratorOptions& options) {
   const int n = system.states();
+  std::vector<TransitionResult> results;
   TransitionResult result;
   result.phi = Eigen::MatrixXd::Identity(n, n);
   State x;
   if constexpr (N == Eigen::Dynamic) x.resize(static_cast<size_t>(n) * n);
   Eigen::Map<Eigen::Matrix<double, N, N>> piece_phi(x.data(), n, n);
   Eigen::MatrixXd product(n, n);
-  MatrixRhs<State, N> rhs(system, &result.rhs_evals);
+  long rhs_evals = 0;
+  MatrixRhs<State, N> rhs(system, &rhs_evals);
   // Repeated stage times: Runge–Kutta tableaus (rkf78, dopri5), not Bulirsch–Stoer's substeps.
   rhs.CacheStages(options.type != IntegratorType::kBulirschStoer);
+  // dopri5 keeps the derivative of its last stage (FSAL); Φ restarts at I on every piece, so
+  // that derivative is stale there even without a jump.
+  const bool fsal = options.type == IntegratorType::kDopri5;
   long attempts = 0;
+  double dt = 0;
+  auto fail = [&](std::string message, bool keep_partial) {
+    if (keep_partial) {
+      product.noalias() = piece_phi * result.phi;  // Φ(t, t0) so far, for diagnostics
+      result.phi.swap(product);
+    } else {
+      result.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    result.message = std::move(message);
+    result.rhs_evals = rhs_evals;
+    results.push_back(std::move(result));
+    return results;
+  };
 
-  for (size_t p = 0; p + 1 < points.size(); ++p) {
-    const double a = points[p], b = points[p + 1];
+  for (const Piece& piece : pieces) {
+    const double a = piece.t0, b = piece.t1;
     piece_phi.setIdentity();
     rhs.SetPiece(a, b);
-    // Forget the FSAL derivative of the previous piece (dopri5): A may jump at a.
-    if constexpr (requires { stepper.reset(); }) stepper.reset();
+    if (piece.restart || dt <= 0) {
+      if constexpr (requires { stepper.reset(); }) stepper.reset();
+      dt = InitialStep(rhs.NormA(0.5 * (a + b)), b - a, options.rel_tol, order);
+    } else if (fsal) {
+      if constexpr (requires { stepper.reset(); }) stepper.reset();
+    }
     double t = a;
-    double dt = InitialStep(rhs.NormA(0.5 * (a + b)), b - a, options.rel_tol, order);
     while (t < b) {
       if (attempts >= options.max_steps) {
         std::ostringstream s;
         s << ToString(options.type) << ": max_steps = " << options.max_steps
-          << " reached at t = " << t << " (interval [" << points.front() << ", " << points.back()
-          << "]); the system may be stiff: try cvode";
-        result.message = s.str();
-        product.noalias() = piece_phi * result.phi;  // Φ(t, t0) so far, for diagnostics
-        result.phi.swap(product);
-        return result;
+          << " reached at t = " << t << " (interval [" << pieces.front().t0 << ", "
+          << pieces.back().t1 << "]); the system may be stiff: try cvode";
+        return fail(s.str(), true);
       }
       ++attempts;
       const bool last = dt >= b - t;
+      const double proposal = dt;
       double h = last ? b - t : dt;
       if (stepper.try_step(std::ref(rhs), x, t, h) == odeint::success) {
         ++result.steps;
-        if (last) t = b;  // land exactly on the restart point
-        if (!AllFinite(x)) {
-          result.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
-          result.message = kNotFiniteMessage;
-          return result;
+        if (last) {
+          t = b;  // land exactly on the restart point
+          // The landing step was cut short; its successor may be as long as the step the
+          // controller wanted before the cut.
+          h = std::max(h, proposal);
         }
+        if (!AllFinite(x)) return fail(kNotFiniteMessage, false);
       } else if (!BelowOverflow(x)) {
         // A rejected step of a state near the double range: the error estimate itself
         // overflows (inf − inf), so every smaller step is rejected too (seen with
         // Bulirsch–Stoer's extrapolation). Report the overflow instead of spinning.
-        result.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
-        result.message = kNotFiniteMessage;
-        return result;
+        return fail(kNotFiniteMessage, false);
       }
       dt = h;  // the controller's proposal (larger after success, smaller after a rejection)
       if (t < b && t + dt == t) {
         std::ostringstream s;
         s << ToString(options.type) << ": step size underflow at t = " << t;
-        result.message = s.str();
-        return result;
+        return fail(s.str(), false);
       }
     }
     product.noalias() = piece_phi * result.phi;
     result.phi.swap(product);
+    if (piece.output) {
+      result.ok = true;
+      result.rhs_evals = rhs_evals;
+      rhs_evals = 0;
+      results.push_back(std::move(result));
+      result = TransitionResult{};
+      result.phi = Eigen::MatrixXd::Identity(n, n);
+    }
   }
-  result.ok = true;
-  return result;
+  return results;
 }
 
-
 template <class State, int N>
-TransitionResult RunOdeint(const PeriodicSystem& system, const std::vector<double>& points,
-                           const IntegratorOptions& options) {
+std::vector<TransitionResult> RunOdeint(const PeriodicSystem& system,
+                                        const std::vector<Piece>& points,
+                                        const IntegratorOptions& options) {
   using Algebra = std::conditional_t<N == Eigen::Dynamic, odeint::range_algebra,
                                      odeint::vector_space_algebra>;
   if (options.type == IntegratorType::kBulirschStoer) {
@@ -271,13 +299,14 @@ TransitionResult RunOdeint(const PeriodicSystem& system, const std::vector<doubl
 
 }  // namespace
 
-TransitionResult OdeintTransition(const PeriodicSystem& system, const std::vector<double>& points,
-                                  const IntegratorOptions& options) {
+std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
+                                                const std::vector<Piece>& pieces,
+                                                const IntegratorOptions& options) {
   switch (system.states()) {
-    case 2: return RunOdeint<FixedState<2>, 2>(system, points, options);
-    case 3: return RunOdeint<FixedState<3>, 3>(system, points, options);
-    case 4: return RunOdeint<FixedState<4>, 4>(system, points, options);
-    default: return RunOdeint<DynamicState, Eigen::Dynamic>(system, points, options);
+    case 2: return RunOdeint<FixedState<2>, 2>(system, pieces, options);
+    case 3: return RunOdeint<FixedState<3>, 3>(system, pieces, options);
+    case 4: return RunOdeint<FixedState<4>, 4>(system, pieces, options);
+    default: return RunOdeint<DynamicState, Eigen::Dynamic>(system, pieces, options);
   }
 }
 

@@ -35,20 +35,46 @@ struct Piece {
   double cond = 1;
 };
 
+// Integrates the pieces listed in `todo` (sorted). Neighbouring pieces form chains that one
+// integrator pass covers (ConsecutiveTransitions keeps the step size across their ends); the
+// chains are cut into about 2 × threads jobs for the cores.
 void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
                const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
-  const long count = static_cast<long>(todo.size());
+  std::vector<std::pair<size_t, size_t>> jobs;  // [first, last) ranges of todo
+  const size_t target = std::max<size_t>(1, todo.size() / (2 * static_cast<size_t>(std::max(threads, 1))));
+  for (size_t j = 0; j < todo.size();) {
+    size_t k = j + 1;
+    while (k < todo.size() && k - j < target && todo[k] == todo[k - 1] + 1 &&
+           pieces[todo[k]].t0 == pieces[todo[k - 1]].t1)
+      ++k;
+    jobs.emplace_back(j, k);
+    j = k;
+  }
+  const long count = static_cast<long>(jobs.size());
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (long j = 0; j < count; ++j) {
-    Piece& p = pieces[todo[j]];
+  for (long job = 0; job < count; ++job) {
+    const auto [first, last] = jobs[job];
+    std::vector<double> times = {pieces[todo[first]].t0};
+    for (size_t j = first; j < last; ++j) times.push_back(pieces[todo[j]].t1);
+    std::vector<TransitionResult> results;
     try {
-      p.tr = StateTransition(system, p.t0, p.t1, integrator);
+      results = ConsecutiveTransitions(system, times, integrator);
     } catch (const std::exception& e) {  // never let an exception cross the OpenMP region
-      p.tr = TransitionResult{};
-      p.tr.ok = false;
-      p.tr.message = e.what();
+      TransitionResult failed;
+      failed.message = e.what();
+      results.assign(1, failed);
     }
-    p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
+    for (size_t j = first; j < last; ++j) {
+      Piece& p = pieces[todo[j]];
+      const size_t r = j - first;
+      if (r < results.size()) {
+        p.tr = std::move(results[r]);
+      } else {
+        p.tr = TransitionResult{};
+        p.tr.message = "not integrated: an earlier factor of the same pass failed";
+      }
+      p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
+    }
   }
 }
 

@@ -65,4 +65,14 @@ struct TransitionResult {
 TransitionResult StateTransition(const PeriodicSystem& system, double t0, double t1,
                                  const IntegratorOptions& options = {});
 
+/// Φ(t_{i+1}, t_i) for every consecutive pair of `times` (strictly increasing): result i is
+/// the factor over [t_i, t_{i+1}]. One pass of the integrator: the adaptive methods keep
+/// their step size (and order) across the t_i, which only restart the matrix at I, and start
+/// afresh only at breakpoints of the system — many short factors cost about what one
+/// integration over the whole span costs. Fewer results than intervals, the last with
+/// ok = false, when the integration failed. Throws InputError for bad options or times.
+std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& system,
+                                                     const std::vector<double>& times,
+                                                     const IntegratorOptions& options = {});
+
 }  // namespace ltp
