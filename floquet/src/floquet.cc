@@ -29,21 +29,56 @@ int NextPowerOfTwo(int x) {
   return p;
 }
 
-// Mode samples per period: enough to resolve the mode shapes on the principal branch, whose
-// spectra sit near harmonic Im λ/Ωp (up to the largest frozen frequency) and are wider than
-// A's own harmonic content; bounded so a discontinuous A(t) does not ask for thousands.
+// Mode samples per period: enough to resolve the mode shapes around the branch the averaged
+// system predicts (the samples are demodulated by that branch before the FFT, see
+// PriorBranches), i.e. somewhat wider than A's own harmonic content; bounded so a
+// discontinuous A(t) does not ask for thousands. Before demodulation the count also had to
+// cover the largest frozen frequency: 256 samples (and segments) for tower-rotor instead of 64.
 int AutoModeSamples(const PeriodicSystem& system) {
   int harmonics = 8;
   if (const FourierMatrix* fa = system.fourier_A()) harmonics = fa->max_harmonic();
   else if (!system.breakpoints().empty()) harmonics = 16;
-  double top = 0;  // largest frozen frequency in units of Ωp
-  if (system.states() > 0) {
-    const Eigen::VectorXcd eig = system.A(0).eigenvalues();
-    for (Eigen::Index i = 0; i < eig.size(); ++i)
-      if (std::isfinite(eig(i).imag())) top = std::max(top, std::abs(eig(i).imag()) / system.omega());
-  }
-  const double wanted = std::min(4.0 * (harmonics + 2) + 2.0 * top, 4096.0);
+  const double wanted = 4.0 * (harmonics + 2);
   return std::clamp(NextPowerOfTwo(static_cast<int>(std::ceil(wanted))), 32, 1024);
+}
+
+// A first guess of each mode's branch m in λ = Log ρ / T + j m Ωp, from the time-averaged
+// system: the averaged A's eigenvector that dominates the mode shape ξ_k(0) (its coefficient
+// in the eigenbasis) names the frequency the mode has, and m brings the principal exponent to
+// it. The mode samples are demodulated by that branch, so their spectra sit near harmonic 0
+// and a few dozen samples resolve them whatever the mode's frequency; the Fourier centroid
+// then corrects the guess.
+std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<cd>& log_rho,
+                               const Eigen::MatrixXcd& xi0) {
+  const int n = system.states();
+  const double T = system.period(), omega = system.omega();
+  Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(n, n);
+  if (const FourierMatrix* fa = system.fourier_A()) {
+    mean = (*fa)[0];
+  } else {
+    constexpr int kSamples = 16;
+    Eigen::MatrixXd a(n, n);
+    for (int s = 0; s < kSamples; ++s) {
+      system.EvalA((s + 0.5) * T / kSamples, a);
+      mean += a.cast<cd>() / double(kSamples);
+    }
+  }
+  std::vector<int> prior(log_rho.size(), 0);
+  if (!mean.allFinite() || !xi0.allFinite()) return prior;
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(mean);
+  if (eig.info() != Eigen::Success) return prior;
+  const Eigen::MatrixXcd coefficients =
+      eig.eigenvectors().colPivHouseholderQr().solve(xi0);  // ξ_k(0) in the eigenbasis
+  for (size_t k = 0; k < log_rho.size(); ++k) {
+    const cd principal = log_rho[k] / T;
+    if (!std::isfinite(principal.imag())) continue;
+    Eigen::Index i = 0;
+    if (!coefficients.col(k).allFinite()) continue;
+    coefficients.col(k).cwiseAbs().maxCoeff(&i);
+    const double m = std::round((eig.eigenvalues()(i).imag() - principal.imag()) / omega);
+    if (std::abs(m) < 1e6) prior[k] = static_cast<int>(m);
+  }
+  return prior;
 }
 
 // Greedy order-free matching of two sets of log multipliers; returns the largest distance
@@ -327,6 +362,10 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
                          std::exp(-log_rho[k] / T * (ts - grid.times[i]));
       }
     }
+    // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
+    const std::vector<int> prior = PriorBranches(system, log_rho, xi[0]);
+    for (int s = 0; s < samples; ++s)
+      for (int k = 0; k < n; ++k) xi[s].col(k) *= std::polar(1.0, -prior[k] * omega * r.sample_times[s]);
     // Fourier coefficients of every entry (FFT), then the branch centred on harmonic 0.
     Eigen::FFT<double> fft;
     const int H = samples / 2 - 1;  // the Nyquist bin is dropped (ambiguous sign)
@@ -366,13 +405,13 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         // neighbours are valid; take the one with the smallest non-negative frequency so that
         // repeated runs agree, and say so in the diagnostics below.
         const int lo = static_cast<int>(std::floor(centroid)), hi = lo + 1;
-        const double im_lo = (log_rho[k] / T).imag() + lo * omega;
-        const double im_hi = (log_rho[k] / T).imag() + hi * omega;
+        const double im_lo = (log_rho[k] / T).imag() + (prior[k] + lo) * omega;
+        const double im_hi = (log_rho[k] / T).imag() + (prior[k] + hi) * omega;
         m = (im_lo >= -1e-12 * omega && (im_hi < -1e-12 * omega || im_lo <= im_hi)) ? lo : hi;
       }
       FloquetMode& mode = modes[k];
-      mode.branch = m;
-      mode.exponent = log_rho[k] / T + cd(0, m * omega);
+      mode.branch = prior[k] + m;
+      mode.exponent = log_rho[k] / T + cd(0, mode.branch * omega);
       mode.central_weight = (std::abs(m) <= H ? energy[m + H] : 0) / total;
       mode.branch_margin = std::max(0.0, 0.5 - std::abs(centroid - m));
       mode.eigvec_residual = vecs[k].residual;

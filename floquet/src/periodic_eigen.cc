@@ -389,6 +389,55 @@ PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
   return out;
 }
 
+// Propagation is tried only while the multipliers span at most this many e-folds: an error of
+// v_0 along another mode grows by |ρ_j / ρ_k| over the period.
+constexpr double kMaxPropagationSpread = 25;
+// A propagated vector is kept when its cyclic residual is at this level (the block-cyclic
+// inverse iteration reaches ~1e-15); otherwise that mode goes through the inverse iteration.
+constexpr double kPropagationResidual = 1e-12;
+
+/// The cheap route for isolated multipliers of a product whose multipliers span few decades:
+/// v_0 from the eigenvectors of the formed product, v_{i+1} = Φ_i v_i / σ_i. Returns an
+/// infinite residual for modes it does not handle, so that the caller falls back.
+std::vector<PeriodicEigenvector> PropagatedEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
+                                                        const std::vector<double>& norms,
+                                                        const std::vector<double>& dt,
+                                                        double period,
+                                                        const std::vector<Complex>& log_rho,
+                                                        const std::vector<bool>& isolated) {
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  std::vector<PeriodicEigenvector> out(log_rho.size());
+  for (auto& o : out) o.residual = kInf;
+  double lo = kInf, hi = -kInf;
+  for (const Complex& l : log_rho) {
+    if (!std::isfinite(l.real())) return out;
+    lo = std::min(lo, l.real());
+    hi = std::max(hi, l.real());
+  }
+  if (hi - lo > kMaxPropagationSpread) return out;
+  Eigen::MatrixXd product = factors[0];
+  for (int i = 1; i < k; ++i) product = (factors[i] * product).eval();
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(product.cast<Complex>());
+  if (eig.info() != Eigen::Success) return out;
+  const Eigen::VectorXcd& rho = eig.eigenvalues();
+  for (std::size_t m = 0; m < log_rho.size(); ++m) {
+    if (!isolated[m]) continue;
+    const Complex target = std::exp(log_rho[m]);
+    Eigen::Index best = 0;
+    (rho.array() - target).abs().minCoeff(&best);
+    std::vector<Complex> sigma(k);
+    for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
+    Eigen::VectorXcd stacked(static_cast<Eigen::Index>(k) * n);
+    stacked.segment(0, n) = eig.eigenvectors().col(best);
+    for (int i = 0; i + 1 < k; ++i)
+      stacked.segment((i + 1) * n, n) = factors[i] * stacked.segment(i * n, n) / sigma[i];
+    PeriodicEigenvector v = FinishVector(factors, norms, sigma, stacked);
+    if (v.residual <= kPropagationResidual) out[m] = std::move(v);
+  }
+  return out;
+}
+
 /// |a − b| in the log plane, with −inf real parts (zero multipliers) comparing equal.
 double LogDistance(Complex a, Complex b) {
   const bool a_zero = std::isinf(a.real()) && a.real() < 0;
@@ -436,7 +485,25 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   std::normal_distribution<double> normal;
   const Eigen::Index size = static_cast<Eigen::Index>(k) * n;
 
+  // Isolated multipliers first by propagation (a few n×n products per segment); the rest, and
+  // any whose residual is not at round-off, by block-cyclic inverse iteration.
+  std::vector<bool> isolated(log_rho.size(), true);
+  for (std::size_t a = 0; a < log_rho.size(); ++a)
+    for (std::size_t b = 0; b < log_rho.size(); ++b)
+      if (a != b && LogDistance(log_rho[a], log_rho[b]) <=
+                        kClusterTol * std::max(1.0, std::abs(log_rho[a])))
+        isolated[a] = false;
   std::vector<bool> done(log_rho.size(), false);
+  {
+    std::vector<PeriodicEigenvector> propagated =
+        PropagatedEigenvectors(factors, norms, dt, period, log_rho, isolated);
+    for (std::size_t m = 0; m < log_rho.size(); ++m) {
+      if (std::isfinite(propagated[m].residual)) {
+        result[m] = std::move(propagated[m]);
+        done[m] = true;
+      }
+    }
+  }
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;
     std::vector<std::size_t> cluster;
