@@ -32,11 +32,22 @@ struct RouteChoice {
 // over. Checks: the HTF for smooth A(t) (exponential convergence, cheapest per point), shooting
 // for jumps (no truncation; the HTF reached only 2e-7 at N = 64 on Meissner). Builds the
 // modal model into `r` when it needs it.
-RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, PfrfResult& r) {
-  bool jumps = false;
+bool HasJumps(const PeriodicSystem& system) {
+  if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) return true;
   for (double b : system.breakpoints())
-    if (b > 0 && b < system.period()) jumps = true;
-  if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) jumps = true;
+    if (b > 0 && b < system.period()) return true;
+  return false;
+}
+
+// Largest disagreement, relative to the largest |H_z| at a check point, at which the
+// automatic choice keeps the modal route: far above the routes' own tolerances (they agree to
+// ~1e-12 where both are right), far below a visible error.
+double ModalAgreementLimit(const PfrfOptions& o) {
+  return std::max(1e-8, 100 * o.floquet.integrator.rel_tol);
+}
+
+RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, PfrfResult& r) {
+  const bool jumps = HasJumps(system);
   const PfrfRoute fallback = jumps ? PfrfRoute::kShooting : PfrfRoute::kHtf;
   const char* shape = jumps ? "A(t) jumps" : "A(t) is smooth";
   RouteChoice c;
@@ -51,8 +62,8 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
     r.modal = BuildModalModel(system, r.floquet, o.modal);
     if (r.modal->reliable) {
       c.primary = PfrfRoute::kModal;
-      why = "the Floquet decomposition is needed anyway and its modal model is reliable "
-            "(cond Ξ, mode-shape tail within limits): cheapest per frequency";
+      why = "the Floquet decomposition is needed anyway and its mode shapes are resolved: "
+            "cheapest per frequency; kept only if the check agrees";
     } else {
       c.primary = fallback;
       why = std::string("the modal model reports itself unreliable, and ") + shape;
@@ -370,6 +381,34 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
                             "reached from rest");
   r.resonances = FindResonances(r, r.modal ? &*r.modal : nullptr, options.peak_threshold,
                                 options.max_peaks_per_order);
+  if (options.primary == PfrfRoute::kAuto && primary_route == PfrfRoute::kModal && any_checks) {
+    // The evidence that decides the automatic choice: the modal values against the check
+    // route at the check points, relative to the largest response there.
+    const double limit = ModalAgreementLimit(options);
+    double worst = 0;
+    for (size_t k = 1; k < r.routes.size(); ++k)
+      for (size_t q = 0; q < r.routes[k].points.size(); ++q) {
+        double hmax = 0;
+        for (const cd& v : r.values[r.routes[k].points[q]]) hmax = std::max(hmax, std::abs(v));
+        const double d = r.routes[k].deviation[q];
+        if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, hmax > 0 ? d / hmax : HUGE_VAL);
+      }
+    if (worst > 0) {
+      PfrfOptions again = options;
+      again.primary = HasJumps(system) ? PfrfRoute::kShooting : PfrfRoute::kHtf;
+      again.checks = {PfrfRoute::kModal};
+      PfrfResult fallback = ComputePartialFrf(system, again);
+      std::ostringstream s;
+      s << ToString(again.primary) << " checked by modal: the modal route was tried first and "
+        << "disagreed with its check by " << worst << " of the largest |H_z| (limit " << limit
+        << "), so it is UNRELIABLE here";
+      fallback.route_choice = s.str();
+      fallback.modal_cross_check_failed = true;
+      fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
+      fallback.elapsed_s = internal::SecondsSince(start);
+      return fallback;
+    }
+  }
   r.elapsed_s = internal::SecondsSince(start);
   return r;
 }

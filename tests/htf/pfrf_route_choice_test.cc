@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <complex>
 #include <string>
 
@@ -76,10 +77,9 @@ TEST(PfrfRouteChoice, JumpsGetAShootingCheckAndTheValuesMeetTheTimeRoute) {
   EXPECT_LE(WorstUncovered(r, ref, 1e-9), 0);
 }
 
-TEST(PfrfRouteChoice, NearDefectiveMonodromyFallsBackToHtfAndStaysAccurate) {
-  // Undamped Mathieu 1e-9 inside the stable side of the first tongue's boundary a_1(q), where
-  // Φ is nearly a Jordan block: the modal model reports itself unreliable (cond Ξ ≈ 3e4), so
-  // the automatic route must take the HTF (smooth A) and still match shooting at 1e-13.
+// Undamped Mathieu q = 0.3 at distance `delta` inside the stable side of the first tongue's
+// boundary a_1(q) (located by bisection on tr Φ = −2), where Φ approaches a Jordan block.
+PeriodicSystem NearBoundaryMathieu(double delta) {
   const double q = 0.3;
   auto trace = [&](double a) { return StateTransition(test::MathieuIo(a, q, 0), 0, test::kPi).phi.trace(); };
   double lo = 1.1, hi = 1.6;  // tr Φ(1.1) < −2 (unstable tongue), tr Φ(1.6) > −2
@@ -87,15 +87,11 @@ TEST(PfrfRouteChoice, NearDefectiveMonodromyFallsBackToHtfAndStaysAccurate) {
     const double mid = 0.5 * (lo + hi);
     (trace(mid) < -2 ? lo : hi) = mid;
   }
-  const PeriodicSystem sys = test::MathieuIo(hi + 1e-9, q, 0);
-  PfrfOptions o;
-  o.frequencies_hz = {0.3 / kTwoPi, 0.9 / kTwoPi};  // off the lines ±1 + 2v rad/s
-  o.min_order = -3;
-  o.max_order = 3;
-  const PfrfResult r = ComputePartialFrf(sys, o);
-  ASSERT_TRUE(r.ok);
-  EXPECT_EQ(r.routes[0].route, PfrfRoute::kHtf) << r.route_choice;
-  EXPECT_NE(r.route_choice.find("unreliable"), std::string::npos) << r.route_choice;
+  return test::MathieuIo(hi + delta, q, 0);
+}
+
+// The reference: shooting at 1e-13 (no Fourier truncation, no mode matrix).
+std::vector<PartialFrfs> ShootingReference(const PeriodicSystem& sys, const PfrfOptions& o) {
   ShootingOptions so;
   so.rel_tol = 1e-13;
   so.abs_tol = 1e-16;
@@ -103,10 +99,69 @@ TEST(PfrfRouteChoice, NearDefectiveMonodromyFallsBackToHtfAndStaysAccurate) {
   std::vector<PartialFrfs> ref;
   for (double f : o.frequencies_hz) {
     bool ok = false;
-    ref.push_back(shooting.Shooting(kTwoPi * f, -3, 3, &ok));
-    ASSERT_TRUE(ok);
+    ref.push_back(shooting.Shooting(kTwoPi * f, o.min_order, o.max_order, &ok));
+    EXPECT_TRUE(ok);
   }
-  EXPECT_LE(WorstUncovered(r, ref, 1e-12), 0);
+  return ref;
+}
+
+PfrfOptions NearBoundaryOptions() {
+  PfrfOptions o;
+  o.frequencies_hz = {0.3 / kTwoPi, 0.9 / kTwoPi};  // off the lines ±1 + 2v rad/s
+  o.min_order = -3;
+  o.max_order = 3;
+  return o;
+}
+
+TEST(PfrfRouteChoice, IllConditionedModesKeepTheModalRouteWhenItsCheckAgrees) {
+  // 1e-9 from the boundary cond Ξ ≈ 3e4, above ModalOptions::max_condition (1e4) — which
+  // once made the automatic choice drop the modal route — yet the modal values match shooting
+  // at 1e-12: the cross-check (htf) agrees, so auto keeps the cheap route.
+  const PeriodicSystem sys = NearBoundaryMathieu(1e-9);
+  const PfrfOptions o = NearBoundaryOptions();
+  const PfrfResult r = ComputePartialFrf(sys, o);
+  ASSERT_TRUE(r.ok);
+  ASSERT_TRUE(r.modal.has_value());
+  EXPECT_GT(r.modal->condition, 1e4);
+  EXPECT_EQ(r.routes[0].route, PfrfRoute::kModal) << r.route_choice;
+  EXPECT_FALSE(r.modal_cross_check_failed);
+  EXPECT_LE(WorstUncovered(r, ShootingReference(sys, o), 1e-12), 0);
+}
+
+TEST(PfrfRouteChoice, ModalValuesWrongBeyondTheLimitFailTheCrossCheckAndFallBack) {
+  // A defective monodromy: x' = [[−1, 1], [0, −1]] x + [0; 1] u, y = x_1 (a Jordan block,
+  // viewed as periodic with T = 2π). Its mode matrix is singular, so the modal terms are
+  // wrong, and the cross-check against the HTF finds it; auto then answers from the HTF.
+  // Closed form: H_0(ω) = 1/(jω + 1)², every other H_z = 0.
+  Eigen::MatrixXd a(2, 2), b(2, 1), c(1, 2);
+  a << -1, 1, 0, -1;
+  b << 0, 1;
+  c << 1, 0;
+  const PeriodicSystem sys = PeriodicSystem::FromFourier(
+      2 * test::kPi, FourierMatrix::Constant(a), FourierMatrix::Constant(b), FourierMatrix::Constant(c));
+  PfrfOptions o;
+  o.frequencies_hz = {0.05, 0.2, 0.7};
+  o.min_order = -1;
+  o.max_order = 1;
+  // By default the model already rejects itself (Ξ⁻¹B is garbage, so its Fourier tail is not
+  // resolved); with that self-assessment switched off, the cross-check alone must catch it.
+  const PfrfResult self = ComputePartialFrf(sys, o);
+  EXPECT_EQ(self.routes[0].route, PfrfRoute::kHtf) << self.route_choice;
+  EXPECT_NE(self.route_choice.find("unreliable"), std::string::npos) << self.route_choice;
+  o.modal.max_tail = std::numeric_limits<double>::infinity();
+  const PfrfResult r = ComputePartialFrf(sys, o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_TRUE(r.modal_cross_check_failed) << r.route_choice;
+  EXPECT_EQ(r.routes[0].route, PfrfRoute::kHtf) << r.route_choice;
+  EXPECT_NE(r.route_choice.find("UNRELIABLE"), std::string::npos) << r.route_choice;
+  for (size_t f = 0; f < o.frequencies_hz.size(); ++f) {
+    const cd s(1, kTwoPi * o.frequencies_hz[f]);
+    const cd exact[3] = {0, 1.0 / (s * s), 0};
+    for (int z = 0; z < 3; ++z) {
+      EXPECT_LE(std::abs(r.values[f][z] - exact[z]), 1e-12) << "f " << f << " z " << z - 1;
+      EXPECT_LE(std::abs(r.values[f][z] - exact[z]), r.error_estimate[f][z] + 1e-15);
+    }
+  }
 }
 
 }  // namespace

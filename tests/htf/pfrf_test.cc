@@ -193,7 +193,7 @@ TEST(PartialFrf, HtfBandedMatchesDenseSolve) {
     EXPECT_LT((h[z + 2] - c0 * X.middleRows((z + N) * n, n)).cwiseAbs().maxCoeff(), 1e-13);
 }
 
-TEST(PartialFrf, NearDefectiveModalReportsUnreliable) {
+TEST(PartialFrf, NearDefectiveModalReportsItsCondition) {
   // Undamped Mathieu just inside the stable region next to the boundary a_1(q) of the first
   // instability tongue, where the multipliers meet at −1 and Φ becomes a Jordan block. The
   // boundary is located here by bisection on tr Φ = −2.
@@ -209,13 +209,15 @@ TEST(PartialFrf, NearDefectiveModalReportsUnreliable) {
   // Well inside the stable region the modal route trusts itself ...
   const PeriodicSystem far = test::MathieuIo(hi + 1e-3, q, 0);
   EXPECT_TRUE(BuildModalModel(far, AnalyzeFloquet(far)).reliable);
-  // ... 1e-9 from the boundary cond Ξ ≈ 3e4 > max_condition (1e4): it reports itself unreliable.
+  // ... 1e-9 from the boundary cond Ξ ≈ 3e4 > max_condition (1e4): it says so (information;
+  // whether the values suffer is for a cross-check to tell, see pfrf_route_choice_test).
   const PeriodicSystem sys = test::MathieuIo(hi + 1e-9, q, 0);
   const FloquetResult fl = AnalyzeFloquet(sys);
   ASSERT_TRUE(fl.ok);
   const ModalModel model = BuildModalModel(sys, fl);
-  EXPECT_FALSE(model.reliable) << "cond " << model.condition;
-  EXPECT_FALSE(model.diagnostics.empty());
+  EXPECT_GT(model.condition, 1e4);
+  ASSERT_FALSE(model.diagnostics.empty());
+  EXPECT_NE(model.diagnostics.back().find("ill-conditioned"), std::string::npos);
   // htf and shooting still agree (off resonance: lines at ±1 + 2v rad/s).
   HtfSolver htf(sys);
   htf.ChooseTruncation(-3, 3, {0.3});

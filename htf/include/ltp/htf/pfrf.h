@@ -56,9 +56,10 @@ struct ModalOptions {
   double max_tail = 1e-8;
   IntegratorOptions integrator;  ///< for propagating new samples
   /// Above this condition number of the mode matrix Ξ (FloquetResult::mode_condition, and
-  /// max_t cond Ξ(t) over the samples) the route reports itself unreliable: near a defective
-  /// monodromy (a stability boundary) the exponents carry ~cond × their integration error and
-  /// the modal terms near a resonance inherit it divided by the distance to the resonance.
+  /// max_t cond Ξ(t) over the samples) the model says so in its diagnostics. Information, not
+  /// a verdict: near a defective monodromy (a stability boundary) the exponents carry
+  /// ~cond × their integration error, but modes of different scales reach 1e4 harmlessly;
+  /// the sweep's cross-check against another route decides (PfrfRoute::kAuto).
   double max_condition = 1e4;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
@@ -75,8 +76,13 @@ struct ModalModel {
   std::vector<Eigen::MatrixXcd> d_hat;  ///< D_w (outputs × inputs), index w + V
   int samples = 0;        ///< uniform samples per period finally used
   double tail = 0;        ///< worst relative Fourier amplitude in the upper half (per mode)
-  double condition = 0;   ///< max(mode_condition, max_t cond Ξ(t))
-  bool reliable = false;  ///< tail <= max_tail and condition <= max_condition
+  /// The tail stopped shrinking when the samples were doubled: it is the noise level of the
+  /// integrated mode samples, and harmonics below it were dropped.
+  bool noise_floor = false;
+  double condition = 0;   ///< max(mode_condition, max_t cond Ξ(t)); information only
+  /// The Floquet analysis succeeded and tail <= max_tail. A sweep with route auto can still
+  /// find the model wrong by its cross-check (PfrfResult::modal_cross_check_failed).
+  bool reliable = false;
   long rhs_evals = 0;
   double elapsed_s = 0;   ///< building the model (the Floquet analysis not included)
   std::vector<std::string> diagnostics;
@@ -278,6 +284,10 @@ struct PfrfResult {
   std::vector<RouteRun> routes;  ///< primary first
   /// Why these routes (automatic choice), or "as requested".
   std::string route_choice;
+  /// Route auto tried the modal route first and its check found it wrong (beyond
+  /// max(1e-8, 100 × the Floquet tolerance) of the largest |H_z|): the primary is then the
+  /// HTF (or shooting) and the modal values are the check.
+  bool modal_cross_check_failed = false;
   double max_disagreement = 0;           ///< max over check points and orders (absolute)
   double max_relative_disagreement = 0;  ///< divided by max |H_z| of the sweep
   int htf_harmonics = 0;                 ///< N, when the htf route ran
