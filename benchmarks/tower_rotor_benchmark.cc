@@ -1,0 +1,75 @@
+// The paper's system (built-in scene tower-rotor, 22 states, Ωp = 100 rad/s): the jobs of the
+// speed issues, side by side in one run so that their ratios are meaningful on a shared machine.
+//
+//   build/benchmarks/tower_rotor_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only
+//
+// FloquetFull            `ltp floquet tower-rotor`: modes, error estimate (two integrations)
+// FloquetFull/256        the same with the 256 mode samples (= segments) the sample rule chose
+//                        before the samples were demodulated by the averaged system's branch
+// MonodromyOnly          one integration, multipliers only (estimate and modes off): the
+//                        floor of this route at rel_tol 1e-10 with this integrator
+// PfrfModal / PfrfAuto   `ltp pfrf tower-rotor --freq 0:450:0.6 --orders -4:4` (751 × 9 values),
+//                        Floquet analysis and checks included; route modal, and auto
+#include <benchmark/benchmark.h>
+
+#include "ltp/core/scene.h"
+#include "ltp/floquet/floquet.h"
+#include "ltp/htf/pfrf.h"
+
+namespace {
+
+using namespace ltp;
+
+const PeriodicSystem& TowerRotor() {
+  static const PeriodicSystem system = LoadScene("tower-rotor").Build();
+  return system;
+}
+
+FloquetOptions CliFloquetOptions() {
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kAuto;  // the CLI's default
+  return o;
+}
+
+void FloquetFull(benchmark::State& state) {
+  FloquetOptions o = CliFloquetOptions();
+  o.mode_samples = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const FloquetResult r = AnalyzeFloquet(TowerRotor(), o);
+    if (!r.ok) state.SkipWithError("Floquet analysis failed");
+    state.counters["evals"] = static_cast<double>(r.rhs_evals);
+    state.counters["estimate"] = r.error_estimate;
+  }
+}
+BENCHMARK(FloquetFull)->Arg(0)->Arg(256)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void MonodromyOnly(benchmark::State& state) {
+  FloquetOptions o = CliFloquetOptions();
+  o.estimate_error = false;
+  o.compute_modes = false;
+  for (auto _ : state) {
+    const FloquetResult r = AnalyzeFloquet(TowerRotor(), o);
+    if (!r.ok) state.SkipWithError("Floquet analysis failed");
+    state.counters["evals"] = static_cast<double>(r.rhs_evals);
+  }
+}
+BENCHMARK(MonodromyOnly)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void Pfrf(benchmark::State& state, PfrfRoute route) {
+  PfrfOptions o;
+  for (int i = 0; i <= 750; ++i) o.frequencies_hz.push_back(0.6 * i);
+  o.primary = route;
+  o.floquet = CliFloquetOptions();
+  o.modal.integrator.type = IntegratorType::kAuto;
+  for (auto _ : state) {
+    const PfrfResult r = ComputePartialFrf(TowerRotor(), o);
+    if (!r.ok) state.SkipWithError("sweep failed");
+    state.counters["rel_disagreement"] = r.max_relative_disagreement;
+  }
+}
+BENCHMARK_CAPTURE(Pfrf, Modal, PfrfRoute::kModal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Pfrf, Auto, PfrfRoute::kAuto)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
