@@ -203,6 +203,45 @@ TEST_P(IntegratorP, MeissnerMatchesClosedForm) {
   EXPECT_LT(RelErr(r.phi, MeissnerExact(a, b)), 1e-9);
 }
 
+// Reference for any [t0, t1] of the damped Meissner system: the product of exp(A± τ) over
+// its constant pieces (jumps at π/2 + kπ), by Eigen's expm.
+Eigen::Matrix2d MeissnerPieces(double a, double b, double c, double t0, double t1) {
+  Eigen::Matrix2d phi = Eigen::Matrix2d::Identity();
+  double t = t0;
+  while (t < t1) {
+    const double next_jump = kPi / 2 + kPi * std::floor((t - kPi / 2) / kPi + 1);
+    const double end = std::min(t1, next_jump);
+    const double k = a + b * (std::cos(0.5 * (t + end)) >= 0 ? 1.0 : -1.0);
+    Eigen::Matrix2d m;
+    m << 0, 1, -k, -c;
+    phi = (m * (end - t)).exp() * phi;
+    t = end;
+  }
+  return phi;
+}
+
+TEST_P(IntegratorP, ConsecutiveFactorsMatchTheirPieces) {
+  // Factors across a jump (π/2 inside the first), one starting exactly on a jump (3π/2), and
+  // uneven lengths: each must be Φ(t_{i+1}, t_i), and their product the monodromy.
+  const double a = 1, b = 0.3, c = 0.2;
+  const std::vector<double> times = {0, 2.0, 2.5, 3 * kPi / 2, 5.0, 2 * kPi};
+  const std::vector<TransitionResult> f = ConsecutiveTransitions(Meissner(a, b, c), times, With(GetParam()));
+  ASSERT_EQ(f.size(), times.size() - 1);
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(2, 2);
+  for (size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(f[i].ok) << f[i].message;
+    EXPECT_LT(RelErr(f[i].phi, MeissnerPieces(a, b, c, times[i], times[i + 1])), 1e-9) << "factor " << i;
+    product = f[i].phi * product;
+  }
+  EXPECT_LT(RelErr(product, MeissnerDampedReference(a, b, c)), 1e-9);
+}
+
+TEST(ConsecutiveTransitions, RejectsTimesThatDoNotIncrease) {
+  EXPECT_THROW(ConsecutiveTransitions(Meissner(1, 0.3, 0), {0, 1, 1}), InputError);
+  EXPECT_THROW(ConsecutiveTransitions(Meissner(1, 0.3, 0), {0, NAN}), InputError);
+  EXPECT_TRUE(ConsecutiveTransitions(Meissner(1, 0.3, 0), {0}).empty());
+}
+
 TEST_P(IntegratorP, DampedMeissnerMatchesExpmProduct) {
   const double a = 1, b = 0.3, c = 0.2;
   const TransitionResult r = StateTransition(Meissner(a, b, c), 0, 2 * kPi, With(GetParam()));
