@@ -173,12 +173,17 @@ void IntegratorOptions::Validate() const {
 
 namespace internal {
 
+namespace {
+// Points of [t0, t1] this close are one point: a piece shorter would only carry round-off.
+double MergeDistance(double t0, double t1, double period) {
+  return 64 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t1), period});
+}
+}  // namespace
+
 std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, double t1) {
   std::vector<double> points = {t0};
   const double period = system.period();
-  // Points this close are one point: a piece shorter than this would only carry round-off.
-  const double merge =
-      64 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t1), period});
+  const double merge = MergeDistance(t0, t1, period);
   const auto& breaks = system.breakpoints();
   if (!breaks.empty()) {
     const double first = std::floor(t0 / period);
@@ -201,8 +206,7 @@ std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vec
     const std::vector<double> points = RestartPoints(system, times[i], times[i + 1]);
     // Does times[i] itself sit on a breakpoint copy (within the merge distance)?
     bool on_jump = i == 0;
-    const double merge = 64 * std::numeric_limits<double>::epsilon() *
-                         std::max({std::abs(times[i]), std::abs(times[i + 1]), period});
+    const double merge = MergeDistance(times[i], times[i + 1], period);
     for (double b : system.breakpoints()) {
       const double copy = b + std::round((times[i] - b) / period) * period;
       on_jump = on_jump || std::abs(copy - times[i]) <= merge;
@@ -255,14 +259,10 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
   switch (options.type) {
     case IntegratorType::kDopri5:
     case IntegratorType::kRkf78:
-    case IntegratorType::kBulirschStoer: {
-      std::vector<internal::Piece> pieces;
-      for (size_t p = 0; p + 1 < points.size(); ++p)
-        pieces.push_back({points[p], points[p + 1], true, p + 2 == points.size()});
-      std::vector<TransitionResult> results = internal::OdeintTransitions(system, pieces, options);
-      result = std::move(results.back());
+    case IntegratorType::kBulirschStoer:
+      result = std::move(
+          internal::OdeintTransitions(system, internal::TransitionPieces(system, {t0, t1}), options).back());
       break;
-    }
     case IntegratorType::kCvodeBdf:
     case IntegratorType::kCvodeAdams:
       result = internal::CvodeTransition(system, points, options);

@@ -446,6 +446,11 @@ double LogDistance(Complex a, Complex b) {
   return std::abs(a - b);
 }
 
+/// Does log multiplier `b` belong to the cluster of `a` (close enough to share a subspace)?
+bool InClusterOf(Complex a, Complex b) {
+  return LogDistance(b, a) <= kClusterTol * std::max(1.0, std::abs(a));
+}
+
 }  // namespace
 
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
@@ -490,9 +495,7 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   std::vector<bool> isolated(log_rho.size(), true);
   for (std::size_t a = 0; a < log_rho.size(); ++a)
     for (std::size_t b = 0; b < log_rho.size(); ++b)
-      if (a != b && LogDistance(log_rho[a], log_rho[b]) <=
-                        kClusterTol * std::max(1.0, std::abs(log_rho[a])))
-        isolated[a] = false;
+      if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
   std::vector<bool> done(log_rho.size(), false);
   {
     std::vector<PeriodicEigenvector> propagated =
@@ -507,9 +510,8 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;
     std::vector<std::size_t> cluster;
-    const double tol = kClusterTol * std::max(1.0, std::abs(log_rho[first]));
     for (std::size_t j = first; j < log_rho.size(); ++j) {
-      if (!done[j] && LogDistance(log_rho[j], log_rho[first]) <= tol) {
+      if (!done[j] && InClusterOf(log_rho[first], log_rho[j])) {
         cluster.push_back(j);
         done[j] = true;
       }

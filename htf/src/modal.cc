@@ -80,10 +80,6 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
   // IntegratorType::kAuto resolved once, not on every sample propagation below.
   ModalOptions options = requested;
   options.integrator = ResolveIntegrator(system, requested.integrator);
-  // The samples cut every step short: Bulirsch–Stoer's long extrapolated steps cost ~70
-  // evaluations each and lose their advantage, Fehlberg 7(8) costs 13 per step.
-  if (options.integrator.type == IntegratorType::kBulirschStoer)
-    options.integrator.type = IntegratorType::kRkf78;
   const auto start = std::chrono::steady_clock::now();
   const int n = system.states(), m = system.inputs(), p = system.outputs();
   const double T = system.period(), w = system.omega();

@@ -104,20 +104,14 @@ void PfrfOptions::Validate() const {
   shooting.Validate();
 }
 
-PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& options) {
-  options.Validate();
-  const auto start = std::chrono::steady_clock::now();
-  if (system.inputs() < 1 || system.outputs() < 1)
-    throw InputError("partial FRFs need at least one input and one output; the system has " +
-                     std::to_string(system.inputs()) + " inputs and " +
-                     std::to_string(system.outputs()) + " outputs");
-  if (options.input >= system.inputs())
-    throw InputError("pfrf: input " + std::to_string(options.input) + " out of range (the system has " +
-                     std::to_string(system.inputs()) + ")");
-  if (options.output >= system.outputs())
-    throw InputError("pfrf: output " + std::to_string(options.output) +
-                     " out of range (the system has " + std::to_string(system.outputs()) + ")");
+namespace {
 
+// The sweep itself, on a given Floquet decomposition (and modal model, when one was built):
+// route choice, primary and check routes, error estimates, resonances. ComputePartialFrf
+// validates and decomposes; the automatic choice's fallback comes back here with both.
+PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
+                       std::chrono::steady_clock::time_point start, FloquetResult floquet,
+                       std::optional<ModalModel> modal) {
   PfrfResult r;
   const int F = static_cast<int>(options.frequencies_hz.size());
   const int zmin = options.min_order, zmax = options.max_order, Z = zmax - zmin + 1;
@@ -132,12 +126,8 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
   r.values.assign(F, std::vector<cd>(Z, cd(0)));
   r.error_estimate.assign(F, std::vector<double>(Z, 0.0));
   r.checked.assign(F, false);
-
-  // One Floquet decomposition: the modal route, the time route's settling time, the resonance
-  // attribution and the automatic route choice all use it.
-  FloquetOptions fo = options.floquet;
-  fo.compute_modes = true;
-  r.floquet = AnalyzeFloquet(system, fo);
+  r.floquet = std::move(floquet);
+  r.modal = std::move(modal);
   if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
 
   // Which routes run where.
@@ -391,17 +381,20 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
         double hmax = 0;
         for (const cd& v : r.values[r.routes[k].points[q]]) hmax = std::max(hmax, std::abs(v));
         const double d = r.routes[k].deviation[q];
-        if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, hmax > 0 ? d / hmax : HUGE_VAL);
+        if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, d / hmax);
       }
     if (worst > 0) {
+      // Redo the sweep from the same decomposition and modal model (now the check).
       PfrfOptions again = options;
       again.primary = HasJumps(system) ? PfrfRoute::kShooting : PfrfRoute::kHtf;
       again.checks = {PfrfRoute::kModal};
-      PfrfResult fallback = ComputePartialFrf(system, again);
       std::ostringstream s;
       s << ToString(again.primary) << " checked by modal: the modal route was tried first and "
         << "disagreed with its check by " << worst << " of the largest |H_z| (limit " << limit
         << "), so it is UNRELIABLE here";
+      r.modal->reliable = false;  // the failed check is the model's verdict, not a footnote
+      r.modal->diagnostics.push_back("modal: UNRELIABLE — " + s.str());
+      PfrfResult fallback = SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
       fallback.route_choice = s.str();
       fallback.modal_cross_check_failed = true;
       fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
@@ -411,6 +404,28 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
   }
   r.elapsed_s = internal::SecondsSince(start);
   return r;
+}
+
+}  // namespace
+
+PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& options) {
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  if (system.inputs() < 1 || system.outputs() < 1)
+    throw InputError("partial FRFs need at least one input and one output; the system has " +
+                     std::to_string(system.inputs()) + " inputs and " +
+                     std::to_string(system.outputs()) + " outputs");
+  if (options.input >= system.inputs())
+    throw InputError("pfrf: input " + std::to_string(options.input) + " out of range (the system has " +
+                     std::to_string(system.inputs()) + ")");
+  if (options.output >= system.outputs())
+    throw InputError("pfrf: output " + std::to_string(options.output) +
+                     " out of range (the system has " + std::to_string(system.outputs()) + ")");
+  // One Floquet decomposition: the modal route, the time route's settling time, the resonance
+  // attribution and the automatic route choice all use it.
+  FloquetOptions fo = options.floquet;
+  fo.compute_modes = true;
+  return SweepRoutes(system, options, start, AnalyzeFloquet(system, fo), std::nullopt);
 }
 
 std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel* modal,
