@@ -41,7 +41,6 @@ void Run(benchmark::State& state, const ltp::PeriodicSystem& system, HillSolver 
   o.solver = solver;
   o.delta_harmonics = -1;
   o.koopman_check = false;
-  o.period_doubling = ltp::PeriodDoubling::kNever;
   o.structured_fallback = false;
   bool ok = true;
   for (auto _ : state) {

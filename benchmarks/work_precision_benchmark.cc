@@ -114,9 +114,6 @@ std::vector<cd> HillReference(const PeriodicSystem& s, int n, const std::vector<
   o.koopman_check = false;
   o.delta_harmonics = -1;
   o.fourier.tol = 1e-15;
-  // Exponents on the strip edge: either branch is the same mod jΩp (doubling the period would
-  // return them mod jΩp/2 instead).
-  o.period_doubling = PeriodDoubling::kNever;
   const HillResult h = AnalyzeHill(s, o);
   if (!h.ok) throw std::runtime_error("Hill reference failed: " + h.BriefReport());
   return Exponents(h.modes);
@@ -351,7 +348,7 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
         row.note = e.what();
       }
       row.ok = h.ok;
-      row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, HillOmega(s, h)) : kInf;
+      row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, s.omega()) : kInf;
       if (!h.ok && row.note.empty()) row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front();
       // What `ltp floquet --method hill --harmonics N` reports (N vs N+Δ, Koopman–Hill).
       HillOptions e;
@@ -364,7 +361,7 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
         const HillResult he = AnalyzeHill(s, e);
         row.estimate = he.ok ? HillEstimate(he) : -1;
         row.estimate_error =
-            he.ok ? ExponentError(Exponents(he.modes), sc.ref_for_hill, HillOmega(s, he)) : kInf;
+            he.ok ? ExponentError(Exponents(he.modes), sc.ref_for_hill, s.omega()) : kInf;
       } catch (const Error& ex) {
         row.estimate = -1;
       }
@@ -389,7 +386,7 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
       row.note = e.what();
     }
     row.ok = h.ok;
-    row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, HillOmega(s, h)) : kInf;
+    row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, s.omega()) : kInf;
     row.estimate = h.ok ? HillEstimate(h) : -1;
     row.estimate_error = h.ok ? row.error_abs : -1;
     if (row.note.empty()) row.note = "picked N = " + std::to_string(h.harmonics) + " " + h.solver;

@@ -70,11 +70,6 @@ inline std::vector<cd> FromLogMultipliers(const std::vector<cd>& logs, double pe
 /// Hill's error estimate as `ltp floquet --method hill` reports it (+inf when none was computed).
 inline double HillEstimate(const HillResult& h) { return h.error_estimate < 0 ? kInf : h.error_estimate; }
 
-/// Analysed-period fundamental: exponents of a period-doubled Hill run are defined mod jΩp/2.
-inline double HillOmega(const PeriodicSystem& s, const HillResult& h) {
-  return h.period_doubled ? s.omega() / 2 : s.omega();
-}
-
 inline double CpuNow() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);

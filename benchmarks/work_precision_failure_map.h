@@ -272,9 +272,6 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       ho.delta_harmonics = -1;
       ho.koopman_check = false;
       ho.fourier.tol = 1e-15;
-      // Exponents on the strip edge: either branch is the same mod jΩp; doubling the period
-      // would return them mod jΩp/2 instead.
-      ho.period_doubling = PeriodDoubling::kNever;
       const HillResult h = AnalyzeHill(s, ho);
       ref_for_mono = Exponents(h.modes);
       const double agree = ExponentError(ref_for_mono, ref_for_hill, omega);
@@ -310,7 +307,7 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       Cell c;
       try {
         h = AnalyzeHillAuto(s, ho, 1e-10, quick ? 64 : 128);
-        const double err = h.ok ? ExponentError(Exponents(h.modes), ref_for_hill, HillOmega(s, h)) : kInf;
+        const double err = h.ok ? ExponentError(Exponents(h.modes), ref_for_hill, s.omega()) : kInf;
         c = Judge(h.ok, err, HillEstimate(h), scale, h.diagnostics);
       } catch (const Error& e) {
         c = Judge(false, kInf, -1, scale, {}, e.what());
@@ -326,7 +323,7 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
         c = Judge(false, kInf, -1, scale, {}, h.koopman_discrepancy < 0 ? "skipped (matrix too large), says so" : "no result");
       } else {
         const auto e = FromLogMultipliers(h.koopman_log_multipliers, h.period);
-        const double err = ExponentError(e, ref_for_hill, HillOmega(s, h));
+        const double err = ExponentError(e, ref_for_hill, s.omega());
         c = Judge(h.ok, err, h.koopman_discrepancy, scale, h.diagnostics);
       }
       row.push_back(c);

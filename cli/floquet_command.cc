@@ -34,6 +34,7 @@ struct FloquetArgs {
   std::string method = "monodromy";
   std::string harmonics = "auto";
   bool json = false;
+  bool keep_going = false;
   std::string modes_csv;
   std::string plot;
 };
@@ -117,6 +118,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"max_real_exponent", JsonNumber(r.max_real_exponent)},
           {"max_log_abs_multiplier", JsonNumber(r.max_log_abs_multiplier)},
           {"stable", r.stable},
+          {"verdict", ToString(r.verdict)},
           {"error_estimate", JsonNumber(r.error_estimate)},
           {"liouville_residual", JsonNumber(r.liouville_residual)},
           {"mode_condition", JsonNumber(r.mode_condition)},
@@ -144,13 +146,13 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"matrix_size", h.matrix_size},
           {"solver", h.solver},
           {"selection_rule", h.selection_rule},
-          {"period_doubled", h.period_doubled},
           {"exponents", exps},
           {"multipliers", mults},
           {"modes", modes},
           {"selection_margin", JsonNumber(margin)},
           {"max_real_exponent", JsonNumber(h.max_real_exponent)},
           {"stable", h.stable},
+          {"verdict", ToString(h.verdict)},
           {"truncation_estimate", JsonNumber(h.truncation_estimate)},
           {"apriori_bound", JsonNumber(h.apriori_bound)},
           {"koopman_discrepancy", JsonNumber(h.koopman_discrepancy)},
@@ -162,15 +164,26 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
 }
 
 void PrintModeTable(const std::vector<FloquetMode>& modes) {
-  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ     log|ρ|    arg ρ [rad]  branch\n";
+  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ       log|ρ|    arg ρ [rad]  branch\n";
   for (size_t k = 0; k < modes.size(); ++k) {
     const FloquetMode& m = modes[k];
     std::cout << "  " << std::setw(4) << k + 1 << Num(m.exponent.real(), 7, 15)
               << Num(m.exponent.imag(), 7, 16) << Num(m.frequency_hz, 6, 14)
-              << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 11)
+              << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 13)
               << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch
               << (m.rigid_body ? "  rigid body" : "") << "\n";
   }
+}
+
+// The headline: stable / unstable only beyond the error estimate.
+std::string VerdictText(StabilityVerdict verdict) {
+  switch (verdict) {
+    case StabilityVerdict::kStable: return "STABLE";
+    case StabilityVerdict::kUnstable: return "UNSTABLE";
+    case StabilityVerdict::kMarginal: return "MARGINAL (|max Re λ| within the error estimate: undecided)";
+    case StabilityVerdict::kFailed: return "NOT DECIDED: the result failed its own checks";
+  }
+  return "?";
 }
 
 void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
@@ -185,14 +198,15 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
             << "rel tol " << args.options.integrator.rel_tol
             << ") over K = " << r.segments << " segments; multipliers by " << r.multiplier_method
             << "\n";
-  if (!r.ok) {
+  if (r.modes.empty()) {
     std::cout << "\n  FAILED\n";
     PrintDiagnostics(r.diagnostics);
     return;
   }
+  if (!r.ok) std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
   PrintModeTable(r.modes);
   std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
-            << (r.stable ? "STABLE" : "UNSTABLE") << "   (max log|ρ| = "
+            << VerdictText(r.verdict) << "   (max log|ρ| = "
             << Num(r.max_log_abs_multiplier, 8) << ")\n"
             << "  error estimate " << Num(r.error_estimate, 2)
             << " 1/s on every exponent (difference to the run at the requested tolerance on\n"
@@ -208,15 +222,16 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
 void PrintHill(const HillResult& h) {
   std::cout << "  Hill's method: N = " << h.harmonics << " harmonics (matrix " << h.matrix_size
             << "×" << h.matrix_size << ", " << h.solver << " solver, " << h.selection_rule
-            << " selection" << (h.period_doubled ? ", period doubled" : "") << ")\n";
-  if (!h.ok) {
+            << " selection)\n";
+  if (h.modes.empty()) {
     std::cout << "\n  FAILED\n";
     PrintDiagnostics(h.diagnostics);
     return;
   }
+  if (!h.ok) std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
   PrintModeTable(h.modes);
   std::cout << "\n  max Re λ = " << Num(h.max_real_exponent, 8) << " 1/s  →  "
-            << (h.stable ? "STABLE" : "UNSTABLE") << "\n"
+            << VerdictText(h.verdict) << "\n"
             << "  truncation estimate (N vs N+" << h.delta_harmonics << ") "
             << Num(h.truncation_estimate, 2) << " 1/s, Koopman–Hill disagreement "
             << Num(h.koopman_discrepancy, 2) << ", a-priori bound " << Num(h.apriori_bound, 2)
@@ -228,7 +243,7 @@ void PrintHill(const HillResult& h) {
 }
 
 // Largest distance between the two routes' exponents, matched greedily, with imaginary parts
-// compared modulo `omega` (Ωp; Ωp/2 when Hill doubled the period: both branches are then valid).
+// compared modulo `omega` (Ωp).
 double Disagreement(const std::vector<FloquetMode>& a, const std::vector<FloquetMode>& b,
                     double omega) {
   auto distance = [omega](std::complex<double> x, std::complex<double> y) {
@@ -342,7 +357,7 @@ int RunFloquet(FloquetArgs& args) {
             JsonNumber(std::max(r.error_estimate, h.error_estimate))}};
     }
     std::cout << j.dump(2) << "\n";
-    return ok ? 0 : 1;
+    return ok || args.keep_going ? 0 : 1;
   }
 
   const double T = l.system.period();
@@ -358,7 +373,7 @@ int RunFloquet(FloquetArgs& args) {
     std::cout << "\n  the two routes disagree by " << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
               << " 1/s (largest difference of matched exponents; estimates "
               << Num(r.error_estimate, 2) << " and " << Num(h.error_estimate, 2) << ")\n";
-  return ok ? 0 : 1;
+  return ok || args.keep_going ? 0 : 1;
 }
 
 }  // namespace
@@ -398,6 +413,9 @@ Command AddFloquetCommand(CLI::App& app) {
   cmd->add_option("--threads", args.options.threads, "OpenMP threads (0 = all cores)")
       ->capture_default_str();
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
+  cmd->add_flag("--keep-going", args.keep_going,
+                "exit 0 even when the analysis failed its own checks (the output still says so; "
+                "default: exit 1)");
   cmd->add_option("--modes-csv", args.modes_csv, "write the periodic mode shapes ξ_k(t) to CSV");
   cmd->add_option("--plot", args.plot, "draw exponents and mode-shape spectra (FILE.svg or FILE.png)");
   return {cmd, [] { return RunFloquet(args); }};

@@ -51,13 +51,13 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
   if (!csv) throw InputError("cannot write '" + file + "'");
   const size_t k = s.rows.empty() ? 0 : s.rows.front().errors.size();
   csv << "harmonics,matrix_size,max_error,apriori_bound,truncation_estimate,selection_margin,"
-         "tail_weight,ambiguous,period_doubled,elapsed_s";
+         "tail_weight,ambiguous,elapsed_s";
   for (size_t i = 0; i < k; ++i) csv << ",error_" << i;
   csv << "\n" << std::setprecision(12);
   for (const HillStudyRow& r : s.rows) {
     csv << r.harmonics << "," << r.matrix_size << "," << r.max_error << "," << r.apriori_bound << ","
         << r.truncation_estimate << "," << r.selection_margin << "," << r.tail_weight << ","
-        << r.ambiguous << "," << r.period_doubled << "," << r.elapsed_s;
+        << r.ambiguous << "," << r.elapsed_s;
     for (double e : r.errors) csv << "," << e;
     csv << "\n";
   }
@@ -123,7 +123,7 @@ int RunHill(HillArgs& args) {
                       {"truncation_estimate", JsonNumber(r.truncation_estimate)},
                       {"selection_margin", JsonNumber(r.selection_margin)},
                       {"tail_weight", JsonNumber(r.tail_weight)}, {"ambiguous", r.ambiguous},
-                      {"period_doubled", r.period_doubled}, {"elapsed_s", r.elapsed_s}});
+                      {"elapsed_s", r.elapsed_s}});
     }
     json exps = json::array();
     for (size_t k = 0; k < last.modes.size(); ++k) {
@@ -152,7 +152,6 @@ int RunHill(HillArgs& args) {
               {"reference", ref},
               {"rows", rows},
               {"exponents", exps},
-              {"period_doubled", last.period_doubled},
               {"koopman_discrepancy", JsonNumber(last.koopman_discrepancy)},
               {"ok", last.ok},
               {"elapsed_s", s.elapsed_s},
@@ -184,10 +183,9 @@ int RunHill(HillArgs& args) {
               << Num(r.max_error, 3, 15) << Num(r.apriori_bound, 3, 16)
               << Num(r.truncation_estimate, 3, 11) << Num(r.selection_margin, 3, 9)
               << Num(r.tail_weight, 2, 10) << Num(r.elapsed_s * 1e3, 3, 12)
-              << (r.ambiguous ? "  ambiguous" : "") << (r.period_doubled ? "  2T" : "") << "\n";
+              << (r.ambiguous ? "  tie λ/λ±jΩp" : "") << "\n";
   }
   std::cout << "\n  convergence: " << RateText(s) << "\n\n  exponents at N = " << args.max_harmonics
-            << (last.period_doubled ? " (period doubled: analysed with 2T and N' = 2N, exponents modulo jΩp/2)" : "")
             << ":\n"
             << "  mode       Re λ [1/s]     Im λ [rad/s]     freq [Hz]   margin   tail weight\n";
   for (size_t k = 0; k < last.modes.size(); ++k) {

@@ -120,6 +120,24 @@ std::string_view ToString(MultiplierMethod method) {
   return method == MultiplierMethod::kPeriodicSchur ? "periodic-schur" : "single-shot";
 }
 
+std::string_view ToString(StabilityVerdict verdict) {
+  switch (verdict) {
+    case StabilityVerdict::kStable: return "stable";
+    case StabilityVerdict::kMarginal: return "marginal";
+    case StabilityVerdict::kUnstable: return "unstable";
+    case StabilityVerdict::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, double band) {
+  if (!ok || std::isnan(max_real_exponent) || std::isnan(band)) return StabilityVerdict::kFailed;
+  band = std::max(band, 0.0);
+  if (max_real_exponent > band) return StabilityVerdict::kUnstable;
+  if (max_real_exponent < -band) return StabilityVerdict::kStable;
+  return StabilityVerdict::kMarginal;
+}
+
 void FloquetOptions::Validate() const {
   integrator.Validate();
   auto fail = [](const std::string& field, double value, const std::string& constraint) {
@@ -565,14 +583,27 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     floor = std::max(floor, std::min(kappa[k] * backward, 2 * std::sqrt(backward)) / T);
   floor = std::max(floor, backward * max_abs_log / T);
   r.error_estimate = options.estimate_error ? integration_error + floor : -1;
-  r.stable = r.max_real_exponent < 0;
-  if (options.estimate_error && std::abs(r.max_real_exponent) <= r.error_estimate)
-    r.diagnostics.push_back("stability undecided: |max Re λ| is within the error estimate "
-                            "(the system is on or near a stability boundary)");
-  if (r.liouville_residual > 1e-6)
-    r.diagnostics.push_back("Liouville check failed: Σ log|ρ| differs from ∫ tr A by " +
-                            std::to_string(r.liouville_residual) + " (relative)");
-  r.ok = true;
+  // Liouville: Σ log|ρ_k| = ∫ tr A exactly, and every exponent is within the estimate, so the
+  // sum is within n·T·estimate of it. Beyond that (or beyond 1e-6 relative without an
+  // estimate) some exponents are wrong — e.g. forced settings: one segment with single-shot
+  // multipliers loses every |ρ| below eps·max|ρ| — and the result is not ok.
+  const double liouville_allowance =
+      std::max(options.estimate_error ? n * T * r.error_estimate : 0.0,
+               1e-6 * std::max(1.0, std::abs(trace_integral)));
+  r.ok = std::abs(sum_log_abs - trace_integral) <= liouville_allowance;
+  if (!r.ok) {
+    std::ostringstream s;
+    s << "Liouville check failed: Σ log|ρ| = " << sum_log_abs << " but ∫ tr A dt = " << trace_integral
+      << ", beyond what the error estimate allows (" << liouville_allowance
+      << "): some exponents are wrong (too few segments, single-shot multipliers or too loose a "
+         "tolerance for this system; the automatic settings avoid this)";
+    r.diagnostics.push_back(s.str());
+  }
+  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
+  r.stable = r.verdict == StabilityVerdict::kStable;
+  if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate >= 0)
+    r.diagnostics.push_back("stability undecided (marginal): |max Re λ| is within the error "
+                            "estimate (a conservative system, or one on a stability boundary)");
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

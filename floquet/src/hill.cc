@@ -40,15 +40,13 @@ using cd = std::complex<double>;
 using hill_internal::Eigenpairs;
 constexpr double kPi = std::numbers::pi;
 
-bool AnyAmbiguous(const HillResult& r) {
-  return std::any_of(r.info.begin(), r.info.end(), [](const HillModeInfo& i) { return i.ambiguous; });
-}
-
-FloquetMode MakeMode(cd mu, double T, double omega) {
+// `tie`: the selection found λ and λ ± jΩp equally centred, so a multiplier with arg ρ
+// within round-off of ±π is the negative real one, reported with arg ρ = +π as (−π, π] says.
+FloquetMode MakeMode(cd mu, double T, double omega, bool tie) {
   FloquetMode m;
   m.exponent = mu;
   double arg = std::remainder(mu.imag() * T, 2 * kPi);
-  if (arg <= -kPi) arg += 2 * kPi;
+  if (arg <= -kPi || (tie && arg < -kPi * (1 - 1e-8))) arg += 2 * kPi;
   m.log_multiplier = cd(mu.real() * T, arg);
   m.branch = static_cast<int>(std::lround((mu.imag() - arg / T) / omega));
   m.frequency_hz = mu.imag() / (2 * kPi);
@@ -122,10 +120,20 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     const int i = sel.chosen[k];
     const Eigen::VectorXcd x = pairs.vectors.col(i);
     for (int v = 0; v <= 2 * N; ++v) xi0.col(k) += x.segment(static_cast<Eigen::Index>(v) * n, n);
-    FloquetMode m = MakeMode(pairs.values[i], T, omega);
     HillModeInfo info = sel.info[k];
+    // A tie between λ and its neighbour λ ± jΩp (centroid ±1/2: the strip edge of a negative
+    // real multiplier) is one exponent; report the member with the larger Im λ, as the
+    // monodromy route does, so both routes print +Ωp/2 for a 2:1 parametric resonance.
+    cd value = pairs.values[i];
+    int shift = 0;  // blocks: member λ + jΩp is centred one block up
+    if (info.ambiguous && info.centroid > 0 && N > 0) {
+      value += cd(0, omega);
+      info.centroid -= 1;
+      shift = 1;
+    }
+    FloquetMode m = MakeMode(value, T, omega, info.ambiguous);
     const std::vector<double> e = hill_internal::BlockEnergies(x, n, N);
-    m.central_weight = e[N];
+    m.central_weight = e[N + shift];
     m.branch_margin = 0.5 - std::min(0.5, std::abs(info.centroid));
     info.residual = (hill_internal::HillMultiply(A, omega, N, x) - pairs.values[i] * x).norm() /
                     (norm_h * x.norm());
@@ -142,7 +150,6 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   r.ok = static_cast<int>(r.modes.size()) == n;
   r.max_real_exponent = n > 0 ? -std::numeric_limits<double>::infinity() : 0;
   for (const FloquetMode& m : r.modes) r.max_real_exponent = std::max(r.max_real_exponent, m.exponent.real());
-  r.stable = r.ok && r.max_real_exponent < 0;
 
   double worst_tail = 0;
   for (const HillModeInfo& i : r.info) worst_tail = std::max(worst_tail, i.tail_weight);
@@ -286,8 +293,9 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
            "monodromy route); no error bound";
       r.diagnostics.push_back(s.str());
       // Errors of the other exponents can cancel part of the deficit (dense stiff.yaml: deficit
-      // 973, error 1018), so a failed check leaves no finite bound.
+      // 973, error 1018), so a failed check leaves no finite bound, and the result is not ok.
       estimate = std::numeric_limits<double>::infinity();
+      r.ok = false;
     }
     estimate = std::max(estimate, deficit);
   }
@@ -304,10 +312,12 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     floor = std::max(floor, std::min(kappa_k * backward, 2 * std::sqrt(backward * norm_h)) +
                                 2 * std::numeric_limits<double>::epsilon() * std::abs(r.modes[k].exponent));
   }
-  r.error_estimate = !r.ok ? -1 : estimate >= 0 ? estimate + floor : std::numeric_limits<double>::infinity();
+  r.error_estimate = r.modes.empty() ? -1 : estimate >= 0 ? estimate + floor : std::numeric_limits<double>::infinity();
   // The verdict needs max Re λ beyond the error estimate (as the monodromy route reports it).
-  if (r.ok && estimate >= 0 && std::abs(r.max_real_exponent) <= r.error_estimate)
-    r.diagnostics.push_back("stability undecided: |max Re λ| is within the error estimate");
+  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
+  r.stable = r.verdict == StabilityVerdict::kStable;
+  if (r.verdict == StabilityVerdict::kMarginal)
+    r.diagnostics.push_back("stability undecided (marginal): |max Re λ| is within the error estimate");
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -397,26 +407,22 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     options.solver = c.solver;
     notes.push_back("solver auto → " + std::string(ToString(c.solver)) + ": " + c.reason);
   }
-  const bool always = options.period_doubling == PeriodDoubling::kAlways;
-  const FourierFit* fit_ptr = fit ? &*fit : nullptr;
-  HillResult r = always ? AnalyzeFixed(DoublePeriod(A), fit_ptr, 2 * T, 2 * options.harmonics, options)
-                        : AnalyzeFixed(A, fit_ptr, T, options.harmonics, options);
-  r.period_doubled = always;
-  if (!always && options.period_doubling == PeriodDoubling::kAuto && AnyAmbiguous(r)) {
-    HillResult d = AnalyzeFixed(DoublePeriod(A), fit_ptr, 2 * T, 2 * options.harmonics, options);
-    if (d.ok && !AnyAmbiguous(d)) {
-      std::vector<std::string> before = std::move(r.diagnostics);
-      r = std::move(d);
-      r.period_doubled = true;
-      r.diagnostics.insert(r.diagnostics.begin(), before.begin(), before.end());
-      r.diagnostics.push_back(
-          "resolved by period doubling: analysed with T' = 2T (Ωp' = Ωp/2, N' = 2N); exponents "
-          "are reported modulo jΩp/2 and their mode shapes are 2T-periodic");
-    } else {
-      r.diagnostics.push_back("period doubling (T' = 2T) did not resolve the ambiguity");
-    }
+  HillResult r = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, options);
+  // A structured result that failed its own checks (e.g. one eigenpair of a double exponent
+  // found twice and another family missed) is replaced by the dense solver's, which sees the
+  // whole spectrum, when that fits.
+  const double dense_bytes = std::pow((2.0 * options.harmonics + 1) * A.rows(), 2) * sizeof(cd);
+  if (!r.ok && !r.modes.empty() && options.solver == HillSolver::kStructured &&
+      options.structured_fallback && dense_bytes <= options.max_dense_bytes) {
+    HillOptions dense = options;
+    dense.solver = HillSolver::kDense;
+    HillResult d = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, dense);
+    notes.push_back("structured solver's exponents failed their checks (" +
+                    (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +
+                    "); replaced by the dense solver's");
+    d.solver = "structured→dense";
+    r = std::move(d);
   }
-  if (always) r.diagnostics.push_back("analysed with period 2T as requested (Ωp' = Ωp/2, N' = 2N)");
   r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
@@ -428,7 +434,6 @@ std::string HillResult::BriefReport() const {
     << max_real_exponent << " (" << (stable ? "stable" : "unstable") << "), N vs N+"
     << delta_harmonics << ": " << truncation_estimate << ", a-priori bound: " << apriori_bound
     << ", Koopman–Hill gap: " << koopman_discrepancy << ", " << elapsed_s * 1e3 << " ms";
-  if (period_doubled) s << ", period doubled";
   return s.str();
 }
 

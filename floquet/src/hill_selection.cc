@@ -116,6 +116,25 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return cands[a].score < cands[b].score; });
 
+  // A further member at the same eigenvalue is a genuine multiple exponent only if it adds a
+  // direction: a solver can return one eigenpair several times (shift-invert runs from
+  // nearby shifts) or several combinations of one double eigenvector pair. Values split by more
+  // than round-off (a defective pair, split by ~√eps) count as distinct.
+  auto adds_direction = [&](int i, const std::vector<int>& members) {
+    const double round_off = 1e-10 * scale;
+    Eigen::MatrixXcd basis(pairs.vectors.rows(), 0);
+    for (int j : members) {
+      if (std::abs(cands[i].value - cands[j].value) > round_off) continue;
+      basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
+      basis.col(basis.cols() - 1) = pairs.vectors.col(j).normalized();
+    }
+    if (basis.cols() == 0) return true;
+    const Eigen::VectorXcd x = pairs.vectors.col(i).normalized();
+    const Eigen::MatrixXcd q = Eigen::HouseholderQR<Eigen::MatrixXcd>(basis).householderQ() *
+                               Eigen::MatrixXcd::Identity(basis.rows(), basis.cols());
+    return (x - q * (q.adjoint() * x)).norm() > 1e-3;
+  };
+
   // Greedy: best score first; a family accepts further members only at the same eigenvalue
   // (a genuine multiple exponent), every other member is a runner-up.
   Selection sel;
@@ -129,6 +148,10 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
     if (f >= 0) {
       const int first = families[f][0];
       const bool same_value = std::abs(cands[i].value - cands[first].value) <= family_tol;
+      if (same_value && !adds_direction(i, families[f])) {
+        family_of[i] = f;  // a repeat of a chosen pair: neither a member nor a runner-up
+        continue;
+      }
       if (same_value && static_cast<int>(sel.chosen.size()) < states) {
         families[f].push_back(i);
         sel.chosen.push_back(i);
@@ -180,11 +203,11 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
     if (sel.info[k].ambiguous) {
       std::ostringstream s;
       const cd v = cands[sel.chosen[k]].value;
-      s << "exponent " << v.real() << (v.imag() < 0 ? " - " : " + ") << std::abs(v.imag())
-        << "j: selection ambiguous (margin " << sel.info[k].selection_margin
-        << " < " << ambiguity_threshold << "; centroid " << sel.info[k].centroid
-        << "): a tie between λ and λ ± jΩp, e.g. a negative real multiplier puts the exponent "
-           "on the strip edge Im λ = ±Ωp/2; analyse with period 2T";
+      s << "exponent with Re λ = " << v.real() << ": its eigenvector is centred between two "
+        << "harmonic blocks (margin " << sel.info[k].selection_margin << " < " << ambiguity_threshold
+        << "), a tie between λ and λ ± jΩp, which are the same exponent modulo jΩp (a negative "
+           "real multiplier puts it on the strip edge Im λ = ±Ωp/2); the one with the larger "
+           "Im λ is reported";
       sel.diagnostics.push_back(s.str());
     }
   return sel;

@@ -226,7 +226,6 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     row.matrix_size = r.matrix_size;
     row.apriori_bound = r.apriori_bound;
     row.elapsed_s = r.elapsed_s;
-    row.period_doubled = r.period_doubled;
     row.selection_margin = 1;
     for (const HillModeInfo& i : r.info) {
       row.selection_margin = std::min(row.selection_margin, i.selection_margin);

@@ -111,7 +111,7 @@ void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bo
   point.ok = true;
   point.max_real_exponent = r.max_real_exponent;
   point.max_log_multiplier = r.max_real_exponent * system.period();
-  point.error_estimate = check_error ? r.truncation_estimate : -1;
+  point.error_estimate = check_error ? r.error_estimate : -1;
   point.modes = std::move(r.modes);
 }
 
@@ -119,16 +119,6 @@ void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bo
 
 std::string_view ToString(SweepMethod method) {
   return method == SweepMethod::kMonodromy ? "monodromy" : "hill";
-}
-
-std::string_view ToString(StabilityVerdict verdict) {
-  switch (verdict) {
-    case StabilityVerdict::kStable: return "stable";
-    case StabilityVerdict::kMarginal: return "marginal";
-    case StabilityVerdict::kUnstable: return "unstable";
-    case StabilityVerdict::kFailed: return "failed";
-  }
-  return "failed";
 }
 
 std::vector<double> SweepAxis::Values() const {
@@ -262,16 +252,12 @@ SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const
     point.ok = false;
     point.failure = "max log|multiplier| is not finite";
   }
-  if (point.ok) {
-    const double band = std::max(options.marginal_log_multiplier,
-                                 point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
-    point.verdict = point.max_log_multiplier > band     ? StabilityVerdict::kUnstable
-                    : point.max_log_multiplier < -band ? StabilityVerdict::kStable
-                                                        : StabilityVerdict::kMarginal;
-  } else {
-    point.verdict = StabilityVerdict::kFailed;
-    point.modes.clear();
-  }
+  // In log|ρ| units: the marginal band is the error estimate over a period, at least
+  // marginal_log_multiplier (points without their own check).
+  const double band = std::max(options.marginal_log_multiplier,
+                               point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
+  point.verdict = ClassifyStability(point.ok, point.max_log_multiplier, band);
+  if (!point.ok) point.modes.clear();
   point.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return point;
 }

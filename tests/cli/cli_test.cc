@@ -96,6 +96,64 @@ TEST(Cli, StiffYamlSceneKeepsEveryExponent) {
   EXPECT_FALSE(j["stable"].get<bool>());
 }
 
+// Forced bad settings: one segment with single-shot multipliers loses the multiplier e^{-120π}
+// of a closed-form system (exponents −60 and 2, see the scene file). The result fails its own
+// Liouville check, so it is not ok: exit 1 and says so, unless --keep-going.
+TEST(Cli, ResultThatFailsItsChecksIsNotOk) {
+  const std::string scene = Src("tests/data/stiff-rotating.yaml");
+  const Outcome good = Ltp("floquet " + scene + " --json");
+  ASSERT_EQ(good.code, 0) << good.err;
+  std::vector<double> re;
+  const auto g = nlohmann::json::parse(good.out);
+  for (const auto& e : g["exponents"]) re.push_back(e["re"].get<double>());
+  std::sort(re.begin(), re.end());
+  ASSERT_EQ(re.size(), 2u);
+  EXPECT_NEAR(re[0], -60, 60 * 1e-8);
+  EXPECT_NEAR(re[1], 2, 2 * 1e-8);
+
+  const Outcome bad = Ltp("floquet " + scene + " --segments 1 --multipliers single-shot");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("FAILED its own checks"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("Liouville check failed"), std::string::npos) << bad.out;
+  EXPECT_EQ(bad.out.find("→  UNSTABLE"), std::string::npos) << bad.out;
+  const Outcome kept = Ltp("floquet " + scene + " --segments 1 --multipliers single-shot --json --keep-going");
+  EXPECT_EQ(kept.code, 0);
+  const auto j = nlohmann::json::parse(kept.out);
+  EXPECT_FALSE(j["ok"].get<bool>());
+  EXPECT_EQ(j["verdict"], "failed");
+}
+
+// Verdicts use the error estimate: the undamped Mathieu oscillator between its tongues
+// (a = 2, q = 0.1) has max Re λ = 0 exactly (multipliers on the unit circle), so both routes
+// must say "marginal", not UNSTABLE from a round-off of +1e-15.
+TEST(Cli, ConservativeSystemIsMarginalOnBothRoutes) {
+  const Outcome r = Ltp("floquet mathieu --set a=2 --set q=0.1 --set c=0 --method both --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["monodromy"]["verdict"], "marginal");
+  EXPECT_EQ(j["hill"]["verdict"], "marginal");
+  EXPECT_FALSE(j["monodromy"]["stable"].get<bool>());
+  const Outcome t = Ltp("floquet mathieu --set a=2 --set q=0.1 --set c=0");
+  EXPECT_NE(t.out.find("MARGINAL"), std::string::npos) << t.out;
+}
+
+// The 2:1 parametric resonance (Mathieu inside its first tongue, a = 1, q = 0.5): both routes
+// report the T-periodic system's exponents, Im λ = Ωp/2 = 1 rad/s (0.159155 Hz), and T
+// multipliers (arg ρ = π). Hill used to double the period and print 0 Hz.
+TEST(Cli, StripEdgeFrequencyIsHalfTheParametricFrequencyOnBothRoutes) {
+  const Outcome r = Ltp("floquet mathieu --set a=1 --set q=0.5 --method both --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* route : {"monodromy", "hill"}) {
+    EXPECT_NEAR(j[route]["period"].get<double>(), std::numbers::pi, 1e-15) << route;
+    for (const auto& e : j[route]["exponents"])
+      EXPECT_NEAR(e["frequency_hz"].get<double>(), 1 / (2 * std::numbers::pi), 1e-9) << route;
+    for (const auto& m : j[route]["multipliers"])
+      EXPECT_NEAR(m["arg"].get<double>(), std::numbers::pi, 1e-9) << route;
+  }
+  EXPECT_LT(j["disagreement"].get<double>(), 1e-10);
+}
+
 // Two independent routes (monodromy, Hill) on a smooth scene: their disagreement must lie
 // within the sum of their own error estimates (each estimate covers its own route's error).
 TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {

@@ -68,12 +68,16 @@ TEST_P(MathieuTongue, TraceAtBoundariesAndClassificationAround) {
     ASSERT_TRUE(r.ok);
     EXPECT_LE(std::abs(r.max_real_exponent), std::max(r.error_estimate, 1e-9))
         << "a=" << a << " should be marginally stable";
+    // Conservative: the verdict must not claim "unstable" (or "stable") from round-off.
+    EXPECT_EQ(r.verdict, StabilityVerdict::kMarginal) << "a=" << a << ": " << r.BriefReport();
+    EXPECT_FALSE(r.stable);
     EXPECT_LT(std::abs(r.monodromy.trace()), 2.0);
   }
   for (double a : {an - 1e-3 * width, bn + 1e-3 * width}) {
     const FloquetResult r = AnalyzeFloquet(test::Mathieu(a, q), Tight());
     EXPECT_GT(r.max_real_exponent, 10 * r.error_estimate) << "a=" << a << " is in the tongue";
     EXPECT_FALSE(r.stable);
+    EXPECT_EQ(r.verdict, StabilityVerdict::kUnstable);
     EXPECT_GT(std::abs(r.monodromy.trace()), 2.0);
   }
 }
@@ -99,6 +103,7 @@ TEST(MathieuDamped, ExponentsShiftedByHalfTheDamping) {
     EXPECT_NEAR(std::abs(m.log_multiplier.imag()), kPi, 1e-4);  // ρ = −e^{−cπ/2}
   }
   EXPECT_TRUE(r.stable);
+  EXPECT_EQ(r.verdict, StabilityVerdict::kStable);
   // Inside the first tongue the damped system is still unstable when the undamped growth
   // exceeds c/2; at the tongue's centre for q = 2, undamped Re λ ≈ 0.87 > 0.1.
   const double centre = 0.5 * (MathieuA(1, q) + MathieuB(1, q));
@@ -198,6 +203,20 @@ TEST(StiffMultipliers, PeriodicSchurKeepsEveryExponentSingleShotDoesNot) {
   double min_re = 0;
   for (const auto& m : s.modes) min_re = std::min(min_re, m.exponent.real());
   EXPECT_GT(std::abs(min_re - (-120)), 1.0) << "single shot unexpectedly recovered e^{-240π}";
+  // ... and the result says so: Liouville (Σ log|ρ| = ∫ tr A) fails beyond the error estimate,
+  // so it is not ok and claims no stability verdict. Likewise with a single segment.
+  auto said_liouville = [](const FloquetResult& f) {
+    for (const std::string& d : f.diagnostics)
+      if (d.find("Liouville check failed") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_FALSE(s.ok);
+  EXPECT_EQ(s.verdict, StabilityVerdict::kFailed);
+  EXPECT_TRUE(said_liouville(s));
+  o.segments = 1;
+  const FloquetResult one = AnalyzeFloquet(sys, o);
+  EXPECT_FALSE(one.ok);
+  EXPECT_TRUE(said_liouville(one));
 }
 
 // --- Liouville: Σ log|ρ| = ∫ tr A on random periodic systems ------------------------------------

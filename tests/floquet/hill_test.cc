@@ -96,20 +96,6 @@ TEST(HillMatrix, BlocksFollowTheConvention) {
     }
 }
 
-TEST(HillMatrix, DoublePeriodMovesHarmonicsToEvenIndices) {
-  const PeriodicSystem s = test::Mathieu(2, 0.7);
-  const FourierMatrix D = DoublePeriod(*s.fourier_A());
-  EXPECT_EQ(D.max_harmonic(), 2);
-  EXPECT_EQ(D.coefficient(1).norm(), 0);
-  EXPECT_EQ((D.coefficient(2) - s.fourier_A()->coefficient(1)).norm(), 0);
-  // Same function of time: A'(t) with Ωp/2 equals A(t).
-  for (double t : {0.1, 0.7, 2.5})
-    EXPECT_LT((D.Evaluate(t, s.omega() / 2) - s.A(t)).norm(), 1e-14);
-  const PeriodicSystem m2 = DoublePeriod(test::Meissner(2, 0.5));
-  EXPECT_DOUBLE_EQ(m2.period(), 4 * kPi);
-  EXPECT_EQ(m2.breakpoints().size(), 4u);
-}
-
 // --- Smooth systems agree with the monodromy route ----------------------------------------
 
 TEST(HillSmooth, DampedMathieuMatchesMonodromy) {
@@ -128,7 +114,6 @@ TEST(HillSmooth, DampedMathieuMatchesMonodromy) {
     EXPECT_GT(r.info[k].selection_margin, 0.5);
     EXPECT_FALSE(r.info[k].ambiguous);
   }
-  EXPECT_FALSE(r.period_doubled);
   EXPECT_LT(r.truncation_estimate, 1e-10);
   EXPECT_LT(r.koopman_discrepancy, 1e-9);
 }
@@ -247,12 +232,11 @@ TEST(HillBound, NeverBelowTrueError) {
       o.delta_harmonics = -1;
       const HillResult r = AnalyzeHill(c.system, o);
       ASSERT_TRUE(r.ok);
-      // Compared modulo the analysed Ωp (the tongue case is analysed with period 2T).
+      // Compared modulo Ωp (the tongue case sits on the strip edge: either member is right).
       const double err = MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), 2 * kPi / r.period);
       // "True" error is known only up to the reference's own error estimate.
       EXPECT_GE(r.apriori_bound + ref.error_estimate, err) << c.name << " N=" << N;
       finite += std::isfinite(r.apriori_bound);
-      if (r.period_doubled) continue;  // its Φ bound is for Φ(2T)
       // The Φ bound itself, against the monodromy matrix (Frobenius >= 2-norm: stricter).
       const Eigen::MatrixXcd phi = KoopmanHillTransition(*c.system.fourier_A(), c.system.omega(), N, T);
       const double phi_err = (phi - ref.monodromy.cast<cd>()).norm();
@@ -265,10 +249,12 @@ TEST(HillBound, NeverBelowTrueError) {
 
 // --- Selection --------------------------------------------------------------------------------
 
-TEST(HillSelection, StripEdgeIsAmbiguousAndResolvedByPeriodDoubling) {
+TEST(HillSelection, StripEdgeExponentsAreTheSystemsOwn) {
   // Undamped Mathieu a = 1.5, q = 2 lies inside the first instability tongue (b_1(2) < 1.5 <
   // a_1(2), GSL values used in floquet_test.cc): both multipliers are real and negative, so
-  // the exponents sit exactly on the strip edge Im λ = ±Ωp/2.
+  // the exponents sit exactly on the strip edge Im λ = ±Ωp/2: the 2:1 parametric resonance,
+  // whose frequency Ωp/2 is what an engineer reads off the table. Reference: the monodromy
+  // route (which reports +Ωp/2 at the tie).
   const PeriodicSystem s = test::Mathieu(1.5, 2.0);
   const FloquetResult ref = Reference(s);
   ASSERT_TRUE(ref.ok);
@@ -277,30 +263,68 @@ TEST(HillSelection, StripEdgeIsAmbiguousAndResolvedByPeriodDoubling) {
 
   HillOptions o;
   o.harmonics = 20;
-  o.period_doubling = PeriodDoubling::kNever;
-  const HillResult plain = AnalyzeHill(s, o);
-  ASSERT_EQ(plain.modes.size(), 2u);
-  for (const HillModeInfo& i : plain.info) EXPECT_TRUE(i.ambiguous);
+  const HillResult r = AnalyzeHill(s, o);
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.modes.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.period, s.period());
+  for (const HillModeInfo& i : r.info) EXPECT_TRUE(i.ambiguous);
   bool said = false;
-  for (const std::string& d : plain.diagnostics) said = said || d.find("ambiguous") != std::string::npos;
+  for (const std::string& d : r.diagnostics) said = said || d.find("strip edge") != std::string::npos;
   EXPECT_TRUE(said);
-  // Still one exponent of each family: +σ and −σ, not the two tied copies of one.
-  std::vector<double> re = {plain.modes[0].exponent.real(), plain.modes[1].exponent.real()};
+  // One exponent of each family, +σ and −σ (not two tied copies of one), both at +Ωp/2, with
+  // the T multipliers (log|ρ| = ±σT, arg ρ = π): the same numbers as the monodromy route.
+  std::vector<double> re = {r.modes[0].exponent.real(), r.modes[1].exponent.real()};
   std::sort(re.begin(), re.end());
   EXPECT_NEAR(re[0], -sigma, 1e-9);
   EXPECT_NEAR(re[1], sigma, 1e-9);
-
-  o.period_doubling = PeriodDoubling::kAuto;
-  const HillResult doubled = AnalyzeHill(s, o);
-  ASSERT_TRUE(doubled.ok);
-  EXPECT_TRUE(doubled.period_doubled);
-  EXPECT_DOUBLE_EQ(doubled.period, 2 * s.period());
   for (size_t k = 0; k < 2; ++k) {
-    EXPECT_FALSE(doubled.info[k].ambiguous);
-    EXPECT_GT(doubled.info[k].selection_margin, 0.5);
-    EXPECT_NEAR(doubled.modes[k].exponent.imag(), 0, 1e-9);  // real exponent w.r.t. 2T
-    EXPECT_NEAR(std::abs(doubled.modes[k].exponent.real()), sigma, 1e-9);
+    EXPECT_NEAR(r.modes[k].exponent.imag(), s.omega() / 2, 1e-9) << k;
+    EXPECT_NEAR(r.modes[k].frequency_hz, 1 / (2 * s.period()), 1e-9) << k;
+    EXPECT_NEAR(std::abs(r.modes[k].log_multiplier.real()), sigma * s.period(), 1e-8) << k;
+    EXPECT_NEAR(r.modes[k].log_multiplier.imag(), kPi, 1e-9) << k;
+    EXPECT_NEAR(std::abs(r.modes[k].exponent - ref.modes[k].exponent), 0, 1e-9) << k;
   }
+}
+
+TEST(HillSelection, DoubleNegativeMultiplierKeepsEveryFamily) {
+  // Ten states, five uncoupled damped Mathieu oscillators, two of them identical and inside the
+  // first tongue: a double pair of negative real multipliers. Reference: each 2-state block by
+  // the monodromy route on its own (no Hill matrix, no 10-state selection involved). Both
+  // solvers must return every exponent once — the structured one used to return one eigenpair
+  // of the double exponent four times and miss the other family, while saying ok.
+  const std::vector<PeriodicSystem> blocks = {test::Mathieu(1, 0.5, 0.02), test::Mathieu(1, 0.5, 0.02),
+                                              test::Mathieu(3.2, 0.3, 0.05), test::Mathieu(7.1, 0.2, 0.03),
+                                              test::Mathieu(0.4, 0.1, 0.01)};
+  std::vector<cd> want;
+  for (const PeriodicSystem& b : blocks) {
+    const FloquetResult r = Reference(b);
+    ASSERT_TRUE(r.ok);
+    for (const FloquetMode& m : r.modes) want.push_back(m.exponent);
+  }
+  const PeriodicSystem s = test::BlockDiagonal(blocks);
+  for (HillSolver solver : {HillSolver::kDense, HillSolver::kStructured})
+    for (int N : {4, 8, 16}) {
+      HillOptions o;
+      o.harmonics = N;
+      o.solver = solver;  // structured: default shifts (eigenvalues of A_0), as `--method hill`
+      const HillResult r = AnalyzeHill(s, o);
+      ASSERT_TRUE(r.ok) << ToString(solver) << " N=" << N << ": " << r.BriefReport();
+      ASSERT_EQ(r.modes.size(), 10u);
+      const double err = MaxDistanceModulo(Exponents(r.modes), want, s.omega());
+      EXPECT_LT(err, 1e-8) << ToString(solver) << " N=" << N;
+      EXPECT_GE(r.error_estimate + 1e-12, err) << ToString(solver) << " N=" << N;
+      EXPECT_EQ(r.verdict, StabilityVerdict::kUnstable);
+    }
+}
+
+TEST(HillVerdict, ConservativeIsMarginalDampedStableTongueUnstable) {
+  // Undamped Mathieu a = 2, q = 0.1 lies between the first two tongues: multipliers on the
+  // unit circle, max Re λ = 0 exactly; the verdict must say marginal, not (un)stable by round-off.
+  HillOptions o;
+  o.harmonics = 12;
+  EXPECT_EQ(AnalyzeHill(test::Mathieu(2, 0.1), o).verdict, StabilityVerdict::kMarginal);
+  EXPECT_EQ(AnalyzeHill(test::Mathieu(2, 0.1, 0.05), o).verdict, StabilityVerdict::kStable);
+  EXPECT_EQ(AnalyzeHill(test::Mathieu(1, 0.5), o).verdict, StabilityVerdict::kUnstable);
 }
 
 TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {
@@ -334,7 +358,6 @@ TEST(HillSolvers, DenseAndStructuredAgree) {
     HillOptions o;
     o.harmonics = systems[i].states() > 4 ? 8 : 12;
     o.koopman_check = false;
-    o.period_doubling = PeriodDoubling::kNever;
     const HillResult dense = AnalyzeHill(systems[i], o);
     o.solver = HillSolver::kStructured;
     const HillResult structured = AnalyzeHill(systems[i], o);
@@ -352,7 +375,6 @@ TEST(KoopmanHill, MultipliersMatchMonodromy) {
     const FloquetResult ref = Reference(s);
     HillOptions o;
     o.harmonics = 24;
-    o.period_doubling = PeriodDoubling::kNever;
     const HillResult r = AnalyzeHill(s, o);
     std::vector<cd> ref_logs;
     for (const FloquetMode& m : ref.modes) ref_logs.push_back(m.log_multiplier);

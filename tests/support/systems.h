@@ -2,8 +2,10 @@
 // Analytic test systems with known Floquet structure, built directly (not through scenes) so
 // floquet tests do not depend on the scene parser.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "ltp/core/periodic_system.h"
@@ -119,6 +121,27 @@ inline Eigen::VectorXcd JeffcottRotatingEigenvalues(double m, double k1, double 
   A.block(2, 0, 2, 2) = -K / m;
   A.block(2, 2, 2, 2) = -D / m;
   return A.eigenvalues();
+}
+
+/// Uncoupled Fourier-form blocks of one period: the exponents are the union of the blocks'.
+inline PeriodicSystem BlockDiagonal(const std::vector<PeriodicSystem>& blocks) {
+  int n = 0, h = 0;
+  for (const PeriodicSystem& b : blocks) {
+    n += b.states();
+    h = std::max(h, b.fourier_A()->max_harmonic());
+  }
+  FourierMatrix A(n, n, h);
+  for (int w = 0; w <= h; ++w) {
+    Eigen::MatrixXcd aw = Eigen::MatrixXcd::Zero(n, n);
+    int at = 0;
+    for (const PeriodicSystem& b : blocks) {
+      const int m = b.states();
+      aw.block(at, at, m, m) = b.fourier_A()->coefficient(w);
+      at += m;
+    }
+    A.SetHarmonic(w, aw);
+  }
+  return PeriodicSystem::FromFourier(blocks.front().period(), A);
 }
 
 /// A Lyapunov-reducible system with prescribed real exponents: x = R(t) z, z' = Λ z, with

@@ -18,6 +18,14 @@
 
 namespace ltp {
 
+/// Stability as a result can claim it: stable or unstable only when max Re λ lies beyond the
+/// error estimate; marginal within it (conservative systems, multipliers on the unit circle,
+/// stability boundaries); failed when the result's own checks failed.
+enum class StabilityVerdict { kStable, kMarginal, kUnstable, kFailed };
+std::string_view ToString(StabilityVerdict verdict);
+/// The verdict for max Re λ with the absolute error `band` (1/s; < 0 = unknown, sign only).
+StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, double band);
+
 enum class MultiplierMethod {
   kPeriodicSchur,  ///< eigenvalues of the product of segment factors (SLICOT MB03BD)
   kSingleShot,     ///< eig of the formed product Φ: loses every |ρ| below ~eps·max|ρ|
@@ -66,7 +74,9 @@ struct FloquetMode {
 };
 
 struct FloquetResult {
-  bool ok = false;               ///< false: integration failed, see diagnostics
+  /// false: the integration failed, or the result failed its own checks (Liouville beyond the
+  /// error estimate); modes are kept when they were computed, see diagnostics.
+  bool ok = false;
   int states = 0;
   double period = 0;
   std::string integrator;
@@ -76,7 +86,8 @@ struct FloquetResult {
   std::vector<FloquetMode> modes;      ///< sorted by frequency (|Im λ|), then Re λ
   double max_real_exponent = 0;        ///< max Re λ (1/s), rigid-body modes excluded
   double max_log_abs_multiplier = 0;   ///< max log|ρ| = T · max Re λ
-  bool stable = false;                 ///< max Re λ < 0 beyond the error estimate
+  bool stable = false;                 ///< verdict == kStable
+  StabilityVerdict verdict = StabilityVerdict::kFailed;
   /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
   /// second run at a tighter tolerance, plus the round-off floor. -1 when not computed.
   double error_estimate = -1;

@@ -48,20 +48,16 @@ enum class HillSelectionRule {
 std::string_view ToString(HillSelectionRule rule);
 std::optional<HillSelectionRule> ParseHillSelectionRule(std::string_view name);
 
-enum class PeriodDoubling {
-  kNever,   ///< report ambiguous choices in the diagnostics only
-  kAuto,    ///< re-analyse with T' = 2T when a choice is ambiguous (strip-edge exponents)
-  kAlways,  ///< always analyse with T' = 2T
-};
-
 struct HillOptions {
   /// Truncation N: harmonics −N..N.
   int harmonics = 16;
   HillSolver solver = HillSolver::kDense;
   HillSelectionRule selection = HillSelectionRule::kCentroid;
-  /// A selection margin below this flags the choice as ambiguous (margins are in [0, 1]).
+  /// A selection margin below this flags the choice as a tie between λ and λ ± jΩp (margins
+  /// are in [0, 1]). A tie never needs resolving: both are the same exponent modulo jΩp (a
+  /// negative real multiplier puts it on the strip edge ±Ωp/2); the member with the larger
+  /// Im λ is reported, as the monodromy route does (docs/hill-method.md).
   double ambiguity_threshold = 0.05;
-  PeriodDoubling period_doubling = PeriodDoubling::kAuto;
   /// Truncation error estimate from a second solve at N + Δ (0 = automatic: max(2, ⌈N/2⌉);
   /// -1 = no second solve).
   int delta_harmonics = 0;
@@ -100,7 +96,7 @@ struct HillModeInfo {
   /// Relative eigen-residual ||H x − λ x|| / (||H|| ||x||).
   double residual = 0;
   bool passed = false;     ///< met the rule's pass condition (see HillSelectionRule)
-  bool ambiguous = false;  ///< selection_margin < ambiguity_threshold
+  bool ambiguous = false;  ///< selection_margin < ambiguity_threshold (a tie: see HillOptions)
 };
 
 /// ||A_w|| <= a e^{−b|w|} envelope of the Fourier coefficients of A (Frobenius norms), or an
@@ -117,12 +113,13 @@ struct HillDecay {
 };
 
 struct HillResult {
-  bool ok = false;  ///< false: the solver failed or fewer than n exponents were found
+  /// false: the solver failed, fewer than n exponents were found, or the selected ones failed
+  /// the Liouville check (then modes are kept for inspection and error_estimate is +inf).
+  bool ok = false;
   int states = 0;
-  int harmonics = 0;    ///< N actually used (2N after period doubling)
+  int harmonics = 0;    ///< N actually used
   int matrix_size = 0;  ///< (2N+1)n
-  double period = 0;    ///< analysed period: T, or 2T after period doubling
-  bool period_doubled = false;
+  double period = 0;    ///< T of the system
   std::string solver;
   std::string selection_rule;
   /// The n physical exponents (same struct and order as AnalyzeFloquet: by |frequency|,
@@ -130,7 +127,8 @@ struct HillResult {
   std::vector<FloquetMode> modes;
   std::vector<HillModeInfo> info;  ///< parallel to modes
   double max_real_exponent = 0;
-  bool stable = false;
+  bool stable = false;  ///< verdict == kStable
+  StabilityVerdict verdict = StabilityVerdict::kFailed;
 
   // Truncation error (exponents, 1/s).
   int delta_harmonics = 0;          ///< Δ of the N vs N+Δ estimate (0: not computed)
@@ -183,7 +181,6 @@ struct HillStudyRow {
   double selection_margin = 0;    ///< min over modes
   double tail_weight = 0;         ///< max over modes
   bool ambiguous = false;
-  bool period_doubled = false;
   double elapsed_s = 0;
 };
 
@@ -214,11 +211,6 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
 /// @throws ResourceError when it would exceed `max_bytes`.
 Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics,
                             double max_bytes = 2.0 * 1024 * 1024 * 1024);
-
-/// The same series seen with period 2T: A'_{2w} = A_w, odd harmonics zero.
-FourierMatrix DoublePeriod(const FourierMatrix& A);
-/// The system seen with period 2T (every form; labels and rotor speed kept).
-PeriodicSystem DoublePeriod(const PeriodicSystem& system);
 
 /// Koopman–Hill projection Φ(t) ≈ C expm(H_N t) W (C picks block 0, W stacks identities).
 Eigen::MatrixXcd KoopmanHillTransition(const FourierMatrix& A, double omega, int harmonics,

@@ -35,11 +35,6 @@ struct SweepAxis {
 enum class SweepMethod { kMonodromy, kHill };
 std::string_view ToString(SweepMethod method);
 
-/// Verdict per point. Marginal: |max log|ρ|| within the tolerance band (undamped systems
-/// between their instability tongues, multipliers on the unit circle).
-enum class StabilityVerdict { kStable, kMarginal, kUnstable, kFailed };
-std::string_view ToString(StabilityVerdict verdict);
-
 struct SweepOptions {
   SweepMethod method = SweepMethod::kMonodromy;
   /// Per-point monodromy options. `threads` is ignored (points run in parallel instead).
