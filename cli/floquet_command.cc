@@ -158,6 +158,8 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"koopman_discrepancy", JsonNumber(h.koopman_discrepancy)},
           {"coefficient_decay", {{"kind", h.decay.kind}, {"rate", JsonNumber(h.decay.rate)}}},
           {"error_estimate", JsonNumber(h.error_estimate)},
+          {"fourier_fit_error", JsonNumber(h.fourier_fit_error)},
+          {"tolerance_met", h.tolerance_met ? json(*h.tolerance_met) : json(nullptr)},
           {"elapsed_s", h.elapsed_s},
           {"ok", h.ok},
           {"diagnostics", h.diagnostics}};
@@ -238,7 +240,12 @@ void PrintHill(const HillResult& h) {
             << "\n  coefficients of A: " << h.decay.kind << " decay";
   if (h.decay.kind == "exponential") std::cout << " (rate " << Num(h.decay.rate, 3) << ")";
   if (h.decay.kind == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(h.decay.rate, 3) << ")";
-  std::cout << ", " << Num(h.elapsed_s * 1e3, 3) << " ms\n";
+  std::cout << ", " << Num(h.elapsed_s * 1e3, 3) << " ms\n"
+            << "  error estimate " << Num(h.error_estimate, 2) << " 1/s on every exponent";
+  if (h.fourier_fit_error > 0) std::cout << " (of which the Fourier fit of A: " << Num(h.fourier_fit_error, 2) << ")";
+  std::cout << "\n";
+  if (h.tolerance_met && !*h.tolerance_met)
+    std::cout << "  tolerance NOT reached (see diagnostics): the estimate is what this N delivers\n";
   PrintDiagnostics(h.diagnostics);
 }
 

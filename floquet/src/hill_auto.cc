@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -10,10 +11,20 @@ namespace ltp {
 HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, double tol,
                            int max_harmonics) {
   if (!(tol > 0)) throw InputError("AnalyzeHillAuto: tol must be > 0");
+  const auto start_time = std::chrono::steady_clock::now();
+  // Time reported is the whole call: every truncation tried, not only the last.
+  auto finish = [&](HillResult r, bool met, const std::string& why) {
+    r.tolerance_met = met;
+    r.diagnostics.push_back(why);
+    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    return r;
+  };
   options.harmonics = std::clamp(options.harmonics, 1, std::max(1, max_harmonics));
   if (options.delta_harmonics < 0) options.delta_harmonics = 0;  // the estimate drives the loop
   HillResult best;
   const int start = options.harmonics;
+  int previous_n = 0;
+  double previous_change = -1;
   for (;;) {
     // HillSolver::kAuto is resolved per N by AnalyzeHill (the study's crossover rule).
     // The Koopman–Hill cross-check needs a dense expm of the whole Hill matrix (O(size³)); in
@@ -24,29 +35,53 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
       r = AnalyzeHill(system, options);
     } catch (const ResourceError& e) {
       if (best.modes.empty()) throw;
-      best.diagnostics.push_back(std::string("automatic truncation stopped: ") + e.what());
-      return best;
+      return finish(std::move(best), false,
+                    std::string("automatic truncation stopped short of the tolerance: ") + e.what());
     }
     double scale = 1;
     for (const auto& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
-    const bool converged = r.ok && r.truncation_estimate >= 0 && r.truncation_estimate <= tol * scale;
+    const double goal = tol * scale;
+    const double change = r.truncation_estimate;
+    const bool converged = r.ok && change >= 0 && change <= goal && r.fourier_fit_error <= goal;
     best = std::move(r);
+    std::ostringstream s;
     if (converged) {
-      std::ostringstream s;
-      s << "harmonics auto → N = " << best.harmonics << ": the N vs N+Δ change "
-        << best.truncation_estimate << " 1/s met the tolerance " << tol << " × max(1, max|λ|)"
+      s << "harmonics auto → N = " << best.harmonics << ": the N vs N+Δ change " << change
+        << " 1/s met the tolerance " << tol << " × max(1, max|λ|)"
         << (best.harmonics > start ? " (N doubled from " + std::to_string(start) + ")" : "");
-      best.diagnostics.push_back(s.str());
-      return best;
+      return finish(std::move(best), true, s.str());
     }
-    if (options.harmonics >= max_harmonics) break;
+    // Once the truncation error is below the error of the fitted coefficients of A, raising N
+    // cannot help.
+    if (best.ok && best.fourier_fit_error > goal && change >= 0 && change <= best.fourier_fit_error) {
+      s << "automatic truncation stopped at N = " << best.harmonics << ": the Fourier fit of A(t) "
+        << "limits every exponent to about " << best.fourier_fit_error << " 1/s, above the tolerance "
+        << goal << ", and the N vs N+Δ change " << change << " 1/s is already below that (A(t) is "
+        << "discontinuous; the monodromy route has no such limit)";
+      return finish(std::move(best), false, s.str());
+    }
+    if (best.harmonics >= max_harmonics) break;
+    // Slow (algebraic) convergence: at the rate seen between the last two truncations, would
+    // the tolerance be met below max_harmonics? If not, stop now rather than spend minutes.
+    if (best.ok && previous_change > 0 && change > 0 && std::isfinite(change) && change < previous_change) {
+      const double rate = std::log(previous_change / change) / std::log(double(best.harmonics) / previous_n);
+      const double needed = best.harmonics * std::pow(change / goal, 1 / rate);
+      if (rate > 0 && needed > 2.0 * max_harmonics) {
+        s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
+          << change << " 1/s falls like N^-" << rate << ", so the tolerance " << goal
+          << " needs N ≈ " << needed << " (limit " << max_harmonics
+          << "); the estimate above is the error at this N";
+        return finish(std::move(best), false, s.str());
+      }
+    }
+    previous_n = best.ok ? best.harmonics : 0;
+    previous_change = best.ok ? change : -1;
     options.harmonics = std::min(2 * options.harmonics, max_harmonics);
   }
   std::ostringstream s;
-  s << "automatic truncation: N = " << best.harmonics << " did not reach the tolerance " << tol
-    << " (N vs N+Δ change " << best.truncation_estimate << ")";
-  best.diagnostics.push_back(s.str());
-  return best;
+  s << "automatic truncation: N = " << best.harmonics << " (the limit) did not reach the tolerance "
+    << tol << " (N vs N+Δ change " << best.truncation_estimate << ")";
+  return finish(std::move(best), false, s.str());
 }
 
 }  // namespace ltp

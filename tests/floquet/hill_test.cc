@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <string>
@@ -325,6 +326,70 @@ TEST(HillVerdict, ConservativeIsMarginalDampedStableTongueUnstable) {
   EXPECT_EQ(AnalyzeHill(test::Mathieu(2, 0.1), o).verdict, StabilityVerdict::kMarginal);
   EXPECT_EQ(AnalyzeHill(test::Mathieu(2, 0.1, 0.05), o).verdict, StabilityVerdict::kStable);
   EXPECT_EQ(AnalyzeHill(test::Mathieu(1, 0.5), o).verdict, StabilityVerdict::kUnstable);
+}
+
+// --- Discontinuous A(t): estimates bound the error, the automatic truncation stops early -----
+
+// Sawtooth stiffness y'' + c y' + (a + b (t/π − 1)) y = 0 on [0, 2π), one jump at t = 0: its
+// coefficients decay like 1/w, and the FFT fit Hill uses aliases. Reference: the monodromy
+// route at rel tol 1e-13 (estimate below 1e-12), an independent integration of the same A(t).
+PeriodicSystem Sawtooth(double a, double b, double c) {
+  PeriodicSystem::Functions f;
+  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    double u = std::fmod(t, 2 * kPi);
+    if (u < 0) u += 2 * kPi;
+    out << 0, 1, -(a + b * (u / kPi - 1)), -c;
+  };
+  return PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f, {0.0});
+}
+
+TEST(HillJumps, EstimateCoversTheFitAndTruncationErrors) {
+  const PeriodicSystem saw = Sawtooth(1, 0.6, 0.02);
+  FloquetOptions fo;
+  fo.integrator.rel_tol = 1e-13;
+  const FloquetResult ref = AnalyzeFloquet(saw, fo);
+  ASSERT_TRUE(ref.ok);
+  ASSERT_LT(ref.error_estimate, 1e-12);
+  // N = 256 was the case whose estimate (2.7e-10) fell 4× short of the error (1.1e-9): the
+  // error there is the fit's aliasing, not the truncation.
+  for (int N : {32, 256}) {
+    HillOptions o;
+    o.harmonics = N;
+    o.koopman_check = false;
+    const HillResult h = AnalyzeHill(saw, o);
+    ASSERT_TRUE(h.ok) << N;
+    const double err = MaxDistanceModulo(Exponents(h.modes), Exponents(ref.modes), saw.omega());
+    EXPECT_GE(h.error_estimate, err) << "N = " << N;
+    EXPECT_LT(h.error_estimate, 100 * err + 1e-9) << "N = " << N;  // and not vacuous
+    EXPECT_GT(h.fourier_fit_error, 0) << "N = " << N;
+    EXPECT_FALSE(h.tolerance_met.has_value());  // fixed N: no tolerance was asked
+  }
+}
+
+TEST(HillJumps, AutomaticTruncationSaysItStoppedShortAndStaysHonest) {
+  // Meissner square wave (closed-form monodromy) and the sawtooth: tolerance 1e-10 is out of
+  // reach for N ≤ 256 at their algebraic rates; the result must say so and bound its error.
+  const PeriodicSystem saw = Sawtooth(1, 0.6, 0.02);
+  FloquetOptions fo;
+  fo.integrator.rel_tol = 1e-13;
+  const std::vector<cd> saw_ref = Exponents(AnalyzeFloquet(saw, fo).modes);
+  const std::vector<std::pair<PeriodicSystem, std::vector<cd>>> cases = {
+      {test::Meissner(0.3, 0.5, 0.01), MeissnerExponents(0.3, 0.5, 0.01)}, {saw, saw_ref}};
+  for (const auto& [system, want] : cases) {
+    HillOptions o;
+    o.harmonics = 4;
+    const auto t0 = std::chrono::steady_clock::now();
+    const HillResult h = AnalyzeHillAuto(system, o, 1e-10, 256);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_TRUE(h.ok) << h.BriefReport();
+    ASSERT_TRUE(h.tolerance_met.has_value());
+    EXPECT_FALSE(*h.tolerance_met);
+    const double err = MaxDistanceModulo(Exponents(h.modes), want, system.omega());
+    EXPECT_GE(h.error_estimate, err) << h.BriefReport();
+    EXPECT_LT(h.harmonics, 256) << "stopped early: the rate says the tolerance is out of reach";
+    // Time reported is the whole call (every truncation tried), not the last solve.
+    EXPECT_GE(h.elapsed_s, 0.9 * wall);
+  }
 }
 
 TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {

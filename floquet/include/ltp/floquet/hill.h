@@ -141,12 +141,21 @@ struct HillResult {
   /// Koopman–Hill check ran).
   double apriori_phi_bound = std::numeric_limits<double>::infinity();
   HillDecay decay;
+  /// Error of the exponents due to the FFT fit of A(t) (1/s), whatever N: the change when the
+  /// fit uses half the samples (aliasing of a discontinuous A(t) falls like 1/S or faster, so
+  /// the change is at least the error). 0 for Fourier-form systems and converged fits.
+  double fourier_fit_error = 0;
+  /// AnalyzeHillAuto only: whether the truncation met the requested tolerance (false: it
+  /// stopped at the memory or harmonics limit, or early because the observed convergence rate
+  /// or the Fourier fit of A could not reach it; the diagnostics say which). Empty for a fixed N.
+  std::optional<bool> tolerance_met;
   /// The error estimate reported for every exponent (1/s): the N vs N+Δ change (pre-asymptotic,
   /// with the eigenvectors at the truncation edge: change/(1 − q) from a third solve at N+2Δ,
   /// +inf when the changes do not shrink), at least the Liouville deficit |Σ Re λ − mean tr A|
   /// (+inf when that check fails), the Koopman–Hill gap where it exceeds that projection's own
-  /// bound (a suspect selection), plus the round-off floor of the eigen-residuals; the
-  /// Koopman–Hill gap alone when there is no N+Δ run; +inf when neither check ran; -1 if !ok.
+  /// bound (a suspect selection), plus the round-off floor of the eigen-residuals and
+  /// fourier_fit_error; the Koopman–Hill gap alone when there is no N+Δ run; +inf when neither
+  /// check ran; -1 when no exponents were found.
   double error_estimate = -1;
 
   // Koopman–Hill cross-check (sorting-free).
