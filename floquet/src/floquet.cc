@@ -514,7 +514,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         if (negative_real) {
           s << "mode " << k + 1 << ": negative real multiplier, so the exponent sits on the strip "
                "edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the same solution; the "
-               "non-negative one is reported (analyse 2T to separate them)";
+               "non-negative one is reported";
         } else {
           s << "mode " << k + 1 << ": branch ambiguous (margin " << r.modes[k].branch_margin
             << "): its mode shape's Fourier energy is split between two neighbouring harmonics; "
