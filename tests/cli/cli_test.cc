@@ -154,6 +154,23 @@ TEST(Cli, StripEdgeFrequencyIsHalfTheParametricFrequencyOnBothRoutes) {
   EXPECT_LT(j["disagreement"].get<double>(), 1e-10);
 }
 
+// `--method both` on the classes where Hill used to go wrong: a double negative multiplier
+// (10 states), a discontinuous A(t) (square wave). Both routes ok, and their disagreement within
+// the sum of their own estimates.
+TEST(Cli, BothRoutesAgreeOnRepeatedMultipliersAndJumps) {
+  for (const std::string scene : {Src("tests/data/double-negative-multiplier.yaml"), Src("scenes/meissner.yaml")})
+    for (const std::string solver : {"auto", "structured", "dense"}) {
+      const Outcome r = Ltp("floquet " + scene + " --method both --hill-solver " + solver + " --json");
+      ASSERT_EQ(r.code, 0) << scene << " " << solver << ": " << r.err;
+      const auto j = nlohmann::json::parse(r.out);
+      EXPECT_TRUE(j["hill"]["ok"].get<bool>()) << scene << " " << solver;
+      const double d = j["disagreement"].get<double>();
+      EXPECT_LE(d, j["monodromy"]["error_estimate"].get<double>() + j["hill"]["error_estimate"].get<double>())
+          << scene << " " << solver;
+      EXPECT_EQ(j["hill"]["exponents"].size(), j["monodromy"]["exponents"].size());
+    }
+}
+
 // Two independent routes (monodromy, Hill) on a smooth scene: their disagreement must lie
 // within the sum of their own error estimates (each estimate covers its own route's error).
 TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
