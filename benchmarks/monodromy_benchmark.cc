@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "support/systems.h"
 
@@ -21,16 +22,10 @@ using ltp::IntegratorType;
 using cd = std::complex<double>;
 
 double MaxLogError(const ltp::FloquetResult& r, const ltp::FloquetResult& ref) {
-  double worst = 0;
-  for (const auto& m : r.modes) {
-    double best = 1e300;
-    for (const auto& x : ref.modes) {
-      const cd d = m.log_multiplier - x.log_multiplier;
-      best = std::min(best, std::hypot(d.real(), std::remainder(d.imag(), 2 * std::numbers::pi)));
-    }
-    worst = std::max(worst, best);
-  }
-  return worst;
+  std::vector<cd> a, b;
+  for (const auto& m : r.modes) a.push_back(m.log_multiplier);
+  for (const auto& m : ref.modes) b.push_back(m.log_multiplier);
+  return ltp::MaxExponentMismatch(a, b, 2 * std::numbers::pi);
 }
 
 FloquetOptions Fast(IntegratorType type) {

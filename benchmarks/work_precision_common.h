@@ -13,6 +13,7 @@
 #include <numbers>
 #include <vector>
 
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 
@@ -21,36 +22,15 @@ namespace ltp::wp {
 using cd = std::complex<double>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// |x − y| with the imaginary part reduced modulo `omega` (exponents are defined mod jΩp).
-inline double ModDistance(cd x, cd y, double omega) {
-  const cd d = x - y;
-  return std::hypot(d.real(), std::remainder(d.imag(), omega));
-}
-
-/// Largest error of `got` against `ref` (both sets of exponents, 1/s), modulo jΩ: every
-/// reference exponent is matched to the nearest unused computed one (greedy, closest pairs
-/// first). +inf when fewer exponents were computed than the reference has, or any is not finite.
+/// Largest error of `got` against `ref` (both sets of exponents, 1/s), modulo jΩ, matched
+/// one-to-one (ltp's MatchExponents). +inf when fewer exponents were computed than the
+/// reference has, or any is not finite.
 inline double ExponentError(const std::vector<cd>& got, const std::vector<cd>& ref, double omega) {
   if (got.size() < ref.size()) return kInf;
   for (const cd& g : got)
     if (!std::isfinite(g.real()) || !std::isfinite(g.imag())) return kInf;
-  struct Pair {
-    double d;
-    size_t i, j;
-  };
-  std::vector<Pair> pairs;
-  for (size_t i = 0; i < ref.size(); ++i)
-    for (size_t j = 0; j < got.size(); ++j) pairs.push_back({ModDistance(ref[i], got[j], omega), i, j});
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d < b.d; });
-  std::vector<bool> used_i(ref.size()), used_j(got.size());
   double worst = 0;
-  size_t matched = 0;
-  for (const Pair& p : pairs) {
-    if (used_i[p.i] || used_j[p.j]) continue;
-    used_i[p.i] = used_j[p.j] = true;
-    worst = std::max(worst, p.d);
-    if (++matched == ref.size()) break;
-  }
+  for (double d : ltp::MatchExponents(ref, got, omega)) worst = std::max(worst, d);
   return worst;
 }
 

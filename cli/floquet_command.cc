@@ -10,6 +10,7 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/core/mbc.h"
@@ -249,27 +250,13 @@ void PrintHill(const HillResult& h) {
   PrintDiagnostics(h.diagnostics);
 }
 
-// Largest distance between the two routes' exponents, matched greedily, with imaginary parts
-// compared modulo `omega` (Ωp).
+// Largest distance between the two routes' exponents, matched one-to-one modulo jΩp.
 double Disagreement(const std::vector<FloquetMode>& a, const std::vector<FloquetMode>& b,
                     double omega) {
-  auto distance = [omega](std::complex<double> x, std::complex<double> y) {
-    return std::hypot(x.real() - y.real(), std::remainder(x.imag() - y.imag(), omega));
-  };
-  std::vector<bool> used(b.size(), false);
-  double worst = 0;
-  for (const auto& x : a) {
-    double best = std::numeric_limits<double>::infinity();
-    size_t at = 0;
-    for (size_t j = 0; j < b.size(); ++j)
-      if (!used[j] && distance(x.exponent, b[j].exponent) < best) {
-        best = distance(x.exponent, b[j].exponent);
-        at = j;
-      }
-    if (!b.empty()) used[at] = true;
-    worst = std::max(worst, best);
-  }
-  return worst;
+  std::vector<std::complex<double>> x, y;
+  for (const FloquetMode& m : a) x.push_back(m.exponent);
+  for (const FloquetMode& m : b) y.push_back(m.exponent);
+  return MaxExponentMismatch(x, y, omega);
 }
 
 // For the `rotor` scene: the multi-blade-coordinate cross-check (N >= 3 identical blades make
@@ -279,14 +266,9 @@ json MbcCheck(const LoadedScene& l, const FloquetResult& r) {
   const RotorParameters rotor = RotorParametersFrom(l.parameters);
   if (auto reason = MbcNotApplicable(rotor)) return {{"applicable", false}, {"reason", *reason}};
   const MbcRotorSystem mbc = RotorInMultiBladeCoordinates(rotor);
-  double worst = 0;
-  for (const FloquetMode& m : r.modes) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& e : mbc.eigenvalues)
-      best = std::min(best, std::hypot(m.exponent.real() - e.real(),
-                                       std::remainder(m.exponent.imag() - e.imag(), mbc.rotor_speed)));
-    worst = std::max(worst, best);
-  }
+  std::vector<std::complex<double>> exponents;
+  for (const FloquetMode& m : r.modes) exponents.push_back(m.exponent);
+  const double worst = MaxExponentMismatch(exponents, mbc.eigenvalues, mbc.rotor_speed);
   return {{"applicable", true}, {"blades", mbc.blades}, {"max_difference", JsonNumber(worst)}};
 }
 

@@ -12,6 +12,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "segment_grid.h"
@@ -79,31 +80,6 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
     if (std::abs(m) < 1e6) prior[k] = static_cast<int>(m);
   }
   return prior;
-}
-
-// Greedy order-free matching of two sets of log multipliers; returns the largest distance
-// (arguments compared modulo 2π).
-double MaxLogDistance(const std::vector<cd>& a, const std::vector<cd>& b) {
-  std::vector<bool> used(b.size(), false);
-  double worst = 0;
-  for (const cd& x : a) {
-    double best = std::numeric_limits<double>::infinity();
-    size_t best_j = 0;
-    for (size_t j = 0; j < b.size(); ++j) {
-      if (used[j]) continue;
-      double darg = std::remainder(x.imag() - b[j].imag(), 2 * kPi);
-      double dre = x.real() - b[j].real();
-      if (std::isinf(x.real()) && std::isinf(b[j].real()) && x.real() == b[j].real()) dre = 0;
-      const double d = std::hypot(dre, darg);
-      if (d < best) {
-        best = d;
-        best_j = j;
-      }
-    }
-    if (!b.empty()) used[best_j] = true;
-    worst = std::max(worst, best);
-  }
-  return worst;
 }
 
 double Condition(const Eigen::MatrixXcd& m) {
@@ -318,7 +294,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.rhs_evals += reference.rhs_evals;
     LogEigenvalues ref_eig = reference.ok ? log_eigenvalues(reference) : LogEigenvalues{};
     if (ref_eig.ok) {
-      integration_error = MaxLogDistance(eig.log_values, ref_eig.log_values) / T;
+      integration_error = MaxExponentMismatch(eig.log_values, ref_eig.log_values, 2 * kPi) / T;
       grid = std::move(reference);
       eig = std::move(ref_eig);
     } else {
@@ -584,12 +560,14 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   floor = std::max(floor, backward * max_abs_log / T);
   r.error_estimate = options.estimate_error ? integration_error + floor : -1;
   // Liouville: Σ log|ρ_k| = ∫ tr A exactly, and every exponent is within the estimate, so the
-  // sum is within n·T·estimate of it. Beyond that (or beyond 1e-6 relative without an
-  // estimate) some exponents are wrong — e.g. forced settings: one segment with single-shot
-  // multipliers loses every |ρ| below eps·max|ρ| — and the result is not ok.
+  // sum is within n·T·estimate of it. Beyond that some exponents are wrong — e.g. forced
+  // settings: one segment with single-shot multipliers loses every |ρ| below eps·max|ρ| — and
+  // the result is not ok. Without an estimate only a gross failure can be told from the
+  // integration's own error: the allowance is then 1e4 × the tolerance (at least 1e-6), relative.
+  const double gross = std::max(1e-6, 1e4 * options.integrator.rel_tol) * std::max(1.0, std::abs(trace_integral));
   const double liouville_allowance =
-      std::max(options.estimate_error ? n * T * r.error_estimate : 0.0,
-               1e-6 * std::max(1.0, std::abs(trace_integral)));
+      options.estimate_error ? std::max(n * T * r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
+                             : gross;
   r.ok = std::abs(sum_log_abs - trace_integral) <= liouville_allowance;
   if (!r.ok) {
     std::ostringstream s;

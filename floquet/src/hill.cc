@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "hill_internal.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/method_choice.h"
 
@@ -175,7 +176,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       std::vector<cd> a, b;
       for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
       for (const FloquetMode& m : r2.modes) b.push_back(m.exponent);
-      const std::vector<double> d = hill_internal::MatchModulo(a, b, omega);
+      const std::vector<double> d = MatchExponents(a, b, omega);
       r.truncation_estimate = 0;
       for (size_t k = 0; k < d.size(); ++k) {
         r.info[k].truncation_change = d[k];
@@ -205,7 +206,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
         std::vector<cd> c;
         for (const FloquetMode& m : r3.modes) c.push_back(m.exponent);
         double next = 0;
-        for (double x : hill_internal::MatchModulo(b, c, omega)) next = std::max(next, x);
+        for (double x : MatchExponents(b, c, omega)) next = std::max(next, x);
         const double q = r.truncation_estimate > 0 ? next / r.truncation_estimate : 0;
         r.truncation_estimate = q < 0.5 ? 2 * r.truncation_estimate
                                 : q < 0.9 ? r.truncation_estimate / (1 - q)
@@ -238,7 +239,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     std::vector<cd> hill;
     for (const FloquetMode& m : r.modes) hill.push_back(m.exponent);
     r.koopman_discrepancy = 0;
-    for (double d : hill_internal::MatchModulo(hill, kh, omega))
+    for (double d : MatchExponents(hill, kh, omega))
       r.koopman_discrepancy = std::max(r.koopman_discrepancy, d);
     // Bauer–Fike: |Δρ| <= κ(V) ||ΔΦ||; |Δ log ρ| <= −log(1 − |Δρ|/|ρ|).
     Eigen::MatrixXcd V = es.eigenvectors();
@@ -348,7 +349,7 @@ void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options, 
   r.fourier_fit_error = std::numeric_limits<double>::infinity();
   if (other.size() == fine.size()) {
     r.fourier_fit_error = 0;
-    for (double d : hill_internal::MatchModulo(fine, other, 2 * kPi / r.period))
+    for (double d : MatchExponents(fine, other, 2 * kPi / r.period))
       r.fourier_fit_error = std::max(r.fourier_fit_error, d);
   }
   if (r.error_estimate >= 0) r.error_estimate += r.fourier_fit_error;

@@ -74,11 +74,4 @@ struct Selection {
 Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double omega,
                          HillSelectionRule rule, double ambiguity_threshold);
 
-/// |λ − μ| with the imaginary difference taken modulo Ωp.
-double DistanceModulo(cd lambda, cd mu, double omega);
-
-/// Greedy matching of `values` to `reference` modulo jΩp; distance per value.
-std::vector<double> MatchModulo(const std::vector<cd>& values, const std::vector<cd>& reference,
-                                double omega);
-
 }  // namespace ltp::hill_internal

@@ -58,35 +58,6 @@ double TranslatedRunnerUpScore(const Candidate& c, int N, double omega, HillSele
 
 }  // namespace
 
-double DistanceModulo(cd lambda, cd mu, double omega) {
-  return std::hypot(lambda.real() - mu.real(), std::remainder(lambda.imag() - mu.imag(), omega));
-}
-
-std::vector<double> MatchModulo(const std::vector<cd>& values, const std::vector<cd>& reference,
-                                double omega) {
-  // Greedy on the globally closest pair first (robust for close exponents).
-  const size_t n = values.size(), m = reference.size();
-  std::vector<double> out(n, std::numeric_limits<double>::infinity());
-  std::vector<bool> used_v(n, false), used_r(m, false);
-  for (size_t step = 0; step < std::min(n, m); ++step) {
-    double best = std::numeric_limits<double>::infinity();
-    size_t bi = 0, bj = 0;
-    for (size_t i = 0; i < n; ++i)
-      for (size_t j = 0; j < m; ++j)
-        if (!used_v[i] && !used_r[j]) {
-          const double d = DistanceModulo(values[i], reference[j], omega);
-          if (d < best) {
-            best = d;
-            bi = i;
-            bj = j;
-          }
-        }
-    used_v[bi] = used_r[bj] = true;
-    out[bi] = best;
-  }
-  return out;
-}
-
 Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double omega,
                          HillSelectionRule rule, double ambiguity_threshold) {
   const int N = harmonics;

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "hill_internal.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/hill.h"
@@ -238,7 +239,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       const HillResult& r2 = solve(N + delta);
       const double omega2 = 2 * std::numbers::pi / r2.period;
       row.truncation_estimate = 0;
-      for (double d : hill_internal::MatchModulo(exponents(r), exponents(r2), std::min(omega, omega2)))
+      for (double d : MatchExponents(exponents(r), exponents(r2), std::min(omega, omega2)))
         row.truncation_estimate = std::max(row.truncation_estimate, d);
       if (r.decay.kind == "algebraic")  // see AnalyzeHill: algebraic convergence, scale up
         row.truncation_estimate *= double(N + delta) / delta;
@@ -246,7 +247,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       row.truncation_estimate = -1;
     }
     if (have_ref) {
-      row.errors = hill_internal::MatchModulo(study.reference, exponents(r), omega);
+      row.errors = MatchExponents(study.reference, exponents(r), omega);
       row.max_error = 0;
       for (double e : row.errors) row.max_error = std::max(row.max_error, e);
     }

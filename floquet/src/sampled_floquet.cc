@@ -8,39 +8,17 @@
 #include <utility>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 
 namespace ltp {
 namespace {
 
 using std::complex;
 
-// Distance of two exponents modulo jΩ.
-double ModDistance(complex<double> a, complex<double> b, double omega) {
-  return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), omega));
-}
-
 // `x` moved by a multiple of jΩ onto the branch nearest `target`.
 complex<double> OntoBranch(complex<double> x, complex<double> target, double omega) {
   const double m = std::round((target.imag() - x.imag()) / omega);
   return {x.real(), x.imag() + m * omega};
-}
-
-// match[i] = index in `b` assigned to a[i]: smallest distances first (modulo jΩ).
-std::vector<int> Match(const std::vector<complex<double>>& a, const std::vector<complex<double>>& b,
-                       double omega) {
-  std::vector<std::pair<double, std::pair<int, int>>> pairs;
-  for (size_t i = 0; i < a.size(); ++i)
-    for (size_t j = 0; j < b.size(); ++j)
-      pairs.push_back({ModDistance(a[i], b[j], omega), {static_cast<int>(i), static_cast<int>(j)}});
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<int> match(a.size(), -1);
-  std::vector<bool> used(b.size(), false);
-  for (const auto& [d, ij] : pairs)
-    if (match[ij.first] < 0 && !used[ij.second]) {
-      match[ij.first] = ij.second;
-      used[ij.second] = true;
-    }
-  return match;
 }
 
 std::vector<complex<double>> Exponents(const FloquetResult& r) {
@@ -126,7 +104,8 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
       ref_rigid.push_back(static_cast<int>(k) == rigid);
     }
   }
-  const std::vector<int> to_hold = Match(refs, hold, omega), to_trig = Match(refs, trig, omega);
+  const std::vector<int> to_hold = MatchExponentIndices(refs, hold, omega);
+  const std::vector<int> to_trig = MatchExponentIndices(refs, trig, omega);
   const bool with_mbc = mbc.applicable && !mbc.modes.empty();
   r.max_real_hold = r.max_real_trig = -std::numeric_limits<double>::infinity();
   r.max_to_reference = with_mbc ? 0 : -1;

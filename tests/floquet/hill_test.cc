@@ -1,6 +1,7 @@
 // Hill's method against the monodromy route (AnalyzeFloquet at tight tolerance), the Meissner
 // closed-form monodromy, the Jeffcott rotor's rotating-frame eigenvalues, and its own
 // internal cross-checks (dense vs structured, Koopman–Hill, N vs N+Δ, a-priori bound).
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
 
 #include <gtest/gtest.h>
@@ -36,26 +37,10 @@ std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
   return v;
 }
 
-// Largest distance of matched exponents, imaginary parts compared modulo Ωp.
+// Largest distance of exponents matched one-to-one modulo Ωp (+inf when the counts differ).
 double MaxDistanceModulo(const std::vector<cd>& a, const std::vector<cd>& b, double omega) {
   EXPECT_EQ(a.size(), b.size());
-  std::vector<bool> used(b.size(), false);
-  double worst = 0;
-  for (const cd& x : a) {
-    double best = 1e300;
-    size_t bj = 0;
-    for (size_t j = 0; j < b.size(); ++j) {
-      if (used[j]) continue;
-      const double d = std::hypot(x.real() - b[j].real(), std::remainder(x.imag() - b[j].imag(), omega));
-      if (d < best) {
-        best = d;
-        bj = j;
-      }
-    }
-    if (!b.empty()) used[bj] = true;
-    worst = std::max(worst, best);
-  }
-  return worst;
+  return MaxExponentMismatch(a, b, omega);
 }
 
 // Meissner y'' + c y' + (a + b sign(cos t)) y = 0 with its exact Fourier coefficients up to M:

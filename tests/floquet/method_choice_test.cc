@@ -2,6 +2,7 @@
 // system the work–precision study covered, and that the analyses it drives are accurate
 // against closed forms (Meissner's monodromy, the triangular stiff scene, a Lyapunov-reducible
 // stiff system) and say which method they used and why.
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
 
 #include <gtest/gtest.h>
@@ -30,34 +31,13 @@ bool Mentions(const std::vector<std::string>& diagnostics, const std::string& wh
                      [&](const std::string& d) { return d.find(what) != std::string::npos; });
 }
 
-// Largest distance from each exponent to the nearest of `exact`, imaginary parts modulo Ωp.
-double MaxDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact, double omega) {
-  double worst = 0;
-  for (const FloquetMode& m : modes) {
-    double best = INFINITY;
-    for (const cd& e : exact)
-      best = std::min(best, std::hypot(m.exponent.real() - e.real(),
-                                       std::remainder(m.exponent.imag() - e.imag(), omega)));
-    worst = std::max(worst, best);
-  }
-  return worst;
-}
-
-// One-to-one: the smallest, over pairings of modes with exact values, of the largest distance
-// (a missed exponent cannot hide behind another mode's nearest value). Small n only.
-double MatchedDistance(const std::vector<FloquetMode>& modes, std::vector<cd> exact, double omega) {
+// Largest distance of the modes' exponents to `exact`, matched one-to-one modulo Ωp (a missed
+// exponent cannot hide behind another mode's nearest value); +inf when the counts differ.
+double MatchedDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact, double omega) {
   EXPECT_EQ(modes.size(), exact.size());
-  std::sort(exact.begin(), exact.end(), [](cd a, cd b) { return a.real() < b.real(); });
-  double best = INFINITY;
-  do {
-    double worst = 0;
-    for (size_t k = 0; k < modes.size() && k < exact.size(); ++k)
-      worst = std::max(worst, std::hypot(modes[k].exponent.real() - exact[k].real(),
-                                         std::remainder(modes[k].exponent.imag() - exact[k].imag(), omega)));
-    best = std::min(best, worst);
-  } while (std::next_permutation(exact.begin(), exact.end(),
-                                 [](cd a, cd b) { return a.real() < b.real(); }));
-  return best;
+  std::vector<cd> got;
+  for (const FloquetMode& m : modes) got.push_back(m.exponent);
+  return MaxExponentMismatch(got, exact, omega);
 }
 
 PeriodicSystem StiffYaml() {
@@ -110,7 +90,7 @@ TEST(MethodChoice, AutoMonodromyOnMeissnerIsExactAndSaysWhy) {
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.integrator, "expm");
   EXPECT_TRUE(Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
-  const double err = MaxDistance(r.modes, exact, s.omega());
+  const double err = MatchedDistance(r.modes, exact, s.omega());
   EXPECT_LT(err, 1e-13);
   EXPECT_GE(r.error_estimate, err);
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
 #include "ltp/core/mbc.h"
 #include "ltp/core/rotor.h"
@@ -68,10 +69,7 @@ void ExpectExponentsEqualModulo(const std::vector<cd>& actual, const std::vector
 // Number of exponents equal to `target` modulo j·modulus within tol.
 int CountModulo(const std::vector<cd>& values, cd target, double modulus, double tol) {
   int n = 0;
-  for (const cd& v : values) {
-    const double d_im = std::remainder(v.imag() - target.imag(), modulus);
-    n += std::hypot(v.real() - target.real(), d_im) <= tol ? 1 : 0;
-  }
+  for (const cd& v : values) n += ExponentDistance(v, target, modulus) <= tol ? 1 : 0;
   return n;
 }
 

@@ -1,6 +1,7 @@
 // Floquet analysis from azimuth samples (OpenFAST .lin files) against independent references:
 // the exact constant multi-blade system of the rotor scene, the continuous rotor integrated
 // without sampling, and the product of matrix exponentials formed directly.
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/sampled_floquet.h"
 
 #include <gtest/gtest.h>
@@ -31,20 +32,10 @@ using std::numbers::pi;
 
 using test::FiveMwDir;
 
-double ModDistance(complex<double> a, complex<double> b, double omega) {
-  return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), omega));
-}
-
-// Largest distance of each of `a` to the nearest of `b`, modulo jΩ.
+// Largest distance of exponents matched one-to-one modulo jΩ (+inf when the counts differ).
 double MaxDistanceModulo(const std::vector<complex<double>>& a, const std::vector<complex<double>>& b,
                          double omega) {
-  double worst = 0;
-  for (const auto& x : a) {
-    double best = 1e300;
-    for (const auto& y : b) best = std::min(best, ModDistance(x, y, omega));
-    worst = std::max(worst, best);
-  }
-  return worst;
+  return MaxExponentMismatch(a, b, omega);
 }
 
 std::vector<complex<double>> Exponents(const FloquetResult& r) {

@@ -12,60 +12,32 @@
 #include <sstream>
 #include <vector>
 
+#include "ltp/core/exponent_match.h"
+
 namespace ltp::test {
 
-/// Angle difference a − b wrapped into (−π, π], so arg = π and arg = −π compare equal.
-inline double WrapAngle(double difference) {
-  double d = std::remainder(difference, 2 * std::numbers::pi);
-  if (d <= -std::numbers::pi) d += 2 * std::numbers::pi;
-  return d;
-}
-
-/// Distance of two logarithms of multipliers, log ρ = log|ρ| + j arg ρ: Euclidean in the
-/// (log|ρ|, arg) plane with the arg difference wrapped. Two zero multipliers (log|ρ| = −inf)
-/// are at distance 0; a zero and a nonzero one at +inf.
+/// Distance of two logarithms of multipliers, log ρ = log|ρ| + j arg ρ: ltp's exponent distance
+/// with arguments compared modulo 2π. Two zero multipliers (log|ρ| = −inf) are at distance 0;
+/// a zero and a nonzero one at +inf.
 inline double LogEigenvalueDistance(std::complex<double> a, std::complex<double> b) {
-  const bool a_zero = std::isinf(a.real()) && a.real() < 0;
-  const bool b_zero = std::isinf(b.real()) && b.real() < 0;
-  if (a_zero || b_zero) {
-    return a_zero && b_zero ? 0.0 : std::numeric_limits<double>::infinity();
-  }
-  return std::hypot(a.real() - b.real(), WrapAngle(a.imag() - b.imag()));
+  return ltp::ExponentDistance(a, b, 2 * std::numbers::pi);
 }
 
-/// Matches `actual` to `expected` as sets (repeatedly pairing the globally closest remaining
-/// pair in LogEigenvalueDistance) and adds a gtest failure for every pair farther apart than
+/// Matches `actual` to `expected` as sets (ltp's one-to-one matching, globally closest pair
+/// first) and adds a gtest failure for every pair farther apart than
 /// tol · max(1, |log|ρ_expected||) — a relative tolerance on log|ρ| for large |log|ρ||, an
 /// absolute one near |ρ| = 1. Sizes must agree.
 inline void ExpectLogEigenvaluesNear(const std::vector<std::complex<double>>& actual,
                                      const std::vector<std::complex<double>>& expected,
                                      double tol) {
   ASSERT_EQ(actual.size(), expected.size()) << "different numbers of eigenvalues";
-  const std::size_t n = actual.size();
-  std::vector<bool> used_a(n, false), used_e(n, false);
-  for (std::size_t round = 0; round < n; ++round) {
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t best_a = 0, best_e = 0;
-    bool found = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (used_a[i]) continue;
-      for (std::size_t j = 0; j < n; ++j) {
-        if (used_e[j]) continue;
-        const double d = LogEigenvalueDistance(actual[i], expected[j]);
-        if (!found || d < best) {
-          best = d;
-          best_a = i;
-          best_e = j;
-          found = true;
-        }
-      }
-    }
-    used_a[best_a] = used_e[best_e] = true;
-    const double scale = std::max(1.0, std::abs(expected[best_e].real()));
-    EXPECT_LE(best, tol * scale) << "log-eigenvalue " << actual[best_a]
-                                 << " matched to expected " << expected[best_e]
-                                 << " (distance " << best << ", allowed " << tol * scale
-                                 << ")";
+  const std::vector<int> match = ltp::MatchExponentIndices(actual, expected, 2 * std::numbers::pi);
+  for (std::size_t i = 0; i < actual.size(); ++i) {
+    const std::complex<double> e = expected[match[i]];
+    const double d = LogEigenvalueDistance(actual[i], e);
+    const double scale = std::max(1.0, std::abs(e.real()));
+    EXPECT_LE(d, tol * scale) << "log-eigenvalue " << actual[i] << " matched to expected " << e
+                              << " (distance " << d << ", allowed " << tol * scale << ")";
   }
 }
 
