@@ -140,7 +140,8 @@ int RunSnapshot(SnapshotArgs& args) {
     std::cout << "\n  summed partials Σ_z H_z(ω − zΩp), z = " << o.min_order << " … " << o.max_order
               << " (response of the periodic system to an impulse), modal route "
               << (r.modal_reliable ? "(reliable)" : "(UNRELIABLE)") << ", htf check: max disagreement "
-              << Num(r.max_summed_disagreement, 3) << " of max |G|\n";
+              << Num(r.max_summed_disagreement, 3) << " of the largest |H_z| at " << o.check_points
+              << " excitation frequencies\n";
   }
   if (r.frequencies_hz.size() <= 20) {
     std::cout << "\n      f [Hz]        |H_snap|   phase [°]" << (o.compare ? "        |G_sum|   phase [°]" : "") << "\n";

@@ -29,7 +29,10 @@ struct SnapshotOptions {
   /// Also the summed partials G(ω) of the periodic system (modal route, checked by htf).
   bool compare = false;
   int min_order = -4, max_order = 4;
-  int check_every = 10;  ///< htf check of G on every k-th frequency (and the last)
+  /// The modal model behind G is checked against the htf route at this many excitation
+  /// frequencies, spread evenly over the band the orders need ([f0 − zmax·fp, f1 − zmin·fp]);
+  /// one banded solve gives every order there.
+  int check_points = 12;
   FloquetOptions floquet;
   ModalOptions modal;
   HtfOptions htf;
@@ -45,9 +48,10 @@ struct SnapshotResult {
   std::vector<double> frequencies_hz;
   std::vector<std::complex<double>> snapshot;      ///< H(2πf) of the channel
   std::vector<std::complex<double>> summed;        ///< G(2πf) (compare only)
-  std::vector<double> summed_error;                ///< |G_modal − G_htf| at check points,
-                                                   ///< relative-interpolated between them
-  double max_summed_disagreement = 0;              ///< relative to max |G|
+  /// Error estimate of G: the check's relative disagreement times Σ_z |H_z(ω − zΩp)|.
+  std::vector<double> summed_error;
+  /// max over check points of max_z |H_z,modal − H_z,htf| / max_z |H_z,htf|
+  double max_summed_disagreement = 0;
   bool modal_reliable = true;
   std::vector<std::complex<double>> floquet_exponents;  ///< compare only
   double elapsed_s = 0;
