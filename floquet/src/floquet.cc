@@ -140,6 +140,17 @@ void FloquetOptions::Validate() const {
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
 }
 
+FloquetMode MakeFloquetMode(std::complex<double> log_multiplier, int branch, double period) {
+  FloquetMode m;
+  m.log_multiplier = log_multiplier;
+  m.branch = branch;
+  m.exponent = log_multiplier / period + cd(0, branch * 2 * kPi / period);
+  m.frequency_hz = m.exponent.imag() / (2 * kPi);
+  const double mag = std::abs(m.exponent);
+  m.damping_ratio = mag > 0 ? -m.exponent.real() / mag : 0;
+  return m;
+}
+
 std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes) {
   std::vector<int> order(modes.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
@@ -323,10 +334,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
 
   // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
   std::vector<FloquetMode> modes(n);
-  for (int k = 0; k < n; ++k) {
-    modes[k].log_multiplier = log_rho[k];
-    modes[k].exponent = log_rho[k] / T;
-  }
+  for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(log_rho[k], 0, T);  // principal branch
   if (options.compute_modes && n > 0) {
     std::vector<double> dt(grid.factors.size());
     for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
@@ -417,8 +425,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
         m = (im_lo >= -1e-12 * omega && (im_hi < -1e-12 * omega || im_lo <= im_hi)) ? lo : hi;
       }
       FloquetMode& mode = modes[k];
-      mode.branch = prior[k] + m;
-      mode.exponent = log_rho[k] / T + cd(0, mode.branch * omega);
+      mode = MakeFloquetMode(log_rho[k], prior[k] + m, T);
       mode.central_weight = (std::abs(m) <= H ? energy[m + H] : 0) / total;
       mode.branch_margin = std::max(0.0, 0.5 - std::abs(centroid - m));
       mode.eigvec_residual = vecs[k].residual;
@@ -486,11 +493,6 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     }
   } else {
     r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
-  }
-  for (FloquetMode& mode : modes) {
-    mode.frequency_hz = mode.exponent.imag() / (2 * kPi);
-    const double mag = std::abs(mode.exponent);
-    mode.damping_ratio = mag > 0 ? -mode.exponent.real() / mag : 0;
   }
 
   // 5. Order the modes: by |frequency|, positive first, then by Re λ.

@@ -41,19 +41,14 @@ using cd = std::complex<double>;
 using hill_internal::Eigenpairs;
 constexpr double kPi = std::numbers::pi;
 
-// `tie`: the selection found λ and λ ± jΩp equally centred, so a multiplier with arg ρ
-// within round-off of ±π is the negative real one, reported with arg ρ = +π as (−π, π] says.
+// The mode of a selected Hill eigenvalue μ: its multiplier's logarithm and branch. `tie`: the
+// selection found μ and μ ± jΩp equally centred, so a multiplier with arg ρ within round-off of
+// ±π is the negative real one, reported with arg ρ = +π as (−π, π] says.
 FloquetMode MakeMode(cd mu, double T, double omega, bool tie) {
-  FloquetMode m;
-  m.exponent = mu;
   double arg = std::remainder(mu.imag() * T, 2 * kPi);
   if (arg <= -kPi || (tie && arg < -kPi * (1 - 1e-8))) arg += 2 * kPi;
-  m.log_multiplier = cd(mu.real() * T, arg);
-  m.branch = static_cast<int>(std::lround((mu.imag() - arg / T) / omega));
-  m.frequency_hz = mu.imag() / (2 * kPi);
-  const double mag = std::abs(mu);
-  m.damping_ratio = mag > 0 ? -mu.real() / mag : 0;
-  return m;
+  const int branch = static_cast<int>(std::lround((mu.imag() - arg / T) / omega));
+  return MakeFloquetMode(cd(mu.real() * T, arg), branch, T);
 }
 
 // Eigenpairs with the requested solver; the structured one falls back to dense when it misses

@@ -41,12 +41,7 @@ bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& opt
   for (int k = 0; k < n; ++k) {
     if (!(std::abs(rho(k)) > 0)) return false;  // underflow: the full analysis keeps it
     const cd log_rho = std::log(rho(k));
-    FloquetMode& m = point.modes[static_cast<size_t>(k)];
-    m.log_multiplier = log_rho;
-    m.exponent = log_rho / T;
-    m.frequency_hz = m.exponent.imag() / (2 * std::numbers::pi);
-    const double mag = std::abs(m.exponent);
-    m.damping_ratio = mag > 0 ? -m.exponent.real() / mag : 0;
+    point.modes[static_cast<size_t>(k)] = MakeFloquetMode(log_rho, 0, T);
   }
   const std::vector<int> order = ModeDisplayOrder(point.modes);
   std::vector<FloquetMode> sorted;

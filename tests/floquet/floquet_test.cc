@@ -220,6 +220,18 @@ TEST(StiffMultipliers, PeriodicSchurKeepsEveryExponentSingleShotDoesNot) {
   EXPECT_TRUE(said_liouville(one));
 }
 
+// --- One mode builder --------------------------------------------------------------------
+TEST(Modes, MakeFloquetModeFollowsTheConventions) {
+  // ρ = −2 with T = π (Ωp = 2): log ρ = ln 2 + jπ; branch 1 adds jΩp: λ = ln2/π + j(1 + 2).
+  const FloquetMode m = MakeFloquetMode(cd(std::log(2.0), kPi), 1, kPi);
+  EXPECT_NEAR(m.exponent.real(), std::log(2.0) / kPi, 1e-15);
+  EXPECT_NEAR(m.exponent.imag(), 3.0, 1e-15);
+  EXPECT_NEAR(m.frequency_hz, 3.0 / (2 * kPi), 1e-15);
+  EXPECT_NEAR(m.damping_ratio, -m.exponent.real() / std::abs(m.exponent), 1e-15);
+  EXPECT_EQ(m.branch, 1);
+  EXPECT_EQ(MakeFloquetMode(cd(0, 0), 0, 1.0).damping_ratio, 0);  // λ = 0
+}
+
 // --- Liouville: Σ log|ρ| = ∫ tr A on random periodic systems ------------------------------------
 TEST(Liouville, RandomPeriodicSystems) {
   std::mt19937 rng(7);

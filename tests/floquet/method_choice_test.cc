@@ -153,7 +153,9 @@ TEST(MethodChoice, DenseHillOnStiffYamlDoesNotUnderstateItsError) {
     const HillResult h = AnalyzeHill(s, o);
     ASSERT_EQ(h.modes.size(), 3u) << "N = " << N;  // three exponents, one of them wrong
     // Either the estimate covers the miss (below) or the check failed and the result says so.
-    if (!h.ok) EXPECT_EQ(h.verdict, StabilityVerdict::kFailed) << "N = " << N;
+    if (!h.ok) {
+      EXPECT_EQ(h.verdict, StabilityVerdict::kFailed) << "N = " << N;
+    }
     EXPECT_NE(h.verdict, StabilityVerdict::kStable) << "N = " << N;  // the system is unstable
     const double err = MatchedDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
     EXPECT_GT(err, 100) << "N = " << N;  // the miss this test is about

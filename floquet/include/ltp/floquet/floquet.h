@@ -122,6 +122,11 @@ struct FloquetResult {
 /// (see ok and diagnostics); throws InputError for invalid options.
 FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& options = {});
 
+/// The mode of the multiplier log ρ (arg in (−π, π]) on branch m: exponent λ = log ρ / T + j m Ωp,
+/// frequency Im λ / 2π, damping ratio −Re λ / |λ| (0 when λ = 0). Every route builds its modes
+/// here; the shape-related fields (central_weight, branch_margin, …) are left at their defaults.
+FloquetMode MakeFloquetMode(std::complex<double> log_multiplier, int branch, double period);
+
 /// The order in which both routes (monodromy and Hill) report modes: by |Im λ|, positive
 /// frequency first, then by Re λ descending. Returns indices into `modes`.
 std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes);
