@@ -218,13 +218,12 @@ int RunChart(ChartArgs& args) {
     bopt.rel_tol = args.refine_tol;
     bopt.max_lines = args.refine_lines;
     bopt.threads = options.threads;
+    bopt.refine = !args.no_refine;
     const auto refine_start = Clock::now();
     std::vector<UnstableInterval> intervals;
     std::vector<BoundaryPoint> boundary;
     if (!map) {
       intervals = RefineUnstableIntervals(l.scene, l.parameters, grid, points, options, bopt);
-      if (args.no_refine)
-        for (auto& in : intervals) in.lo.refined = in.hi.refined = false;
     }
     if (map && !args.no_refine)
       boundary = RefineBoundaryPoints(l.scene, l.parameters, grid, points, options, bopt);

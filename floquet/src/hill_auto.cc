@@ -61,6 +61,15 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
       return finish(std::move(best), false, s.str());
     }
     if (best.harmonics >= max_harmonics) break;
+    // Doubling N shrinks the change of a converging truncation at least 2× (algebraic p >= 1,
+    // far more for smooth A): a change that did not is round-off — near a double multiplier an
+    // ill-conditioned exponent stalls at ~1e-13 — and larger N only costs time.
+    if (best.ok && previous_change > 0 && change > 0.5 * previous_change) {
+      s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
+        << change << " 1/s no longer shrinks as N doubles (it was " << previous_change
+        << "): round-off of this problem, above the tolerance " << goal;
+      return finish(std::move(best), false, s.str());
+    }
     // Slow (algebraic) convergence: at the rate seen between the last two truncations, would
     // the tolerance be met below max_harmonics? If not, stop now rather than spend minutes.
     if (best.ok && previous_change > 0 && change > 0 && std::isfinite(change) && change < previous_change) {

@@ -155,9 +155,16 @@ std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const 
     i = j;
   }
   std::vector<BoundaryEstimate> results(jobs.size());
+  if (!options.refine) {
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      results[k].value = jobs[k].b;  // the unstable grid point
+      results[k].bracket = std::abs(jobs[k].b - jobs[k].a);
+      results[k].note = "not refined (refinement off): the grid value";
+    }
+  }
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long k = 0; k < static_cast<long>(jobs.size()); ++k) {
+  for (long k = 0; k < (options.refine ? static_cast<long>(jobs.size()) : 0L); ++k) {
     const Job& job = jobs[static_cast<size_t>(k)];
     results[static_cast<size_t>(k)] = Refine(scene, base, name, job.a, job.b, job.a_far, span, sweep, options);
   }

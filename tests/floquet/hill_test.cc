@@ -4,6 +4,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
 
+#include <gsl/gsl_sf_mathieu.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -375,6 +376,26 @@ TEST(HillJumps, AutomaticTruncationSaysItStoppedShortAndStaysHonest) {
     // Time reported is the whole call (every truncation tried), not the last solve.
     EXPECT_GE(h.elapsed_s, 0.9 * wall);
   }
+}
+
+TEST(HillAuto, StopsAtRoundOffNearABoundary) {
+  // On the first tongue's boundary a = a_1(q) (GSL) the multipliers are a double −1 and the
+  // exponents are ill-conditioned: the N vs N+Δ change stalls near 1e-13 and a tolerance of
+  // 1e-14 is out of reach. The loop must stop once doubling N no longer shrinks the change (it
+  // used to climb to N = 128 with three dense solves per step: minutes inside a chart's
+  // boundary refinement) and say so, with an estimate that still covers the error.
+  const double q = 0.2;
+  const PeriodicSystem s = test::Mathieu(gsl_sf_mathieu_a(1, q), q);
+  const FloquetResult ref = Reference(s);
+  HillOptions o;
+  o.harmonics = 4;
+  const HillResult h = AnalyzeHillAuto(s, o, 1e-14, 128);
+  ASSERT_TRUE(h.ok);
+  ASSERT_TRUE(h.tolerance_met.has_value());
+  EXPECT_FALSE(*h.tolerance_met);
+  EXPECT_LE(h.harmonics, 32);
+  const double err = MaxDistanceModulo(Exponents(h.modes), Exponents(ref.modes), s.omega());
+  EXPECT_GE(h.error_estimate + ref.error_estimate, err);
 }
 
 TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {

@@ -25,6 +25,8 @@ struct BoundaryOptions {
   /// 2-D maps: refine along at most this many grid lines per axis (evenly spread); 0 = all.
   int max_lines = 50;
   int threads = 0;
+  /// false: intervals keep their grid values (no evaluations at all), each boundary noting why.
+  bool refine = true;
 };
 
 struct BoundaryEstimate {
