@@ -98,9 +98,6 @@ int RunPfrf(PfrfArgs& args) {
   o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "output");
   o.check_every = args.check_every;
   o.htf.harmonics = args.htf_harmonics;
-  // The decomposition and the modal samples by the study's cheapest integrator for this system.
-  o.floquet.integrator.type = IntegratorType::kAuto;
-  o.modal.integrator.type = IntegratorType::kAuto;
   if (args.route == "all") {
     o.primary = PfrfRoute::kModal;
     o.checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};

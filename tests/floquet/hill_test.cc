@@ -269,8 +269,10 @@ TEST(HillSelection, StripEdgeExponentsAreTheSystemsOwn) {
     EXPECT_NEAR(r.modes[k].frequency_hz, 1 / (2 * s.period()), 1e-9) << k;
     EXPECT_NEAR(std::abs(r.modes[k].log_multiplier.real()), sigma * s.period(), 1e-8) << k;
     EXPECT_NEAR(r.modes[k].log_multiplier.imag(), kPi, 1e-9) << k;
-    EXPECT_NEAR(std::abs(r.modes[k].exponent - ref.modes[k].exponent), 0, 1e-9) << k;
   }
+  // Same values as the monodromy route without any modulo (both report +Ωp/2); matched as sets,
+  // since the two modes share |Im λ| and their display order then rests on round-off.
+  EXPECT_LT(MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), 1e300), 1e-9);
 }
 
 TEST(HillSelection, DoubleNegativeMultiplierKeepsEveryFamily) {
@@ -481,6 +483,7 @@ TEST(HillOptionsTest, BadOptionsThrow) {
 
 TEST(HillOptionsTest, HugeTruncationIsAResourceErrorNotACrash) {
   HillOptions o;
+  o.solver = HillSolver::kDense;
   o.harmonics = 100000;  // (2N+1)·2 ≈ 4e5 → 2.4 TB dense
   try {
     AnalyzeHill(test::Mathieu(1, 0.1), o);

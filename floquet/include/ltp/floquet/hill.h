@@ -51,7 +51,7 @@ std::optional<HillSelectionRule> ParseHillSelectionRule(std::string_view name);
 struct HillOptions {
   /// Truncation N: harmonics −N..N.
   int harmonics = 16;
-  HillSolver solver = HillSolver::kDense;
+  HillSolver solver = HillSolver::kAuto;  ///< the CLI's default too
   HillSelectionRule selection = HillSelectionRule::kCentroid;
   /// A selection margin below this flags the choice as a tie between λ and λ ± jΩp (margins
   /// are in [0, 1]). A tie never needs resolving: both are the same exponent modulo jΩp (a

@@ -33,7 +33,8 @@ std::optional<IntegratorType> ParseIntegratorType(std::string_view name);
 std::vector<IntegratorType> AllIntegrators();
 
 struct IntegratorOptions {
-  IntegratorType type = IntegratorType::kDopri5;
+  /// The library's default is the CLI's: the study's cheapest integrator for the system.
+  IntegratorType type = IntegratorType::kAuto;
   /// Relative tolerance of the adaptive methods, and the target of automatic step selection
   /// for the fixed-step ones. Tight by default: Floquet exponents inherit this error.
   double rel_tol = 1e-10;
