@@ -470,10 +470,14 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     }
     // Eigenvalue condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(t)/||ξ_k(t)|| and y_k
     // the k-th row of Ξ(t)⁻¹ (left eigenvector scaled so that y_k x_k = 1), at that best t.
-    const Eigen::MatrixXcd left = best_xi.completeOrthogonalDecomposition().pseudoInverse();
-    for (size_t j = 0; j < good.size(); ++j)
-      kappa[good[j]] = std::isfinite(r.mode_condition) ? left.row(j).norm()
-                                                       : std::numeric_limits<double>::infinity();
+    if (good.empty()) {  // every cyclic solve failed: no mode matrix (and no condition) at all
+      r.mode_condition = std::numeric_limits<double>::infinity();
+    } else {
+      const Eigen::MatrixXcd left = best_xi.completeOrthogonalDecomposition().pseudoInverse();
+      for (size_t j = 0; j < good.size(); ++j)
+        kappa[good[j]] = std::isfinite(r.mode_condition) ? left.row(j).norm()
+                                                         : std::numeric_limits<double>::infinity();
+    }
     for (int k : failed_modes) {
       kappa[k] = std::numeric_limits<double>::infinity();
       std::ostringstream s;
@@ -483,7 +487,12 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
            "unaffected, its branch is the principal one and its shape is reported as zero";
       r.diagnostics.push_back(s.str());
     }
-    if (!(r.mode_condition < 1e8)) {
+    if (good.empty()) {
+      r.diagnostics.push_back("no periodic mode shape could be computed (the solutions grow and "
+                              "decay over hundreds of decades within a period): exponents and "
+                              "multipliers are unaffected; mode shapes, left modes and branches "
+                              "are not available");
+    } else if (!(r.mode_condition < 1e8)) {
       std::ostringstream s;
       s << "mode matrix is ill-conditioned (cond = " << r.mode_condition
         << "): the monodromy is (near-)defective, e.g. a double multiplier at ±1 on a stability "

@@ -41,6 +41,26 @@ using cd = std::complex<double>;
 using hill_internal::Eigenpairs;
 constexpr double kPi = std::numbers::pi;
 
+// How far the frozen eigenvalues of A(t) stray from those of the averaged A_0 over the period
+// (1/s; 16 samples): a solution's local frequency wanders that far, so its Fourier content spans
+// about that many rad/s around its mean, and a truncation with N·Ωp below it cannot represent it
+// yet — whatever N vs N+Δ says (Mathieu q = 1e5: frozen eigenvalues ±447 against ±j, N = 200
+// gave ±21.7 with a change of 1.9 1/s against the true ±170).
+double FrozenEigenvalueSpread(const FourierMatrix& A, double omega) {
+  const int n = A.rows();
+  if (n == 0) return 0;
+  const Eigen::VectorXcd mean = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(A[0], false).eigenvalues();
+  double spread = 0;
+  for (int s = 0; s < 16; ++s) {
+    const double t = (s + 0.5) / 16 * 2 * kPi / omega;
+    const Eigen::MatrixXd frozen = A.Evaluate(t, omega);
+    const Eigen::VectorXcd e = Eigen::EigenSolver<Eigen::MatrixXd>(frozen, false).eigenvalues();
+    for (Eigen::Index i = 0; i < e.size(); ++i)
+      spread = std::max(spread, (mean.array() - e(i)).abs().minCoeff());
+  }
+  return spread;
+}
+
 // The mode of a selected Hill eigenvalue μ: its multiplier's logarithm and branch. `tie`: the
 // selection found μ and μ ± jΩp equally centred, so a multiplier with arg ρ within round-off of
 // ±π is the negative real one, reported with arg ρ = +π as (−π, π] says.
@@ -159,6 +179,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   r.decay = FitHillDecay(A, fit, N, T);  // also tells the truncation estimate the decay kind
 
   // Truncation estimate: the same analysis at N + Δ (shifts from this solve).
+  bool rate_checked = false;  // a third solve measured the convergence rate
   if (o.delta_harmonics >= 0 && r.ok) {
     r.delta_harmonics = o.delta_harmonics > 0 ? o.delta_harmonics : std::max(2, (N + 1) / 2);
     HillOptions o2 = o;
@@ -195,6 +216,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       // A tail above 1e-3 is the truncation edge whatever the size of the change (stiff.yaml,
       // structured solver at N = 16: tail 0.025, change 2.45e-9 for an error of 2.62e-9).
       if (tail > 1e-8 && (r.truncation_estimate > 1e-6 * scale || tail > 1e-3)) {
+        rate_checked = true;
         o2.expected.clear();
         for (const FloquetMode& m : r2.modes) o2.expected.push_back(m.exponent);
         const HillResult r3 = AnalyzeFixed(A, fit, T, N + 2 * r.delta_harmonics, o2);
@@ -213,6 +235,22 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     } catch (const ResourceError&) {
       r.delta_harmonics = 0;
       r.diagnostics.push_back("N + Δ estimate skipped: the larger truncation does not fit in memory");
+    }
+  }
+
+  // Resolution: below N·Ωp ≈ the frozen-eigenvalue spread the truncation may not have started
+  // to converge, and a small N vs N+Δ change alone proves nothing. (A third solve that measured
+  // geometric convergence is evidence: stiff.yaml's exponents converge at N = 16 although its
+  // frozen eigenvalues swing by ±100.)
+  if (!rate_checked && r.truncation_estimate >= 0 && std::isfinite(r.truncation_estimate)) {
+    const double spread = FrozenEigenvalueSpread(A, omega);
+    if (N * omega < spread) {
+      std::ostringstream s;
+      s << "N·Ωp = " << N * omega << " 1/s is below the spread of the frozen eigenvalues of A(t) ("
+        << spread << " 1/s): the truncation cannot resolve the solutions yet, so the N vs N+Δ "
+        << "change is no error bound (raise N to at least " << std::ceil(spread / omega) << ")";
+      r.diagnostics.push_back(s.str());
+      r.truncation_estimate = std::numeric_limits<double>::infinity();
     }
   }
 

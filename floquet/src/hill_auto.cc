@@ -64,7 +64,7 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     // Doubling N shrinks the change of a converging truncation at least 2× (algebraic p >= 1,
     // far more for smooth A): a change that did not is round-off — near a double multiplier an
     // ill-conditioned exponent stalls at ~1e-13 — and larger N only costs time.
-    if (best.ok && previous_change > 0 && change > 0.5 * previous_change) {
+    if (best.ok && previous_change > 0 && std::isfinite(change) && change > 0.5 * previous_change) {
       s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
         << change << " 1/s no longer shrinks as N doubles (it was " << previous_change
         << "): round-off of this problem, above the tolerance " << goal;
@@ -83,8 +83,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
         return finish(std::move(best), false, s.str());
       }
     }
-    previous_n = best.ok ? best.harmonics : 0;
-    previous_change = best.ok ? change : -1;
+    previous_n = best.ok && std::isfinite(change) ? best.harmonics : 0;
+    previous_change = best.ok && std::isfinite(change) ? change : -1;
     options.harmonics = std::min(2 * options.harmonics, max_harmonics);
   }
   std::ostringstream s;

@@ -400,6 +400,24 @@ TEST(HillAuto, StopsAtRoundOffNearABoundary) {
   EXPECT_GE(h.error_estimate + ref.error_estimate, err);
 }
 
+TEST(HillAuto, UnresolvedTruncationClaimsNoBound) {
+  // Mathieu q = 1e5: the frozen eigenvalues swing between ±447 and ±447j, the exponents are
+  // ±170.2 (monodromy route; the WKB growth over a period, ∫_{|t|<π/4} √(2q cos 2t) dt =
+  // 1.198·√(2q) ≈ 536, agrees with its log|ρ| = 534.8). At N = 200 (N·Ωp = 400 < 443) Hill returned ±21.7 with an
+  // N vs N+Δ change of 1.9 and called that its estimate; now there is no bound.
+  const PeriodicSystem s = test::Mathieu(1, 1e5, 0.02);
+  const FloquetResult ref = Reference(s);
+  ASSERT_TRUE(ref.ok);
+  EXPECT_NEAR(ref.max_log_abs_multiplier, 536, 3);  // WKB, leading order
+  HillOptions o;
+  o.harmonics = 200;
+  o.solver = HillSolver::kStructured;
+  const HillResult h = AnalyzeHill(s, o);
+  const double err = MaxDistanceModulo(Exponents(h.modes), Exponents(ref.modes), s.omega());
+  EXPECT_GE(h.error_estimate, err);
+  EXPECT_NE(h.verdict, StabilityVerdict::kStable);
+}
+
 TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {
   // Mathieu a = 6, q = 0.5, c = 0.1: frequency ≈ √6 ≈ 2.45 rad/s > Ωp/2 = 1, so the strip rule
   // reports the copy shifted by −jΩp (or −2jΩp) while the centroid rule keeps the physical
