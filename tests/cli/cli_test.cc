@@ -171,6 +171,28 @@ TEST(Cli, BothRoutesAgreeOnRepeatedMultipliersAndJumps) {
     }
 }
 
+// Huge coefficients used to crash (SIGSEGV: every periodic mode shape failed and the empty mode
+// matrix was decomposed). Now the exponents stand, and the output says the shapes are missing.
+// Reference: WKB, leading order — the growth over a period is ∫ √(k(t)) dt where k(t) > 0:
+// y'' = 1e6 sin(t) y on [0, π]: 1000 ∫_0^π √(sin t) dt = 2396.3; Mathieu q = 1e5 (a = 1):
+// ∫_{|t|<π/4} √(2q cos 2t) dt = 1.1981 √(2q) = 535.8.
+TEST(Cli, HugeCoefficientsAnalyseWithoutModeShapes) {
+  const struct {
+    std::string args;
+    double log_rho;
+  } cases[] = {{Src("tests/data/robustness/crash_segv_all_modes_failed.yaml"), 2396.3},
+               {"mathieu --set q=1e5", 535.8}};
+  for (const auto& c : cases) {
+    const Outcome r = Ltp("floquet " + c.args + " --json");
+    ASSERT_EQ(r.code, 0) << c.args << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(j["max_log_abs_multiplier"].get<double>(), c.log_rho, 0.005 * c.log_rho) << c.args;
+    bool said = false;
+    for (const auto& d : j["diagnostics"]) said = said || d.get<std::string>().find("no periodic mode shape") != std::string::npos;
+    EXPECT_TRUE(said) << c.args;
+  }
+}
+
 // Two independent routes (monodromy, Hill) on a smooth scene: their disagreement must lie
 // within the sum of their own error estimates (each estimate covers its own route's error).
 TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
