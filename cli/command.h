@@ -4,6 +4,8 @@
 // parse and write; the numbers come from the library.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace ltp::cli {
 
@@ -11,6 +13,23 @@ struct Command {
   CLI::App* app = nullptr;
   std::function<int()> run;  ///< exit code: 0 ok, 1 result unusable; throws ltp::Error → 2
 };
+
+/// Why a command's result is unusable (exit 1): `main` prints it as one line `ltp: failed: …`
+/// on stderr, so scripts and sweeps can log the cause (the full report is on stdout).
+inline std::string& FailureReason() {
+  static std::string reason;
+  return reason;
+}
+/// The first diagnostic that says what failed (or the last one), prefixed by `what`.
+inline void SetFailureFrom(const std::string& what, const std::vector<std::string>& diagnostics) {
+  std::string line = diagnostics.empty() ? "no diagnostics" : diagnostics.back();
+  for (const std::string& d : diagnostics)
+    if (d.find("fail") != std::string::npos || d.find("FAIL") != std::string::npos) {
+      line = d;
+      break;
+    }
+  FailureReason() = what + ": " + line;
+}
 
 Command AddScenesCommand(CLI::App& app);
 Command AddInfoCommand(CLI::App& app);

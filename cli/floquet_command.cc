@@ -327,6 +327,8 @@ int RunFloquet(FloquetArgs& args) {
   }
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
+  if (run_mono && !r.ok) SetFailureFrom("monodromy route", r.diagnostics);
+  else if (run_hill && !h.ok) SetFailureFrom("Hill's method", h.diagnostics);
 
   if (args.json) {
     json j;

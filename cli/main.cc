@@ -1,5 +1,6 @@
-// The `ltp` command. Errors: one line on stderr, exit code 2. Unusable numerical results:
-// exit code 1.
+// The `ltp` command. Exit codes: 0 done; 1 the analysis ran and its result is unusable (failed
+// its own checks, no steady state, …: the report is on stdout, one line `ltp: failed: …` on
+// stderr); 2 the input was refused (one line `ltp: error: …` on stderr).
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
@@ -40,7 +41,18 @@ int main(int argc, char** argv) {
   }
   try {
     for (const auto& c : commands)
-      if (c.app->parsed()) return c.run();
+      if (c.app->parsed()) {
+        const int code = c.run();
+        if (code == 1) {
+          std::string reason = ltp::cli::FailureReason();
+          if (reason.empty()) reason = "the analysis ran but its result is unusable (report on stdout)";
+          for (char& ch : reason)
+            if (ch == '\n') ch = ' ';
+          if (reason.size() > 400) reason = reason.substr(0, 400) + " …";
+          std::cerr << "ltp: failed: " << c.app->get_name() << ": " << reason << "\n";
+        }
+        return code;
+      }
   } catch (const std::exception& e) {
     std::string message = e.what();  // one line, whatever the library's message holds
     for (char& ch : message)

@@ -176,6 +176,7 @@ int RunPfrf(PfrfArgs& args) {
               {"ok", r.ok},
               {"diagnostics", r.diagnostics}};
     std::cout << j.dump(2) << "\n";
+    if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
     return r.ok ? 0 : 1;
   }
 
@@ -255,6 +256,7 @@ int RunPfrf(PfrfArgs& args) {
       std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "") << "\n";
   }
   std::cout << "\n  total " << Num(r.elapsed_s, 4) << " s\n";
+  if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
   return r.ok ? 0 : 1;
 }
 

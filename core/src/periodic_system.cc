@@ -249,12 +249,18 @@ Eigen::MatrixXd PeriodicSystem::D(double t) const {
   return out;
 }
 
-LtiSystem PeriodicSystem::Snapshot(double t) const { return {A(t), B(t), C(t), D(t)}; }
+LtiSystem PeriodicSystem::Snapshot(double t) const {
+  if (!std::isfinite(t)) throw InputError("snapshot time must be a finite number of seconds");
+  t = std::fmod(t, period());  // exact: the system is T-periodic, and A(1e308) would be noise
+  return {A(t), B(t), C(t), D(t)};
+}
 
 LtiSystem PeriodicSystem::SnapshotAtAngle(double angle_rad) const {
   if (!impl_->rotor_speed || *impl_->rotor_speed == 0)
     throw InputError("this system has no rotor speed: give a snapshot time instead of an angle");
-  return Snapshot(angle_rad / *impl_->rotor_speed);
+  if (!std::isfinite(angle_rad)) throw InputError("snapshot angle must be a finite number");
+  // One revolution is 2π whatever the angle's size; reducing first keeps t finite.
+  return Snapshot(std::fmod(angle_rad, 2 * std::numbers::pi) / *impl_->rotor_speed);
 }
 
 const std::vector<double>& PeriodicSystem::breakpoints() const { return impl_->breakpoints; }

@@ -163,7 +163,10 @@ std::vector<IntegratorType> AllIntegrators() {
 void IntegratorOptions::Validate() const {
   if (!ParseIntegratorType(ToString(type)))
     ThrowOption("type", static_cast<int>(type), "one of the IntegratorType values");
-  if (!(rel_tol > 0 && rel_tol < 1)) ThrowOption("rel_tol", rel_tol, "0 < rel_tol < 1");
+  // Below ~1e-15 no integrator in double precision can deliver the tolerance (eps = 2.2e-16
+  // per operation, accumulated over the steps): refuse it rather than fail at run time.
+  if (!(rel_tol >= 1e-15 && rel_tol < 1))
+    ThrowOption("rel_tol", rel_tol, "1e-15 <= rel_tol < 1 (double precision delivers no more)");
   if (!(abs_tol >= 0 && std::isfinite(abs_tol)))
     ThrowOption("abs_tol", abs_tol, "0 <= abs_tol < inf");
   if (steps_per_period < 0)

@@ -60,10 +60,10 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
   SnapshotResult r;
   r.frequencies_hz = options.frequencies_hz;
   if (options.angle_deg) {
-    const double rad = *options.angle_deg * std::numbers::pi / 180;
+    const double rad = std::fmod(*options.angle_deg, 360.0) * std::numbers::pi / 180;  // 1e308° stays finite
     r.frozen = system.SnapshotAtAngle(rad);  // throws InputError without a rotor speed
     r.angle_deg = options.angle_deg;
-    r.time = rad / *system.rotor_speed();
+    r.time = std::fmod(rad, 2 * std::numbers::pi) / *system.rotor_speed();
   } else {
     r.time = *options.time;
     r.frozen = system.Snapshot(r.time);

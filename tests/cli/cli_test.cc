@@ -158,8 +158,8 @@ TEST(Cli, StripEdgeFrequencyIsHalfTheParametricFrequencyOnBothRoutes) {
 // (10 states), a discontinuous A(t) (square wave). Both routes ok, and their disagreement within
 // the sum of their own estimates.
 TEST(Cli, BothRoutesAgreeOnRepeatedMultipliersAndJumps) {
-  for (const std::string scene : {Src("tests/data/double-negative-multiplier.yaml"), Src("scenes/meissner.yaml")})
-    for (const std::string solver : {"auto", "structured", "dense"}) {
+  for (const std::string& scene : {Src("tests/data/double-negative-multiplier.yaml"), Src("scenes/meissner.yaml")})
+    for (const char* solver : {"auto", "structured", "dense"}) {
       const Outcome r = Ltp("floquet " + scene + " --method both --hill-solver " + solver + " --json");
       ASSERT_EQ(r.code, 0) << scene << " " << solver << ": " << r.err;
       const auto j = nlohmann::json::parse(r.out);

@@ -154,8 +154,11 @@ TEST(IntegratorOptions, ValidateNamesTheField) {
     o.Validate();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "IntegratorOptions::rel_tol = -1. Violated constraint: 0 < rel_tol < 1");
+              "IntegratorOptions::rel_tol = -1. Violated constraint: 1e-15 <= rel_tol < 1 (double "
+              "precision delivers no more)");
   }
+  o.rel_tol = 1e-300;  // positive, but below what double precision can deliver
+  ExpectInvalid(o, "rel_tol");
 }
 
 TEST(TransitionInput, BadOptionsAndBackwardIntervalsThrow) {

@@ -1,0 +1,57 @@
+// The exit-code contract (cli/main.cc): 0 done; 1 the analysis ran and its result is unusable,
+// with one line `ltp: failed: …` on stderr naming the cause; 2 input refused, one line
+// `ltp: error: …`. Inputs from the robustness reproducers that used to answer unclearly.
+#include <gtest/gtest.h>
+
+#include "support/ltp_cli.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+using test::RunLtp;
+std::string Src(const std::string& rel) { return std::string(LTP_SOURCE_DIR) + "/" + rel; }
+int Lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(ExitCodes, FailedAnalysisSaysWhyOnStderr) {
+  // Result that fails its own Liouville check (see cli_test.cc), and a time route with no
+  // steady state (undamped Mathieu inside a tongue).
+  for (const std::string& args :
+       {"floquet " + Src("tests/data/stiff-rotating.yaml") + " --segments 1 --multipliers single-shot",
+        std::string("pfrf mathieu --freq 0:1:0.25 --route time --set c=0 --set q=2 --set a=1.5")}) {
+    const auto r = RunLtp(args);
+    EXPECT_EQ(r.code, 1) << args;
+    EXPECT_EQ(Lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("ltp: failed: ", 0), 0u) << r.err;
+  }
+}
+
+TEST(ExitCodes, ImpossibleToleranceIsRefusedUpFront) {
+  const auto r = RunLtp("floquet mathieu --tol 1e-300");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(Lines(r.err), 1);
+  EXPECT_NE(r.err.find("double precision"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(ExitCodes, SnapshotTimesAreFiniteAndReducedModuloThePeriod) {
+  for (const char* at : {"nan", "inf", "-inf"}) {
+    const auto r = RunLtp(std::string("info mathieu --at ") + at);
+    EXPECT_EQ(r.code, 2) << at;
+    EXPECT_NE(r.err.find("finite"), std::string::npos) << r.err;
+  }
+  // A huge angle is a valid number: the frozen system is the one at angle mod 360°, so the
+  // FRF equals the one at that reduced angle (fmod is exact) and contains no NaN.
+  const auto big = RunLtp("snapshot jeffcott --angle 1e308 --freq 0:0.2:0.1 --json");
+  ASSERT_EQ(big.code, 0) << big.err;
+  EXPECT_EQ(big.out.find("nan"), std::string::npos);
+  const double reduced = std::fmod(1e308, 360.0);
+  const auto same = RunLtp("snapshot jeffcott --angle " + std::to_string(reduced) + " --freq 0:0.2:0.1 --json");
+  const auto a = nlohmann::json::parse(big.out), b = nlohmann::json::parse(same.out);
+  EXPECT_NEAR(a["time"].get<double>(), b["time"].get<double>(), 1e-9);
+}
+
+}  // namespace
