@@ -27,6 +27,7 @@
 #include "chart_record.h"
 #include "command.h"
 #include "format.h"
+#include "ltp/floquet/threads.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
@@ -149,7 +150,7 @@ int RunChart(ChartArgs& args) {
     // (README, stability-chart benchmark). 1-D sweeps: rkf78, which suits their short segments.
     if (args.integrator.empty()) args.integrator = map ? "bs" : "rkf78";
     const SweepOptions options = MakeOptions(args, map);
-    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    const int threads = ThreadsFor(options.threads);
 
     json identity = {{"scene", l.scene.name}, {"source", l.scene.source},
                      {"parameters", ParametersJson(l.parameters)}, {"method", args.method},

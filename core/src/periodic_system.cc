@@ -40,9 +40,13 @@ struct PeriodicSystem::Impl {
 namespace {
 
 void CheckPeriod(double period) {
-  if (!std::isfinite(period) || period <= 0) {
+  // A subnormal period (1e-320 s) has Ωp = 2π/T = inf: every exponent's imaginary part and
+  // branch would be NaN. Refuse it with the reason.
+  if (!std::isfinite(period) || period <= 0 || !std::isnormal(period) ||
+      !std::isfinite(2 * std::numbers::pi / period)) {
     std::ostringstream s;
-    s << "period = " << period << ": must be finite and > 0";
+    s << "period = " << period << " s: must be a finite, positive, normal number (Ωp = 2π/T must be "
+      << "finite too)";
     throw InputError(s.str());
   }
 }

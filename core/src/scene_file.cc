@@ -463,7 +463,32 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
   return *system;
 }
 
+// Byte offset of the first byte that breaks UTF-8, or npos. Scene text ends up in JSON output
+// and terminals: a stray byte (0xFF in a name) is refused here with its line, not by the JSON
+// writer later with a library's message.
+size_t InvalidUtf8At(const std::string& text) {
+  const auto* b = reinterpret_cast<const unsigned char*>(text.data());
+  const size_t n = text.size();
+  for (size_t i = 0; i < n;) {
+    const unsigned char c = b[i];
+    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (extra < 0 || (extra == 1 && c < 0xC2) || i + extra >= n + (extra == 0 ? 1 : 0)) return i;
+    for (int k = 1; k <= extra; ++k)
+      if (i + k >= n || (b[i + k] & 0xC0) != 0x80) return i;
+    i += extra + 1;
+  }
+  return std::string::npos;
+}
+
 YAML::Node LoadYaml(const std::string& text, const std::string& source) {
+  if (const size_t at = InvalidUtf8At(text); at != std::string::npos) {
+    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+    std::ostringstream s;
+    s << source << ":" << line << ": not valid UTF-8 text (byte 0x" << std::hex
+      << static_cast<int>(static_cast<unsigned char>(text[at])) << " at offset " << std::dec << at
+      << "); scene files are UTF-8";
+    throw SceneError(s.str());
+  }
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {

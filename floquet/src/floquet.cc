@@ -1,3 +1,4 @@
+#include "ltp/floquet/threads.h"
 #include "ltp/floquet/floquet.h"
 
 #include <omp.h>
@@ -240,7 +241,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   r.period = T;
   r.integrator = std::string(ToString(options.integrator.type));
   r.multiplier_method = std::string(ToString(options.multipliers));
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = ThreadsFor(options.threads);
 
   // 1. Segment factors on a grid refined where factors grow or decay too fast.
   const int samples = options.compute_modes

@@ -1,3 +1,4 @@
+#include "ltp/floquet/threads.h"
 #include "ltp/floquet/stability_boundary.h"
 
 #include <omp.h>
@@ -162,7 +163,7 @@ std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const 
       results[k].note = "not refined (refinement off): the grid value";
     }
   }
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = ThreadsFor(options.threads);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long k = 0; k < (options.refine ? static_cast<long>(jobs.size()) : 0L); ++k) {
     const Job& job = jobs[static_cast<size_t>(k)];
@@ -204,7 +205,7 @@ std::vector<BoundaryPoint> RefineBoundaryPoints(const Scene& scene, const Parame
       }
     }
   }
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = ThreadsFor(options.threads);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long k = 0; k < static_cast<long>(jobs.size()); ++k) {
     Job& job = jobs[static_cast<size_t>(k)];

@@ -1,3 +1,4 @@
+#include "ltp/floquet/threads.h"
 #include "ltp/floquet/sweep.h"
 
 #include <omp.h>
@@ -262,7 +263,7 @@ size_t RunSweep(const Scene& scene, const ParameterMap& base, const SweepGrid& g
                 const std::function<void(SweepPoint&&)>& on_point,
                 const std::atomic<bool>* cancel) {
   options.Validate();
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = ThreadsFor(options.threads);
   size_t done = 0;
   const long count = static_cast<long>(indices.size());
   std::exception_ptr callback_error;  // rethrown after the loop: no exception leaves OpenMP

@@ -55,3 +55,31 @@ TEST(ExitCodes, SnapshotTimesAreFiniteAndReducedModuloThePeriod) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ExitCodes, BadSceneTextAndPeriodsAreRefusedWithTheirReason) {
+  // A 0xFF byte in the scene name used to surface as nlohmann's raw type_error.316.
+  const auto utf = RunLtp("floquet " + Src("tests/data/robustness/json_invalid_utf8_name.yaml") + " --json");
+  EXPECT_EQ(utf.code, 2);
+  EXPECT_NE(utf.err.find("not valid UTF-8"), std::string::npos) << utf.err;
+  EXPECT_EQ(utf.err.find("json.exception"), std::string::npos) << utf.err;
+  // T = 1e-320 s (subnormal): Ωp = inf, every exponent NaN — used to exit 0 saying UNSTABLE.
+  const auto tiny = RunLtp("floquet " + Src("tests/data/robustness/nonsense_denormal_period.yaml"));
+  EXPECT_EQ(tiny.code, 2);
+  EXPECT_NE(tiny.err.find("period"), std::string::npos) << tiny.err;
+}
+
+TEST(ExitCodes, ThreadsAreCappedAtTheMachine) {
+  // 10000 threads used to end in libgomp's "Thread creation failed" (exit 1). Same answer as
+  // the default now.
+  const auto many = RunLtp("floquet mathieu --threads 10000 --json");
+  const auto usual = RunLtp("floquet mathieu --json");
+  ASSERT_EQ(many.code, 0) << many.err;
+  const auto a = nlohmann::json::parse(many.out), b = nlohmann::json::parse(usual.out);
+  EXPECT_EQ(a["exponents"], b["exponents"]);
+  const auto chart = RunLtp("chart mathieu --sweep a=0:1:0.25 --threads 10000");
+  EXPECT_EQ(chart.code, 0) << chart.err;
+}
+
+}  // namespace
