@@ -318,6 +318,11 @@ class Parser {
   }
 
   size_t ReadMatrix(size_t at, const std::string& name, int rows, int cols, MatrixXd* m) const {
+    // Sizes the file cannot hold are refused before anything is allocated (a header can claim
+    // 99 999 999² entries).
+    if (rows < 0 || cols < 0 || static_cast<size_t>(rows) > lines_.size() - at - 1)
+      Fail(at, "matrix " + name + " declares " + std::to_string(rows) + " rows but the file has only " +
+                   std::to_string(lines_.size() - at - 1) + " lines after its header");
     m->resize(rows, cols);
     size_t i = at + 1;
     for (int r = 0; r < rows; ++r, ++i) {
@@ -344,6 +349,14 @@ class Parser {
                       name + " is " + t[c].text + ", not a finite number");
         (*m)(r, c) = v;
       }
+    }
+    // One row more than declared would otherwise pass as a caption and shift every later matrix.
+    if (i < lines_.size()) {
+      const std::vector<Token> extra = Tokenize(lines_[i]);
+      double v = 0;
+      if (static_cast<int>(extra.size()) == cols && cols > 0 && ParseNumber(extra[0].text, &v))
+        Fail(i, "matrix " + name + " has more rows than its header declares (" + std::to_string(rows) +
+                    " x " + std::to_string(cols) + ")");
     }
     return i - 1;
   }

@@ -175,7 +175,7 @@ TEST(OpenFastLin, MalformedFilesNameFileLineAndWhatWasExpected) {
   text = SmallFile();
   text.replace(text.find("B: 2 x 1"), 8, "B: 3 x 1");
   m = message(text);  // rows of B run out of the file
-  EXPECT_NE(m.find("of matrix B"), std::string::npos) << m;
+  EXPECT_NE(m.find("matrix B declares 3 rows"), std::string::npos) << m;
 
   m = message("just some text\nwithout a header\n");
   EXPECT_NE(m.find("Number of continuous states"), std::string::npos) << m;
@@ -184,6 +184,19 @@ TEST(OpenFastLin, MalformedFilesNameFileLineAndWhatWasExpected) {
   text.resize(text.find("          2    2.5-100"));
   m = message(text);
   EXPECT_NE(m.find("expected row 2 of 2"), std::string::npos) << m;
+
+  // A row more than the header declares used to pass as a caption and shift A (a mode moved
+  // from 0.588 to 0.250 Hz): the row after the declared ones must not be another row of numbers.
+  text = SmallFile();
+  text.replace(text.find("A: 2 x 2"), 8, "A: 1 x 2");
+  m = message(text);
+  EXPECT_NE(m.find("matrix A has more rows than its header declares (1 x 2)"), std::string::npos) << m;
+
+  // A header claiming 99 999 999 rows is refused before anything is allocated.
+  text = SmallFile();
+  text.replace(text.find("A: 2 x 2"), 8, "A: 99999999 x 99999999");
+  m = message(text);
+  EXPECT_NE(m.find("declares 99999999 rows but the file has only"), std::string::npos) << m;
 
   EXPECT_THROW(ReadLinFile("/nonexistent/x.lin"), SceneError);
 }
