@@ -96,6 +96,14 @@ class Reader {
     if (!node.IsSequence() || node.size() == 0)
       Fail(node, entry,
            "expected a matrix: a list of rows, e.g. [[\"0\", \"1\"], [\"-k\", \"0\"]]");
+    // A scene file's matrices are written out entry by entry; YAML aliases can make a short file
+    // describe millions of entries (5000 × 5000 zeros in 30 KB), each an expression to compile.
+    // Larger systems come as OpenFAST .lin sets or Fourier data, not hand-written scenes.
+    constexpr size_t kMaxDimension = 1000;
+    if (node.size() > kMaxDimension || (node[0].IsSequence() && node[0].size() > kMaxDimension))
+      Fail(node, entry,
+           "matrix larger than " + std::to_string(kMaxDimension) + " rows or columns (" +
+               std::to_string(node.size()) + " rows): the limit for expression scenes");
     ExpressionMatrixText rows;
     for (size_t r = 0; r < node.size(); ++r) {
       const YAML::Node row = node[r];

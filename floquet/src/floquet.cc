@@ -136,6 +136,8 @@ void FloquetOptions::Validate() const {
   if (segments < 0) fail("segments", segments, "segments >= 0 (0 = automatic)");
   if (!(max_factor_condition > 10)) fail("max_factor_condition", max_factor_condition, "> 10");
   if (max_segments < 1) fail("max_segments", max_segments, "max_segments >= 1");
+  if (segments > max_segments)
+    fail("segments", segments, "segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
     fail("mode_samples", mode_samples, "0 or a power of two >= 4");
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");

@@ -208,6 +208,16 @@ SweepGrid MakeSweepGrid(const Scene& scene, std::vector<SweepAxis> axes) {
     grid.values.push_back(axis.Values());
     if (grid.values.back().empty()) throw InputError("sweep of '" + axis.name + "' has no points");
   }
+  // Both axes within their own limit can still multiply to 10^8 points (several GB of results
+  // and hours of work): refuse up front, naming the limit.
+  constexpr double kMaxPoints = 1e7;
+  if (grid.values.size() == 2 &&
+      double(grid.values[0].size()) * double(grid.values[1].size()) > kMaxPoints) {
+    std::ostringstream s;
+    s << "the sweep has " << grid.values[0].size() << " × " << grid.values[1].size()
+      << " points, more than the limit of 10^7 per chart: use coarser steps or split the map";
+    throw InputError(s.str());
+  }
   grid.axes = std::move(axes);
   return grid;
 }

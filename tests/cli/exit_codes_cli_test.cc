@@ -82,4 +82,20 @@ TEST(ExitCodes, ThreadsAreCappedAtTheMachine) {
   EXPECT_EQ(chart.code, 0) << chart.err;
 }
 
+TEST(ExitCodes, SizesBeyondTheLimitsAreRefusedUpFront) {
+  // 10^8 chart points and 10^9 segments used to end in `ltp: error: std::bad_alloc`.
+  const auto map = RunLtp("chart mathieu --sweep a=0:1:1e-4 --sweep2 q=0:1:1e-4");
+  EXPECT_EQ(map.code, 2);
+  EXPECT_NE(map.err.find("limit of 10^7"), std::string::npos) << map.err;
+  const auto segments = RunLtp("floquet mathieu --segments 1000000000");
+  EXPECT_EQ(segments.code, 2);
+  EXPECT_NE(segments.err.find("max_segments"), std::string::npos) << segments.err;
+  // 5000 × 5000 zeros written compactly with YAML aliases (35 KB): used to hang compiling 25
+  // million expressions.
+  const auto alias = RunLtp("floquet " + Src("tests/data/robustness/bad_alloc_alias_5000.yaml"));
+  EXPECT_EQ(alias.code, 2);
+  EXPECT_NE(alias.err.find("limit for expression scenes"), std::string::npos) << alias.err;
+  for (const auto& r : {map, segments, alias}) EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos);
+}
+
 }  // namespace
