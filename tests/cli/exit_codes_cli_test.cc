@@ -98,4 +98,21 @@ TEST(ExitCodes, SizesBeyondTheLimitsAreRefusedUpFront) {
   for (const auto& r : {map, segments, alias}) EXPECT_EQ(r.err.find("std::bad_alloc"), std::string::npos);
 }
 
+TEST(ExitCodes, SingularitiesInsideThePeriodAreFoundWhereTheyAre) {
+  // A pole at t = 1 and a mass matrix cos(t) singular at π/2 used to hang `floquet` (steps
+  // shrinking without end) while `info` said nothing.
+  const struct {
+    const char* file;
+    const char* at;
+  } cases[] = {{"hang_pole_inside_period.yaml", "near t = 1 "},
+               {"hang_mass_singular_between_checks.yaml", "near t = 1.570796327"}};
+  for (const auto& c : cases)
+    for (const char* command : {"floquet", "info"}) {
+      const auto r = RunLtp(std::string(command) + " " + Src(std::string("tests/data/robustness/") + c.file));
+      EXPECT_EQ(r.code, 2) << command << " " << c.file;
+      EXPECT_NE(r.err.find(c.at), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("unbounded"), std::string::npos) << r.err;
+    }
+}
+
 }  // namespace
