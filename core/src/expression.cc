@@ -34,10 +34,17 @@ std::unique_ptr<mu::Parser> MakeParser(const std::string& text, const Constants&
   return parser;
 }
 
+// An expression as quoted in a message: a 1 MB expression must not become a 1 MB error line.
+std::string Quoted(const std::string& text) {
+  constexpr size_t kMax = 120;
+  return text.size() <= kMax ? text
+                             : text.substr(0, kMax) + "… (" + std::to_string(text.size()) + " characters)";
+}
+
 ExpressionError Translate(const mu::ParserError& e, const std::string& text) {
   if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN)
-    return ExpressionError("unknown name '" + e.GetToken() + "' in expression '" + text + "'");
-  return ExpressionError("bad expression '" + text + "': " + e.GetMsg());
+    return ExpressionError("unknown name '" + e.GetToken() + "' in expression '" + Quoted(text) + "'");
+  return ExpressionError("bad expression '" + Quoted(text) + "': " + e.GetMsg());
 }
 
 // Throws for a name called like a function that muParser does not know; muParser itself would
@@ -54,7 +61,7 @@ void CheckFunctionNames(const mu::Parser& parser, const std::string& text) {
     while (next < text.size() && std::isspace(static_cast<unsigned char>(text[next]))) ++next;
     const bool called = next < text.size() && text[next] == '(';
     if (called && IsIdentifier(word) && parser.GetFunDef().count(word) == 0)
-      throw ExpressionError("unknown function '" + word + "' in expression '" + text + "'");
+      throw ExpressionError("unknown function '" + word + "' in expression '" + Quoted(text) + "'");
     word.clear();
   }
 }
@@ -68,12 +75,12 @@ bool Check(mu::Parser& parser, const std::string& text, bool allow_t) {
     // GetUsedVar also lists names that are not defined at all: those are the unknown ones.
     for (const auto& [name, pointer] : parser.GetUsedVar()) {
       if (name != "t" || !allow_t)
-        throw ExpressionError("unknown variable '" + name + "' in expression '" + text + "'");
+        throw ExpressionError("unknown variable '" + name + "' in expression '" + Quoted(text) + "'");
       uses_t = true;
     }
     parser.Eval();
     if (parser.GetNumResults() != 1)
-      throw ExpressionError("expression '" + text + "' gives " +
+      throw ExpressionError("expression '" + Quoted(text) + "' gives " +
                             std::to_string(parser.GetNumResults()) + " values, expected one");
     return uses_t;
   } catch (const mu::ParserError& e) {

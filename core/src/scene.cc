@@ -69,7 +69,12 @@ Scene LoadScene(const std::string& name_or_path) {
     names += (names.empty() ? "" : ", ") + scene.name;
   }
   std::error_code error;
-  if (std::filesystem::exists(name_or_path, error)) return LoadSceneFile(name_or_path);
+  if (std::filesystem::exists(name_or_path, error)) {
+    // A named pipe or device would block reading forever.
+    if (!std::filesystem::is_regular_file(name_or_path, error))
+      throw InputError("'" + name_or_path + "' is not a regular file (a scene is a YAML file)");
+    return LoadSceneFile(name_or_path);
+  }
   throw InputError("unknown scene '" + name_or_path + "': not a built-in (" + names +
                    ") and no such file");
 }

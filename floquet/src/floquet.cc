@@ -136,6 +136,7 @@ void FloquetOptions::Validate() const {
   if (segments < 0) fail("segments", segments, "segments >= 0 (0 = automatic)");
   if (!(max_factor_condition > 10)) fail("max_factor_condition", max_factor_condition, "> 10");
   if (max_segments < 1) fail("max_segments", max_segments, "max_segments >= 1");
+  if (!(max_period_scale > 0)) fail("max_period_scale", max_period_scale, "max_period_scale > 0");
   if (segments > max_segments)
     fail("segments", segments, "segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
@@ -226,8 +227,30 @@ std::string FloquetResult::BriefReport() const {
   return s.str();
 }
 
+// T · max ‖A(t)‖ over 16 samples: the number of e-folds or radians a solution can move through
+// in one period, i.e. the work any integrator has to do. @throws InputError beyond the limit.
+void CheckPeriodScale(const PeriodicSystem& system, double limit) {
+  const int n = system.states();
+  if (n == 0) return;
+  Eigen::MatrixXd a(n, n);
+  double largest = 0;
+  for (int s = 0; s < 16; ++s) {
+    system.EvalA((s + 0.5) / 16 * system.period(), a);
+    largest = std::max(largest, a.stableNorm());  // no overflow for entries of 1e200
+  }
+  const double scale = system.period() * largest;
+  if (!(scale <= limit)) {
+    std::ostringstream s;
+    s << "T · max ‖A(t)‖ = " << scale << " (T = " << system.period() << " s): following the solutions "
+      << "over one period would take at least that many steps, beyond the limit "
+      << "FloquetOptions::max_period_scale = " << limit << " (coefficients or period out of scale?)";
+    throw InputError(s.str());
+  }
+}
+
 FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& requested) {
   requested.Validate();
+  CheckPeriodScale(system, requested.max_period_scale);
   const auto start = std::chrono::steady_clock::now();
   FloquetResult r;
   std::string choice;

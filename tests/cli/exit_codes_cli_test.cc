@@ -115,4 +115,18 @@ TEST(ExitCodes, SingularitiesInsideThePeriodAreFoundWhereTheyAre) {
     }
 }
 
+TEST(ExitCodes, OutOfScaleSystemsAreRefusedNotIntegratedForHours) {
+  // a = 1e200, q = 1e308 and a rotor speed of 1e-300 used to run past 20 s (killed); they are
+  // refused up front with T·max‖A‖. Huge but feasible coefficients (q = a = 1e6) still analyse.
+  for (const char* args : {"floquet mathieu --set a=1e200", "floquet mathieu --set q=1e308",
+                           "floquet rotor --set Omega=1e-300"}) {
+    const auto r = RunLtp(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find("max_period_scale"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(RunLtp("floquet mathieu --set a=1e6 --set q=1e6").code, 0);
+  // A pipe given as the scene used to block forever.
+  EXPECT_EQ(RunLtp("info /dev/stdin < /dev/null").code, 2);
+}
+
 }  // namespace

@@ -53,6 +53,10 @@ struct FloquetOptions {
   bool compute_modes = true;
   /// OpenMP threads for the segments; 0 = all cores.
   int threads = 0;
+  /// Largest T · max_t ‖A(t)‖ analysed: beyond it (a = 1e200, a rotor speed of 1e-300) no
+  /// integrator follows the solutions over a period in any reasonable time, and the analysis is
+  /// refused up front (InputError) instead of running for hours.
+  double max_period_scale = 1e10;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
