@@ -1,8 +1,16 @@
 #include "chart_record.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <iomanip>
 #include <sstream>
 
@@ -45,6 +53,36 @@ std::string Full(double x) {
   std::ostringstream s;
   s << std::setprecision(12) << x;
   return s.str();
+}
+
+// FNV-1a (64 bit) of a journal line: detects a forged or damaged record, not an adversary.
+std::string Checksum(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  std::ostringstream s;
+  s << std::hex << std::setw(16) << std::setfill('0') << h;
+  return s.str();
+}
+
+std::string JournalLine(const json& j) {
+  const std::string text = j.dump();
+  return text + "\t" + Checksum(text) + "\n";
+}
+
+// The JSON of a journal line whose checksum matches; nullopt for a torn or altered line.
+std::optional<json> ParseJournalLine(const std::string& line) {
+  const size_t tab = line.rfind('\t');
+  if (tab == std::string::npos) return std::nullopt;
+  const std::string text = line.substr(0, tab);
+  if (Checksum(text) != line.substr(tab + 1)) return std::nullopt;
+  try {
+    return json::parse(text);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -136,28 +174,32 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
                        "' completed, or never started); run without --resume");
     std::string line;
     if (!std::getline(in, line)) throw InputError("--resume: journal '" + journal + "' is empty");
-    json header;
-    try {
-      header = json::parse(line);
-    } catch (const std::exception&) {
-      throw InputError("--resume: '" + journal + "' line 1 is not a journal header");
-    }
-    if (header.value("identity", json()) != identity)
+    const std::optional<json> header = ParseJournalLine(line);
+    if (!header) throw InputError("--resume: '" + journal + "' line 1 is not a journal header");
+    if (header->value("identity", json()) != identity)
       throw InputError("--resume: '" + journal + "' belongs to a different sweep (scene, "
                        "parameters, sweep ranges or method differ); run without --resume to start over");
+    Lock();
+    // A line cut short by a kill, altered after the fact, or naming an index this grid does
+    // not have (or a second time) is not a point: it is simply computed again.
+    std::set<size_t> seen;
     while (std::getline(in, line)) {
-      // A line cut short by a kill is not a point: it is simply computed again.
+      const std::optional<json> j = ParseJournalLine(line);
+      if (!j) continue;
       try {
-        resumed_.push_back(PointFromJson(json::parse(line)));
+        SweepPoint p = PointFromJson(*j);
+        if (p.index >= grid_.size() || p.values != grid_.PointValues(p.index) || !seen.insert(p.index).second)
+          continue;
+        resumed_.push_back(std::move(p));
       } catch (const std::exception&) {
       }
     }
     in.close();
-    // Rewrite the journal without a torn last line, then append to it.
+    // Rewrite the journal with only the good records, then append to it.
     {
       std::ofstream out(journal, std::ios::trunc);
-      out << header.dump() << "\n";
-      for (const SweepPoint& p : resumed_) out << PointToJson(p).dump() << "\n";
+      out << JournalLine(*header);
+      for (const SweepPoint& p : resumed_) out << JournalLine(PointToJson(p));
       if (!out) throw InputError("cannot write '" + journal + "'");
     }
     journal_.open(journal, std::ios::app);
@@ -167,9 +209,10 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     for (const SweepPoint& p : resumed_) csv_ << Row(p, nullptr);
     csv_.flush();
   } else {
+    Lock();
     journal_.open(journal, std::ios::trunc);
     if (!journal_) throw InputError("cannot write '" + journal + "'");
-    journal_ << json{{"identity", identity}}.dump() << "\n";
+    journal_ << JournalLine(json{{"identity", identity}});
     journal_.flush();
     csv_.open(path_, std::ios::trunc);
     if (!csv_) throw InputError("cannot write '" + path_ + "'");
@@ -213,7 +256,7 @@ std::string ChartRecord::Row(const SweepPoint& p, const std::vector<int>* labels
 
 void ChartRecord::Add(const SweepPoint& point) {
   if (path_.empty()) return;
-  const std::string line = PointToJson(point).dump() + "\n";
+  const std::string line = JournalLine(PointToJson(point));
   const std::string row = Row(point, nullptr);
   std::lock_guard<std::mutex> lock(mutex_);
   journal_ << line;
@@ -243,6 +286,38 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const ModeTracki
   }
   std::filesystem::rename(tmp, path_);
   std::filesystem::remove(journal_path());
+}
+
+// One writer per FILE: the lock file holds the writer's pid; a lock whose process is gone
+// (kill -9) is stale and taken over.
+void ChartRecord::Lock() {
+  const std::string lock = path_ + ".lock";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd >= 0) {
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      const ssize_t written = ::write(fd, pid.data(), pid.size());
+      ::close(fd);
+      if (written != static_cast<ssize_t>(pid.size())) throw InputError("cannot write '" + lock + "'");
+      locked_ = true;
+      return;
+    }
+    std::ifstream in(lock);
+    long owner = 0;
+    in >> owner;
+    if (owner > 0 && owner != ::getpid() && (::kill(static_cast<pid_t>(owner), 0) == 0 || errno == EPERM))
+      throw InputError("another ltp chart (process " + std::to_string(owner) + ") is writing '" + path_ +
+                       "'; wait for it, or use another --csv file");
+    std::filesystem::remove(lock);  // stale: its writer is gone
+  }
+  throw InputError("cannot lock '" + path_ + "' (" + lock + ")");
+}
+
+ChartRecord::~ChartRecord() {
+  if (locked_) {
+    std::error_code ignored;
+    std::filesystem::remove(path_ + ".lock", ignored);
+  }
 }
 
 }  // namespace ltp::cli

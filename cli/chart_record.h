@@ -5,8 +5,14 @@
 //                        (completion order, modes in each point's own order) and rewritten
 //                        sorted by grid index with tracked mode labels when the sweep ends;
 //   FILE.points.jsonl    the journal: every completed point in full (exponents, mode shapes)
-//                        as one JSON line, flushed; `--resume` reads it and computes only the
-//                        missing points. Removed when the sweep completes.
+//                        as one JSON line followed by a tab and its FNV-1a checksum, flushed;
+//                        `--resume` reads it and computes only the missing points. A line that
+//                        is torn, forged (checksum), or names a grid index the sweep does not
+//                        have (or has twice) is dropped and its point computed again. Removed
+//                        when the sweep completes.
+//   FILE.lock            held while a sweep writes FILE (with the writer's process id): a
+//                        second `ltp chart` on the same FILE is refused, a stale lock left by a
+//                        killed process is taken over.
 #include <chrono>
 #include <cstddef>
 #include <mutex>
@@ -33,6 +39,9 @@ class ChartRecord {
   /// or with one from a different sweep.
   ChartRecord(std::string path, const SweepGrid& grid, int states, const nlohmann::json& identity,
               bool resume);
+  ~ChartRecord();
+  ChartRecord(const ChartRecord&) = delete;
+  ChartRecord& operator=(const ChartRecord&) = delete;
 
   /// Points already done (from the journal on --resume), in no particular order.
   const std::vector<SweepPoint>& resumed() const { return resumed_; }
@@ -52,7 +61,10 @@ class ChartRecord {
   std::string Row(const SweepPoint& point, const std::vector<int>* labels,
                   const std::vector<double>* frequencies = nullptr) const;
 
+  void Lock();
+
   std::string path_;
+  bool locked_ = false;
   const SweepGrid& grid_;
   int states_ = 0;
   std::vector<SweepPoint> resumed_;

@@ -91,6 +91,60 @@ TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
   EXPECT_NE(other.err.find("different sweep"), std::string::npos) << other.err;
 }
 
+// The journal survives damage: a forged value (checksum mismatch), a torn last line, a record
+// with an index the grid does not have, and a duplicate are each dropped and recomputed, and
+// the resumed file still equals the uninterrupted one. (A torn line plus a bad index used to
+// hang --resume.)
+TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
+  const std::string sweep = "chart mathieu --sweep a=-1:3:0.25 --sweep2 q=0:2:0.25 --threads 2 ";
+  const std::string whole = Tmp("chart_whole2.csv"), cut = Tmp("chart_damaged.csv");
+  ASSERT_EQ(RunLtp(sweep + "--csv " + whole).code, 0);
+  ASSERT_EQ(RunLtp(sweep + "--csv " + cut + " --stop-after 40").code, 130);
+  const std::string journal = cut + ".points.jsonl";
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(journal);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  ASSERT_GE(lines.size(), 6u);
+  const long good = static_cast<long>(lines.size()) - 1 - 2;  // header; two records damaged below
+  // Forge record 1: change a digit of its JSON but keep the old checksum.
+  const size_t digit = lines[1].find_first_of("123456789", lines[1].find("max_real_exponent"));
+  lines[1][digit] = lines[1][digit] == '9' ? '1' : static_cast<char>(lines[1][digit] + 1);
+  const std::string duplicate = lines[2];
+  std::string bad_index = lines[3];
+  bad_index.replace(bad_index.find("\"index\":"), 8, "\"index\":9");  // index 9… out of range, bad sum
+  lines.back().resize(lines.back().size() / 2);  // torn
+  {
+    std::ofstream out(journal, std::ios::trunc);
+    for (const std::string& l : lines) out << l << "\n";
+    out << duplicate << "\n" << bad_index;  // no final newline either
+  }
+  const auto resumed = RunLtp(sweep + "--csv " + cut + " --resume --json");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_EQ(json::parse(resumed.out)["resumed_points"].get<long>(), good);  // forged, torn, bad, duplicate out
+  EXPECT_EQ(ReadFile(cut), ReadFile(whole));
+}
+
+// One writer per CSV: a live writer's lock refuses a second run; a lock left by a killed
+// process (its pid gone) is taken over.
+TEST(ChartCli, OneWriterPerCsv) {
+  const std::string csv = Tmp("chart_locked.csv");
+  {
+    std::ofstream lock(csv + ".lock");
+    lock << 1 << "\n";  // pid 1 is always alive
+  }
+  const auto busy = RunLtp("chart mathieu --sweep a=0:1:0.5 --csv " + csv);
+  EXPECT_EQ(busy.code, 2);
+  EXPECT_NE(busy.err.find("another ltp chart"), std::string::npos) << busy.err;
+  {
+    std::ofstream lock(csv + ".lock", std::ios::trunc);
+    lock << 999999999 << "\n";  // no such process
+  }
+  EXPECT_EQ(RunLtp("chart mathieu --sweep a=0:1:0.5 --csv " + csv).code, 0);
+  EXPECT_FALSE(std::filesystem::exists(csv + ".lock"));
+}
+
 // Two MPI ranks write the same file as one process with two threads.
 TEST(ChartCli, MpiRanksEqualThreads) {
 #ifndef LTP_WITH_MPI
