@@ -67,7 +67,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     if (best.ok && previous_change > 0 && std::isfinite(change) && change > 0.5 * previous_change) {
       s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
         << change << " 1/s no longer shrinks as N doubles (it was " << previous_change
-        << "): round-off of this problem, above the tolerance " << goal;
+        << "): it is at round-off (near a double multiplier) or converging too slowly to reach "
+        << "the tolerance " << goal << "; the estimate above is the error at this N";
       return finish(std::move(best), false, s.str());
     }
     // Slow (algebraic) convergence: at the rate seen between the last two truncations, would
