@@ -185,6 +185,7 @@ int RunChart(ChartArgs& args) {
 #endif
 
     Progress progress(grid.size(), resumed, root && !args.json);
+    g_interrupted = false;
     auto previous = std::signal(SIGINT, OnInterrupt);
     const auto sweep_start = Clock::now();
     std::mutex progress_mutex;
@@ -402,6 +403,7 @@ int RunChart(ChartArgs& args) {
 
 Command AddChartCommand(CLI::App& app) {
   static ChartArgs args;
+  args = ChartArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "chart", "Campbell/damping diagrams (one --sweep) or stability maps (--sweep and --sweep2)");
   AddSceneArgs(cmd, args.scene);

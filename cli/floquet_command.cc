@@ -371,6 +371,7 @@ int RunFloquet(FloquetArgs& args) {
 
 Command AddFloquetCommand(CLI::App& app) {
   static FloquetArgs args;
+  args = FloquetArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "floquet", "Floquet exponents, multipliers and periodic modes via the monodromy matrix");
   AddSceneArgs(cmd, args.scene);

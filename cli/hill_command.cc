@@ -211,6 +211,7 @@ int RunHill(HillArgs& args) {
 
 Command AddHillCommand(CLI::App& app) {
   static HillArgs args;
+  args = HillArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand("hill", "Hill's method: truncation convergence study");
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--max-harmonics", args.max_harmonics, "largest truncation N (harmonics -N..N)")

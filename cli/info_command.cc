@@ -113,6 +113,7 @@ int RunInfo(const InfoArgs& args) {
 
 Command AddInfoCommand(CLI::App& app) {
   static InfoArgs args;
+  args = InfoArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "info", "describe a scene: sizes, period, harmonic content, snapshot eigenvalues");
   AddSceneArgs(cmd, args.scene);

@@ -274,6 +274,7 @@ int RunMbc(const MbcArgs& args) {
 
 Command AddMbcCommand(CLI::App& app) {
   static MbcArgs args;
+  args = MbcArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "mbc", "Campbell table (MBC3 with azimuth averaging) of OpenFAST .lin files, with the "
              "Floquet analysis of the same azimuth samples");

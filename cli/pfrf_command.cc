@@ -264,6 +264,7 @@ int RunPfrf(PfrfArgs& args) {
 
 Command AddPfrfCommand(CLI::App& app) {
   static PfrfArgs args;
+  args = PfrfArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "pfrf", "Partial frequency response functions H_z(ω) by independent routes, with error estimates");
   AddSceneArgs(cmd, args.scene);

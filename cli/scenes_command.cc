@@ -40,6 +40,7 @@ int RunScenes(bool as_json) {
 
 Command AddScenesCommand(CLI::App& app) {
   static bool json_flag = false;
+  json_flag = false;  // fresh state for each RunLtp call
   auto* cmd = app.add_subcommand("scenes", "list the built-in scenes with their parameters");
   cmd->add_flag("--json", json_flag, "machine-readable output on stdout");
   return {cmd, [] { return RunScenes(json_flag); }};

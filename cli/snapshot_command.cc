@@ -167,6 +167,7 @@ int RunSnapshot(SnapshotArgs& args) {
 
 Command AddSnapshotCommand(CLI::App& app) {
   static SnapshotArgs args;
+  args = SnapshotArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
       "snapshot", "FRF of the system frozen at one time or rotor angle; --compare overlays the periodic system");
   AddSceneArgs(cmd, args.scene);

@@ -1,0 +1,106 @@
+// Fuzz target: the `ltp` command line. The input is an argument vector, one argument per line;
+// RunLtp runs it in-process, printing into the void, and must return 0, 1 or 2 (or 130 for a
+// chart the harness stopped) — never crash,
+// never let an untyped exception out (it catches everything itself), never hang.
+//
+// The harness bounds the work, not the parsing: the fuzzer should find inputs the CLI handles
+// badly, not legitimate long analyses (a 10^6-point chart is allowed and shows progress). So
+// charts stop after a few points (--stop-after, as Ctrl-C would), frequency lists and sweeps
+// above a few hundred points and truncations above 48 harmonics are skipped, and so are
+// arguments that would write outside the working directory or start gnuplot.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "frf_args.h"
+#include "ltp/floquet/sweep.h"
+#include "run_ltp.h"
+
+namespace {
+
+bool StartsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Value of "--opt V" or "--opt=V" at position i, or nullptr.
+const std::string* ValueOf(const std::vector<std::string>& args, size_t i, const char* opt,
+                           std::string& scratch) {
+  const std::string o(opt);
+  if (args[i] == o) return i + 1 < args.size() ? &args[i + 1] : nullptr;
+  if (StartsWith(args[i], (o + "=").c_str())) {
+    scratch = args[i].substr(o.size() + 1);
+    return &scratch;
+  }
+  return nullptr;
+}
+
+// True when running these arguments could take long for a legitimate reason.
+bool TooMuchWork(const std::vector<std::string>& args) {
+  constexpr size_t kMaxPoints = 400;
+  constexpr int kMaxHarmonics = 48;
+  std::string scratch;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i].find('/') != std::string::npos || StartsWith(args[i], "--plot") ||
+        StartsWith(args[i], "--stop-after"))
+      return true;
+    try {
+      if (const std::string* v = ValueOf(args, i, "--freq", scratch))
+        if (ltp::cli::ParseFrequencyRange(*v).size() > kMaxPoints) return true;
+      for (const char* sweep : {"--sweep", "--sweep2"})
+        if (const std::string* v = ValueOf(args, i, sweep, scratch)) {
+          const ltp::SweepAxis a = ltp::SweepAxis::Parse(*v);
+          if (std::abs((a.stop - a.start) / a.step) > kMaxPoints) return true;
+        }
+      for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})
+        if (const std::string* v = ValueOf(args, i, h, scratch))
+          if (std::atof(v->c_str()) > kMaxHarmonics) return true;
+    } catch (...) {
+      // unparsable: the CLI will refuse it, which is what we want to exercise
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  // Outputs (--csv, --json files, chart journals) land in a scratch directory.
+  const auto dir = std::filesystem::temp_directory_path() / ("ltp-fuzz-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::filesystem::current_path(dir);
+  std::cout.setstate(std::ios::failbit);  // results are not what is tested here
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size > 2000) return -1;
+  std::vector<std::string> args = {"ltp"};
+  std::istringstream lines(std::string(reinterpret_cast<const char*>(data), size));
+  for (std::string line; std::getline(lines, line);) args.push_back(line);
+  if (args.size() > 24 || TooMuchWork(args)) return -1;
+  const bool chart = args.size() > 1 && args[1] == "chart";
+  if (chart) {
+    args.push_back("--stop-after");
+    args.push_back("3");
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  std::streambuf* err = std::cerr.rdbuf(nullptr);  // one-line messages: not checked here
+  const int code = ltp::cli::RunLtp(static_cast<int>(args.size()), argv.data());
+  std::cerr.rdbuf(err);
+  const bool interrupted = chart && code == 130;  // --stop-after, as after Ctrl-C
+  if ((code < 0 || code > 2) && !interrupted) {
+    std::fprintf(stderr, "fuzz finding: exit code %d\n", code);
+    std::abort();
+  }
+  return 0;
+}
