@@ -11,6 +11,7 @@
 
 #include "command.h"
 #include "format.h"
+#include "frf_args.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
@@ -103,7 +104,12 @@ int RunHill(HillArgs& args) {
     reference = AnalyzeFloquet(l.system, fo);
     if (!reference.ok) reference = FloquetResult{};
   }
+  Progress progress("hill: convergence study");  // the largest truncations take the time
+  options.progress = [&progress](double done, double total) {
+    progress(static_cast<int>(100 * done / total), 100);
+  };
   const HillStudy s = HillConvergenceStudy(l.system, args.max_harmonics, reference, options);
+  options.progress = nullptr;
   HillOptions last_options = options;
   last_options.harmonics = args.max_harmonics;
   const HillResult last = AnalyzeHill(l.system, last_options);

@@ -10,6 +10,7 @@
 #include "command.h"
 #include "run_ltp.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/threads.h"
 
 namespace ltp::cli {
 
@@ -17,6 +18,7 @@ int RunLtp(int argc, char** argv) {
   CLI::App app{"ltp — analysis of linear time-periodic systems (Floquet, Hill, partial FRFs)",
                "ltp"};
   FailureReason().clear();
+  UseSingleThreadedBlas();  // ltp runs its own threads (see threads.h)
   app.set_version_flag("--version", std::string("ltp ") + LTP_VERSION);
   app.require_subcommand(1);
   app.footer("SCENE is a built-in scene (`ltp scenes`), a YAML scene file (examples in scenes/), or OpenFAST .lin files (files, a directory or a quoted glob).");

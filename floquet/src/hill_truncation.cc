@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <numbers>
 #include <sstream>
 
@@ -204,6 +205,16 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   const bool have_ref = !study.reference.empty();
 
   // One solve per N (the N + Δ estimates reuse other rows' solves).
+  const std::vector<int> rows = StudyHarmonics(max_harmonics);
+  const auto delta_of = [&](int N) {
+    return options.delta_harmonics > 0 ? options.delta_harmonics : std::max(2, (N + 1) / 2);
+  };
+  std::set<int> planned(rows.begin(), rows.end());
+  if (options.delta_harmonics >= 0)
+    for (int N : rows) planned.insert(N + delta_of(N));
+  const auto work = [n = system.states()](int N) { return std::pow(double((2 * N + 1) * n), 3); };
+  double total_work = 0, done_work = 0;
+  for (int N : planned) total_work += work(N);
   std::map<int, HillResult> cache;
   auto solve = [&](int N) -> const HillResult& {
     auto it = cache.find(N);
@@ -211,7 +222,11 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     HillOptions o = options;
     o.harmonics = N;
     o.delta_harmonics = -1;
-    return cache.emplace(N, AnalyzeHill(system, o)).first->second;
+    o.progress = nullptr;
+    const HillResult& r = cache.emplace(N, AnalyzeHill(system, o)).first->second;
+    done_work += work(N);
+    if (options.progress) options.progress(done_work, total_work);
+    return r;
   };
   auto exponents = [](const HillResult& r) {
     std::vector<cd> v;
@@ -219,7 +234,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     return v;
   };
 
-  for (int N : StudyHarmonics(max_harmonics)) {
+  for (int N : rows) {
     const HillResult& r = solve(N);
     const double omega = 2 * std::numbers::pi / r.period;
     HillStudyRow row;
@@ -233,8 +248,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       row.tail_weight = std::max(row.tail_weight, i.tail_weight);
       row.ambiguous = row.ambiguous || i.ambiguous;
     }
-    const int delta = options.delta_harmonics > 0 ? options.delta_harmonics
-                                                  : std::max(2, (N + 1) / 2);
+    const int delta = delta_of(N);
     if (options.delta_harmonics >= 0) {
       const HillResult& r2 = solve(N + delta);
       const double omega2 = 2 * std::numbers::pi / r2.period;

@@ -254,6 +254,30 @@ std::complex<double> ModalModel::Evaluate(double omega, int z, int output, int i
   return sum;
 }
 
+std::vector<std::complex<double>> ModalModel::EvaluateChannel(double omega, int min_order,
+                                                              int max_order, int output,
+                                                              int input) const {
+  const int V = harmonics;
+  std::vector<cd> h(max_order - min_order + 1, cd(0));
+  std::vector<cd> scaled(states);
+  for (int u = -V; u <= V; ++u) {
+    // [R_u]_k = [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k), reused for every z.
+    const cd s(0, omega + u * omega_p);
+    for (int k = 0; k < states; ++k) scaled[k] = b_hat[u + V](k, input) / (s - exponents[k]);
+    for (int z = min_order; z <= max_order; ++z) {
+      const int v = z - u;
+      if (std::abs(v) > V) continue;
+      const Eigen::MatrixXcd& c = c_hat[v + V];
+      cd sum = 0;
+      for (int k = 0; k < states; ++k) sum += c(output, k) * scaled[k];
+      h[z - min_order] += sum;
+    }
+  }
+  for (int z = min_order; z <= max_order; ++z)
+    if (std::abs(z) <= V) h[z - min_order] += d_hat[z + V](output, input);
+  return h;
+}
+
 std::complex<double> ModalModel::Term(double omega, int k, int u, int v, int output,
                                       int input) const {
   const int V = harmonics;

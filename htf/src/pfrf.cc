@@ -12,6 +12,7 @@
 #include "fft_util.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/floquet/threads.h"
 
 namespace ltp {
 
@@ -164,25 +165,30 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
     }
     const std::vector<int>& points = *points_ptr;
     const auto route_start = std::chrono::steady_clock::now();
-    std::function<PartialFrfs(double, bool*)> eval;
-    std::vector<double> truncation;  // htf: N vs N+Δ per point
+    // The route's H_z of the chosen channel, z = zmin..zmax, at the q-th of its points.
+    std::function<std::vector<cd>(size_t, bool*)> eval;
+    const auto channel = [in, out](const PartialFrfs& h) {
+      std::vector<cd> v(h.size());
+      for (size_t z = 0; z < h.size(); ++z) v[z] = h[z](out, in);
+      return v;
+    };
+    std::vector<double> truncation(points.size(), 0.0);  // htf: N vs N+Δ per point
     switch (route) {
       case PfrfRoute::kModal: {
         if (!r.floquet.ok) {
           run.diagnostics.push_back("modal: no Floquet decomposition");
-          eval = [&](double, bool* ok) {
+          eval = [Z](size_t, bool* ok) {
             *ok = false;
-            return PartialFrfs(Z, Eigen::MatrixXcd::Constant(system.outputs(), system.inputs(),
-                                                              std::numeric_limits<double>::quiet_NaN()));
+            return std::vector<cd>(Z, cd(std::numeric_limits<double>::quiet_NaN(), 0));
           };
           break;
         }
         if (!r.modal) r.modal = BuildModalModel(system, r.floquet, options.modal);
         for (const auto& d : r.modal->diagnostics) run.diagnostics.push_back(d);
         const ModalModel* model = &*r.modal;
-        eval = [model, zmin, zmax](double w, bool* ok) {
+        eval = [&, model](size_t q, bool* ok) {
           *ok = true;
-          return model->Evaluate(w, zmin, zmax);
+          return model->EvaluateChannel(omega_of(points[q]), zmin, zmax, out, in);
         };
         break;
       }
@@ -192,12 +198,13 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         for (int q = 0; q < 3; ++q) probes.push_back(omega_of((F - 1) * q / 2));
         r.htf_harmonics = htf->ChooseTruncation(zmin, zmax, probes);
         HtfSolver* solver = htf.get();
-        eval = [solver, zmin, zmax, &truncation, in, out](double w, bool* ok) {
-          PartialFrfs h = solver->Evaluate(w, zmin, zmax);
-          const PartialFrfs h2 = solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta());
+        eval = [&, solver](size_t q, bool* ok) {
+          const double w = omega_of(points[q]);
+          const std::vector<cd> h = channel(solver->Evaluate(w, zmin, zmax));
+          const std::vector<cd> h2 = channel(solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta()));
           double change = 0;
-          for (size_t z = 0; z < h.size(); ++z) change = std::max(change, std::abs(h[z](out, in) - h2[z](out, in)));
-          truncation.push_back(change);
+          for (size_t z = 0; z < h.size(); ++z) change = std::max(change, std::abs(h[z] - h2[z]));
+          truncation[q] = change;
           *ok = std::isfinite(change);
           return h;
         };
@@ -209,7 +216,9 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         if (!forced) forced = std::make_unique<ForcedResponseSolver>(system, options.shooting);
         ForcedResponseSolver* solver = forced.get();
         if (route == PfrfRoute::kShooting) {
-          eval = [solver, zmin, zmax](double w, bool* ok) { return solver->Shooting(w, zmin, zmax, ok); };
+          eval = [&, solver](size_t q, bool* ok) {
+            return channel(solver->Shooting(omega_of(points[q]), zmin, zmax, ok));
+          };
         } else {
           r.settle_time = r.floquet.ok ? ForcedResponseSolver::SettlingTime(r.floquet, options.shooting.settle_tol)
                                        : std::numeric_limits<double>::infinity();
@@ -219,24 +228,29 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
             << " 1/s), then " << options.shooting.record_periods << " periods projected";
           run.diagnostics.push_back(s.str());
           const double settle = r.settle_time;
-          eval = [solver, zmin, zmax, settle](double w, bool* ok) {
-            return solver->TimeSimulation(w, zmin, zmax, settle, ok);
+          eval = [&, solver, settle](size_t q, bool* ok) {
+            return channel(solver->TimeSimulation(omega_of(points[q]), zmin, zmax, settle, ok));
           };
         }
         break;
       }
     }
     run.setup_s = internal::SecondsSince(route_start);
-    for (int i : points) {
+    // The HTF solver is const and each frequency an independent banded solve: those run in
+    // parallel (the other routes keep per-solver state and run in order).
+    const int n_points = static_cast<int>(points.size());
+    run.points = points;
+    run.values.assign(points.size(), {});
+    std::vector<char> point_ok(points.size(), 0);
+#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0)) if (route == PfrfRoute::kHtf)
+    for (int q = 0; q < n_points; ++q) {
       bool ok = false;
-      const PartialFrfs h = eval(omega_of(i), &ok);
-      std::vector<cd> v(Z);
-      for (int z = 0; z < Z; ++z) v[z] = h[z](out, in);
-      if (!ok) ++run.failures;
-      run.points.push_back(i);
-      run.values.push_back(v);
+      run.values[q] = eval(q, &ok);
+      point_ok[q] = ok;
+#pragma omp critical(ltp_pfrf_progress)
       tick();
     }
+    run.failures = static_cast<int>(std::count(point_ok.begin(), point_ok.end(), 0));
     if (route == PfrfRoute::kHtf) {
       for (const auto& d : htf->diagnostics()) run.diagnostics.push_back(d);
       double worst = 0;

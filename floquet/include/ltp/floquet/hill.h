@@ -11,6 +11,7 @@
 // shift-invert Arnoldi around the expected exponents: only the n physical ones, cost ~ N).
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -75,6 +76,9 @@ struct HillOptions {
   FourierFitOptions fourier;
   /// Largest dense Hill matrix accepted (bytes); larger → ResourceError.
   double max_dense_bytes = 2.0 * 1024 * 1024 * 1024;
+  /// HillConvergenceStudy reports progress as (work done, total work) after each solve, the
+  /// work of a truncation counted as its matrix size cubed (what a dense solve costs).
+  std::function<void(double done, double total)> progress;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };

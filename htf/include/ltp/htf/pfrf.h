@@ -91,6 +91,10 @@ struct ModalModel {
   PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
   /// Scalar H_z(ω) of one channel.
   std::complex<double> Evaluate(double omega, int z, int output, int input) const;
+  /// One channel, z = min_order..max_order: what a PFRF sweep needs, at 1/(outputs·inputs) of
+  /// the work of the full matrices.
+  std::vector<std::complex<double>> EvaluateChannel(double omega, int min_order, int max_order,
+                                                    int output, int input) const;
   /// The term of mode k, harmonic pair (u, v = z − u): [Ĉ_v]_{o,k} [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k).
   std::complex<double> Term(double omega, int k, int u, int v, int output, int input) const;
 };
