@@ -87,55 +87,59 @@ std::optional<json> ParseJournalLine(const std::string& line) {
 
 }  // namespace
 
-json PointToJson(const SweepPoint& p) {
-  json modes = json::array();
-  for (const FloquetMode& m : p.modes)
-    modes.push_back({Number(m.exponent.real()), Number(m.exponent.imag()), Number(m.frequency_hz),
-                     Number(m.damping_ratio), Number(m.log_multiplier.real()),
-                     Number(m.log_multiplier.imag()), m.branch});
-  json shapes = json::array();
-  for (Eigen::Index k = 0; k < p.shapes.cols(); ++k) {
-    json col = json::array();
-    for (Eigen::Index i = 0; i < p.shapes.rows(); ++i)
-      col.push_back({Number(p.shapes(i, k).real()), Number(p.shapes(i, k).imag())});
-    shapes.push_back(col);
+json PointToJson(const SweepPoint& p, bool with_shapes) {
+  json j = {{"index", p.index},
+            {"values", json::array()},
+            {"ok", p.ok},
+            {"verdict", std::string(ToString(p.verdict))},
+            {"period", Number(p.period)},
+            {"max_real_exponent", Number(p.max_real_exponent)},
+            {"max_log_multiplier", Number(p.max_log_multiplier)},
+            {"error_estimate", Number(p.error_estimate)},
+            {"elapsed_s", p.elapsed_s}};
+  for (double v : p.values) j["values"].push_back(Number(v));
+  if (!p.failure.empty()) j["failure"] = p.failure;
+  if (!p.modes.empty()) {
+    json& modes = j["modes"];
+    for (const FloquetMode& m : p.modes)
+      modes.push_back({Number(m.exponent.real()), Number(m.exponent.imag()), Number(m.frequency_hz),
+                       Number(m.damping_ratio), Number(m.log_multiplier.real()),
+                       Number(m.log_multiplier.imag()), m.branch});
   }
-  json values = json::array();
-  for (double v : p.values) values.push_back(Number(v));
+  if (with_shapes && p.shapes.size()) {
+    json& shapes = j["shapes"];
+    for (Eigen::Index k = 0; k < p.shapes.cols(); ++k) {
+      json col = json::array();
+      for (Eigen::Index i = 0; i < p.shapes.rows(); ++i)
+        col.push_back({Number(p.shapes(i, k).real()), Number(p.shapes(i, k).imag())});
+      shapes.push_back(col);
+    }
+  }
   auto eigenvalues = [](const std::vector<std::complex<double>>& e) {
     json a = json::array();
     for (const auto& x : e) a.push_back({Number(x.real()), Number(x.imag())});
     return a;
   };
-  return {{"index", p.index},
-          {"values", values},
-          {"ok", p.ok},
-          {"failure", p.failure},
-          {"verdict", std::string(ToString(p.verdict))},
-          {"period", Number(p.period)},
-          {"max_real_exponent", Number(p.max_real_exponent)},
-          {"max_log_multiplier", Number(p.max_log_multiplier)},
-          {"error_estimate", Number(p.error_estimate)},
-          {"modes", modes},
-          {"shapes", shapes},
-          {"snapshot", eigenvalues(p.snapshot_eigenvalues)},
-          {"averaged", eigenvalues(p.averaged_eigenvalues)},
-          {"diagnostics", p.diagnostics},
-          {"elapsed_s", p.elapsed_s}};
+  if (!p.snapshot_eigenvalues.empty()) j["snapshot"] = eigenvalues(p.snapshot_eigenvalues);
+  if (!p.averaged_eigenvalues.empty()) j["averaged"] = eigenvalues(p.averaged_eigenvalues);
+  if (!p.diagnostics.empty()) j["diagnostics"] = p.diagnostics;
+  return j;
 }
 
 SweepPoint PointFromJson(const json& j) {
   SweepPoint p;
+  const json empty = json::array();
+  auto field = [&](const char* key) -> const json& { return j.contains(key) ? j.at(key) : empty; };
   p.index = j.at("index").get<size_t>();
   for (const auto& v : j.at("values")) p.values.push_back(FromNumber(v));
   p.ok = j.at("ok").get<bool>();
-  p.failure = j.at("failure").get<std::string>();
+  p.failure = j.value("failure", std::string());
   p.verdict = VerdictFrom(j.at("verdict").get<std::string>());
   p.period = FromNumber(j.at("period"));
   p.max_real_exponent = FromNumber(j.at("max_real_exponent"));
   p.max_log_multiplier = FromNumber(j.at("max_log_multiplier"));
   p.error_estimate = FromNumber(j.at("error_estimate"));
-  for (const auto& m : j.at("modes")) {
+  for (const auto& m : field("modes")) {
     FloquetMode mode;
     mode.exponent = {FromNumber(m.at(0)), FromNumber(m.at(1))};
     mode.frequency_hz = FromNumber(m.at(2));
@@ -144,7 +148,7 @@ SweepPoint PointFromJson(const json& j) {
     mode.branch = m.at(6).get<int>();
     p.modes.push_back(mode);
   }
-  const auto& shapes = j.at("shapes");
+  const json& shapes = field("shapes");
   if (!shapes.empty()) {
     p.shapes.resize(static_cast<Eigen::Index>(shapes.at(0).size()), static_cast<Eigen::Index>(shapes.size()));
     for (size_t k = 0; k < shapes.size(); ++k)
@@ -152,9 +156,9 @@ SweepPoint PointFromJson(const json& j) {
         p.shapes(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = {
             FromNumber(shapes[k][i].at(0)), FromNumber(shapes[k][i].at(1))};
   }
-  for (const auto& x : j.at("snapshot")) p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
-  for (const auto& x : j.at("averaged")) p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
-  p.diagnostics = j.at("diagnostics").get<std::vector<std::string>>();
+  for (const auto& x : field("snapshot")) p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  for (const auto& x : field("averaged")) p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  for (const auto& d : field("diagnostics")) p.diagnostics.push_back(d.get<std::string>());
   p.elapsed_s = j.at("elapsed_s").get<double>();
   return p;
 }
@@ -183,11 +187,22 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     // A line cut short by a kill, altered after the fact, or naming an index this grid does
     // not have (or a second time) is not a point: it is simply computed again.
     std::set<size_t> seen;
+    std::map<int, std::string> diagnostic_texts;
     while (std::getline(in, line)) {
       const std::optional<json> j = ParseJournalLine(line);
       if (!j) continue;
       try {
-        SweepPoint p = PointFromJson(*j);
+        if (j->contains("diagnostic")) {
+          diagnostic_texts[j->at("diagnostic").get<int>()] = j->at("text").get<std::string>();
+          continue;
+        }
+        json point = *j;
+        if (point.contains("diagnostics")) {  // ids → texts; an unknown id drops the point
+          json texts = json::array();
+          for (const json& id : point.at("diagnostics")) texts.push_back(diagnostic_texts.at(id.get<int>()));
+          point["diagnostics"] = texts;
+        }
+        SweepPoint p = PointFromJson(point);
         if (p.index >= grid_.size() || p.values != grid_.PointValues(p.index) || !seen.insert(p.index).second)
           continue;
         resumed_.push_back(std::move(p));
@@ -199,7 +214,7 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     {
       std::ofstream out(journal, std::ios::trunc);
       out << JournalLine(*header);
-      for (const SweepPoint& p : resumed_) out << JournalLine(PointToJson(p));
+      for (const SweepPoint& p : resumed_) out << JournalRecord(p);
       if (!out) throw InputError("cannot write '" + journal + "'");
     }
     journal_.open(journal, std::ios::app);
@@ -256,10 +271,9 @@ std::string ChartRecord::Row(const SweepPoint& p, const std::vector<int>* labels
 
 void ChartRecord::Add(const SweepPoint& point) {
   if (path_.empty()) return;
-  const std::string line = JournalLine(PointToJson(point));
   const std::string row = Row(point, nullptr);
   std::lock_guard<std::mutex> lock(mutex_);
-  journal_ << line;
+  journal_ << JournalRecord(point);
   csv_ << row;
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ > std::chrono::milliseconds(200)) {
@@ -286,6 +300,19 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const ModeTracki
   }
   std::filesystem::rename(tmp, path_);
   std::filesystem::remove(journal_path());
+}
+
+std::string ChartRecord::JournalRecord(const SweepPoint& point) {
+  std::string definitions;
+  json ids = json::array();
+  for (const std::string& d : point.diagnostics) {
+    auto [it, added] = diagnostic_ids_.emplace(d, static_cast<int>(diagnostic_ids_.size()));
+    if (added) definitions += JournalLine(json{{"diagnostic", it->second}, {"text", d}});
+    ids.push_back(it->second);
+  }
+  json j = PointToJson(point, grid_.axes.size() == 1);  // only 1-D sweeps track by shapes
+  if (!ids.empty()) j["diagnostics"] = ids;
+  return definitions + JournalLine(j);
 }
 
 // One writer per FILE: the lock file holds the writer's pid; a lock whose process is gone

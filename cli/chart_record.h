@@ -4,12 +4,16 @@
 //   FILE                 one CSV row per point, appended and flushed as points complete
 //                        (completion order, modes in each point's own order) and rewritten
 //                        sorted by grid index with tracked mode labels when the sweep ends;
-//   FILE.points.jsonl    the journal: every completed point in full (exponents, mode shapes)
-//                        as one JSON line followed by a tab and its FNV-1a checksum, flushed;
-//                        `--resume` reads it and computes only the missing points. A line that
-//                        is torn, forged (checksum), or names a grid index the sweep does not
-//                        have (or has twice) is dropped and its point computed again. Removed
-//                        when the sweep completes.
+//   FILE.points.jsonl    the journal: every completed point as one JSON line followed by a
+//                        tab and its FNV-1a checksum, flushed; `--resume` reads it and
+//                        computes only the missing points. A line that is torn, forged
+//                        (checksum), or names a grid index the sweep does not have (or has
+//                        twice) is dropped and its point computed again. Removed when the
+//                        sweep completes. Compact: a diagnostic text is written once, as its
+//                        own record {"diagnostic": k, "text": ...}, and points refer to k (a
+//                        point whose k is unknown is recomputed); mode shapes are kept only
+//                        where they are used (1-D sweeps track modes by them); empty fields
+//                        are left out.
 //   FILE.lock            held while a sweep writes FILE (with the writer's process id): a
 //                        second `ltp chart` on the same FILE is refused, a stale lock left by a
 //                        killed process is taken over.
@@ -17,6 +21,7 @@
 #include <cstddef>
 #include <mutex>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,8 +32,9 @@
 namespace ltp::cli {
 
 /// A point as one JSON object (doubles to 17 digits, so a resumed sweep reproduces the
-/// uninterrupted one exactly) and back.
-nlohmann::json PointToJson(const SweepPoint& point);
+/// uninterrupted one exactly) and back. Empty fields are left out; `with_shapes` false leaves
+/// out the mode shapes.
+nlohmann::json PointToJson(const SweepPoint& point, bool with_shapes = true);
 SweepPoint PointFromJson(const nlohmann::json& j);
 
 class ChartRecord {
@@ -62,7 +68,12 @@ class ChartRecord {
                   const std::vector<double>* frequencies = nullptr) const;
 
   void Lock();
+  /// The journal record of a point: diagnostics as ids, definitions of new ids written to the
+  /// journal first. Call with mutex_ held.
+  std::string JournalRecord(const SweepPoint& point);
 
+  /// Ids of the diagnostic texts written to this journal.
+  std::map<std::string, int> diagnostic_ids_;
   std::string path_;
   bool locked_ = false;
   const SweepGrid& grid_;
