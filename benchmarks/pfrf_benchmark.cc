@@ -10,9 +10,13 @@
 
 #include <numbers>
 
+#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
 
 namespace {
+
+// As the ltp command runs: OpenBLAS single-threaded under ltp's own threads.
+const bool kSingleThreadedBlas = ltp::UseSingleThreadedBlas();
 
 using namespace ltp;
 constexpr int kDofs = 20;

@@ -14,9 +14,13 @@
 
 #include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
 
 namespace {
+
+// As the ltp command runs: OpenBLAS single-threaded under ltp's own threads.
+const bool kSingleThreadedBlas = ltp::UseSingleThreadedBlas();
 
 using namespace ltp;
 
