@@ -243,4 +243,14 @@ namespace ltp {
 HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, double tol,
                            int max_harmonics = 256);
 
+/// What `harmonics = auto` means for Hill's method in the CLI (`ltp floquet --method hill`)
+/// and in Python (`ltp.hill`): AnalyzeHillAuto from N = kHillAutoStartHarmonics to the
+/// tolerance HillAutoTolerance(rel_tol) of the analysis' relative tolerance. `options.harmonics`
+/// is replaced by the start.
+HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options, double rel_tol);
+/// Doubled from here: smooth scenes converge by N = 8–16 (study).
+inline constexpr int kHillAutoStartHarmonics = 4;
+/// max(rel_tol, 1e-12): below 1e-12 the N vs N+Δ estimate meets the round-off of the eigensolve.
+double HillAutoTolerance(double rel_tol);
+
 }  // namespace ltp
