@@ -1,0 +1,126 @@
+// ltp.hill: Hill's method, and its result.
+#include <limits>
+
+#include "binding.h"
+#include "floquet_modes.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/hill.h"
+
+namespace ltp::python {
+
+namespace {
+
+template <class Field>
+auto InfoArray(Field field) {
+  return [field](const HillResult& h) {
+    py::array_t<double> a(static_cast<py::ssize_t>(h.info.size()));
+    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
+    return a;
+  };
+}
+
+template <class Field>
+auto InfoFlags(Field field) {
+  return [field](const HillResult& h) {
+    py::array_t<bool> a(static_cast<py::ssize_t>(h.info.size()));
+    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
+    return a;
+  };
+}
+
+}  // namespace
+
+void BindHill(py::module_& m) {
+  py::class_<HillResult> r(m, "HillResult", R"doc(
+The result of ltp.hill: the n physical Floquet exponents among the eigenvalues of the
+truncated Hill matrix, in the same order and with the same per-mode arrays as a
+FloquetResult, with the selection's margins, the truncation error estimates and the
+Koopman–Hill cross-check.)doc");
+  BindModeArrays<HillResult>(r);
+  r.def_readonly("ok", &HillResult::ok, "the exponents were found and passed the Liouville check")
+      .def_readonly("states", &HillResult::states, "n")
+      .def_readonly("harmonics", &HillResult::harmonics, "N actually used (harmonics -N..N)")
+      .def_readonly("matrix_size", &HillResult::matrix_size, "(2N+1) n")
+      .def_readonly("period", &HillResult::period, "T (s)")
+      .def_readonly("solver", &HillResult::solver, "'dense' or 'structured' (auto resolved)")
+      .def_readonly("selection_rule", &HillResult::selection_rule, "how the physical eigenvalues were picked")
+      .def_property_readonly("centroids", InfoArray([](const HillModeInfo& i) { return i.centroid; }),
+                             "energy centroid of each eigenvector over the harmonic blocks")
+      .def_property_readonly("selection_margins", InfoArray([](const HillModeInfo& i) { return i.selection_margin; }),
+                             "1 = clean choice, 0 = tie between λ and λ ± jΩp")
+      .def_property_readonly("tail_weights", InfoArray([](const HillModeInfo& i) { return i.tail_weight; }),
+                             "energy on the outermost blocks ±N (large: N too small for the mode)")
+      .def_property_readonly("truncation_changes", InfoArray([](const HillModeInfo& i) { return i.truncation_change; }),
+                             "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); -1 when not computed")
+      .def_property_readonly("residuals", InfoArray([](const HillModeInfo& i) { return i.residual; }), "relative eigen-residual of each selected eigenvalue")
+      .def_property_readonly("passed", InfoFlags([](const HillModeInfo& i) { return i.passed; }), "the selection rule's pass condition per mode")
+      .def_property_readonly("ambiguous", InfoFlags([](const HillModeInfo& i) { return i.ambiguous; }), "selection margin below the threshold (a tie between λ and λ ± jΩp)")
+      .def_readonly("max_real_exponent", &HillResult::max_real_exponent, "max Re λ (1/s)")
+      .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
+      .def_property_readonly("verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); }, "'stable', 'unstable' (beyond the error estimate), 'marginal' or 'failed'")
+      .def_readonly("delta_harmonics", &HillResult::delta_harmonics, "Δ of the N vs N+Δ estimate (0: not computed)")
+      .def_readonly("truncation_estimate", &HillResult::truncation_estimate,
+                    "max_k |λ_k(N) − λ_k(N+Δ)| mod jΩp (1/s); -1 = not computed")
+      .def_readonly("apriori_bound", &HillResult::apriori_bound, "a-priori bound on the exponent error (inf: none)")
+      .def_property_readonly("coefficient_decay", [](const HillResult& h) {
+        return py::dict(py::arg("kind") = h.decay.kind, py::arg("rate") = h.decay.rate,
+                        py::arg("harmonics") = h.decay.harmonics, py::arg("fourier_tail") = h.decay.fourier_tail,
+                        py::arg("norms") = RealArray(h.decay.norms));
+      }, "how fast the Fourier coefficients of A decay: kind 'finite', 'exponential' or 'algebraic'")
+      .def_readonly("fourier_fit_error", &HillResult::fourier_fit_error, "error of the exponents due to the FFT fit of A(t) (1/s); 0 for Fourier input")
+      .def_readonly("tolerance_met", &HillResult::tolerance_met, "harmonics='auto': whether tol was met; else None")
+      .def_readonly("error_estimate", &HillResult::error_estimate,
+                    "the error estimate of every exponent (1/s); see the C++ HillResult for its parts")
+      .def_property_readonly("koopman_log_multipliers", [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); }, "log eig of the Koopman–Hill transition (sorting-free cross-check)")
+      .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy, "-1 = skipped")
+      .def_property_readonly("eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
+                             "every eigenvalue of the Hill matrix found")
+      .def_readonly("elapsed_s", &HillResult::elapsed_s, "wall time (s)")
+      .def_readonly("diagnostics", &HillResult::diagnostics, "what the analysis noticed, one line each")
+      .def("__repr__", [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
+
+  const HillOptions defaults;
+  m.def(
+      "hill",
+      [](const System& system, const py::object& harmonics, const std::string& solver,
+         const std::string& selection, double tol) {
+        HillOptions o;
+        const auto s = ParseHillSolver(solver);
+        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        o.solver = *s;
+        const auto rule = ParseHillSelectionRule(selection);
+        if (!rule)
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+        o.selection = *rule;
+        if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
+        if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
+          o.Validate();
+          return WithoutGil(system, [&] { return AnalyzeHillToTolerance(system.system, o, tol); });
+        }
+        if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
+            harmonics.cast<long>() < 1 || harmonics.cast<long>() > 100000)
+          throw InputError("harmonics must be a positive integer or 'auto', got " +
+                           py::repr(harmonics).cast<std::string>());
+        o.harmonics = harmonics.cast<int>();
+        o.Validate();
+        return WithoutGil(system, [&] { return AnalyzeHill(system.system, o); });
+      },
+      py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
+      py::arg("solver") = std::string(ToString(defaults.solver)),
+      py::arg("selection") = std::string(ToString(defaults.selection)),
+      py::arg("tol") = IntegratorOptions{}.rel_tol, R"doc(
+Floquet exponents by Hill's method: `ltp floquet SCENE --method hill --json` as a function,
+with the same options and defaults.
+
+  harmonics   truncation N (harmonics -N..N), or 'auto': N = 4, 8, ... until the N vs N+Δ
+              estimate is below max(tol, 1e-12) (the library's AnalyzeHillToTolerance)
+  solver      auto | dense | structured (auto: per N, as the work-precision study found)
+  selection   centroid | central-weight | strip: how the n physical eigenvalues are picked
+  tol         the tolerance of harmonics='auto'
+
+Returns a HillResult. Runs without the GIL. Systems not in Fourier form are fitted by FFT
+first (the fit's error is part of the estimate). Raises ltp.InputError for bad options,
+ltp.ResourceError when the Hill matrix would not fit in memory.)doc");
+}
+
+}  // namespace ltp::python
