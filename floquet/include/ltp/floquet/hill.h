@@ -214,6 +214,21 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
 HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
                                HillOptions options = {});
 
+/// The study as `ltp hill` and Python's `ltp.hill_study` run it: the reference (when asked
+/// for) from the monodromy route at rel_tol kHillStudyReferenceTol, left out if that run
+/// fails; the rows up to `max_harmonics`; and the full analysis at N = max_harmonics.
+struct HillStudyRun {
+  HillStudy study;
+  HillResult last;  ///< AnalyzeHill at N = max_harmonics
+  /// last's diagnostics, then the study's that last does not already have.
+  std::vector<std::string> diagnostics;
+};
+inline constexpr int kHillStudyMaxHarmonics = 32;
+inline constexpr double kHillStudyReferenceTol = 1e-12;
+/// @throws InputError for max_harmonics < 1 or invalid options.
+HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics, const HillOptions& options,
+                          bool reference);
+
 // --- Building blocks (also used by tests and benchmarks) ------------------------------------
 
 /// Dense Hill matrix of the Fourier series A with fundamental `omega` and truncation N.
