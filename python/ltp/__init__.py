@@ -13,6 +13,7 @@ Systems
 Analyses (each runs without the GIL)
     floquet(system, ...)   -> FloquetResult   `ltp floquet`: exponents, multipliers, mode shapes
     hill(system, ...)      -> HillResult      `ltp floquet --method hill`: Hill's method
+    hill_study(system, ...) -> HillStudy      `ltp hill`: convergence over the truncation N
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
@@ -29,6 +30,7 @@ from ._ltp import (  # noqa: F401
     Error,
     FloquetResult,
     HillResult,
+    HillStudy,
     InputError,
     PfrfResult,
     ResourceError,
@@ -40,6 +42,7 @@ from ._ltp import (  # noqa: F401
     chart,
     floquet,
     hill,
+    hill_study,
     pfrf,
     scene,
     scenes,
@@ -47,7 +50,7 @@ from ._ltp import (  # noqa: F401
 )
 
 __all__ = [
-    "ChartResult", "Error", "FloquetResult", "HillResult", "InputError", "PfrfResult",
+    "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "PfrfResult",
     "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
-    "chart", "floquet", "hill", "pfrf", "scene", "scenes", "snapshot",
+    "chart", "floquet", "hill", "hill_study", "pfrf", "scene", "scenes", "snapshot",
 ]

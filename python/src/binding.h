@@ -27,8 +27,9 @@ using Complex = std::complex<double>;
 /// The Python callables behind a system built by System.from_function. The library calls them
 /// from its OpenMP threads with the GIL released: each call takes the GIL back. An exception
 /// raised by a callable (or a wrong shape) cannot cross the library's parallel loops, so it is
-/// kept here, the matrix filled with NaN (the analysis then fails quickly), and re-raised when
-/// the analysis returns.
+/// kept here and re-raised when the analysis returns; meanwhile every call answers a zero
+/// matrix, on which every route finishes at once (NaN would send the adaptive integrators and
+/// the automatic refinements through their longest paths: 50 s on Mathieu).
 class Callbacks {
  public:
   explicit Callbacks(std::vector<py::object> functions) : functions_(std::move(functions)) {}
@@ -38,18 +39,16 @@ class Callbacks {
 
   /// Calls function `which` at t (taking the GIL) and writes its rows × cols result to `out`.
   void Evaluate(size_t which, const char* name, double t, Eigen::Ref<Eigen::MatrixXd> out);
-  /// Before an analysis: forget an earlier failure, count calls from zero.
+  /// Before an analysis: forget an earlier failure.
   void Reset();
   /// After an analysis (GIL held): raise what a callable raised.
   void RethrowIfFailed();
-  long calls() const { return calls_.load(); }
 
  private:
   std::vector<py::object> functions_;
   std::mutex mutex_;
   std::exception_ptr error_;
   std::atomic<bool> failed_{false};
-  std::atomic<long> calls_{0};
 };
 
 /// A system as Python holds it: the library's immutable system, and where it came from.

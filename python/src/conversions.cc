@@ -1,7 +1,6 @@
 // numpy conversions, argument parsing shared by the analyses, and Python callables behind
 // systems.
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "binding.h"
@@ -25,7 +24,6 @@ void Callbacks::Reset() {
   std::lock_guard<std::mutex> lock(mutex_);
   error_ = nullptr;
   failed_ = false;
-  calls_ = 0;
 }
 
 void Callbacks::RethrowIfFailed() {
@@ -41,10 +39,9 @@ void Callbacks::RethrowIfFailed() {
 
 void Callbacks::Evaluate(size_t which, const char* name, double t, Eigen::Ref<Eigen::MatrixXd> out) {
   if (failed_) {  // one failure is enough: the analysis is abandoned
-    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    out.setZero();
     return;
   }
-  ++calls_;
   py::gil_scoped_acquire gil;
   try {
     const py::object value = functions_[which](t);
@@ -65,7 +62,7 @@ void Callbacks::Evaluate(size_t which, const char* name, double t, Eigen::Ref<Ei
     for (Eigen::Index i = 0; i < out.rows(); ++i)
       for (Eigen::Index j = 0; j < out.cols(); ++j) out(i, j) = data[i * out.cols() + j];
   } catch (...) {
-    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    out.setZero();
     std::lock_guard<std::mutex> lock(mutex_);
     if (!error_) error_ = std::current_exception();
     failed_ = true;

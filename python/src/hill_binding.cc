@@ -79,6 +79,99 @@ Koopman–Hill cross-check.)doc");
       .def_readonly("diagnostics", &HillResult::diagnostics, "what the analysis noticed, one line each")
       .def("__repr__", [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
 
+  py::class_<HillStudyRun>(m, "HillStudy", R"doc(
+The result of ltp.hill_study: Hill's method at N = 1 .. max_harmonics (every N up to 10,
+then about ×1.25), each row with its error against the monodromy route (modulo jΩp), the
+a-priori bound and the N vs N+Δ estimate; the fitted convergence law; and the full analysis
+at N = max_harmonics (`last`).)doc")
+      .def_property_readonly("harmonics", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.harmonics);
+        return RealArray(v);
+      }, "N of each row")
+      .def_property_readonly("matrix_size", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.matrix_size);
+        return RealArray(v);
+      }, "(2N+1) n of each row")
+      .def_property_readonly("errors", [](const HillStudyRun& r) {
+        std::vector<std::vector<double>> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
+        return RealTable(v, r.study.reference.size());
+      }, "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
+      .def_property_readonly("max_error", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.max_error);
+        return RealArray(v);
+      }, "per row; -1 without a reference")
+      .def_property_readonly("apriori_bound", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.apriori_bound);
+        return RealArray(v);
+      }, "a-priori error bound per row (inf: none)")
+      .def_property_readonly("truncation_estimate", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.truncation_estimate);
+        return RealArray(v);
+      }, "N vs N+Δ estimate per row")
+      .def_property_readonly("selection_margin", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.selection_margin);
+        return RealArray(v);
+      }, "smallest selection margin per row")
+      .def_property_readonly("tail_weight", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.tail_weight);
+        return RealArray(v);
+      }, "largest tail weight per row")
+      .def_property_readonly("convergence", [](const HillStudyRun& r) {
+        return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
+      }, "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
+      .def_property_readonly("coefficient_decay", [](const HillStudyRun& r) {
+        return py::dict(py::arg("kind") = r.study.decay.kind, py::arg("rate") = r.study.decay.rate,
+                        py::arg("harmonics") = r.study.decay.harmonics,
+                        py::arg("fourier_tail") = r.study.decay.fourier_tail);
+      }, "how fast the Fourier coefficients of A decay")
+      .def_property_readonly("reference", [](const HillStudyRun& r) { return ComplexArray(r.study.reference); },
+                             "the monodromy route's exponents (empty: no reference)")
+      .def_readonly("last", &HillStudyRun::last, "the HillResult at N = max_harmonics")
+      .def_property_readonly("elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
+      .def_readonly("diagnostics", &HillStudyRun::diagnostics, "what the study noticed, one line each")
+      .def("__repr__", [](const HillStudyRun& r) {
+        return "<ltp.HillStudy: " + std::to_string(r.study.rows.size()) + " truncations, " +
+               (r.study.rate_kind.empty() ? std::string("rate not fitted") : r.study.rate_kind) + ">";
+      });
+
+  m.def(
+      "hill_study",
+      [](const System& system, int max_harmonics, const std::string& solver, const std::string& selection,
+         bool reference) {
+        HillOptions o;
+        const auto s = ParseHillSolver(solver);
+        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        o.solver = *s;
+        const auto rule = ParseHillSelectionRule(selection);
+        if (!rule)
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+        o.selection = *rule;
+        if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
+        return WithoutGil(system, [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
+      },
+      py::arg("system"), py::kw_only(), py::arg("max_harmonics") = kHillStudyMaxHarmonics,
+      py::arg("solver") = std::string(ToString(HillOptions{}.solver)),
+      py::arg("selection") = std::string(ToString(HillOptions{}.selection)), py::arg("reference") = true,
+      R"doc(
+Convergence study of Hill's method over the truncation N: `ltp hill SCENE --json` as a
+function, with the same options and defaults.
+
+  max_harmonics  largest truncation N
+  solver         auto | dense | structured
+  selection      centroid | central-weight | strip
+  reference      measure each row's error against the monodromy route (rel tol 1e-12);
+                 False: the CLI's --no-reference
+
+Returns a HillStudy. Runs without the GIL.)doc");
+
   const HillOptions defaults;
   m.def(
       "hill",
