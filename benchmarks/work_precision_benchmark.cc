@@ -378,7 +378,7 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
     Row row = NewRow(sc, "hill auto (N and solver)", "tol", tol);
     HillOptions o;
     o.solver = HillSolver::kAuto;
-    o.harmonics = 4;  // where `ltp floquet --harmonics auto` starts
+    o.harmonics = kHillAutoStartHarmonics;  // where `ltp floquet --harmonics auto` starts
     HillResult h;
     try {
       row.t = TimeIt([&] { h = AnalyzeHillAuto(s, o, tol, sc.max_structured_n); }, cfg.repeats, cfg.budget_s);

@@ -27,6 +27,7 @@
 #include "chart_record.h"
 #include "command.h"
 #include "format.h"
+#include "ltp/floquet/chart_options.h"
 #include "ltp/floquet/threads.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/mode_tracking.h"
@@ -42,18 +43,19 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
+// Defaults from the library's ChartOptions (Python's ltp.chart has the same).
 struct ChartArgs {
   SceneArgs scene;
   std::string sweep, sweep2;
-  std::string method = "monodromy";
-  std::string integrator;  // default: bs for maps, rkf78 for 1-D sweeps (see MakeOptions)
-  double tol = 1e-10;
-  int threads = 0;
+  std::string method{ToString(ChartOptions{}.method)};
+  std::string integrator;  // empty: ChartIntegrator's choice (bs for maps, rkf78 for 1-D)
+  double tol = ChartOptions{}.tol;
+  int threads = ChartOptions{}.threads;
   std::string csv, plot;
   bool json = false, resume = false, compare = false, no_refine = false;
-  int check_every = -1;  // -1: 1 for 1-D sweeps, 97 for maps
-  int refine_lines = 50;
-  double refine_tol = 1e-8;
+  int check_every = ChartOptions{}.check_every;  // -1: 1 for 1-D sweeps, 97 for maps
+  int refine_lines = ChartOptions{}.refine_lines;
+  double refine_tol = ChartOptions{}.refine_tol;
   int sidebands = 2;
   long stop_after = 0;  // tests: interrupt after this many points, as Ctrl-C would
 };
@@ -110,24 +112,23 @@ json BoundaryJson(const BoundaryEstimate& e) {
           {"at_sweep_edge", e.at_sweep_edge}, {"evaluations", e.evaluations}, {"note", e.note}};
 }
 
-SweepOptions MakeOptions(const ChartArgs& args, bool map) {
-  SweepOptions o;
-  if (args.method == "monodromy") o.method = SweepMethod::kMonodromy;
-  else if (args.method == "hill") o.method = SweepMethod::kHill;
-  else throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
+ChartOptions MakeOptions(const ChartArgs& args) {
+  ChartOptions o;
+  const auto method = ParseSweepMethod(args.method);
+  if (!method) throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
+  o.method = *method;
   const auto type = ParseIntegratorType(args.integrator);
   if (!type) throw InputError("--integrator: unknown integrator '" + args.integrator + "'");
-  o.floquet.integrator.type = *type;
+  o.integrator = *type;
   if (!(args.tol > 0 && args.tol < 1)) throw InputError("--tol must be in (0, 1)");
-  o.floquet.integrator.rel_tol = args.tol;
-  o.floquet.integrator.abs_tol = args.tol * 1e-3;
-  o.hill_tol = args.tol;
-  o.modes = !map;
-  o.snapshot = args.compare && !map;
-  o.check_every = args.check_every >= 0 ? args.check_every : (map ? 97 : 1);
+  o.tol = args.tol;
+  o.compare = args.compare;
+  o.check_every = args.check_every;
   if (args.threads < 0) throw InputError("--threads must be >= 0");
   o.threads = args.threads;
-  o.Validate();
+  o.refine = !args.no_refine;
+  o.refine_tol = args.refine_tol;
+  o.refine_lines = args.refine_lines;
   return o;
 }
 
@@ -146,10 +147,9 @@ int RunChart(ChartArgs& args) {
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
     const SweepGrid grid = MakeSweepGrid(l.scene, axes);
     const bool map = grid.axes.size() == 2;
-    // Maps: Bulirsch–Stoer, the cheapest route to 1e-8 multipliers on smooth small systems
-    // (README, stability-chart benchmark). 1-D sweeps: rkf78, which suits their short segments.
-    if (args.integrator.empty()) args.integrator = map ? "bs" : "rkf78";
-    const SweepOptions options = MakeOptions(args, map);
+    if (args.integrator.empty()) args.integrator = ToString(ChartIntegrator(ChartOptions{}, map));
+    const ChartOptions chart = MakeOptions(args);
+    const SweepOptions options = ChartSweepOptions(chart, map);
     const int threads = ThreadsFor(options.threads);
 
     json identity = {{"scene", l.scene.name}, {"source", l.scene.source},
@@ -216,11 +216,7 @@ int RunChart(ChartArgs& args) {
     // Mode tracking (1-D), refined boundaries.
     ModeTracking tracking;
     if (!map) tracking = TrackModes(points);
-    BoundaryOptions bopt;
-    bopt.rel_tol = args.refine_tol;
-    bopt.max_lines = args.refine_lines;
-    bopt.threads = options.threads;
-    bopt.refine = !args.no_refine;
+    const BoundaryOptions bopt = ChartBoundaryOptions(chart);
     const auto refine_start = Clock::now();
     std::vector<UnstableInterval> intervals;
     std::vector<BoundaryPoint> boundary;

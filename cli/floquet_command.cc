@@ -25,11 +25,12 @@ namespace {
 using nlohmann::json;
 constexpr double kPi = std::numbers::pi;
 
+// Defaults from the library's option structs (Python's ltp.floquet and ltp.hill have the same).
 struct FloquetArgs {
   SceneArgs scene;
   FloquetOptions options;
-  std::string integrator = "auto";
-  std::string hill_solver = "auto";
+  std::string integrator{ToString(IntegratorOptions{}.type)};
+  std::string hill_solver{ToString(HillOptions{}.solver)};
   std::string segments = "auto";
   std::string multipliers = "schur";
   std::string method = "monodromy";
@@ -302,8 +303,7 @@ int RunFloquet(FloquetArgs& args) {
       for (const auto& m : r.modes) ho.expected.push_back(m.exponent);
     }
     if (args.harmonics == "auto") {
-      ho.harmonics = 4;  // doubled from here: smooth scenes converge by N = 8–16 (study)
-      h = AnalyzeHillAuto(l.system, ho, std::max(args.options.integrator.rel_tol, 1e-12));
+      h = AnalyzeHillToTolerance(l.system, ho, args.options.integrator.rel_tol);
     } else {
       ho.harmonics = std::stoi(args.harmonics);
       h = AnalyzeHill(l.system, ho);

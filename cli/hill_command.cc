@@ -27,9 +27,9 @@ constexpr double kPi = std::numbers::pi;
 
 struct HillArgs {
   SceneArgs scene;
-  int max_harmonics = 32;
-  std::string solver = "auto";
-  std::string selection = "centroid";
+  int max_harmonics = kHillStudyMaxHarmonics;
+  std::string solver{ToString(HillOptions{}.solver)};
+  std::string selection{ToString(HillOptions{}.selection)};
   bool no_reference = false;
   bool json = false;
   std::string csv;
@@ -97,22 +97,13 @@ int RunHill(HillArgs& args) {
   if (args.max_harmonics < 1) throw InputError("--max-harmonics must be >= 1");
   LoadedScene l = LoadSceneArgs(args.scene);
 
-  FloquetResult reference;
-  if (!args.no_reference) {
-    FloquetOptions fo;
-    fo.integrator.rel_tol = 1e-12;
-    reference = AnalyzeFloquet(l.system, fo);
-    if (!reference.ok) reference = FloquetResult{};
-  }
   Progress progress("hill: convergence study");  // the largest truncations take the time
   options.progress = [&progress](double done, double total) {
     progress(static_cast<int>(100 * done / total), 100);
   };
-  const HillStudy s = HillConvergenceStudy(l.system, args.max_harmonics, reference, options);
-  options.progress = nullptr;
-  HillOptions last_options = options;
-  last_options.harmonics = args.max_harmonics;
-  const HillResult last = AnalyzeHill(l.system, last_options);
+  const HillStudyRun run = RunHillStudy(l.system, args.max_harmonics, options, !args.no_reference);
+  const HillStudy& s = run.study;
+  const HillResult& last = run.last;
   const bool have_ref = !s.reference.empty();
 
   if (!args.csv.empty()) WriteCsv(s, args.csv);
@@ -203,9 +194,7 @@ int RunHill(HillArgs& args) {
   }
   std::cout << "  Koopman–Hill multipliers differ by " << Num(last.koopman_discrepancy, 2)
             << " 1/s (sorting-free cross-check)\n";
-  std::vector<std::string> diags = last.diagnostics;
-  for (const std::string& d : s.diagnostics)
-    if (std::find(diags.begin(), diags.end(), d) == diags.end()) diags.push_back(d);
+  const std::vector<std::string>& diags = run.diagnostics;
   if (!diags.empty()) {
     std::cout << "  diagnostics:\n";
     for (const auto& d : diags) std::cout << "    - " << d << "\n";

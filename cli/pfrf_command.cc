@@ -12,7 +12,9 @@
 #include "command.h"
 #include "format.h"
 #include "frf_args.h"
+#include "ltp/core/channel.h"
 #include "ltp/core/error.h"
+#include "ltp/htf/frequency_range.h"
 #include "ltp/htf/pfrf.h"
 #include "plot.h"
 #include "scene_args.h"
@@ -27,10 +29,10 @@ struct PfrfArgs {
   SceneArgs scene;
   std::string input = "0", output = "0";
   std::string freq;
-  std::string orders = "-4:4";
-  std::string route = "auto";
-  int check_every = 10;
-  int htf_harmonics = 0;
+  std::string orders = std::to_string(PfrfOptions{}.min_order) + ":" + std::to_string(PfrfOptions{}.max_order);
+  std::string route{ToString(PfrfOptions{}.primary)};
+  int check_every = PfrfOptions{}.check_every;
+  int htf_harmonics = HtfOptions{}.harmonics;
   double plot_threshold = 0.01;
   std::string csv, plot;
   bool json = false;
@@ -92,21 +94,14 @@ int RunPfrf(PfrfArgs& args) {
   if (sys.inputs() < 1 || sys.outputs() < 1)
     throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
   PfrfOptions o;
-  o.frequencies_hz = ParseFrequencyRange(args.freq);
-  std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders);
-  o.input = ResolveChannel(args.input, sys.labels().inputs, sys.inputs(), "input");
-  o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "output");
+  o.frequencies_hz = ParseFrequencyRange(args.freq, "--freq");
+  std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
+  o.input = ResolveChannel(args.input, sys.labels().inputs, sys.inputs(), "--input", "input");
+  o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "--output", "output");
   o.check_every = args.check_every;
   o.htf.harmonics = args.htf_harmonics;
-  if (args.route == "all") {
-    o.primary = PfrfRoute::kModal;
-    o.checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};
-  } else if (auto route = ParsePfrfRoute(args.route)) {
-    o.primary = *route;
-    o.checks = {PfrfRoute::kAuto};
-  } else {
+  if (!SelectPfrfRoutes(args.route, &o))
     throw InputError("--route must be auto, modal, htf, shooting, time or all, got '" + args.route + "'");
-  }
   Progress progress("pfrf");
   o.progress = [&progress](int done, int total) { progress(done, total); };
   const PfrfResult r = ComputePartialFrf(sys, o);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ltp/core/scene.h"
+#include "ltp/core/scene_input.h"
 
 namespace ltp::cli {
 
@@ -19,16 +20,9 @@ struct SceneArgs {
 /// a directory or a glob) and the repeatable --set NAME=VALUE to `cmd`.
 void AddSceneArgs(CLI::App* cmd, SceneArgs& args);
 
-struct LoadedScene {
-  Scene scene;
-  ParameterMap parameters;
-  PeriodicSystem system;
-  /// Caveats that belong beside any result (for .lin input: what K azimuth samples resolve,
-  /// the rigid rotation). LoadSceneArgs also prints them on stderr ("ltp: note: ...").
-  std::vector<std::string> notes;
-};
+using LoadedScene = ltp::LoadedScene;
 
-/// Loads the scene, applies the overrides and builds the system. @throws ltp::InputError.
+/// LoadSceneInput, with the notes printed on stderr. @throws ltp::InputError.
 LoadedScene LoadSceneArgs(const SceneArgs& args);
 
 /// "a=1.5, q=2" for headers.

@@ -12,7 +12,9 @@
 #include "command.h"
 #include "format.h"
 #include "frf_args.h"
+#include "ltp/core/channel.h"
 #include "ltp/core/error.h"
+#include "ltp/htf/frequency_range.h"
 #include "ltp/htf/snapshot.h"
 #include "plot.h"
 #include "scene_args.h"
@@ -29,7 +31,7 @@ struct SnapshotArgs {
   std::optional<double> angle, time;
   std::string input = "0", output = "0";
   std::string freq;
-  std::string orders = "-4:4";
+  std::string orders = std::to_string(SnapshotOptions{}.min_order) + ":" + std::to_string(SnapshotOptions{}.max_order);
   bool compare = false;
   std::string csv, plot;
   bool json = false;
@@ -84,13 +86,13 @@ int RunSnapshot(SnapshotArgs& args) {
   if (args.angle && !sys.rotor_speed())
     throw InputError("scene '" + l.scene.name + "' has no rotor speed: use --time instead of --angle");
   SnapshotOptions o;
-  o.frequencies_hz = ParseFrequencyRange(args.freq);
+  o.frequencies_hz = ParseFrequencyRange(args.freq, "--freq");
   o.time = args.time;
   o.angle_deg = args.angle;
-  o.input = ResolveChannel(args.input, sys.labels().inputs, sys.inputs(), "input");
-  o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "output");
+  o.input = ResolveChannel(args.input, sys.labels().inputs, sys.inputs(), "--input", "input");
+  o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "--output", "output");
   o.compare = args.compare;
-  std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders);
+  std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   const SnapshotResult r = ComputeSnapshotFrf(sys, o);
   const std::string at = r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
                                      : "t = " + Num(r.time, 8) + " s";

@@ -23,6 +23,7 @@
 
 #include "frf_args.h"
 #include "ltp/floquet/sweep.h"
+#include "ltp/htf/frequency_range.h"
 #include "run_ltp.h"
 
 namespace {
@@ -52,7 +53,7 @@ bool TooMuchWork(const std::vector<std::string>& args) {
       return true;
     try {
       if (const std::string* v = ValueOf(args, i, "--freq", scratch))
-        if (ltp::cli::ParseFrequencyRange(*v).size() > kMaxPoints) return true;
+        if (ltp::ParseFrequencyRange(*v, "--freq").size() > kMaxPoints) return true;
       for (const char* sweep : {"--sweep", "--sweep2"})
         if (const std::string* v = ValueOf(args, i, sweep, scratch)) {
           const ltp::SweepAxis a = ltp::SweepAxis::Parse(*v);

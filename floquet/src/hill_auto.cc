@@ -94,4 +94,11 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   return finish(std::move(best), false, s.str());
 }
 
+double HillAutoTolerance(double rel_tol) { return std::max(rel_tol, 1e-12); }
+
+HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options, double rel_tol) {
+  options.harmonics = kHillAutoStartHarmonics;
+  return AnalyzeHillAuto(system, options, HillAutoTolerance(rel_tol));
+}
+
 }  // namespace ltp

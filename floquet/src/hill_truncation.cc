@@ -307,4 +307,25 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   return study;
 }
 
+HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics, const HillOptions& options,
+                          bool reference) {
+  if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
+  FloquetResult monodromy;
+  if (reference) {
+    FloquetOptions fo;
+    fo.integrator.rel_tol = kHillStudyReferenceTol;
+    monodromy = AnalyzeFloquet(system, fo);
+    if (!monodromy.ok) monodromy = FloquetResult{};
+  }
+  HillStudyRun run{HillConvergenceStudy(system, max_harmonics, monodromy, options), {}, {}};
+  HillOptions last = options;
+  last.harmonics = max_harmonics;
+  run.last = AnalyzeHill(system, last);
+  run.diagnostics = run.last.diagnostics;
+  for (const std::string& d : run.study.diagnostics)
+    if (std::find(run.diagnostics.begin(), run.diagnostics.end(), d) == run.diagnostics.end())
+      run.diagnostics.push_back(d);
+  return run;
+}
+
 }  // namespace ltp

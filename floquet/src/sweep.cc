@@ -117,6 +117,12 @@ std::string_view ToString(SweepMethod method) {
   return method == SweepMethod::kMonodromy ? "monodromy" : "hill";
 }
 
+std::optional<SweepMethod> ParseSweepMethod(std::string_view name) {
+  if (name == "monodromy") return SweepMethod::kMonodromy;
+  if (name == "hill") return SweepMethod::kHill;
+  return std::nullopt;
+}
+
 std::vector<double> SweepAxis::Values() const {
   std::vector<double> v;
   if (step == 0) return {start};

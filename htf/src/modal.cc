@@ -65,6 +65,19 @@ std::optional<PfrfRoute> ParsePfrfRoute(std::string_view name) {
   return std::nullopt;
 }
 
+bool SelectPfrfRoutes(std::string_view name, PfrfOptions* options) {
+  if (name == "all") {
+    options->primary = PfrfRoute::kModal;
+    options->checks = {PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime};
+    return true;
+  }
+  const auto route = ParsePfrfRoute(name);
+  if (!route) return false;
+  options->primary = *route;
+  options->checks = {PfrfRoute::kAuto};
+  return true;
+}
+
 void ModalOptions::Validate() const {
   auto fail = [](const std::string& what) { throw InputError("modal options: " + what); };
   if (!(tail_tol > 0) || !std::isfinite(tail_tol)) fail("tail_tol must be a positive number");

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Installs the built project into a prefix inside the build tree, builds examples/cpp against
 # it with find_package(ltp) and checks the Floquet exponents the example prints.
+# With PYTHON and PYTHON_DIR (the module's install folder, relative to the prefix), also that
+# the installed Python package imports from the prefix and gives the same exponents.
 # Usage: install_test.sh CMAKE BUILD_DIR EXAMPLE_DIR WORK_DIR LTP_BINARY GENERATOR CXX_COMPILER
+#                        [PYTHON PYTHON_DIR]
 set -euo pipefail
 cmake="$1" build="$2" example="$3" work="$4" ltp="$5" generator="$6" cxx="$7"
+python="${8:-}" python_dir="${9:-}"
 prefix="$work/prefix"
 rm -rf "$work"
 mkdir -p "$work"
@@ -43,3 +47,16 @@ awk -v c=0.05 -v tol=1e-9 '
     if (!(estimate >= 0 && estimate < tol)) { print "error estimate " estimate; exit 1 }
     print "install test: the installed package reproduces ltp floquet"
   }' "$work/reference.txt" "$work/example.txt"
+
+if [[ -n "$python" ]]; then
+  # Same exponents from the installed module, which must come from the prefix (not the build).
+  PYTHONPATH="$prefix/$python_dir" "$python" - "$work/reference.txt" "$prefix" <<'EOF'
+import sys
+import ltp
+assert ltp.__file__.startswith(sys.argv[2]), f"ltp imported from {ltp.__file__}"
+r = ltp.floquet(ltp.scene("mathieu", a=1.5, q=2, c=0.05))
+reference = [complex(*map(float, line.split())) for line in open(sys.argv[1])]
+assert list(r.exponents) == reference, (list(r.exponents), reference)
+print("install test: the installed Python package reproduces ltp floquet to the last digit")
+EOF
+fi

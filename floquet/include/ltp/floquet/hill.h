@@ -218,6 +218,21 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
 HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
                                HillOptions options = {});
 
+/// The study as `ltp hill` and Python's `ltp.hill_study` run it: the reference (when asked
+/// for) from the monodromy route at rel_tol kHillStudyReferenceTol, left out if that run
+/// fails; the rows up to `max_harmonics`; and the full analysis at N = max_harmonics.
+struct HillStudyRun {
+  HillStudy study;
+  HillResult last;  ///< AnalyzeHill at N = max_harmonics
+  /// last's diagnostics, then the study's that last does not already have.
+  std::vector<std::string> diagnostics;
+};
+inline constexpr int kHillStudyMaxHarmonics = 32;
+inline constexpr double kHillStudyReferenceTol = 1e-12;
+/// @throws InputError for max_harmonics < 1 or invalid options.
+HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics, const HillOptions& options,
+                          bool reference);
+
 // --- Building blocks (also used by tests and benchmarks) ------------------------------------
 
 /// Dense Hill matrix of the Fourier series A with fundamental `omega` and truncation N.
@@ -246,5 +261,15 @@ namespace ltp {
 /// is a diagnostic, not an error.
 HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, double tol,
                            int max_harmonics = 256);
+
+/// What `harmonics = auto` means for Hill's method in the CLI (`ltp floquet --method hill`)
+/// and in Python (`ltp.hill`): AnalyzeHillAuto from N = kHillAutoStartHarmonics to the
+/// tolerance HillAutoTolerance(rel_tol) of the analysis' relative tolerance. `options.harmonics`
+/// is replaced by the start.
+HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options, double rel_tol);
+/// Doubled from here: smooth scenes converge by N = 8–16 (study).
+inline constexpr int kHillAutoStartHarmonics = 4;
+/// max(rel_tol, 1e-12): below 1e-12 the N vs N+Δ estimate meets the round-off of the eigensolve.
+double HillAutoTolerance(double rel_tol);
 
 }  // namespace ltp

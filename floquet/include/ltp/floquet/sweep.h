@@ -11,6 +11,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,8 @@ struct SweepAxis {
 
 enum class SweepMethod { kMonodromy, kHill };
 std::string_view ToString(SweepMethod method);
+/// "monodromy" or "hill"; nullopt otherwise.
+std::optional<SweepMethod> ParseSweepMethod(std::string_view name);
 
 struct SweepOptions {
   SweepMethod method = SweepMethod::kMonodromy;

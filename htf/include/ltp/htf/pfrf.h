@@ -305,6 +305,12 @@ struct PfrfResult {
   std::vector<std::string> diagnostics;
 };
 
+/// Sets the primary and check routes from a route name, as `ltp pfrf --route` and Python's
+/// `route=` take it: auto, modal, htf, shooting or time (that primary, checked by the route
+/// the automatic choice pairs with it) or all (modal, checked by the other three). Returns
+/// false, leaving `options` unchanged, for any other name.
+bool SelectPfrfRoutes(std::string_view name, PfrfOptions* options);
+
 /// Runs the sweep. Never throws for numerical trouble (see ok and diagnostics).
 /// @throws InputError for invalid options (channel out of range, empty sweep, ...).
 PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& options);

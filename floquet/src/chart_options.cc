@@ -1,0 +1,51 @@
+#include "ltp/floquet/chart_options.h"
+
+#include <sstream>
+#include <string>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+void ChartOptions::Validate() const {
+  auto fail = [](const std::string& field, double value, const std::string& constraint) {
+    std::ostringstream s;
+    s << "ChartOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
+    throw InputError(s.str());
+  };
+  if (!(tol > 0 && tol < 1)) fail("tol", tol, "0 < tol < 1");
+  if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
+  if (!(refine_tol > 0 && refine_tol < 1e-2)) fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
+}
+
+IntegratorType ChartIntegrator(const ChartOptions& options, bool map) {
+  if (options.integrator) return *options.integrator;
+  return map ? IntegratorType::kBulirschStoer : IntegratorType::kRkf78;
+}
+
+SweepOptions ChartSweepOptions(const ChartOptions& options, bool map) {
+  options.Validate();
+  SweepOptions o;
+  o.method = options.method;
+  o.floquet.integrator.type = ChartIntegrator(options, map);
+  o.floquet.integrator.rel_tol = options.tol;
+  o.floquet.integrator.abs_tol = options.tol * 1e-3;
+  o.hill_tol = options.tol;
+  o.modes = !map;
+  o.snapshot = options.compare && !map;
+  o.check_every = options.check_every >= 0 ? options.check_every : (map ? 97 : 1);
+  o.threads = options.threads;
+  o.Validate();
+  return o;
+}
+
+BoundaryOptions ChartBoundaryOptions(const ChartOptions& options) {
+  BoundaryOptions b;
+  b.rel_tol = options.refine_tol;
+  b.max_lines = options.refine_lines;
+  b.threads = options.threads;
+  b.refine = options.refine;
+  return b;
+}
+
+}  // namespace ltp

@@ -1,0 +1,19 @@
+#pragma once
+// Frequency and order ranges written as text, as `ltp pfrf --freq 0:450:0.6 --orders -4:4`
+// and Python's `freq="0:450:0.6", orders="-4:4"` take them: one parser, so both get the same
+// grid to the last bit.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ltp {
+
+/// "F0:F1:DF" (Hz) → F0 + i·DF for i = 0, 1, ... while <= F1 (within a rounding error); equal
+/// ends: the one frequency. `option` is how the caller spells the argument in messages.
+/// @throws InputError (not three finite numbers, F1 < F0, DF <= 0, over a million points).
+std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option);
+
+/// "ZMIN:ZMAX" or "Z" → (min, max), |z| <= 1000. @throws InputError.
+std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& option);
+
+}  // namespace ltp

@@ -1,0 +1,77 @@
+#include "ltp/htf/frequency_range.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+namespace {
+
+double ParseNumber(const std::string& s, const std::string& what) {
+  try {
+    size_t used = 0;
+    const double x = std::stod(s, &used);
+    if (used != s.size() || !std::isfinite(x)) throw std::invalid_argument("");
+    return x;
+  } catch (const std::exception&) {
+    throw InputError(what + ": '" + s + "' is not a finite number");
+  }
+}
+
+std::vector<std::string> Split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    const size_t at = s.find(sep, start);
+    parts.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
+    if (at == std::string::npos) break;
+    start = at + 1;
+  }
+  return parts;
+}
+
+int ParseInt(const std::string& s, const std::string& what) {
+  try {
+    size_t used = 0;
+    const long v = std::stol(s, &used);
+    if (used != s.size() || v < -100000 || v > 100000) throw std::invalid_argument("");
+    return static_cast<int>(v);
+  } catch (const std::exception&) {
+    throw InputError(what + ": '" + s + "' is not an integer");
+  }
+}
+
+}  // namespace
+
+std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option) {
+  const auto parts = Split(text, ':');
+  if (parts.size() != 3) throw InputError(option + " must be F0:F1:DF in Hz, got '" + text + "'");
+  const double f0 = ParseNumber(parts[0], option + " F0"), f1 = ParseNumber(parts[1], option + " F1");
+  const double df = ParseNumber(parts[2], option + " DF");
+  if (f1 < f0) throw InputError(option + ": F1 must be >= F0, got '" + text + "'");
+  if (f1 == f0) return {f0};
+  if (!(df > 0)) throw InputError(option + ": DF must be > 0, got '" + text + "'");
+  const double count = std::floor((f1 - f0) / df * (1 + 1e-12) + 1e-9) + 1;
+  if (count > 1e6) throw InputError(option + ": more than a million frequencies in '" + text + "'");
+  std::vector<double> f;
+  for (int i = 0; i < static_cast<int>(count); ++i) f.push_back(f0 + i * df);
+  return f;
+}
+
+std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& option) {
+  const auto parts = Split(text, ':');
+  if (parts.size() == 1) {
+    const int z = ParseInt(parts[0], option);
+    return {z, z};
+  }
+  if (parts.size() != 2) throw InputError(option + " must be ZMIN:ZMAX, got '" + text + "'");
+  const int a = ParseInt(parts[0], option), b = ParseInt(parts[1], option);
+  if (a > b) throw InputError(option + ": ZMIN must be <= ZMAX, got '" + text + "'");
+  if (std::max(std::abs(a), std::abs(b)) > 1000) throw InputError(option + ": beyond ±1000");
+  return {a, b};
+}
+
+}  // namespace ltp

@@ -1,0 +1,56 @@
+"""ltp: analysis of linear time-periodic systems x' = A(t) x + B(t) u, y = C(t) x + D(t) u.
+
+The functions are the `ltp` command's, with its options as keyword arguments and the same
+defaults; results are objects whose fields are numpy arrays.
+
+Systems
+    scene(name_or_path, **parameters)   built-in scene, YAML scene file or OpenFAST .lin files
+    scenes()                            the built-in scenes and their parameters
+    System.from_fourier(T, A, B, C, D)  numpy Fourier coefficients
+    System.from_function(T, A, ...)     a Python callable A(t)
+    System.from_samples(T, times, A)    piecewise-constant matrices
+
+Analyses (each runs without the GIL)
+    floquet(system, ...)   -> FloquetResult   `ltp floquet`: exponents, multipliers, mode shapes
+    hill(system, ...)      -> HillResult      `ltp floquet --method hill`: Hill's method
+    hill_study(system, ...) -> HillStudy      `ltp hill`: convergence over the truncation N
+    pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
+    snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
+    chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
+
+Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
+ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
+
+    >>> import ltp
+    >>> r = ltp.floquet(ltp.scene("mathieu", a=1.5, q=2))
+    >>> r.exponents, r.verdict, r.error_estimate
+"""
+from ._ltp import (  # noqa: F401
+    ChartResult,
+    Error,
+    FloquetResult,
+    HillResult,
+    HillStudy,
+    InputError,
+    PfrfResult,
+    ResourceError,
+    SceneError,
+    SingularMassError,
+    SnapshotResult,
+    System,
+    __version__,
+    chart,
+    floquet,
+    hill,
+    hill_study,
+    pfrf,
+    scene,
+    scenes,
+    snapshot,
+)
+
+__all__ = [
+    "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "PfrfResult",
+    "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
+    "chart", "floquet", "hill", "hill_study", "pfrf", "scene", "scenes", "snapshot",
+]

@@ -1,0 +1,118 @@
+#pragma once
+// Shared pieces of the Python module: the system as Python holds it, running library work
+// without the GIL, and numpy conversions. Each Bind* function adds one part of the module.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <complex>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/core/scene.h"
+#include "ltp/floquet/integrator.h"
+
+namespace ltp::python {
+
+namespace py = pybind11;
+using Complex = std::complex<double>;
+
+/// The Python callables behind a system built by System.from_function. The library calls them
+/// from its OpenMP threads with the GIL released: each call takes the GIL back. An exception
+/// raised by a callable (or a wrong shape) cannot cross the library's parallel loops, so it is
+/// kept here and re-raised when the analysis returns; meanwhile every call answers a zero
+/// matrix, on which every route finishes at once (NaN would send the adaptive integrators and
+/// the automatic refinements through their longest paths: 50 s on Mathieu).
+class Callbacks {
+ public:
+  explicit Callbacks(std::vector<py::object> functions) : functions_(std::move(functions)) {}
+  ~Callbacks();
+  Callbacks(const Callbacks&) = delete;
+  Callbacks& operator=(const Callbacks&) = delete;
+
+  /// Calls function `which` at t (taking the GIL) and writes its rows × cols result to `out`.
+  void Evaluate(size_t which, const char* name, double t, Eigen::Ref<Eigen::MatrixXd> out);
+  /// Before an analysis: forget an earlier failure.
+  void Reset();
+  /// After an analysis (GIL held): raise what a callable raised.
+  void RethrowIfFailed();
+
+ private:
+  std::vector<py::object> functions_;
+  std::mutex mutex_;
+  std::exception_ptr error_;
+  std::atomic<bool> failed_{false};
+};
+
+/// A system as Python holds it: the library's immutable system, and where it came from.
+struct System {
+  PeriodicSystem system;
+  std::optional<Scene> scene;  ///< when built by ltp.scene: what ltp.chart sweeps
+  ParameterMap parameters;     ///< the scene's resolved parameters
+  std::vector<std::string> notes;
+  std::shared_ptr<Callbacks> callbacks;  ///< from_function with Python callables
+};
+
+/// Runs `work` with the GIL released (long work: other Python threads run meanwhile). Python
+/// callables behind `system` take the GIL back per call; what they raised is raised here.
+template <class Work>
+auto WithoutGil(const System& system, Work&& work) {
+  if (system.callbacks) system.callbacks->Reset();
+  using Result = decltype(work());
+  std::optional<Result> result;
+  std::exception_ptr thrown;
+  {
+    py::gil_scoped_release release;
+    try {
+      result.emplace(work());
+    } catch (...) {
+      thrown = std::current_exception();
+    }
+  }
+  if (system.callbacks) system.callbacks->RethrowIfFailed();  // the cause comes first
+  if (thrown) std::rethrow_exception(thrown);
+  return std::move(*result);
+}
+
+/// The OpenMP threads of an analysis: `requested`, except that 0 (all cores) means one for a
+/// system behind Python callables, whose calls take turns on the GIL anyway (more threads only
+/// wait for it: measured in README, "Use ltp from Python").
+inline int AnalysisThreads(const System& system, int requested) {
+  return system.callbacks && requested == 0 ? 1 : requested;
+}
+
+// numpy arrays out (copies: results own their numbers).
+py::array_t<double> RealArray(const std::vector<double>& v);
+py::array_t<Complex> ComplexArray(const std::vector<Complex>& v);
+/// Matrices of equal size stacked along a first axis: shape (count, rows, cols).
+py::array_t<Complex> ComplexStack(const std::vector<Eigen::MatrixXcd>& m, int rows, int cols);
+/// Rows of equal length: shape (rows, cols).
+py::array_t<Complex> ComplexTable(const std::vector<std::vector<Complex>>& rows, size_t cols);
+py::array_t<double> RealTable(const std::vector<std::vector<double>>& rows, size_t cols);
+
+// Arguments in.
+/// A list of finite frequencies (Hz) from "F0:F1:DF" (the CLI's --freq) or a 1-D array-like.
+std::vector<double> FrequenciesFrom(const py::object& freq);
+/// (min, max) from "ZMIN:ZMAX", "Z", an int or a pair (the CLI's --orders).
+std::pair<int, int> OrdersFrom(const py::object& orders);
+/// A channel by index or name (the CLI's --input/--output).
+int ChannelFrom(const py::object& channel, const std::vector<std::string>& names, int count,
+                const std::string& what);
+
+/// An integrator by the CLI's name. @throws InputError listing the names.
+IntegratorType IntegratorFrom(const std::string& name);
+
+void BindSystem(py::module_& m);
+void BindFloquet(py::module_& m);
+void BindHill(py::module_& m);
+void BindFrf(py::module_& m);
+void BindChart(py::module_& m);
+
+}  // namespace ltp::python

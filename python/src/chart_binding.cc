@@ -1,0 +1,288 @@
+// ltp.chart: Campbell and damping diagrams over one scene parameter, stability maps over two,
+// with the stability boundaries refined beyond the grid (what `ltp chart` computes, in memory:
+// no journal, no plot).
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "binding.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/chart_options.h"
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/stability_boundary.h"
+#include "ltp/floquet/sweep.h"
+#include "ltp/floquet/threads.h"
+
+namespace ltp::python {
+
+namespace {
+
+struct ChartResult {
+  std::string scene, method, integrator;
+  ParameterMap parameters;
+  int states = 0;
+  double tol = 0;
+  int threads = 0;
+  SweepGrid grid;
+  SweepOptions options;
+  std::vector<SweepPoint> points;  ///< grid order
+  ModeTracking tracking;           ///< 1-D only
+  std::vector<UnstableInterval> intervals;
+  std::vector<BoundaryPoint> boundary;
+  double sweep_s = 0, refine_s = 0;
+};
+
+SweepAxis AxisFrom(const py::object& spec) {
+  if (py::isinstance<py::str>(spec)) return SweepAxis::Parse(spec.cast<std::string>());
+  if (py::isinstance<py::sequence>(spec) && py::len(spec) == 4) {
+    const auto s = spec.cast<py::sequence>();
+    try {
+      return {s[0].cast<std::string>(), s[1].cast<double>(), s[2].cast<double>(), s[3].cast<double>()};
+    } catch (const py::cast_error&) {
+    }
+  }
+  throw InputError("a sweep is 'NAME=START:STOP:STEP' or (name, start, stop, step), got " +
+                   py::repr(spec).cast<std::string>());
+}
+
+py::dict BoundaryDict(const BoundaryEstimate& e) {
+  return py::dict(py::arg("value") = e.value, py::arg("refined") = e.refined, py::arg("bracket") = e.bracket,
+                  py::arg("at_sweep_edge") = e.at_sweep_edge, py::arg("evaluations") = e.evaluations,
+                  py::arg("note") = e.note);
+}
+
+template <class Field>
+auto PointArray(Field field) {
+  return [field](const ChartResult& c) {
+    py::array_t<double> a(static_cast<py::ssize_t>(c.points.size()));
+    for (size_t i = 0; i < c.points.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = field(c.points[i]);
+    return a;
+  };
+}
+
+ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes, const ChartOptions& chart) {
+  if (!system.scene) throw InputError("chart sweeps a scene's parameters: give a system made by ltp.scene(...)");
+  const Scene& scene = *system.scene;
+  ChartResult r;
+  r.scene = scene.name;
+  r.parameters = system.parameters;
+  r.states = system.system.states();
+  r.grid = MakeSweepGrid(scene, axes);
+  const bool map = r.grid.axes.size() == 2;
+  r.options = ChartSweepOptions(chart, map);
+  r.method = ToString(chart.method);
+  r.integrator = ToString(ChartIntegrator(chart, map));
+  r.tol = chart.tol;
+  r.threads = ThreadsFor(r.options.threads);
+  std::vector<size_t> todo(r.grid.size());
+  for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
+  r.points.resize(r.grid.size());
+  const auto start = std::chrono::steady_clock::now();
+  // Distinct indices: no two threads write one element.
+  RunSweep(scene, system.parameters, r.grid, todo, r.options,
+           [&r](SweepPoint&& p) { r.points[p.index] = std::move(p); });
+  r.sweep_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto refine_start = std::chrono::steady_clock::now();
+  const BoundaryOptions boundary = ChartBoundaryOptions(chart);
+  if (!map) {
+    r.tracking = TrackModes(r.points);
+    r.intervals = RefineUnstableIntervals(scene, system.parameters, r.grid, r.points, r.options, boundary);
+  } else if (chart.refine) {
+    r.boundary = RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
+  }
+  r.refine_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
+  return r;
+}
+
+}  // namespace
+
+void BindChart(py::module_& m) {
+  py::class_<ChartResult>(m, "ChartResult", R"doc(
+The result of ltp.chart: one Floquet analysis per grid point (arrays over the points, in
+grid order, first axis fastest), mode tracking along a 1-D sweep (Campbell lines), and the
+unstable intervals (1-D) or boundary points (maps) refined beyond the grid.
+
+For a Campbell diagram plot tracked_frequencies_hz[:, k] and the damping of
+tracked_exponents[:, k] against values[0].)doc")
+      .def_readonly("scene", &ChartResult::scene, "the scene's name")
+      .def_readonly("parameters", &ChartResult::parameters, "the scene's parameters besides the swept ones")
+      .def_readonly("method", &ChartResult::method, "'monodromy' or 'hill'")
+      .def_readonly("integrator", &ChartResult::integrator, "the monodromy integrator used")
+      .def_readonly("tol", &ChartResult::tol, "the tolerance used")
+      .def_readonly("threads", &ChartResult::threads, "threads used over points")
+      .def_property_readonly("check_every", [](const ChartResult& c) { return c.options.check_every; }, "error estimate on every k-th point")
+      .def_property_readonly("axes", [](const ChartResult& c) {
+        std::vector<std::string> names;
+        for (const auto& a : c.grid.axes) names.push_back(a.name);
+        return names;
+      }, "the swept parameters' names")
+      .def_property_readonly("values", [](const ChartResult& c) {
+        py::list out;
+        for (const auto& v : c.grid.values) out.append(RealArray(v));
+        return out;
+      }, "the grid values of each axis")
+      .def_property_readonly("point_values", [](const ChartResult& c) {
+        std::vector<std::vector<double>> v;
+        for (const SweepPoint& p : c.points) v.push_back(p.values);
+        return RealTable(v, c.grid.axes.size());
+      }, "parameter values of every point, shape (points, axes)")
+      .def_property_readonly("ok", [](const ChartResult& c) {
+        py::array_t<bool> a(static_cast<py::ssize_t>(c.points.size()));
+        for (size_t i = 0; i < c.points.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = c.points[i].ok;
+        return a;
+      }, "per point: the analysis succeeded")
+      .def_property_readonly("verdicts", [](const ChartResult& c) {
+        std::vector<std::string> v;
+        for (const SweepPoint& p : c.points) v.emplace_back(ToString(p.verdict));
+        return v;
+      }, "'stable', 'marginal', 'unstable' or 'failed' per point")
+      .def_property_readonly("periods", PointArray([](const SweepPoint& p) { return p.period; }), "per point: the period T (s)")
+      .def_property_readonly("max_real_exponent", PointArray([](const SweepPoint& p) { return p.max_real_exponent; }), "per point: max Re λ (1/s)")
+      .def_property_readonly("max_log_multiplier", PointArray([](const SweepPoint& p) { return p.max_log_multiplier; }), "per point: max log|ρ| = T max Re λ")
+      .def_property_readonly("error_estimate", PointArray([](const SweepPoint& p) { return p.error_estimate; }),
+                             "per point (1/s); -1 where the point was not checked")
+      .def_property_readonly("exponents", [](const ChartResult& c) {
+        std::vector<std::vector<Complex>> v;
+        for (const SweepPoint& p : c.points) {
+          v.emplace_back();
+          for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
+        }
+        return ComplexTable(v, static_cast<size_t>(c.states));
+      }, "exponents of every point in its own display order, shape (points, n); NaN where failed")
+      .def_property_readonly("tracked_exponents", [](const ChartResult& c) {
+        std::vector<std::vector<Complex>> v;
+        for (size_t i = 0; i < c.points.size(); ++i) {
+          v.emplace_back();
+          if (i >= c.tracking.labels.size()) continue;
+          for (int index : c.tracking.labels[i])
+            v.back().push_back(index >= 0 ? c.points[i].modes[static_cast<size_t>(index)].exponent : Complex(NAN, NAN));
+        }
+        return ComplexTable(v, static_cast<size_t>(c.states));
+      }, "1-D: exponents by tracked label ([:, k] is one Campbell line), shape (points, n)")
+      .def_property_readonly("tracked_frequencies_hz", [](const ChartResult& c) {
+        return RealTable(c.tracking.frequency_hz, static_cast<size_t>(c.states));
+      }, "1-D: tracked frequencies, unwrapped along each line (Hz), shape (points, n)")
+      .def_property_readonly("snapshot_eigenvalues", [](const ChartResult& c) {
+        std::vector<std::vector<Complex>> v;
+        for (const SweepPoint& p : c.points) v.push_back(p.snapshot_eigenvalues);
+        return ComplexTable(v, static_cast<size_t>(c.states));
+      }, "compare=True: eigenvalues of the frozen A(0) per point")
+      .def_property_readonly("averaged_eigenvalues", [](const ChartResult& c) {
+        std::vector<std::vector<Complex>> v;
+        for (const SweepPoint& p : c.points) v.push_back(p.averaged_eigenvalues);
+        return ComplexTable(v, static_cast<size_t>(c.states));
+      }, "compare=True: eigenvalues of the averaged A_0 per point")
+      .def_property_readonly("counts", [](const ChartResult& c) {
+        std::map<std::string, size_t> counts{{"stable", 0}, {"marginal", 0}, {"unstable", 0}, {"failed", 0}};
+        for (const SweepPoint& p : c.points) ++counts[std::string(ToString(p.verdict))];
+        return counts;
+      }, "points per verdict")
+      .def_property_readonly("checked_points", [](const ChartResult& c) {
+        size_t n = 0;
+        for (const SweepPoint& p : c.points) n += p.ok && p.error_estimate >= 0;
+        return n;
+      }, "points with an error estimate")
+      .def_property_readonly("max_error_estimate", [](const ChartResult& c) {
+        double e = -1;
+        for (const SweepPoint& p : c.points)
+          if (p.ok && p.error_estimate >= 0) e = std::max(e, p.error_estimate);
+        return e;
+      }, "over the checked points (1/s); -1 when none was checked")
+      .def_property_readonly("failures", [](const ChartResult& c) {
+        py::list out;
+        for (const SweepPoint& p : c.points)
+          if (!p.ok) out.append(py::dict(py::arg("values") = p.values, py::arg("reason") = p.failure));
+        return out;
+      }, "the failed points: values and reason")
+      .def_property_readonly("unstable_intervals", [](const ChartResult& c) {
+        std::vector<std::vector<double>> v;
+        for (const auto& in : c.intervals) v.push_back({in.lo.value, in.hi.value});
+        return RealTable(v, 2);
+      }, "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
+      .def_property_readonly("unstable_interval_details", [](const ChartResult& c) {
+        py::list out;
+        for (const auto& in : c.intervals)
+          out.append(py::dict(py::arg("lo") = BoundaryDict(in.lo), py::arg("hi") = BoundaryDict(in.hi)));
+        return out;
+      }, "1-D: per end of each interval: value, refined, bracket, at_sweep_edge, evaluations, note")
+      .def_property_readonly("boundary_points", [](const ChartResult& c) {
+        std::vector<std::vector<double>> v;
+        for (const auto& b : c.boundary)
+          if (b.estimate.refined) v.push_back(b.values);
+        return RealTable(v, 2);
+      }, "maps: the refined boundary points, shape (count, 2)")
+      .def_property_readonly("boundary_point_details", [](const ChartResult& c) {
+        py::list out;
+        for (const auto& b : c.boundary)
+          out.append(py::dict(py::arg("values") = b.values,
+                              py::arg("refined_parameter") = c.grid.axes[static_cast<size_t>(b.axis)].name,
+                              py::arg("entering_unstable") = b.entering_unstable,
+                              py::arg("estimate") = BoundaryDict(b.estimate)));
+        return out;
+      }, "maps: every grid crossing, refined or not, with its estimate")
+      .def_property_readonly("mode_tracking", [](const ChartResult& c) {
+        return py::dict(py::arg("min_mac") = c.tracking.min_mac,
+                        py::arg("ambiguous_points") = c.tracking.ambiguous);
+      }, "1-D: smallest accepted MAC and the points where a match was ambiguous")
+      .def_readonly("sweep_s", &ChartResult::sweep_s, "wall time of the sweep (s)")
+      .def_readonly("refine_s", &ChartResult::refine_s, "wall time of the boundary refinement (s)")
+      .def("__repr__", [](const ChartResult& c) {
+        return "<ltp.ChartResult: " + c.scene + ", " + std::to_string(c.points.size()) + " points>";
+      });
+
+  const ChartOptions defaults;
+  m.def(
+      "chart",
+      [](const py::object& scene, const py::object& sweep, const py::object& sweep2,
+         const std::string& method, std::optional<std::string> integrator, double tol, int threads,
+         bool compare, int check_every, bool refine, double refine_tol, int refine_lines) {
+        const System system = py::isinstance<py::str>(scene)
+                                  ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
+                                  : scene.cast<System>();
+        std::vector<SweepAxis> axes{AxisFrom(sweep)};
+        if (!sweep2.is_none()) axes.push_back(AxisFrom(sweep2));
+        ChartOptions o;
+        const auto m = ParseSweepMethod(method);
+        if (!m) throw InputError("method must be 'monodromy' or 'hill', got '" + method + "'");
+        o.method = *m;
+        if (integrator) o.integrator = IntegratorFrom(*integrator);
+        o.tol = tol;
+        o.threads = threads;
+        o.compare = compare;
+        o.check_every = check_every;
+        o.refine = refine;
+        o.refine_tol = refine_tol;
+        o.refine_lines = refine_lines;
+        o.Validate();
+        py::gil_scoped_release release;
+        return Chart(system, axes, o);
+      },
+      py::arg("scene"), py::arg("sweep"), py::arg("sweep2") = py::none(), py::kw_only(),
+      py::arg("method") = std::string(ToString(defaults.method)), py::arg("integrator") = py::none(),
+      py::arg("tol") = defaults.tol, py::arg("threads") = defaults.threads,
+      py::arg("compare") = defaults.compare, py::arg("check_every") = defaults.check_every,
+      py::arg("refine") = defaults.refine, py::arg("refine_tol") = defaults.refine_tol,
+      py::arg("refine_lines") = defaults.refine_lines, R"doc(
+Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
+parameters: `ltp chart SCENE --sweep ... --json` as a function, with the same options and
+defaults (the library's ChartOptions).
+
+  scene         a System made by ltp.scene(...) (its parameters are the base) or a name
+  sweep, sweep2 'NAME=START:STOP:STEP' or (name, start, stop, step)
+  method        monodromy | hill
+  integrator    None: rkf78 for 1-D sweeps, bs for maps; or any name ltp.floquet takes
+  tol           integrator relative tolerance (hill: truncation tolerance)
+  threads       threads over points (0 = all cores)
+  compare       1-D: also the frozen A(0) and averaged-system eigenvalues
+  check_every   error estimate on every k-th point (negative: 1 for 1-D, 97 for maps; 0 = none)
+  refine        refine the stability boundaries beyond the grid
+  refine_tol    relative tolerance of refined boundaries
+  refine_lines  maps: grid lines per axis along which boundaries are refined (0 = all)
+
+Returns a ChartResult. Runs without the GIL.
+
+    c = ltp.chart(ltp.scene("rotor", blades=3), "Omega=0.2:2:0.05")
+    plt.plot(c.values[0], c.tracked_frequencies_hz))doc");
+}
+
+}  // namespace ltp::python

@@ -1,0 +1,134 @@
+// ltp.floquet: the monodromy route, and its result.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "binding.h"
+#include "floquet_modes.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/floquet.h"
+
+namespace ltp::python {
+
+namespace {
+
+int SegmentsFrom(const py::object& segments) {
+  if (py::isinstance<py::str>(segments) && segments.cast<std::string>() == "auto") return 0;
+  if (py::isinstance<py::int_>(segments) && !py::isinstance<py::bool_>(segments)) {
+    const long k = segments.cast<long>();
+    if (k >= 1 && k <= std::numeric_limits<int>::max()) return static_cast<int>(k);
+  }
+  throw InputError("segments must be a positive integer or 'auto', got " +
+                   py::repr(segments).cast<std::string>());
+}
+
+MultiplierMethod MultipliersFrom(const std::string& name) {
+  if (name == "schur" || name == "periodic-schur") return MultiplierMethod::kPeriodicSchur;
+  if (name == "single-shot") return MultiplierMethod::kSingleShot;
+  throw InputError("multipliers must be 'schur' or 'single-shot', got '" + name + "'");
+}
+
+}  // namespace
+
+IntegratorType IntegratorFrom(const std::string& name) {
+  const auto type = ParseIntegratorType(name);
+  if (!type)
+    throw InputError("unknown integrator '" + name +
+                     "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm)");
+  return *type;
+}
+
+void BindFloquet(py::module_& m) {
+  py::class_<FloquetResult> r(m, "FloquetResult", R"doc(
+The result of ltp.floquet: Floquet exponents λ_k (1/s) on the branch whose periodic mode
+shape is centred on harmonic 0, multipliers ρ_k = exp(λ_k T), the mode shapes, the
+stability verdict and an error estimate. Arrays are numpy arrays, one entry per mode in
+the order `ltp floquet` prints them (by |frequency|, then Re λ).
+
+ok is False when the integration failed or the result failed its own checks (Liouville's
+formula beyond the error estimate): the diagnostics say why.)doc");
+  BindModeArrays<FloquetResult>(r);
+  r.def_readonly("ok", &FloquetResult::ok, "the analysis succeeded and passed its own checks")
+      .def_readonly("states", &FloquetResult::states, "n")
+      .def_readonly("period", &FloquetResult::period, "T (s)")
+      .def_readonly("integrator", &FloquetResult::integrator, "the integrator used (auto resolved)")
+      .def_readonly("multiplier_method", &FloquetResult::multiplier_method, "'periodic-schur' or 'single-shot'")
+      .def_readonly("segments", &FloquetResult::segments, "K, the number of segments used")
+      .def_property_readonly("segment_times", [](const FloquetResult& f) { return RealArray(f.segment_times); }, "t_0 = 0 < ... < t_K = T")
+      .def_readonly("max_real_exponent", &FloquetResult::max_real_exponent, "max Re λ (1/s), rigid-body modes excluded")
+      .def_readonly("max_log_abs_multiplier", &FloquetResult::max_log_abs_multiplier, "max log|ρ| = T max Re λ")
+      .def_readonly("stable", &FloquetResult::stable, "verdict == 'stable'")
+      .def_property_readonly("verdict", [](const FloquetResult& f) { return std::string(ToString(f.verdict)); },
+                             "'stable' or 'unstable' only when max Re λ lies beyond the error estimate; "
+                             "'marginal' within it; 'failed'")
+      .def_readonly("error_estimate", &FloquetResult::error_estimate,
+                    "estimated absolute error of every exponent (1/s): the difference to a second, "
+                    "tighter run; -1 when not computed")
+      .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
+                    "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|)")
+      .def_readonly("mode_condition", &FloquetResult::mode_condition, "cond(Ξ(0)); large = (near-)defective")
+      .def_readonly("monodromy", &FloquetResult::monodromy, "Φ(T, 0), n×n")
+      .def_property_readonly("sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); }, "uniform times of mode_samples")
+      .def_property_readonly("mode_samples", [](const FloquetResult& f) {
+        return ComplexStack(f.mode_samples, f.states, f.states);
+      }, "ξ_k(t_s): shape (S, n, n), column k of [s] is mode k at sample_times[s]")
+      .def_property_readonly("mode_harmonics", [](const FloquetResult& f) {
+        return ComplexStack(f.mode_fourier, f.states, f.states);
+      }, "Fourier coefficients of the mode shapes: shape (2H+1, n, n), [v + H][:, k] is "
+         "harmonic v of mode k (v = -H..H, see mode_harmonic_orders)")
+      .def_property_readonly("mode_harmonic_orders", [](const FloquetResult& f) {
+        py::array_t<int> v(2 * f.mode_harmonics + 1);
+        for (int h = -f.mode_harmonics; h <= f.mode_harmonics; ++h) v.mutable_at(h + f.mode_harmonics) = h;
+        return v;
+      }, "the harmonics v = -H..H of mode_harmonics")
+      .def_readonly("rhs_evals", &FloquetResult::rhs_evals, "evaluations of A(t)")
+      .def_readonly("elapsed_s", &FloquetResult::elapsed_s, "wall time (s)")
+      .def_readonly("diagnostics", &FloquetResult::diagnostics, "what the analysis noticed, one line each")
+      .def("mode_matrix", &FloquetResult::ModeMatrix, py::arg("t"),
+           "Ξ(t): the mode shapes at time t (spectral interpolation), n×n, column k = mode k")
+      .def("left_modes", &FloquetResult::LeftModes, py::arg("t"), "rows of Ξ(t)⁻¹")
+      .def("__repr__", [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });
+
+  const FloquetOptions defaults;
+  m.def(
+      "floquet",
+      [](const System& system, const std::string& integrator, double tol, int steps,
+         const py::object& segments, const std::string& multipliers, int mode_samples, int threads) {
+        FloquetOptions o;
+        o.integrator.type = IntegratorFrom(integrator);
+        o.integrator.rel_tol = tol;
+        o.integrator.steps_per_period = steps;
+        o.segments = SegmentsFrom(segments);
+        o.multipliers = MultipliersFrom(multipliers);
+        o.mode_samples = mode_samples;
+        o.threads = AnalysisThreads(system, threads);
+        o.Validate();
+        return WithoutGil(system, [&] { return AnalyzeFloquet(system.system, o); });
+      },
+      py::arg("system"), py::kw_only(),
+      py::arg("integrator") = std::string(ToString(defaults.integrator.type)),
+      py::arg("tol") = defaults.integrator.rel_tol,
+      py::arg("steps") = defaults.integrator.steps_per_period, py::arg("segments") = "auto",
+      py::arg("multipliers") = "schur", py::arg("mode_samples") = defaults.mode_samples,
+      py::arg("threads") = defaults.threads, R"doc(
+Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
+the same options and defaults.
+
+  integrator    auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm
+                (auto: the work-precision study's cheapest for the system; the result's
+                integrator and diagnostics say which and why)
+  tol           relative tolerance (the exponents inherit about this error)
+  steps         fixed-step methods: steps per period (0 = automatic)
+  segments      number of segments K of the period, or 'auto'
+  multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
+  mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
+  threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
+
+Returns a FloquetResult. Runs without the GIL. Raises ltp.InputError (a ValueError) for
+bad options; a failed analysis is not an exception: see result.ok and diagnostics.
+
+    r = ltp.floquet(ltp.scene("mathieu", a=1.5, q=2))
+    r.exponents, r.multipliers, r.verdict, r.error_estimate)doc");
+}
+
+}  // namespace ltp::python

@@ -1,0 +1,219 @@
+// ltp.hill: Hill's method, and its result.
+#include <limits>
+
+#include "binding.h"
+#include "floquet_modes.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/hill.h"
+
+namespace ltp::python {
+
+namespace {
+
+template <class Field>
+auto InfoArray(Field field) {
+  return [field](const HillResult& h) {
+    py::array_t<double> a(static_cast<py::ssize_t>(h.info.size()));
+    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
+    return a;
+  };
+}
+
+template <class Field>
+auto InfoFlags(Field field) {
+  return [field](const HillResult& h) {
+    py::array_t<bool> a(static_cast<py::ssize_t>(h.info.size()));
+    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
+    return a;
+  };
+}
+
+}  // namespace
+
+void BindHill(py::module_& m) {
+  py::class_<HillResult> r(m, "HillResult", R"doc(
+The result of ltp.hill: the n physical Floquet exponents among the eigenvalues of the
+truncated Hill matrix, in the same order and with the same per-mode arrays as a
+FloquetResult, with the selection's margins, the truncation error estimates and the
+Koopman–Hill cross-check.)doc");
+  BindModeArrays<HillResult>(r);
+  r.def_readonly("ok", &HillResult::ok, "the exponents were found and passed the Liouville check")
+      .def_readonly("states", &HillResult::states, "n")
+      .def_readonly("harmonics", &HillResult::harmonics, "N actually used (harmonics -N..N)")
+      .def_readonly("matrix_size", &HillResult::matrix_size, "(2N+1) n")
+      .def_readonly("period", &HillResult::period, "T (s)")
+      .def_readonly("solver", &HillResult::solver, "'dense' or 'structured' (auto resolved)")
+      .def_readonly("selection_rule", &HillResult::selection_rule, "how the physical eigenvalues were picked")
+      .def_property_readonly("centroids", InfoArray([](const HillModeInfo& i) { return i.centroid; }),
+                             "energy centroid of each eigenvector over the harmonic blocks")
+      .def_property_readonly("selection_margins", InfoArray([](const HillModeInfo& i) { return i.selection_margin; }),
+                             "1 = clean choice, 0 = tie between λ and λ ± jΩp")
+      .def_property_readonly("tail_weights", InfoArray([](const HillModeInfo& i) { return i.tail_weight; }),
+                             "energy on the outermost blocks ±N (large: N too small for the mode)")
+      .def_property_readonly("truncation_changes", InfoArray([](const HillModeInfo& i) { return i.truncation_change; }),
+                             "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); -1 when not computed")
+      .def_property_readonly("residuals", InfoArray([](const HillModeInfo& i) { return i.residual; }), "relative eigen-residual of each selected eigenvalue")
+      .def_property_readonly("passed", InfoFlags([](const HillModeInfo& i) { return i.passed; }), "the selection rule's pass condition per mode")
+      .def_property_readonly("ambiguous", InfoFlags([](const HillModeInfo& i) { return i.ambiguous; }), "selection margin below the threshold (a tie between λ and λ ± jΩp)")
+      .def_readonly("max_real_exponent", &HillResult::max_real_exponent, "max Re λ (1/s)")
+      .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
+      .def_property_readonly("verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); }, "'stable', 'unstable' (beyond the error estimate), 'marginal' or 'failed'")
+      .def_readonly("delta_harmonics", &HillResult::delta_harmonics, "Δ of the N vs N+Δ estimate (0: not computed)")
+      .def_readonly("truncation_estimate", &HillResult::truncation_estimate,
+                    "max_k |λ_k(N) − λ_k(N+Δ)| mod jΩp (1/s); -1 = not computed")
+      .def_readonly("apriori_bound", &HillResult::apriori_bound, "a-priori bound on the exponent error (inf: none)")
+      .def_property_readonly("coefficient_decay", [](const HillResult& h) {
+        return py::dict(py::arg("kind") = h.decay.kind, py::arg("rate") = h.decay.rate,
+                        py::arg("harmonics") = h.decay.harmonics, py::arg("fourier_tail") = h.decay.fourier_tail,
+                        py::arg("norms") = RealArray(h.decay.norms));
+      }, "how fast the Fourier coefficients of A decay: kind 'finite', 'exponential' or 'algebraic'")
+      .def_readonly("fourier_fit_error", &HillResult::fourier_fit_error, "error of the exponents due to the FFT fit of A(t) (1/s); 0 for Fourier input")
+      .def_readonly("tolerance_met", &HillResult::tolerance_met, "harmonics='auto': whether tol was met; else None")
+      .def_readonly("error_estimate", &HillResult::error_estimate,
+                    "the error estimate of every exponent (1/s); see the C++ HillResult for its parts")
+      .def_property_readonly("koopman_log_multipliers", [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); }, "log eig of the Koopman–Hill transition (sorting-free cross-check)")
+      .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy, "-1 = skipped")
+      .def_property_readonly("eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
+                             "every eigenvalue of the Hill matrix found")
+      .def_readonly("elapsed_s", &HillResult::elapsed_s, "wall time (s)")
+      .def_readonly("diagnostics", &HillResult::diagnostics, "what the analysis noticed, one line each")
+      .def("__repr__", [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
+
+  py::class_<HillStudyRun>(m, "HillStudy", R"doc(
+The result of ltp.hill_study: Hill's method at N = 1 .. max_harmonics (every N up to 10,
+then about ×1.25), each row with its error against the monodromy route (modulo jΩp), the
+a-priori bound and the N vs N+Δ estimate; the fitted convergence law; and the full analysis
+at N = max_harmonics (`last`).)doc")
+      .def_property_readonly("harmonics", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.harmonics);
+        return RealArray(v);
+      }, "N of each row")
+      .def_property_readonly("matrix_size", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.matrix_size);
+        return RealArray(v);
+      }, "(2N+1) n of each row")
+      .def_property_readonly("errors", [](const HillStudyRun& r) {
+        std::vector<std::vector<double>> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
+        return RealTable(v, r.study.reference.size());
+      }, "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
+      .def_property_readonly("max_error", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.max_error);
+        return RealArray(v);
+      }, "per row; -1 without a reference")
+      .def_property_readonly("apriori_bound", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.apriori_bound);
+        return RealArray(v);
+      }, "a-priori error bound per row (inf: none)")
+      .def_property_readonly("truncation_estimate", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.truncation_estimate);
+        return RealArray(v);
+      }, "N vs N+Δ estimate per row")
+      .def_property_readonly("selection_margin", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.selection_margin);
+        return RealArray(v);
+      }, "smallest selection margin per row")
+      .def_property_readonly("tail_weight", [](const HillStudyRun& r) {
+        std::vector<double> v;
+        for (const HillStudyRow& row : r.study.rows) v.push_back(row.tail_weight);
+        return RealArray(v);
+      }, "largest tail weight per row")
+      .def_property_readonly("convergence", [](const HillStudyRun& r) {
+        return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
+      }, "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
+      .def_property_readonly("coefficient_decay", [](const HillStudyRun& r) {
+        return py::dict(py::arg("kind") = r.study.decay.kind, py::arg("rate") = r.study.decay.rate,
+                        py::arg("harmonics") = r.study.decay.harmonics,
+                        py::arg("fourier_tail") = r.study.decay.fourier_tail);
+      }, "how fast the Fourier coefficients of A decay")
+      .def_property_readonly("reference", [](const HillStudyRun& r) { return ComplexArray(r.study.reference); },
+                             "the monodromy route's exponents (empty: no reference)")
+      .def_readonly("last", &HillStudyRun::last, "the HillResult at N = max_harmonics")
+      .def_property_readonly("elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
+      .def_readonly("diagnostics", &HillStudyRun::diagnostics, "what the study noticed, one line each")
+      .def("__repr__", [](const HillStudyRun& r) {
+        return "<ltp.HillStudy: " + std::to_string(r.study.rows.size()) + " truncations, " +
+               (r.study.rate_kind.empty() ? std::string("rate not fitted") : r.study.rate_kind) + ">";
+      });
+
+  m.def(
+      "hill_study",
+      [](const System& system, int max_harmonics, const std::string& solver, const std::string& selection,
+         bool reference) {
+        HillOptions o;
+        const auto s = ParseHillSolver(solver);
+        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        o.solver = *s;
+        const auto rule = ParseHillSelectionRule(selection);
+        if (!rule)
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+        o.selection = *rule;
+        if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
+        return WithoutGil(system, [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
+      },
+      py::arg("system"), py::kw_only(), py::arg("max_harmonics") = kHillStudyMaxHarmonics,
+      py::arg("solver") = std::string(ToString(HillOptions{}.solver)),
+      py::arg("selection") = std::string(ToString(HillOptions{}.selection)), py::arg("reference") = true,
+      R"doc(
+Convergence study of Hill's method over the truncation N: `ltp hill SCENE --json` as a
+function, with the same options and defaults.
+
+  max_harmonics  largest truncation N
+  solver         auto | dense | structured
+  selection      centroid | central-weight | strip
+  reference      measure each row's error against the monodromy route (rel tol 1e-12);
+                 False: the CLI's --no-reference
+
+Returns a HillStudy. Runs without the GIL.)doc");
+
+  const HillOptions defaults;
+  m.def(
+      "hill",
+      [](const System& system, const py::object& harmonics, const std::string& solver,
+         const std::string& selection, double tol) {
+        HillOptions o;
+        const auto s = ParseHillSolver(solver);
+        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        o.solver = *s;
+        const auto rule = ParseHillSelectionRule(selection);
+        if (!rule)
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+        o.selection = *rule;
+        if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
+        if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
+          o.Validate();
+          return WithoutGil(system, [&] { return AnalyzeHillToTolerance(system.system, o, tol); });
+        }
+        if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
+            harmonics.cast<long>() < 1 || harmonics.cast<long>() > 100000)
+          throw InputError("harmonics must be a positive integer or 'auto', got " +
+                           py::repr(harmonics).cast<std::string>());
+        o.harmonics = harmonics.cast<int>();
+        o.Validate();
+        return WithoutGil(system, [&] { return AnalyzeHill(system.system, o); });
+      },
+      py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
+      py::arg("solver") = std::string(ToString(defaults.solver)),
+      py::arg("selection") = std::string(ToString(defaults.selection)),
+      py::arg("tol") = IntegratorOptions{}.rel_tol, R"doc(
+Floquet exponents by Hill's method: `ltp floquet SCENE --method hill --json` as a function,
+with the same options and defaults.
+
+  harmonics   truncation N (harmonics -N..N), or 'auto': N = 4, 8, ... until the N vs N+Δ
+              estimate is below max(tol, 1e-12) (the library's AnalyzeHillToTolerance)
+  solver      auto | dense | structured (auto: per N, as the work-precision study found)
+  selection   centroid | central-weight | strip: how the n physical eigenvalues are picked
+  tol         the tolerance of harmonics='auto'
+
+Returns a HillResult. Runs without the GIL. Systems not in Fourier form are fitted by FFT
+first (the fit's error is part of the estimate). Raises ltp.InputError for bad options,
+ltp.ResourceError when the Hill matrix would not fit in memory.)doc");
+}
+
+}  // namespace ltp::python

@@ -1,0 +1,90 @@
+"""Bad arguments raise ValueError (ltp.InputError) with the library's one-line message, and
+every public name has help text.
+
+The messages are the library's: each names the argument and what was expected, so a user can
+fix the call from the message alone.
+"""
+import inspect
+
+import numpy as np
+import pytest
+
+import ltp
+
+MATHIEU = ltp.scene("mathieu")
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda: ltp.scene("no-such-scene"), r"unknown scene 'no-such-scene': not a built-in \(mathieu"),
+    (lambda: ltp.scene("mathieu", nope=1), r"nope"),
+    (lambda: ltp.scene("mathieu", a="1+"), r"a"),
+    (lambda: ltp.floquet(MATHIEU, integrator="euler"), r"unknown integrator 'euler' \(auto, dopri5"),
+    (lambda: ltp.floquet(MATHIEU, tol=0.0), r"rel_tol"),
+    (lambda: ltp.floquet(MATHIEU, segments=0), r"segments must be a positive integer or 'auto', got 0"),
+    (lambda: ltp.floquet(MATHIEU, multipliers="qr"), r"multipliers must be 'schur' or 'single-shot'"),
+    (lambda: ltp.hill(MATHIEU, harmonics=-2), r"harmonics must be a positive integer or 'auto'"),
+    (lambda: ltp.hill(MATHIEU, solver="magic"), r"solver must be 'auto', 'dense' or 'structured'"),
+    (lambda: ltp.pfrf(MATHIEU, "1:0:0.1"), r"freq: F1 must be >= F0, got '1:0:0.1'"),
+    (lambda: ltp.pfrf(MATHIEU, "a:b:c"), r"freq F0: 'a' is not a finite number"),
+    (lambda: ltp.pfrf(MATHIEU, [0.1, np.nan]), r"freq: frequencies must be finite"),
+    (lambda: ltp.pfrf(MATHIEU, "0:1:0.1", input="nope"), r"input 'nope' is not one of the system's inputs: 0 \(u\)"),
+    (lambda: ltp.pfrf(MATHIEU, "0:1:0.1", output=3), r"output '3' is not one of the system's outputs"),
+    (lambda: ltp.pfrf(MATHIEU, "0:1:0.1", route="fast"), r"route must be auto, modal, htf, shooting, time or all"),
+    (lambda: ltp.pfrf(MATHIEU, "0:1:0.1", orders="3:-3"), r"orders: ZMIN must be <= ZMAX"),
+    (lambda: ltp.snapshot(MATHIEU, "0:1:0.1"), r"give exactly one of angle= \(degrees\) and time= \(s\)"),
+    (lambda: ltp.snapshot(MATHIEU, "0:1:0.1", angle=10), r"no rotor speed: give time= instead of angle="),
+    (lambda: ltp.chart(MATHIEU, "a=0:1"), r"a=0:1"),
+    (lambda: ltp.chart(MATHIEU, "zz=0:1:0.5"), r"zz"),
+    (lambda: ltp.chart(MATHIEU, "a=0:1:0.5", tol=2.0), r"tol"),
+    (lambda: ltp.chart(ltp.System.from_fourier(1.0, np.eye(2)), "a=0:1:0.5"), r"give a system made by ltp.scene"),
+    (lambda: ltp.System.from_fourier(0.0, -np.eye(2)), r"period"),
+    (lambda: ltp.System.from_fourier(1.0, np.zeros((2, 2, 2))), r"its length must be odd"),
+    (lambda: ltp.System.from_fourier(1.0, np.eye(2), B=np.ones((3, 1))), r"B must have as many rows as A"),
+    (lambda: ltp.System.from_fourier(1.0, np.array([np.eye(2), np.eye(2), 2 * np.eye(2)])),
+     r"not the series of a real matrix function"),
+    (lambda: ltp.System.from_function(1.0, np.eye(2)), r"A must be a callable A\(t\)"),
+    (lambda: ltp.System.from_samples(1.0, [0.0, 0.5], np.zeros((3, 2, 2))), r"one matrix per sample time"),
+    (lambda: ltp.System.from_samples(1.0, [0.5, 0.0], np.zeros((2, 2, 2))), r"strictly increasing"),
+])
+def test_bad_arguments_raise_input_error(call, message):
+    with pytest.raises(ltp.InputError, match=message) as raised:
+        call()
+    assert isinstance(raised.value, ValueError) and isinstance(raised.value, ltp.Error)
+    assert "\n" not in str(raised.value)  # one line
+
+
+def test_scene_file_errors_name_the_file(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: bad\nperiod: [1\n")
+    with pytest.raises(ltp.SceneError, match="bad.yaml"):
+        ltp.scene(str(bad))
+
+
+def test_wrong_python_types_are_type_errors():
+    with pytest.raises(TypeError):
+        ltp.floquet("mathieu")  # a name is not a System: ltp.scene("mathieu")
+    with pytest.raises(TypeError):
+        ltp.floquet(MATHIEU, tol="small")
+
+
+def test_help_text_on_everything():
+    for name in ltp.__all__:
+        obj = getattr(ltp, name)
+        assert obj.__doc__ and len(obj.__doc__.strip()) > 20, name
+        if inspect.isclass(obj) and not issubclass(obj, BaseException):
+            for member, value in vars(obj).items():
+                if not member.startswith("_") and callable(getattr(value, "__get__", None)):
+                    assert getattr(value, "__doc__", None), f"{name}.{member}"
+    assert "integrator" in ltp.floquet.__doc__ and "tol: float = 1e-10" in ltp.floquet.__doc__
+    assert "harmonics='auto'" in ltp.hill.__doc__.replace('"', "'")
+    assert "orders: object = '-4:4'" in ltp.pfrf.__doc__ and "check_every: int = 10" in ltp.pfrf.__doc__
+    assert "check_every: int = -1" in ltp.chart.__doc__ and "refine_tol: float = 1e-08" in ltp.chart.__doc__
+    assert ltp.__doc__ and "floquet" in ltp.__doc__
+
+
+def test_defaults_are_the_clis(ltp_cli):
+    # `ltp floquet mathieu` without options and ltp.floquet without keywords: same analysis.
+    j = ltp_cli("floquet", "mathieu")
+    r = ltp.floquet(MATHIEU)
+    assert j["integrator"] == r.integrator and j["tolerance"] == 1e-10 and j["segments"] == r.segments
+    assert [e["re"] for e in j["exponents"]] == list(r.exponents.real)
