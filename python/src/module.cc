@@ -1,6 +1,7 @@
 // The extension module ltp._ltp; the package ltp (python/ltp/__init__.py) re-exports it.
 #include "binding.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/threads.h"
 
 namespace {
 
@@ -20,6 +21,9 @@ PYBIND11_MODULE(_ltp, m) {
   using namespace ltp::python;
   m.doc() = "ltp: analysis of linear time-periodic systems (see help(ltp))";
   m.attr("__version__") = LTP_VERSION;
+  // As the ltp command: ltp runs its own threads, and OpenBLAS's under them oversubscribe the
+  // cores (ltp/floquet/threads.h); it also keeps the results equal to the command's to the bit.
+  ltp::UseSingleThreadedBlas();
 
   // The library's typed errors as Python exceptions carrying its one-line message. Bad input is
   // a ValueError too, so `except ValueError` catches what a caller got wrong.
