@@ -6,7 +6,8 @@
 // The harness bounds the work, not the parsing: the fuzzer should find inputs the CLI handles
 // badly, not legitimate long analyses (a 10^6-point chart is allowed and shows progress). So
 // charts stop after a few points (--stop-after, as Ctrl-C would), frequency lists and sweeps
-// above a few hundred points and truncations above 48 harmonics are skipped, and so are
+// above a few hundred points, truncations above 48 harmonics and parameters above 1e4 are
+// skipped, and so are
 // arguments that would write outside the working directory or start gnuplot.
 #include <unistd.h>
 
@@ -59,6 +60,12 @@ bool TooMuchWork(const std::vector<std::string>& args) {
           const ltp::SweepAxis a = ltp::SweepAxis::Parse(*v);
           if (std::abs((a.stop - a.start) / a.step) > kMaxPoints) return true;
         }
+      // Coefficients beyond 1e4 make stiff systems: seconds of honest work each (10× that
+      // under the sanitizers); the reproducers of that class are regression tests instead.
+      if (const std::string* v = ValueOf(args, i, "--set", scratch)) {
+        const size_t eq = v->find('=');
+        if (eq != std::string::npos && std::abs(std::atof(v->c_str() + eq + 1)) > 1e4) return true;
+      }
       for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})
         if (const std::string* v = ValueOf(args, i, h, scratch))
           if (std::atof(v->c_str()) > kMaxHarmonics) return true;

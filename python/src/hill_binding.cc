@@ -28,6 +28,16 @@ auto InfoFlags(Field field) {
   };
 }
 
+// One column of the convergence study's table, as doubles: `member` of every row.
+template <class Member>
+auto StudyColumn(Member HillStudyRow::*member) {
+  return [member](const HillStudyRun& r) {
+    std::vector<double> v;
+    for (const HillStudyRow& row : r.study.rows) v.push_back(static_cast<double>(row.*member));
+    return RealArray(v);
+  };
+}
+
 }  // namespace
 
 void BindHill(py::module_& m) {
@@ -84,46 +94,18 @@ The result of ltp.hill_study: Hill's method at N = 1 .. max_harmonics (every N u
 then about ×1.25), each row with its error against the monodromy route (modulo jΩp), the
 a-priori bound and the N vs N+Δ estimate; the fitted convergence law; and the full analysis
 at N = max_harmonics (`last`).)doc")
-      .def_property_readonly("harmonics", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.harmonics);
-        return RealArray(v);
-      }, "N of each row")
-      .def_property_readonly("matrix_size", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.matrix_size);
-        return RealArray(v);
-      }, "(2N+1) n of each row")
+      .def_property_readonly("harmonics", StudyColumn(&HillStudyRow::harmonics), "N of each row")
+      .def_property_readonly("matrix_size", StudyColumn(&HillStudyRow::matrix_size), "(2N+1) n of each row")
       .def_property_readonly("errors", [](const HillStudyRun& r) {
         std::vector<std::vector<double>> v;
         for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
         return RealTable(v, r.study.reference.size());
       }, "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
-      .def_property_readonly("max_error", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.max_error);
-        return RealArray(v);
-      }, "per row; -1 without a reference")
-      .def_property_readonly("apriori_bound", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.apriori_bound);
-        return RealArray(v);
-      }, "a-priori error bound per row (inf: none)")
-      .def_property_readonly("truncation_estimate", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.truncation_estimate);
-        return RealArray(v);
-      }, "N vs N+Δ estimate per row")
-      .def_property_readonly("selection_margin", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.selection_margin);
-        return RealArray(v);
-      }, "smallest selection margin per row")
-      .def_property_readonly("tail_weight", [](const HillStudyRun& r) {
-        std::vector<double> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.tail_weight);
-        return RealArray(v);
-      }, "largest tail weight per row")
+      .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error), "per row; -1 without a reference")
+      .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound), "a-priori error bound per row (inf: none)")
+      .def_property_readonly("truncation_estimate", StudyColumn(&HillStudyRow::truncation_estimate), "N vs N+Δ estimate per row")
+      .def_property_readonly("selection_margin", StudyColumn(&HillStudyRow::selection_margin), "smallest selection margin per row")
+      .def_property_readonly("tail_weight", StudyColumn(&HillStudyRow::tail_weight), "largest tail weight per row")
       .def_property_readonly("convergence", [](const HillStudyRun& r) {
         return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
       }, "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
