@@ -10,19 +10,11 @@ namespace ltp::python {
 
 namespace {
 
-template <class Field>
-auto InfoArray(Field field) {
+// Per exponent: field(info) of each of the result's HillModeInfo, as a numpy array of T.
+template <class T, class Field>
+auto InfoColumn(Field field) {
   return [field](const HillResult& h) {
-    py::array_t<double> a(static_cast<py::ssize_t>(h.info.size()));
-    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
-    return a;
-  };
-}
-
-template <class Field>
-auto InfoFlags(Field field) {
-  return [field](const HillResult& h) {
-    py::array_t<bool> a(static_cast<py::ssize_t>(h.info.size()));
+    py::array_t<T> a(static_cast<py::ssize_t>(h.info.size()));
     for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
     return a;
   };
@@ -54,17 +46,17 @@ Koopman–Hill cross-check.)doc");
       .def_readonly("period", &HillResult::period, "T (s)")
       .def_readonly("solver", &HillResult::solver, "'dense' or 'structured' (auto resolved)")
       .def_readonly("selection_rule", &HillResult::selection_rule, "how the physical eigenvalues were picked")
-      .def_property_readonly("centroids", InfoArray([](const HillModeInfo& i) { return i.centroid; }),
+      .def_property_readonly("centroids", InfoColumn<double>([](const HillModeInfo& i) { return i.centroid; }),
                              "energy centroid of each eigenvector over the harmonic blocks")
-      .def_property_readonly("selection_margins", InfoArray([](const HillModeInfo& i) { return i.selection_margin; }),
+      .def_property_readonly("selection_margins", InfoColumn<double>([](const HillModeInfo& i) { return i.selection_margin; }),
                              "1 = clean choice, 0 = tie between λ and λ ± jΩp")
-      .def_property_readonly("tail_weights", InfoArray([](const HillModeInfo& i) { return i.tail_weight; }),
+      .def_property_readonly("tail_weights", InfoColumn<double>([](const HillModeInfo& i) { return i.tail_weight; }),
                              "energy on the outermost blocks ±N (large: N too small for the mode)")
-      .def_property_readonly("truncation_changes", InfoArray([](const HillModeInfo& i) { return i.truncation_change; }),
+      .def_property_readonly("truncation_changes", InfoColumn<double>([](const HillModeInfo& i) { return i.truncation_change; }),
                              "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); -1 when not computed")
-      .def_property_readonly("residuals", InfoArray([](const HillModeInfo& i) { return i.residual; }), "relative eigen-residual of each selected eigenvalue")
-      .def_property_readonly("passed", InfoFlags([](const HillModeInfo& i) { return i.passed; }), "the selection rule's pass condition per mode")
-      .def_property_readonly("ambiguous", InfoFlags([](const HillModeInfo& i) { return i.ambiguous; }), "selection margin below the threshold (a tie between λ and λ ± jΩp)")
+      .def_property_readonly("residuals", InfoColumn<double>([](const HillModeInfo& i) { return i.residual; }), "relative eigen-residual of each selected eigenvalue")
+      .def_property_readonly("passed", InfoColumn<bool>([](const HillModeInfo& i) { return i.passed; }), "the selection rule's pass condition per mode")
+      .def_property_readonly("ambiguous", InfoColumn<bool>([](const HillModeInfo& i) { return i.ambiguous; }), "selection margin below the threshold (a tie between λ and λ ± jΩp)")
       .def_readonly("max_real_exponent", &HillResult::max_real_exponent, "max Re λ (1/s)")
       .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
       .def_property_readonly("verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); }, "'stable', 'unstable' (beyond the error estimate), 'marginal' or 'failed'")
