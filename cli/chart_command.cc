@@ -22,6 +22,7 @@
 #include <mpi.h>
 #endif
 
+#include "campbell_output.h"
 #include "chart_mpi.h"
 #include "chart_plot.h"
 #include "chart_record.h"
@@ -56,7 +57,9 @@ struct ChartArgs {
   int check_every = ChartOptions{}.check_every;  // -1: 1 for 1-D sweeps, 97 for maps
   int refine_lines = ChartOptions{}.refine_lines;
   double refine_tol = ChartOptions{}.refine_tol;
-  int sidebands = 2;
+  int sidebands = 1;
+  int per_rev = ChartOptions{}.campbell.max_per_rev;
+  double weak_damping = ChartOptions{}.campbell.weak_damping_ratio;
   long stop_after = 0;  // tests: interrupt after this many points, as Ctrl-C would
 };
 
@@ -129,6 +132,11 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   o.refine = !args.no_refine;
   o.refine_tol = args.refine_tol;
   o.refine_lines = args.refine_lines;
+  if (args.per_rev < 0 || args.per_rev > 100) throw InputError("--per-rev must be in 0..100 (0 = automatic)");
+  if (!(args.weak_damping >= 0 && args.weak_damping < 1)) throw InputError("--weak-damping must be in [0, 1)");
+  o.campbell.max_per_rev = args.per_rev;
+  o.campbell.weak_damping_ratio = args.weak_damping;
+  o.Validate();
   return o;
 }
 
@@ -215,7 +223,12 @@ int RunChart(ChartArgs& args) {
 
     // Mode tracking (1-D), refined boundaries.
     ModeTracking tracking;
-    if (!map) tracking = TrackModes(points);
+    CampbellDiagram campbell;
+    if (!map) {
+      tracking = TrackModes(points);
+      campbell = MakeCampbellDiagram(points, tracking, l.system.labels(), chart.campbell);
+      if (!args.csv.empty()) WriteCrossingsCsv(CrossingsCsvPath(args.csv), campbell, grid.axes[0].name);
+    }
     const BoundaryOptions bopt = ChartBoundaryOptions(chart);
     const auto refine_start = Clock::now();
     std::vector<UnstableInterval> intervals;
@@ -226,7 +239,7 @@ int RunChart(ChartArgs& args) {
     if (map && !args.no_refine)
       boundary = RefineBoundaryPoints(l.scene, l.parameters, grid, points, options, bopt);
     const double refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
-    record->Finish(points, map ? nullptr : &tracking);
+    record->Finish(points, map ? nullptr : &campbell);
 
     // Summary numbers.
     std::map<StabilityVerdict, size_t> counts;
@@ -253,7 +266,7 @@ int RunChart(ChartArgs& args) {
       for (const auto& a : grid.axes) in.axis_labels.push_back(AxisLabel(l.scene, a.name));
       in.grid = &grid;
       in.points = &points;
-      in.tracking = &tracking;
+      in.campbell = &campbell;
       in.intervals = &intervals;
       in.boundary = &boundary;
       in.sidebands = args.sidebands;
@@ -299,6 +312,7 @@ int RunChart(ChartArgs& args) {
         j["unstable_interval_details"] = detail;
         j["mode_tracking"] = {{"min_mac", JsonNumber(tracking.min_mac)},
                               {"ambiguous_points", tracking.ambiguous.size()}};
+        j["campbell"] = CampbellJson(campbell);
       } else {
         json list = json::array(), detail = json::array();
         for (const auto& b : boundary) {
@@ -338,7 +352,9 @@ int RunChart(ChartArgs& args) {
     if (!map) {
       std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(tracking.min_mac, 3);
       if (!tracking.ambiguous.empty()) std::cout << ", ambiguous at " << tracking.ambiguous.size() << " points";
-      std::cout << "\n\n";
+      std::cout << "\n";
+      PrintCampbell(std::cout, campbell, grid.axes[0].name);
+      std::cout << "\n";
       if (intervals.empty()) {
         std::cout << "  no unstable interval in the sweep\n";
       } else {
@@ -380,7 +396,7 @@ int RunChart(ChartArgs& args) {
           std::cout << ": " << p.failure << "\n";
         }
     }
-    if (!args.csv.empty()) std::cout << "  wrote " << args.csv << "\n";
+    if (!args.csv.empty()) std::cout << "  wrote " << args.csv << (map ? "" : " and " + CrossingsCsvPath(args.csv)) << "\n";
     if (!args.plot.empty()) std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
     return failed == static_cast<int>(grid.size()) ? 1 : 0;
   } catch (const std::exception& e) {
@@ -424,6 +440,11 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_option("--refine-lines", args.refine_lines, "maps: grid lines per axis along which "
                   "boundaries are refined (0 = all)")->capture_default_str();
   cmd->add_option("--sidebands", args.sidebands, "Campbell: faint families f ± kΩp/2π, k = 1..K")
+      ->capture_default_str();
+  cmd->add_option("--per-rev", args.per_rev, "Campbell: per-rev lines 1P..NP (0 = up to the highest mode)")
+      ->capture_default_str();
+  cmd->add_option("--weak-damping", args.weak_damping,
+                  "Campbell: shade where a mode's damping ratio is below this (0 = never)")
       ->capture_default_str();
   cmd->add_option("--stop-after", args.stop_after, "testing: stop after N points as if interrupted")
       ->group("");  // hidden

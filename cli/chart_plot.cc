@@ -16,48 +16,87 @@ namespace ltp::cli {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
-                         "#17becf", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22"};
+const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
+                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#000080", "#808000"};
+constexpr size_t kColorCount = sizeof kColors / sizeof kColors[0];
 
 std::string V(double x) { return std::isfinite(x) ? Num(x, 9) : std::string("NaN"); }
 
-// Light red bands over the unstable intervals, in both panels.
-void IntervalRects(std::ostringstream& g, const std::vector<UnstableInterval>& intervals) {
+// Bands over the unstable intervals (light red) and the weakly damped ones (light yellow),
+// in both panels.
+void Bands(std::ostringstream& g, const ChartPlotInput& in) {
   int id = 1;
-  for (const auto& in : intervals)
-    g << "set object " << id++ << " rect from " << V(in.lo.value) << ", graph 0 to "
-      << V(in.hi.value) << ", graph 1 behind fillcolor rgb '#f6c6c6' fillstyle solid 0.6 noborder\n";
+  if (in.intervals)
+    for (const auto& band : *in.intervals)
+      g << "set object " << id++ << " rect from " << V(band.lo.value) << ", graph 0 to " << V(band.hi.value)
+        << ", graph 1 behind fillcolor rgb '#f6c6c6' fillstyle solid 0.6 noborder\n";
+  for (const auto& [lo, hi] : in.campbell->weakly_damped)
+    g << "set object " << id++ << " rect from " << V(lo) << ", graph 0 to " << V(hi)
+      << ", graph 1 behind fillcolor rgb '#fbf0c0' fillstyle solid 0.6 noborder\n";
+}
+
+// A legend entry: "3 support x 61%, zeta cyclic 37%", cut to fit beside the panel.
+std::string LegendTitle(size_t k, const std::string& description) {
+  std::string t = std::to_string(k + 1) + " " + description;
+  if (t.size() > 62) t = t.substr(0, 60) + "…";
+  return GnuplotEscape(t);
+}
+
+// Right margin (characters) that fits the longest legend entry.
+int LegendMargin(const CampbellDiagram& d) {
+  size_t longest = 36;  // the per-rev entry
+  for (size_t k = 0; k < d.lines.size(); ++k) longest = std::max(longest, LegendTitle(k, d.lines[k].description).size());
+  return static_cast<int>(std::min<size_t>(longest, 64) * 3 / 4 + 8);
 }
 
 std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
+  const CampbellDiagram& d = *in.campbell;
   const auto& points = *in.points;
-  const auto& labels = in.tracking->labels;
-  const int n = points.empty() ? 0 : static_cast<int>(labels.front().size());
+  const size_t L = d.lines.size(), P = d.parameter.size();
   std::ostringstream g;
-  g << GnuplotTerminal(file, 1000, 900) << "set output '" << file << "'\n";
-  // $M: x, then per label: frequency (Hz, NaN when negative), Re λ, and the sideband
-  // frequencies f ± kΩp/2π.
+  g << GnuplotTerminal(file, 1400, 950) << "set output '" << file << "'\n";
+  // $M: x, then per line: frequency (Hz), Re λ, and the sidebands f ± kΩp/2π.
   g << "$M << EOD\n";
   double fmax = 0;
-  for (size_t p = 0; p < points.size(); ++p) {
-    const SweepPoint& pt = points[p];
-    g << V(pt.values[0]);
-    const double fp = pt.period > 0 ? 1.0 / pt.period : NAN;  // Ωp/2π in Hz
-    for (int k = 0; k < n; ++k) {
-      const int j = p < labels.size() && k < static_cast<int>(labels[p].size()) ? labels[p][k] : -1;
-      double f = NAN, re = NAN;
-      if (pt.ok && j >= 0 && j < static_cast<int>(pt.modes.size())) {
-        f = in.tracking->frequency_hz[p][k];
-        re = pt.modes[j].exponent.real();
-      }
-      if (f < -1e-9) f = NAN;  // the negative half of a conjugate pair says nothing new
+  for (size_t p = 0; p < P; ++p) {
+    g << V(d.parameter[p]);
+    const double fp = points[p].period > 0 ? 1.0 / points[p].period : NAN;  // Ωp/2π in Hz
+    for (const CampbellLine& line : d.lines) {
+      const double f = line.frequency_hz[p];
       if (std::isfinite(f)) fmax = std::max(fmax, f);
-      g << " " << V(f) << " " << V(re);
+      g << " " << V(f) << " " << V(line.real_part[p]);
       for (int s = 1; s <= in.sidebands; ++s) g << " " << V(f + s * fp) << " " << V(f - s * fp);
     }
     g << "\n";
   }
   g << "EOD\n";
+  const double ytop = fmax > 0 ? 1.15 * fmax : 1.0;
+  // $R: x, then n·Ω/2π per per-rev line.
+  if (!d.per_rev.empty()) {
+    g << "$R << EOD\n";
+    for (size_t p = 0; p < P; ++p) {
+      g << V(d.parameter[p]);
+      for (int n : d.per_rev) g << " " << V(n * d.rotor_speed[p] / (2 * kPi));
+      g << "\n";
+    }
+    g << "EOD\n";
+  }
+  if (!d.crossings.empty()) {
+    g << "$X << EOD\n";
+    for (const auto& c : d.crossings) g << V(c.parameter) << " " << V(c.frequency_hz) << "\n";
+    g << "EOD\n";
+  }
+  bool lost = false;
+  for (const CampbellLine& line : d.lines) lost = lost || line.lost_after >= 0;
+  if (lost) {
+    g << "$L << EOD\n";
+    for (const CampbellLine& line : d.lines)
+      if (line.lost_after >= 0) {
+        const size_t p = static_cast<size_t>(line.lost_after);
+        g << V(d.parameter[p]) << " " << V(line.frequency_hz[p]) << " " << V(line.real_part[p]) << "\n";
+      }
+    g << "EOD\n";
+  }
   const bool compare = in.compare && !points.empty() && !points.front().snapshot_eigenvalues.empty();
   if (compare) {
     g << "$S << EOD\n";
@@ -70,16 +109,28 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
         if (e.imag() >= 0) g << V(pt.values[0]) << " " << V(e.imag() / (2 * kPi)) << "\n";
     g << "EOD\n";
   }
-  const int cols = 1 + n * (2 + 2 * in.sidebands);
-  (void)cols;
   const std::string xlabel = GnuplotEscape(in.axis_labels.at(0));
   g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title) << "\" font ',13'\n"
-    << "set grid\nset xlabel \"" << xlabel << "\"\nset key outside right top\n"
-    << "set lmargin 12\nset rmargin 28\n";
-  if (in.intervals) IntervalRects(g, *in.intervals);
-  g << "set title 'Floquet frequencies (tracked by MAC, branch kept continuous); faint: sidebands f ± kΩp/2π"
-    << (in.intervals && !in.intervals->empty() ? "; red bands: unstable" : "") << "'\n"
-    << "set ylabel 'frequency  [Hz]'\nset yrange [0:" << V(fmax > 0 ? 1.15 * fmax : 1.0) << "]\n";
+    << "set grid\nset xlabel \"" << xlabel << "\"\nset key outside right top font ',9'\n"
+    << "set lmargin 12\nset rmargin " << LegendMargin(d) << "\n";
+  Bands(g, in);
+  std::string shading;
+  if (in.intervals && !in.intervals->empty()) shading += "; red: unstable";
+  if (!d.weakly_damped.empty()) shading += "; yellow: weakly damped";
+  g << "set title '" << in.eigenvalues << " (one line per mode, tracked by MAC)"
+    << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π, circles: crossings") << shading << "'\n"
+    << "set ylabel 'frequency  [Hz]'\nset yrange [0:" << V(ytop) << "]\n";
+  // "nP" where each per-rev line leaves the panel (its last point below the top).
+  for (size_t k = 0; k < d.per_rev.size(); ++k) {
+    size_t last = P;
+    for (size_t p = 0; p < P; ++p)
+      if (d.per_rev[k] * d.rotor_speed[p] / (2 * kPi) <= ytop) last = p;
+    if (last == P) continue;
+    const bool right = last + 1 == P;
+    g << "set label " << 100 + k << " '" << d.per_rev[k] << "P' at " << V(d.parameter[last]) << ", "
+      << V(d.per_rev[k] * d.rotor_speed[last] / (2 * kPi)) << (right ? " offset 0.5,0" : " offset -1,-0.6")
+      << " font ',8' tc rgb '#606060'\n";
+  }
   std::ostringstream plot;
   plot << "plot ";
   bool first = true;
@@ -88,33 +139,40 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
     first = false;
   };
   const int stride = 2 + 2 * in.sidebands;
-  for (int k = 0; k < n; ++k) {
-    const int fcol = 2 + k * stride;
+  for (size_t k = 0; k < L; ++k)
     for (int s = 0; s < 2 * in.sidebands; ++s)
-      add("$M using 1:" + std::to_string(fcol + 2 + s) + " with lines lw 0.8 lc rgb '#c8c8c8' notitle");
+      add("$M using 1:" + std::to_string(2 + k * stride + 2 + s) + " with lines lw 0.6 lc rgb '#e6e6e6' notitle");
+  for (size_t k = 0; k < d.per_rev.size(); ++k) {
+    // Multiples of the blade count excite the fixed frame: drawn darker.
+    const bool blade = d.blades > 1 && d.per_rev[k] % d.blades == 0;
+    add("$R using 1:" + std::to_string(2 + k) + " with lines dt 2 lw " + (blade ? "1.6" : "1") + " lc rgb '" +
+        (blade ? "#404040" : "#a0a0a0") + "' " +
+        (k == 0 ? "title 'n·Ω/2π" + std::string(d.blades > 1 ? " (dark: multiples of " + std::to_string(d.blades) + " blades)" : "") + "'"
+                : "notitle"));
   }
-  for (int k = 0; k < n; ++k) {
-    const int fcol = 2 + k * stride;
-    add("$M using 1:" + std::to_string(fcol) + " with lines lw 2 lc rgb '" + kColors[k % 10] +
-        "' title 'mode " + std::to_string(k + 1) + "'");
-  }
+  for (size_t k = 0; k < L; ++k)
+    add("$M using 1:" + std::to_string(2 + k * stride) + " with lines lw 2 lc rgb '" + kColors[k % kColorCount] +
+        "' title \"" + LegendTitle(k, d.lines[k].description) + "\"");
+  if (!d.crossings.empty()) add("$X using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb '#000000' title 'crossings'");
+  if (lost) add("$L using 1:2 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' title 'line lost (see output)'");
   if (compare) {
     add("$S using 1:2 with points pt 7 ps 0.25 lc rgb '#444444' title 'snapshot A(0)'");
     add("$A using 1:2 with points pt 6 ps 0.35 lc rgb '#e08000' title 'averaged A_0'");
   }
   g << plot.str() << "\n";
-  g << "set title 'Damping diagram: real parts of the Floquet exponents (above 0: unstable)'\n"
+  for (size_t k = 0; k < d.per_rev.size(); ++k) g << "unset label " << 100 + k << "\n";
+  g << "set title 'Damping diagram: " << in.real_parts << " (above 0: unstable)'\n"
     << "set ylabel 'Re λ  [1/s]'\nset autoscale y\nset yrange [*:*]\n"
     << "set arrow 100 from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#000000' lw 1\n";
   std::ostringstream damp;
   damp << "plot ";
   first = true;
-  for (int k = 0; k < n; ++k) {
-    const int fcol = 2 + k * stride;
-    damp << (first ? "" : ", \\\n     ") << "$M using 1:" << fcol + 1 << " with lines lw 2 lc rgb '"
-         << kColors[k % 10] << "' title 'mode " << k + 1 << "'";
+  for (size_t k = 0; k < L; ++k) {
+    damp << (first ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1 << " with lines lw 2 lc rgb '"
+         << kColors[k % kColorCount] << "' notitle";  // colours as in the frequency panel's legend
     first = false;
   }
+  if (lost) damp << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
   g << damp.str() << "\nunset multiplot\n";
   return g.str();
 }
@@ -169,7 +227,7 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
 }  // namespace
 
 std::string ChartPlotScript(const ChartPlotInput& in, const std::string& file) {
-  if (in.grid->axes.size() == 1) return CampbellScript(in, file);
+  if (!in.grid || in.grid->axes.size() == 1) return CampbellScript(in, file);
   return MapScript(in, file);
 }
 

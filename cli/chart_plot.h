@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/campbell.h"
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/floquet/sweep.h"
 
@@ -12,10 +12,12 @@ namespace ltp::cli {
 
 struct ChartPlotInput {
   std::string title;
+  /// What the Campbell diagram's frequencies and real parts are (panel titles).
+  std::string eigenvalues = "Floquet frequencies", real_parts = "real parts of the Floquet exponents";
   std::vector<std::string> axis_labels;  ///< "Omega [rad/s]"
-  const SweepGrid* grid = nullptr;
+  const SweepGrid* grid = nullptr;                  ///< null: a Campbell diagram without a grid
   const std::vector<SweepPoint>* points = nullptr;  ///< whole grid, index order
-  const ModeTracking* tracking = nullptr;           ///< 1-D
+  const CampbellDiagram* campbell = nullptr;        ///< 1-D
   const std::vector<UnstableInterval>* intervals = nullptr;  ///< 1-D
   const std::vector<BoundaryPoint>* boundary = nullptr;      ///< 2-D
   int sidebands = 2;   ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)

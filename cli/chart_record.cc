@@ -99,6 +99,7 @@ json PointToJson(const SweepPoint& p, bool with_shapes) {
             {"elapsed_s", p.elapsed_s}};
   for (double v : p.values) j["values"].push_back(Number(v));
   if (!p.failure.empty()) j["failure"] = p.failure;
+  if (std::isfinite(p.rotor_speed)) j["rotor_speed"] = Number(p.rotor_speed);
   if (!p.modes.empty()) {
     json& modes = j["modes"];
     for (const FloquetMode& m : p.modes)
@@ -136,6 +137,7 @@ SweepPoint PointFromJson(const json& j) {
   p.failure = j.value("failure", std::string());
   p.verdict = VerdictFrom(j.at("verdict").get<std::string>());
   p.period = FromNumber(j.at("period"));
+  if (j.contains("rotor_speed")) p.rotor_speed = FromNumber(j.at("rotor_speed"));
   p.max_real_exponent = FromNumber(j.at("max_real_exponent"));
   p.max_log_multiplier = FromNumber(j.at("max_log_multiplier"));
   p.error_estimate = FromNumber(j.at("error_estimate"));
@@ -220,8 +222,8 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     journal_.open(journal, std::ios::app);
     csv_.open(path_, std::ios::trunc);
     if (!csv_) throw InputError("cannot write '" + path_ + "'");
-    csv_ << Header();
-    for (const SweepPoint& p : resumed_) csv_ << Row(p, nullptr);
+    csv_ << Header(states_);
+    for (const SweepPoint& p : resumed_) csv_ << Row(p, nullptr, 0);
     csv_.flush();
   } else {
     Lock();
@@ -231,37 +233,41 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     journal_.flush();
     csv_.open(path_, std::ios::trunc);
     if (!csv_) throw InputError("cannot write '" + path_ + "'");
-    csv_ << Header();
+    csv_ << Header(states_);
     csv_.flush();
   }
 }
 
-std::string ChartRecord::Header() const {
+std::string ChartRecord::Header(int modes) const {
   std::ostringstream h;
   for (const auto& axis : grid_.axes) h << axis.name << ",";
   h << "max_real_exponent,stable,verdict,error_estimate";
   if (grid_.axes.size() == 1)
-    for (int k = 1; k <= states_; ++k) h << ",freq_hz_" << k << ",real_" << k << ",damping_" << k;
+    for (int k = 1; k <= modes; ++k) h << ",freq_hz_" << k << ",real_" << k << ",damping_" << k;
   h << ",failure\n";
   return h.str();
 }
 
-std::string ChartRecord::Row(const SweepPoint& p, const std::vector<int>* labels,
-                             const std::vector<double>* frequencies) const {
+std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbell, size_t i) const {
   std::ostringstream r;
   for (double v : p.values) r << Full(v) << ",";
   r << Full(p.max_real_exponent) << ","
     << (p.ok ? (p.verdict == StabilityVerdict::kUnstable ? "0" : "1") : "") << ","
     << ToString(p.verdict) << "," << Full(p.error_estimate);
-  if (grid_.axes.size() == 1) {
+  const auto cells = [&](double f, double re, double zeta) {
+    if (std::isfinite(f)) r << "," << Full(f) << "," << Full(re) << "," << Full(zeta);
+    else r << ",,,";
+  };
+  if (campbell) {
+    for (const CampbellLine& line : campbell->lines)
+      cells(line.frequency_hz[i], line.real_part[i], line.damping_ratio[i]);
+  } else if (grid_.axes.size() == 1) {
     for (int k = 0; k < states_; ++k) {
-      const int j = labels ? (k < static_cast<int>(labels->size()) ? (*labels)[k] : -1) : k;
-      if (j >= 0 && j < static_cast<int>(p.modes.size())) {
-        const FloquetMode& m = p.modes[j];
-        const double f = frequencies && k < static_cast<int>(frequencies->size()) ? (*frequencies)[k] : m.frequency_hz;
-        r << "," << Full(f) << "," << Full(m.exponent.real()) << "," << Full(m.damping_ratio);
+      if (k < static_cast<int>(p.modes.size())) {
+        const FloquetMode& m = p.modes[static_cast<size_t>(k)];
+        cells(m.frequency_hz, m.exponent.real(), m.damping_ratio);
       } else {
-        r << ",,,";
+        cells(NAN, NAN, NAN);
       }
     }
   }
@@ -271,7 +277,7 @@ std::string ChartRecord::Row(const SweepPoint& p, const std::vector<int>* labels
 
 void ChartRecord::Add(const SweepPoint& point) {
   if (path_.empty()) return;
-  const std::string row = Row(point, nullptr);
+  const std::string row = Row(point, nullptr, 0);
   std::lock_guard<std::mutex> lock(mutex_);
   journal_ << JournalRecord(point);
   csv_ << row;
@@ -284,7 +290,7 @@ void ChartRecord::Add(const SweepPoint& point) {
   if (!journal_ || !csv_) throw InputError("cannot write '" + path_ + "' (disk full?)");
 }
 
-void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const ModeTracking* tracking) {
+void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const CampbellDiagram* campbell) {
   if (path_.empty()) return;
   csv_.close();
   journal_.close();
@@ -292,10 +298,8 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const ModeTracki
   const std::string tmp = path_ + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
-    out << Header();
-    for (size_t i = 0; i < sorted.size(); ++i)
-      out << Row(sorted[i], tracking && i < tracking->labels.size() ? &tracking->labels[i] : nullptr,
-                 tracking && i < tracking->frequency_hz.size() ? &tracking->frequency_hz[i] : nullptr);
+    out << Header(campbell ? static_cast<int>(campbell->lines.size()) : states_);
+    for (size_t i = 0; i < sorted.size(); ++i) out << Row(sorted[i], campbell, i);
     if (!out) throw InputError("cannot write '" + tmp + "'");
   }
   std::filesystem::rename(tmp, path_);

@@ -3,7 +3,7 @@
 //
 //   FILE                 one CSV row per point, appended and flushed as points complete
 //                        (completion order, modes in each point's own order) and rewritten
-//                        sorted by grid index with tracked mode labels when the sweep ends;
+//                        sorted by grid index with one column set per Campbell line when the sweep ends;
 //   FILE.points.jsonl    the journal: every completed point as one JSON line followed by a
 //                        tab and its FNV-1a checksum, flushed; `--resume` reads it and
 //                        computes only the missing points. A line that is torn, forged
@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/campbell.h"
 #include "ltp/floquet/sweep.h"
 
 namespace ltp::cli {
@@ -55,17 +55,18 @@ class ChartRecord {
   /// outside the lock). Both files are flushed at least every 0.2 s and at Finish, so a killed
   /// sweep loses at most the last fraction of a second.
   void Add(const SweepPoint& point);
-  /// Rewrites the CSV sorted, with tracked labels (1-D), and removes the journal.
-  void Finish(const std::vector<SweepPoint>& sorted, const ModeTracking* tracking);
+  /// Rewrites the CSV sorted, with one column set per Campbell line (1-D: `campbell`, numbered
+  /// as in its legend), and removes the journal.
+  void Finish(const std::vector<SweepPoint>& sorted, const CampbellDiagram* campbell);
   const std::string& path() const { return path_; }
   std::string journal_path() const { return path_ + ".points.jsonl"; }
 
  private:
-  std::string Header() const;
-  /// `labels`/`frequencies`: tracked order and unwrapped frequencies (final file), or null
-  /// (streamed rows: each point's own order and chosen branch).
-  std::string Row(const SweepPoint& point, const std::vector<int>* labels,
-                  const std::vector<double>* frequencies = nullptr) const;
+  /// Per-mode columns for `modes` modes (1-D sweeps).
+  std::string Header(int modes) const;
+  /// Point `i` of the sweep: with `campbell`, its lines at that point (final file); without,
+  /// the point's own modes in its own order and chosen branch (streamed rows).
+  std::string Row(const SweepPoint& point, const CampbellDiagram* campbell, size_t i) const;
 
   void Lock();
   /// The journal record of a point: diagnostics as ids, definitions of new ids written to the

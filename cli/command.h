@@ -38,5 +38,6 @@ Command AddHillCommand(CLI::App& app);
 Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
 Command AddChartCommand(CLI::App& app);
 Command AddMbcCommand(CLI::App& app);
+Command AddCampbellCommand(CLI::App& app);
 
 }  // namespace ltp::cli

@@ -32,6 +32,7 @@ int RunLtp(int argc, char** argv) {
       AddSnapshotCommand(app),
       AddChartCommand(app),
       AddMbcCommand(app),
+      AddCampbellCommand(app),
   };
 
   try {

@@ -43,24 +43,6 @@ std::string StripInternalIndex(const std::string& description) {
   return out;
 }
 
-// Position of the blade number in a description, by OpenFAST's patterns in its order
-// (matlab-toolbox findBladeTriplets.m, openfast_toolbox linfile.py).
-std::optional<size_t> BladeDigit(const std::string& description) {
-  static const std::vector<std::regex> patterns = [] {
-    std::vector<std::regex> p;
-    for (const char* s : {"[Bb]lade \\d", "[Bb]lade [Rr]oot \\d", "BD_\\d", "[Bb]\\d", "[Bb]lade\\d",
-                          "PitchBearing\\d", "\\d"})
-      p.emplace_back(s);
-    return p;
-  }();
-  for (const std::regex& r : patterns) {
-    std::smatch m;
-    if (std::regex_search(description, m, r))
-      return static_cast<size_t>(m.position(0) + m.length(0) - 1);
-  }
-  return std::nullopt;
-}
-
 std::string CoordinateWord(int blades, int c) {
   if (c == 0) return "collective";
   if (blades % 2 == 0 && c == blades - 1) return "differential";
@@ -168,6 +150,23 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
 }
 
 }  // namespace
+
+std::optional<size_t> BladeDigit(const std::string& description) {
+  static const std::vector<std::regex> patterns = [] {
+    std::vector<std::regex> p;
+    for (const char* s : {"[Bb]lade \\d", "[Bb]lade [Rr]oot \\d", "BD_\\d", "[Bb]\\d", "[Bb]lade\\d",
+                          "PitchBearing\\d", "\\d"})
+      p.emplace_back(s);
+    return p;
+  }();
+  for (const std::regex& r : patterns) {
+    std::smatch m;
+    if (std::regex_search(description, m, r))
+      return static_cast<size_t>(m.position(0) + m.length(0) - 1);
+  }
+  return std::nullopt;
+}
+
 
 BladeCoordinates FindBladeCoordinates(const std::vector<LinChannel>& channels) {
   BladeCoordinates c;

@@ -631,6 +631,7 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   });
   const LinFile& ref = files.front();
   LinOperatingPoint op;
+  op.wind_speed = ref.wind_speed;
   op.states = ref.states;
   op.inputs = ref.input_channels;
   op.outputs = ref.output_channels;
@@ -770,7 +771,7 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   }
   double spread = 0;
   for (double w : op.rotor_speeds) spread = std::max(spread, std::abs(w - op.rotor_speed));
-  if (spread > 0)
+  if (spread > 1e-12 * std::abs(op.rotor_speed))  // not the rounding of their mean
     op.diagnostics.push_back("rotor speeds differ by up to " +
                              FormatNumber(spread, "%.3g") + " rad/s between files; the period "
                              "uses their mean");
@@ -844,6 +845,13 @@ PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation i
   for (const LinChannel& c : op.inputs) labels.inputs.push_back(c.description);
   for (const LinChannel& c : op.outputs) labels.outputs.push_back(c.description);
   if (op.azimuth_state) labels.rigid_body_states.push_back(*op.azimuth_state);
+  try {
+    labels.blades = FindBladeCoordinates(op.states).blades;
+    for (size_t i = 0; i < op.states.size(); ++i)
+      if (op.states[i].rotating_frame) labels.blade_states.push_back(static_cast<int>(i));
+  } catch (const InputError&) {
+    labels.blades = 0;  // blade states not recognised: modes are described state by state
+  }
   PeriodicSystem system =
       BuildAzimuthSampledSystem(op.rotor_speed, op.azimuths, op.samples, interpolation);
   if (static_cast<int>(labels.inputs.size()) != system.inputs()) labels.inputs.clear();

@@ -299,6 +299,9 @@ PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const {
   check(labels.states, impl_->n, "state");
   check(labels.inputs, impl_->m, "input");
   check(labels.outputs, impl_->p, "output");
+  if (labels.blades < 0) throw InputError("blade count " + std::to_string(labels.blades) + " < 0");
+  for (int i : labels.blade_states)
+    if (i < 0 || i >= impl_->n) throw InputError("blade state index " + std::to_string(i) + " out of range");
   auto impl = std::make_shared<Impl>(*impl_);
   impl->labels = std::move(labels);
   return PeriodicSystem(std::move(impl));

@@ -80,6 +80,8 @@ SystemLabels RotorLabels(int blades) {
   for (const std::string& c : coordinates) labels.states.push_back(c + "_dot");
   labels.inputs = {"fx", "fy"};
   labels.outputs = {"x", "y"};
+  labels.blades = blades;
+  for (int b = 0; b < blades; ++b) labels.blade_states.push_back(b);  // zeta_b (rates are left out anyway)
   return labels;
 }
 

@@ -75,6 +75,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -488,11 +489,11 @@ void Validate(const TowerRotorParams& p) {
 // ---------------------------------------------------------------------------------------------
 // Mode descriptions from strain-energy shares.
 
-std::string Describe(const Structure& st, const VectorXd& x) {
-  const int nc = st.nc, nb = st.nb;
-  // Cantilever strain energy by family (K_c does not couple v, w and φ DOFs).
-  const VectorXd q = st.cantilever.shapes * x.head(nc);
-  double family[3] = {0, 0, 0};  // bending y (v), bending z (w), torsion
+// Cantilever strain energy by family: bending y (v), bending z (w), torsion (φ), from the
+// cantilever's modal coordinates (K_c does not couple v, w and φ DOFs).
+std::array<double, 3> CantileverFamilyEnergy(const Structure& st, const VectorXd& modal) {
+  const VectorXd q = st.cantilever.shapes * modal;
+  std::array<double, 3> family = {0, 0, 0};
   for (int f = 0; f < 3; ++f) {
     VectorXd part = VectorXd::Zero(q.size());
     for (int i = 0; i < q.size(); ++i) {
@@ -502,6 +503,21 @@ std::string Describe(const Structure& st, const VectorXd& x) {
     }
     family[f] = 0.5 * part.dot(st.cantilever_k * part);
   }
+  return family;
+}
+
+// The state label of cantilever mode i: its family and its rank in that family, e.g.
+// "cantilever_bend_z2" (each cantilever mode lies in one family).
+std::string CantileverModeLabel(const Structure& st, int i, std::array<int, 3>& counts) {
+  const std::array<double, 3> e = CantileverFamilyEnergy(st, VectorXd::Unit(st.nc, i));
+  const int f = static_cast<int>(std::max_element(e.begin(), e.end()) - e.begin());
+  static const char* names[3] = {"cantilever_bend_y", "cantilever_bend_z", "cantilever_torsion"};
+  return names[f] + std::to_string(++counts[static_cast<size_t>(f)]);
+}
+
+std::string Describe(const Structure& st, const VectorXd& x) {
+  const int nc = st.nc, nb = st.nb;
+  const std::array<double, 3> family = CantileverFamilyEnergy(st, x.head(nc));
   double blades[4] = {0, 0, 0, 0};  // flap in phase, flap anti, lag in phase, lag anti
   for (int j = 0; j < nb; ++j) {
     const double sym = (x(nc + j) + x(nc + nb + j)) / std::sqrt(2.0);
@@ -586,6 +602,9 @@ PeriodicSystem BuildSystem(const ParameterMap& values) {
   for (const std::string& name : model->dof_labels) labels.states.push_back(name + "_dot");
   labels.inputs = {"Fz_tip", "Fy_tip"};
   labels.outputs = {"z_tip", "y_tip"};
+  labels.blades = 2;
+  for (size_t i = 0; i < model->dof_labels.size(); ++i)
+    if (model->dof_labels[i].starts_with("blade")) labels.blade_states.push_back(static_cast<int>(i));
   PeriodicSystem system = FromSecondOrder(so).WithLabels(std::move(labels));
   return omega > 0 ? system.WithRotorSpeed(omega) : system;
 }
@@ -646,7 +665,8 @@ TowerRotorModel BuildTowerRotorModel(const TowerRotorParams& params) {
   model.F.col(0).head(st.nc) = st.tip_u.row(2).transpose();
   model.F.col(1).head(st.nc) = st.tip_u.row(1).transpose();
   model.Cd = model.F.transpose();
-  for (int i = 0; i < st.nc; ++i) model.dof_labels.push_back("cantilever_m" + std::to_string(i + 1));
+  std::array<int, 3> family_counts = {0, 0, 0};
+  for (int i = 0; i < st.nc; ++i) model.dof_labels.push_back(CantileverModeLabel(st, i, family_counts));
   for (int k = 0; k < 2; ++k) {
     for (int j = 0; j < st.nb; ++j)
       model.dof_labels.push_back("blade" + std::to_string(k + 1) + "_" + st.blade_kinds[j]);

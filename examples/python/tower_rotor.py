@@ -69,15 +69,15 @@ for lo, hi in chart.unstable_intervals:
     print(f"  {lo:.4f} … {hi:.4f}")
 
 fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 7), sharex=True, height_ratios=[3, 2])
-frequencies = chart.tracked_frequencies_hz
-damping = chart.tracked_exponents.real
-# Complex modes come in conjugate pairs (±frequency, same damping): |f| draws each pair as one
-# line. Where a pair turns real (f = 0 inside an instability), its damping lines split.
-for k in range(frequencies.shape[1]):
-    top.plot(omega, np.abs(frequencies[:, k]), lw=1.4, color=f"C{k // 2}")
-    bottom.plot(omega, damping[:, k], lw=1.4, color=f"C{k // 2}")
-for f in (1, 2):  # engine orders: Ω/2π and 2Ω/2π
-    top.plot(omega, f * omega / (2 * np.pi), "k--", lw=0.7)
+# One line per physical mode (a conjugate pair is one motion), named by the states carrying it.
+for k, line in enumerate(chart.lines):
+    top.plot(omega, line["frequency_hz"], lw=1.4, color=f"C{k}", label=line["description"])
+    bottom.plot(omega, line["real_part"], lw=1.4, color=f"C{k}")
+for n in chart.per_rev:  # per-rev lines nΩ/2π and where the modes cross them
+    top.plot(omega, n * chart.rotor_speeds / (2 * np.pi), "k--", lw=0.7)
+top.plot([c["parameter"] for c in chart.crossings], [c["frequency_hz"] for c in chart.crossings],
+         "ko", mfc="none", label="crossings")
+top.legend(fontsize=7)
 for lo, hi in chart.unstable_intervals:
     for ax in (top, bottom):
         ax.axvspan(lo, hi, color="#d62728", alpha=0.12, lw=0)

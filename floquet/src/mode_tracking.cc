@@ -12,13 +12,13 @@ namespace {
 
 using cd = std::complex<double>;
 
+}  // namespace
+
 double Mac(const Eigen::VectorXcd& x, const Eigen::VectorXcd& y) {
   const double xx = x.squaredNorm(), yy = y.squaredNorm();
   if (!(xx > 0) || !(yy > 0)) return 0;
   return std::norm(x.dot(y)) / (xx * yy);
 }
-
-}  // namespace
 
 ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
   ModeTracking t;
@@ -103,7 +103,7 @@ ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
     t.frequency_hz[p].assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
     if (!points[p].ok || labels.empty()) continue;
     if (last.size() != labels.size()) last.assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
-    const double fp = 1.0 / points[p].period;
+    const double fp = points[p].period > 0 ? 1.0 / points[p].period : 0;  // 0: time-invariant
     for (size_t k = 0; k < labels.size(); ++k) {
       if (labels[k] < 0) continue;
       double f = points[p].modes[labels[k]].frequency_hz;

@@ -238,6 +238,7 @@ SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const
   for (size_t a = 0; a < grid.axes.size(); ++a) params[grid.axes[a].name] = point.values[a];
   try {
     const PeriodicSystem system = scene.build(params);
+    if (const auto speed = system.rotor_speed()) point.rotor_speed = *speed;
     if (options.snapshot) {
       const Eigen::VectorXcd frozen = system.A(0).eigenvalues();
       point.snapshot_eigenvalues.assign(frozen.data(), frozen.data() + frozen.size());

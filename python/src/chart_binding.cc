@@ -7,6 +7,7 @@
 
 #include "binding.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/campbell.h"
 #include "ltp/floquet/chart_options.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
@@ -27,6 +28,7 @@ struct ChartResult {
   SweepOptions options;
   std::vector<SweepPoint> points;  ///< grid order
   ModeTracking tracking;           ///< 1-D only
+  CampbellDiagram campbell;        ///< 1-D only
   std::vector<UnstableInterval> intervals;
   std::vector<BoundaryPoint> boundary;
   double sweep_s = 0, refine_s = 0;
@@ -86,6 +88,7 @@ ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes, cons
   const BoundaryOptions boundary = ChartBoundaryOptions(chart);
   if (!map) {
     r.tracking = TrackModes(r.points);
+    r.campbell = MakeCampbellDiagram(r.points, r.tracking, system.system.labels(), chart.campbell);
     r.intervals = RefineUnstableIntervals(scene, system.parameters, r.grid, r.points, r.options, boundary);
   } else if (chart.refine) {
     r.boundary = RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
@@ -102,8 +105,10 @@ The result of ltp.chart: one Floquet analysis per grid point (arrays over the po
 grid order, first axis fastest), mode tracking along a 1-D sweep (Campbell lines), and the
 unstable intervals (1-D) or boundary points (maps) refined beyond the grid.
 
-For a Campbell diagram plot tracked_frequencies_hz[:, k] and the damping of
-tracked_exponents[:, k] against values[0].)doc")
+For a Campbell diagram plot each of `lines` (one per physical mode, named by its states)
+against values[0], with the per-rev lines n*rotor_speeds/2pi for n in per_rev; `crossings`
+lists where they meet. tracked_exponents/tracked_frequencies_hz keep every exponent (both
+members of each conjugate pair).)doc")
       .def_readonly("scene", &ChartResult::scene, "the scene's name")
       .def_readonly("parameters", &ChartResult::parameters, "the scene's parameters besides the swept ones")
       .def_readonly("method", &ChartResult::method, "'monodromy' or 'hill'")
@@ -224,6 +229,39 @@ tracked_exponents[:, k] against values[0].)doc")
         return py::dict(py::arg("min_mac") = c.tracking.min_mac,
                         py::arg("ambiguous_points") = c.tracking.ambiguous);
       }, "1-D: smallest accepted MAC and the points where a match was ambiguous")
+      .def_property_readonly("lines", [](const ChartResult& c) {
+        py::list out;
+        for (const CampbellLine& line : c.campbell.lines)
+          out.append(py::dict(py::arg("description") = line.description,
+                              py::arg("description_end") = line.description_end,
+                              py::arg("frequency_hz") = RealArray(line.frequency_hz),
+                              py::arg("real_part") = RealArray(line.real_part),
+                              py::arg("damping_ratio") = RealArray(line.damping_ratio),
+                              py::arg("lost_after") = line.lost_after));
+        return out;
+      }, "1-D: one Campbell line per physical mode: description (states carrying it), per-point "
+         "frequency_hz, real_part, damping_ratio (NaN where not tracked), lost_after (point index or -1)")
+      .def_property_readonly("rotor_speeds", [](const ChartResult& c) { return RealArray(c.campbell.rotor_speed); },
+                             "1-D: rotor speed per point (rad/s; NaN when the scene is not a rotor)")
+      .def_property_readonly("per_rev", [](const ChartResult& c) { return c.campbell.per_rev; },
+                             "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
+      .def_property_readonly("crossings", [](const ChartResult& c) {
+        py::list out;
+        for (const CampbellCrossing& x : c.campbell.crossings)
+          out.append(py::dict(py::arg("mode") = x.line + 1, py::arg("description") = c.campbell.lines[x.line].description,
+                              py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
+                              py::arg("parameter_error") = x.parameter_error, py::arg("rotor_speed") = x.rotor_speed,
+                              py::arg("frequency_hz") = x.frequency_hz, py::arg("real_part") = x.real_part,
+                              py::arg("damping_ratio") = x.damping_ratio));
+        return out;
+      }, "1-D: where each line crosses a per-rev line (mode numbered as in lines, from 1)")
+      .def_property_readonly("weakly_damped", [](const ChartResult& c) {
+        std::vector<std::vector<double>> v;
+        for (const auto& [lo, hi] : c.campbell.weakly_damped) v.push_back({lo, hi});
+        return RealTable(v, 2);
+      }, "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
+      .def_property_readonly("campbell_notes", [](const ChartResult& c) { return c.campbell.diagnostics; },
+                             "1-D: lost lines and ambiguous tracking")
       .def_readonly("sweep_s", &ChartResult::sweep_s, "wall time of the sweep (s)")
       .def_readonly("refine_s", &ChartResult::refine_s, "wall time of the boundary refinement (s)")
       .def("__repr__", [](const ChartResult& c) {
@@ -235,7 +273,8 @@ tracked_exponents[:, k] against values[0].)doc")
       "chart",
       [](const py::object& scene, const py::object& sweep, const py::object& sweep2,
          const std::string& method, std::optional<std::string> integrator, double tol, int threads,
-         bool compare, int check_every, bool refine, double refine_tol, int refine_lines) {
+         bool compare, int check_every, bool refine, double refine_tol, int refine_lines, int per_rev,
+         double weak_damping) {
         const System system = py::isinstance<py::str>(scene)
                                   ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
                                   : scene.cast<System>();
@@ -253,6 +292,8 @@ tracked_exponents[:, k] against values[0].)doc")
         o.refine = refine;
         o.refine_tol = refine_tol;
         o.refine_lines = refine_lines;
+        o.campbell.max_per_rev = per_rev;
+        o.campbell.weak_damping_ratio = weak_damping;
         o.Validate();
         py::gil_scoped_release release;
         return Chart(system, axes, o);
@@ -262,7 +303,8 @@ tracked_exponents[:, k] against values[0].)doc")
       py::arg("tol") = defaults.tol, py::arg("threads") = defaults.threads,
       py::arg("compare") = defaults.compare, py::arg("check_every") = defaults.check_every,
       py::arg("refine") = defaults.refine, py::arg("refine_tol") = defaults.refine_tol,
-      py::arg("refine_lines") = defaults.refine_lines, R"doc(
+      py::arg("refine_lines") = defaults.refine_lines, py::arg("per_rev") = defaults.campbell.max_per_rev,
+      py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
 Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
 parameters: `ltp chart SCENE --sweep ... --json` as a function, with the same options and
 defaults (the library's ChartOptions).
@@ -278,11 +320,13 @@ defaults (the library's ChartOptions).
   refine        refine the stability boundaries beyond the grid
   refine_tol    relative tolerance of refined boundaries
   refine_lines  maps: grid lines per axis along which boundaries are refined (0 = all)
+  per_rev       1-D: per-rev lines 1P..NP (0 = up to the highest mode frequency)
+  weak_damping  1-D: damping ratio below which a stable point counts as weakly damped
 
 Returns a ChartResult. Runs without the GIL.
 
     c = ltp.chart(ltp.scene("rotor", blades=3), "Omega=0.2:2:0.05")
-    plt.plot(c.values[0], c.tracked_frequencies_hz))doc");
+    for line in c.lines: plt.plot(c.values[0], line["frequency_hz"], label=line["description"]))doc");
 }
 
 }  // namespace ltp::python

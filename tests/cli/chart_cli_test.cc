@@ -2,6 +2,7 @@
 // resume after an interruption, and MPI ranks against threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -30,9 +31,68 @@ TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
   const std::string text = ReadFile(csv);
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "Omega,max_real_exponent,stable,verdict,error_estimate,freq_hz_1,real_1,damping_1,"
-            "freq_hz_2,real_2,damping_2,freq_hz_3,real_3,damping_3,freq_hz_4,real_4,damping_4,failure");
+            "freq_hz_2,real_2,damping_2,failure");  // one column set per conjugate pair (2 modes)
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);  // header + 13 rows
   EXPECT_FALSE(std::filesystem::exists(csv + ".points.jsonl"));  // journal gone when complete
+}
+
+// Gyroscopic rotor (tests/data/gyroscopic-rotor.yaml): whirl lines cross nΩ at
+// Ω² = k / (n (n Id ∓ Ip)), closed form; text, JSON and the crossings CSV agree with it.
+TEST(ChartCli, CampbellCrossingsInTextJsonAndCsv) {
+  const std::string csv = Tmp("chart_gyro.csv");
+  const std::string args = "chart " + test::Src("tests/data/gyroscopic-rotor.yaml") +
+                           " --sweep Omega=2:16:0.1 --per-rev 2 --csv " + csv;
+  const auto r = RunLtp(args + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(r.out)["campbell"];
+  ASSERT_EQ(c["lines"].size(), 2u);
+  EXPECT_EQ(c["lines"][0]["description"], "theta 50%, phi 50%");
+  ASSERT_EQ(c["crossings"].size(), 4u);
+  std::vector<double> exact;
+  for (int n : {1, 2})
+    for (double ip : {0.5, -0.5}) exact.push_back(std::sqrt(100 / (n * (n - ip))));
+  for (const json& x : c["crossings"]) {
+    const double at = x["parameter"].get<double>();
+    double nearest = 1e9;
+    for (double e : exact) nearest = std::min(nearest, std::abs(at - e));
+    EXPECT_LE(nearest, x["parameter_error"].get<double>()) << at;
+    EXPECT_LT(nearest, 1e-3) << at;
+  }
+  const std::string crossings = ReadFile(Tmp("chart_gyro-crossings.csv"));
+  EXPECT_EQ(crossings.substr(0, crossings.find('\n')),
+            "mode,description,per_rev,Omega,Omega_error,rotor_speed_rad_s,frequency_hz,real_part,damping_ratio");
+  EXPECT_EQ(std::count(crossings.begin(), crossings.end(), '\n'), 5);
+  const auto text = RunLtp(args);
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("crossings with the per-rev lines n·Ω/2π (4)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("theta 50%, phi 50%"), std::string::npos);
+}
+
+// `ltp campbell` on the rotor's operating-point set (tests/data/openfast/rotor-speeds, given
+// out of order): sorted by rotor speed, five MBC3 lines, crossings, CSV files; bad sets refused.
+TEST(ChartCli, CampbellOfAnOperatingPointSet) {
+  const std::string root = test::Src("tests/data/openfast/rotor-speeds");
+  std::string dirs;
+  for (const char* w : {"1.2", "0.4", "0.8", "1.6", "0.6", "1.0", "1.4"}) dirs += " " + root + "/omega-" + w;
+  const std::string csv = Tmp("campbell_set.csv");
+  const auto r = RunLtp("campbell" + dirs + " --csv " + csv + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["points"].size(), 7u);
+  for (size_t p = 1; p < 7; ++p)
+    EXPECT_GT(j["points"][p]["rotor_speed_rad_s"].get<double>(), j["points"][p - 1]["rotor_speed_rad_s"].get<double>());
+  EXPECT_NEAR(j["points"][0]["parameter"].get<double>(), 0.4 * 30 / M_PI, 1e-12);  // rpm
+  ASSERT_EQ(j["campbell"]["lines"].size(), 5u);
+  EXPECT_NE(j["campbell"]["lines"][0]["description"].get<std::string>().find("lag angle of blade"), std::string::npos);
+  EXPECT_FALSE(j["campbell"]["crossings"].empty());
+  const std::string table = ReadFile(csv);
+  EXPECT_EQ(table.substr(0, table.find(',')), "rpm");
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 8);  // header + 7 points
+  EXPECT_TRUE(std::filesystem::exists(Tmp("campbell_set-crossings.csv")));
+  // The same directory twice is one operating point twice: refused, naming the files.
+  const auto twice = RunLtp("campbell " + root + "/omega-0.4 " + root + "/omega-0.4");
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_NE(twice.err.find("same rotor speed [rpm]"), std::string::npos) << twice.err;
 }
 
 TEST(ChartCli, FailedPointsAreRowsWithTheirReason) {

@@ -15,7 +15,7 @@ namespace {
 using Outcome = test::LtpRun;
 Outcome Ltp(const std::string& args) { return test::RunLtp(args); }
 
-std::string Src(const std::string& rel) { return std::string(LTP_SOURCE_DIR) + "/" + rel; }
+using test::Src;
 
 TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(Ltp("--version").code, 0);

@@ -13,7 +13,7 @@
 namespace {
 
 using test::RunLtp;
-std::string Src(const std::string& rel) { return std::string(LTP_SOURCE_DIR) + "/" + rel; }
+using test::Src;
 int Lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
 TEST(ExitCodes, FailedAnalysisSaysWhyOnStderr) {

@@ -193,9 +193,14 @@ def test_chart_campbell_equals_cli(ltp_cli, tmp_path):
         assert cells["max_real_exponent"] == f"{c.max_real_exponent[i]:.12g}"
         assert cells["verdict"] == c.verdicts[i]
         assert cells["error_estimate"] == f"{c.error_estimate[i]:.12g}"
-        for k in range(c.tracked_exponents.shape[1]):  # the tracked Campbell lines
-            assert cells[f"freq_hz_{k + 1}"] == f"{c.tracked_frequencies_hz[i, k]:.12g}"
-            assert cells[f"real_{k + 1}"] == f"{c.tracked_exponents[i, k].real:.12g}"
+        for k, line in enumerate(c.lines):  # the Campbell lines, one per physical mode
+            assert cells[f"freq_hz_{k + 1}"] == f"{line['frequency_hz'][i]:.12g}"
+            assert cells[f"real_{k + 1}"] == f"{line['real_part'][i]:.12g}"
+    # The same lines, names and crossings as the CLI's JSON.
+    assert [l["description"] for l in j["campbell"]["lines"]] == [l["description"] for l in c.lines]
+    assert len(j["campbell"]["crossings"]) == len(c.crossings)
+    for a, b in zip(j["campbell"]["crossings"], c.crossings):
+        assert a["per_rev"] == b["per_rev"] and same(a["parameter"], b["parameter"])
 
 
 def test_chart_stability_map_equals_cli(ltp_cli):

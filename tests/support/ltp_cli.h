@@ -38,6 +38,9 @@ inline LtpRun RunLtp(const std::string& args, const std::string& prefix = "") {
   return r;
 }
 
+/// A path in the source tree (LTP_SOURCE_DIR, set by tests/CMakeLists.txt).
+inline std::string Src(const std::string& relative) { return std::string(LTP_SOURCE_DIR) + "/" + relative; }
+
 inline std::string ReadFile(const std::string& path) {
   std::ifstream f(path);
   std::stringstream s;

@@ -60,6 +60,11 @@ struct BladeCoordinates {
   std::vector<std::string> descriptions;
 };
 
+/// Position of the blade number (one digit) in a channel description, by OpenFAST's patterns
+/// in its order (matlab-toolbox findBladeTriplets.m, openfast_toolbox linfile.py): "blade N",
+/// "blade root N", "BD_N", "bN", "bladeN", "PitchBearingN", else the first digit.
+std::optional<size_t> BladeDigit(const std::string& description);
+
 /// Groups rotating-frame channels into blade N-tuples by description.
 /// @throws InputError naming a rotating-frame channel without a blade number or whose group
 /// misses a blade, or groups of different sizes.

@@ -87,6 +87,7 @@ struct LinOperatingPoint {
   /// generator azimuth state: the header's rotor speed and zero.
   std::vector<double> operating_speeds, operating_accelerations;
   double rotor_speed = 0;  ///< mean of rotor_speeds: the period is 2π/rotor_speed
+  std::optional<double> wind_speed;  ///< m/s, from the first file's header when it has one
   std::vector<LinChannel> states, inputs, outputs;  ///< in the first file's order
   std::vector<LtiSystem> samples;  ///< A, B, C, D at each azimuth, channels in that order
   /// Index of the generator-azimuth state (the rigid rotation of the rotor), if any.

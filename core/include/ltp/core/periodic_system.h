@@ -29,6 +29,12 @@ struct SystemLabels {
   /// Floquet exponent that is exactly 0 in theory; the analyses flag that mode as rigid-body
   /// and leave it out of the stability verdict.
   std::vector<int> rigid_body_states;
+  /// Number of rotor blades (0 when the system has none or does not say) and the states that
+  /// are blade coordinates, each numbered 1..blades in its label ("zeta2", "blade2_flap1",
+  /// "... of blade 2, m"). Mode descriptions group them into multiblade families
+  /// (collective, cyclic); other states are named singly, whatever digits their labels hold.
+  int blades = 0;
+  std::vector<int> blade_states;
 };
 
 class PeriodicSystem {

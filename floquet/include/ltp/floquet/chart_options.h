@@ -6,6 +6,7 @@
 // every 97th point: a map has thousands of points and the estimate doubles the cost of each).
 #include <optional>
 
+#include "ltp/floquet/campbell.h"
 #include "ltp/floquet/integrator.h"
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/floquet/sweep.h"
@@ -31,6 +32,8 @@ struct ChartOptions {
   double refine_tol = 1e-8;
   /// Maps: grid lines per axis along which boundaries are refined (0 or less = all).
   int refine_lines = 50;
+  /// 1-D: per-rev lines, crossings, weakly damped regions and mode names.
+  CampbellOptions campbell;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };

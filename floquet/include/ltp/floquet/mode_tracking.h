@@ -20,13 +20,18 @@ struct ModeTracking {
   /// frequency is defined modulo Ωp/2π; the branch chosen per point can jump where a mode's
   /// shape moves its energy between harmonics, so along a tracked line each value is shifted by
   /// the multiple of Ωp/2π that keeps it nearest to the previous point's. The first point
-  /// keeps its chosen branch.
+  /// keeps its chosen branch. Points with period 0 (eigenvalues of a time-invariant system,
+  /// e.g. MBC3's) have definite frequencies and are not shifted.
   std::vector<std::vector<double>> frequency_hz;
   /// Smallest MAC of an accepted match (1 when shapes were not used).
   double min_mac = 1;
   /// Points where a match was ambiguous (MAC < 0.5 or a runner-up within 10 %), by sweep order.
   std::vector<size_t> ambiguous;
 };
+
+/// The modal assurance criterion |xᴴy|² / (|x|²|y|²): 1 for parallel shapes, 0 for
+/// orthogonal ones (and when either is zero).
+double Mac(const Eigen::VectorXcd& x, const Eigen::VectorXcd& y);
 
 /// `points` must be in sweep order (ascending grid index of a 1-D sweep).
 ModeTracking TrackModes(const std::vector<SweepPoint>& points);

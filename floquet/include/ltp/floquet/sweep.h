@@ -72,6 +72,9 @@ struct SweepPoint {
   std::string failure;          ///< why the point failed (empty when ok)
   StabilityVerdict verdict = StabilityVerdict::kFailed;
   double period = 0;
+  /// Rotor speed of the point's system (rad/s; NaN when the system is not a rotor): the
+  /// per-rev excitation lines of a Campbell diagram.
+  double rotor_speed = std::numeric_limits<double>::quiet_NaN();
   double max_real_exponent = std::numeric_limits<double>::quiet_NaN();  ///< 1/s
   double max_log_multiplier = std::numeric_limits<double>::quiet_NaN(); ///< T · max Re λ
   double error_estimate = -1;   ///< exponents (1/s); -1 when this point was not checked

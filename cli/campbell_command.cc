@@ -1,0 +1,146 @@
+// `ltp campbell POINT...`: the Campbell diagram of OpenFAST linearisations at several operating
+// points (each POINT one set of azimuth files: a directory or a quoted glob), by MBC3 at each
+// point with modes tracked across points.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "campbell_output.h"
+#include "chart_plot.h"
+#include "command.h"
+#include "format.h"
+#include "ltp/core/error.h"
+#include "ltp/floquet/lin_campbell.h"
+#include "plot.h"
+
+namespace ltp::cli {
+
+namespace {
+
+using nlohmann::json;
+
+struct CampbellArgs {
+  std::vector<std::string> points;
+  std::string by = "rotor-speed";
+  int per_rev = CampbellOptions{}.max_per_rev;
+  double weak_damping = CampbellOptions{}.weak_damping_ratio;
+  std::string csv, plot;
+  bool json = false;
+};
+
+LinCampbellOptions MakeOptions(const CampbellArgs& args) {
+  LinCampbellOptions o;
+  if (args.by == "rotor-speed") o.axis = OperatingPointAxis::kRotorSpeed;
+  else if (args.by == "wind-speed") o.axis = OperatingPointAxis::kWindSpeed;
+  else throw InputError("--by must be rotor-speed or wind-speed, got '" + args.by + "'");
+  if (args.per_rev < 0 || args.per_rev > 100) throw InputError("--per-rev must be in 0..100 (0 = automatic)");
+  if (!(args.weak_damping >= 0 && args.weak_damping < 1)) throw InputError("--weak-damping must be in [0, 1)");
+  o.campbell.max_per_rev = args.per_rev;
+  o.campbell.weak_damping_ratio = args.weak_damping;
+  return o;
+}
+
+// One row per operating point: abscissa, rotor speed, wind speed, then per line its damped
+// frequency and damping ratio (empty where the line is not tracked).
+void WriteLinesCsv(const std::string& path, const LinCampbellResult& r, const std::string& axis) {
+  std::ofstream out(path);
+  out.precision(12);
+  out << axis << ",rotor_speed_rpm,wind_speed_m_s";
+  for (size_t k = 1; k <= r.diagram.lines.size(); ++k) out << ",freq_hz_" << k << ",damping_" << k;
+  out << "\n";
+  for (size_t p = 0; p < r.points.size(); ++p) {
+    out << r.diagram.parameter[p] << "," << r.points[p].rotor_speed * 30 / std::numbers::pi << ",";
+    if (r.points[p].wind_speed) out << *r.points[p].wind_speed;
+    for (const CampbellLine& line : r.diagram.lines) {
+      if (std::isfinite(line.frequency_hz[p])) out << "," << line.frequency_hz[p] << "," << line.damping_ratio[p];
+      else out << ",,";
+    }
+    out << "\n";
+  }
+  if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+int RunCampbell(const CampbellArgs& args) {
+  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // a bad extension fails first
+  const LinCampbellOptions options = MakeOptions(args);
+  std::vector<LinOperatingPoint> ops;
+  for (const std::string& point : args.points) ops.push_back(ReadLinOperatingPoint({point}));
+  const LinCampbellResult r = MakeLinCampbell(ops, options);
+  const std::string axis = options.axis == OperatingPointAxis::kRotorSpeed ? "rpm" : "wind_speed";
+  if (!args.csv.empty()) {
+    WriteLinesCsv(args.csv, r, axis);
+    WriteCrossingsCsv(CrossingsCsvPath(args.csv), r.diagram, axis);
+  }
+  std::string plot_note;
+  if (!args.plot.empty()) {
+    ChartPlotInput in;
+    in.title = "Campbell diagram: " + std::to_string(r.points.size()) + " operating points (MBC3)";
+    in.axis_labels = {r.axis_label};
+    in.points = &r.sweep;
+    in.campbell = &r.diagram;
+    in.sidebands = 0;
+    in.eigenvalues = "MBC3 frequencies (azimuth-averaged)";
+    in.real_parts = "real parts of the MBC3 eigenvalues";
+    plot_note = DrawChart(in, args.plot);
+  }
+  if (args.json) {
+    json points = json::array();
+    for (const LinCampbellPoint& p : r.points)
+      points.push_back({{"files", p.files},
+                        {"parameter", JsonNumber(p.parameter)},
+                        {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
+                        {"wind_speed_m_s", p.wind_speed ? JsonNumber(*p.wind_speed) : json(nullptr)},
+                        {"blades", p.mbc.blades},
+                        {"max_real_part", JsonNumber(p.mbc.max_real_part)},
+                        {"notes", p.notes}});
+    json j = {{"axis", r.axis_label}, {"points", points}, {"campbell", CampbellJson(r.diagram)},
+              {"csv", args.csv}, {"plot", args.plot}};
+    if (!plot_note.empty()) j["plot_note"] = plot_note;
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "Campbell diagram of " << r.points.size() << " operating points (MBC3 at each, modes tracked by MAC)\n"
+            << "  " << (options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]")
+            << "   files   blades   max Re λ [1/s]   directory\n";
+  for (const LinCampbellPoint& p : r.points) {
+    std::cout << "  " << Num(p.parameter, 6, 17) << Num(static_cast<double>(p.files.size()), 3, 8)
+              << Num(p.mbc.blades, 3, 9) << Num(p.mbc.max_real_part, 4, 17) << "   "
+              << std::filesystem::path(p.files.front()).parent_path().filename().string() << "\n";
+    for (const std::string& note : p.notes) std::cout << "        note: " << note << "\n";
+  }
+  std::cout << "\n";
+  PrintCampbell(std::cout, r.diagram, axis);
+  if (!args.csv.empty()) std::cout << "  wrote " << args.csv << " and " << CrossingsCsvPath(args.csv) << "\n";
+  if (!args.plot.empty()) std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+Command AddCampbellCommand(CLI::App& app) {
+  static CampbellArgs args;
+  args = CampbellArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
+  auto* cmd = app.add_subcommand(
+      "campbell", "Campbell diagram of OpenFAST .lin files at several operating points (MBC3 at "
+                  "each, modes tracked across points, per-rev crossings)");
+  cmd->add_option("points", args.points,
+                  "one argument per operating point: a directory of its azimuth .lin files, or a "
+                  "quoted glob")
+      ->required();
+  cmd->add_option("--by", args.by, "order and plot the points by rotor-speed (rpm) or wind-speed (m/s)")
+      ->capture_default_str();
+  cmd->add_option("--per-rev", args.per_rev, "per-rev lines 1P..NP (0 = up to the highest mode)")
+      ->capture_default_str();
+  cmd->add_option("--weak-damping", args.weak_damping,
+                  "shade where a mode's damping ratio is below this (0 = never)")
+      ->capture_default_str();
+  cmd->add_option("--csv", args.csv, "one row per operating point (and FILE-crossings.csv)");
+  cmd->add_option("--plot", args.plot, "Campbell + damping diagram (FILE.svg|.png)");
+  cmd->add_flag("--json", args.json, "one JSON object on stdout");
+  return {cmd, [] { return RunCampbell(args); }};
+}
+
+}  // namespace ltp::cli

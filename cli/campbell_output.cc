@@ -1,0 +1,90 @@
+#include "campbell_output.h"
+
+#include <fstream>
+#include <numbers>
+#include <ostream>
+
+#include "format.h"
+#include "ltp/core/error.h"
+
+namespace ltp::cli {
+
+using nlohmann::json;
+
+json CampbellJson(const CampbellDiagram& d) {
+  json lines = json::array(), crossings = json::array(), weak = json::array();
+  for (size_t k = 0; k < d.lines.size(); ++k) {
+    const CampbellLine& line = d.lines[k];
+    json j = {{"mode", k + 1}, {"description", line.description}};
+    if (line.description_end != line.description) j["description_end"] = line.description_end;
+    if (line.lost_after >= 0) j["lost_after"] = JsonNumber(d.parameter[static_cast<size_t>(line.lost_after)]);
+    lines.push_back(j);
+  }
+  for (const CampbellCrossing& c : d.crossings)
+    crossings.push_back({{"mode", c.line + 1},
+                         {"description", d.lines[c.line].description},
+                         {"per_rev", c.per_rev},
+                         {"parameter", JsonNumber(c.parameter)},
+                         {"parameter_error", JsonNumber(c.parameter_error)},
+                         {"rotor_speed", JsonNumber(c.rotor_speed)},
+                         {"frequency_hz", JsonNumber(c.frequency_hz)},
+                         {"real_part", JsonNumber(c.real_part)},
+                         {"damping_ratio", JsonNumber(c.damping_ratio)}});
+  for (const auto& [lo, hi] : d.weakly_damped) weak.push_back({JsonNumber(lo), JsonNumber(hi)});
+  return {{"lines", lines}, {"per_rev", d.per_rev}, {"crossings", crossings},
+          {"weakly_damped", weak}, {"diagnostics", d.diagnostics}};
+}
+
+void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::string& axis) {
+  out << "  modes (one line per conjugate pair; shares of the displacement energy at t = 0):\n";
+  for (size_t k = 0; k < d.lines.size(); ++k) {
+    const CampbellLine& line = d.lines[k];
+    out << "    " << Num(static_cast<double>(k + 1), 3, 3) << "  " << line.description;
+    if (line.description_end != line.description) out << "  →  " << line.description_end;
+    out << "\n";
+  }
+  if (d.per_rev.empty()) {
+    out << "  no per-rev lines: the scene gives no rotor speed\n";
+  } else if (d.crossings.empty()) {
+    out << "  no mode crosses the lines 1P.." << d.per_rev.back() << "P in the sweep\n";
+  } else {
+    out << "\n  crossings with the per-rev lines n·Ω/2π (" << d.crossings.size() << "):\n"
+        << "    mode   nP " << std::string(axis.size() < 14 ? 14 - axis.size() : 0, ' ') << axis
+        << "   ± error    Ω [rad/s]     f [Hz]    Re λ [1/s]   damping\n";
+    constexpr size_t kShown = 40;  // the rest are in --json and the crossings CSV
+    for (size_t k = 0; k < d.crossings.size() && k < kShown; ++k) {
+      const CampbellCrossing& c = d.crossings[k];
+      out << "    " << Num(static_cast<double>(c.line + 1), 3, 4) << Num(c.per_rev, 3, 5) << "P "
+          << Num(c.parameter, 8, 14) << Num(c.parameter_error, 2, 10) << Num(c.rotor_speed, 7, 13)
+          << Num(c.frequency_hz, 7, 11) << Num(c.real_part, 4, 14) << Num(c.damping_ratio, 3, 10) << "\n";
+    }
+    if (d.crossings.size() > kShown)
+      out << "    … " << d.crossings.size() - kShown << " more (all of them in --json and the --csv crossings file)\n";
+  }
+  for (const auto& [lo, hi] : d.weakly_damped)
+    out << "  weakly damped for " << axis << " in [" << Num(lo, 6) << ", " << Num(hi, 6) << "]\n";
+  for (const std::string& note : d.diagnostics) out << "  note: " << note << "\n";
+}
+
+void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const std::string& axis) {
+  std::ofstream out(path);
+  out.precision(12);
+  out << "mode,description,per_rev," << axis << "," << axis
+      << "_error,rotor_speed_rad_s,frequency_hz,real_part,damping_ratio\n";
+  for (const CampbellCrossing& c : d.crossings) {
+    std::string description = d.lines[c.line].description;
+    for (char& ch : description)
+      if (ch == '"') ch = '\'';
+    out << c.line + 1 << ",\"" << description << "\"," << c.per_rev << "," << c.parameter << ","
+        << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz << "," << c.real_part << ","
+        << c.damping_ratio << "\n";
+  }
+  if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+std::string CrossingsCsvPath(const std::string& csv) {
+  const std::string stem = csv.ends_with(".csv") ? csv.substr(0, csv.size() - 4) : csv;
+  return stem + "-crossings.csv";
+}
+
+}  // namespace ltp::cli

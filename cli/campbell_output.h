@@ -1,0 +1,24 @@
+#pragma once
+// The Campbell diagram of `ltp chart` (1-D sweeps) as text, JSON and the crossing CSV.
+#include <iosfwd>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ltp/floquet/campbell.h"
+
+namespace ltp::cli {
+
+/// {"lines": [...], "crossings": [...], "weakly_damped": [...], "per_rev": [...], "diagnostics"}.
+nlohmann::json CampbellJson(const CampbellDiagram& d);
+
+/// The mode lines with their names and the crossing table; `axis` names the swept parameter.
+void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::string& axis);
+
+/// One row per crossing: mode, description, n, parameter, its error, rotor speed, frequency,
+/// Re λ, damping ratio. @throws InputError when the file cannot be written.
+void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const std::string& axis);
+
+/// "out/c.csv" → "out/c-crossings.csv".
+std::string CrossingsCsvPath(const std::string& csv);
+
+}  // namespace ltp::cli

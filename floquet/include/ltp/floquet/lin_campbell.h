@@ -1,0 +1,62 @@
+#pragma once
+// The Campbell diagram most wind-turbine engineers draw: OpenFAST linearisations at several
+// operating points (one set of azimuth files each, e.g. one per rotor speed or wind speed),
+// MBC3 at each point, modes tracked from point to point by the MAC of their eigenvectors in
+// multi-blade coordinates, and the lines named by MBC3's descriptions ("... (cyclic, BW
+// whirl) 80%"). The tracking, per-rev lines, crossings and weak-damping regions are those of
+// every ltp Campbell diagram (campbell.h): each operating point becomes one point of a sweep
+// whose modes are the MBC3 eigenvalues, with rigid-body modes left out.
+//
+// Frequencies are damped frequencies Im λ/2π of the azimuth-averaged MBC system (absolute,
+// not modulo the rotor speed); damping ratios −Re λ/|λ|.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ltp/core/mbc3.h"
+#include "ltp/core/openfast_lin.h"
+#include "ltp/floquet/campbell.h"
+#include "ltp/floquet/mode_tracking.h"
+#include "ltp/floquet/sweep.h"
+
+namespace ltp {
+
+enum class OperatingPointAxis {
+  kRotorSpeed,  ///< order and plot by rotor speed (rpm)
+  kWindSpeed,   ///< by wind speed (m/s, from the files' headers)
+};
+
+struct LinCampbellOptions {
+  OperatingPointAxis axis = OperatingPointAxis::kRotorSpeed;
+  Mbc3Options mbc;
+  CampbellOptions campbell;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct LinCampbellPoint {
+  std::vector<std::string> files;   ///< the azimuth files, sorted by azimuth
+  double rotor_speed = 0;           ///< rad/s
+  std::optional<double> wind_speed; ///< m/s
+  double parameter = 0;             ///< the diagram's abscissa: rpm or m/s
+  Mbc3Result mbc;
+  /// Caveats of this point: too few azimuths to resolve the periodic part, rigid-body modes,
+  /// MBC3's own diagnostics.
+  std::vector<std::string> notes;
+};
+
+struct LinCampbellResult {
+  std::string axis_label;               ///< "rotor speed [rpm]" or "wind speed [m/s]"
+  std::vector<LinCampbellPoint> points; ///< ordered by the abscissa
+  std::vector<SweepPoint> sweep;        ///< per point: the MBC3 modes as a sweep point
+  ModeTracking tracking;
+  CampbellDiagram diagram;              ///< lines named by MBC3's descriptions
+};
+
+/// @throws InputError when fewer than one point is given, MBC3 does not apply to a point, two
+/// points have different states (their modes cannot be compared), two points share an
+/// abscissa, or wind speeds are asked for and a point's files do not give one.
+LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
+                                  const LinCampbellOptions& options = {});
+
+}  // namespace ltp

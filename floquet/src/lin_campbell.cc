@@ -1,0 +1,134 @@
+#include "ltp/floquet/lin_campbell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string Value(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string Name(const LinOperatingPoint& op) {
+  return op.files.empty() ? std::string("?") : std::filesystem::path(op.files.front()).parent_path().string() + "/" +
+                                                  std::filesystem::path(op.files.front()).filename().string();
+}
+
+LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOptions& options) {
+  LinCampbellPoint p;
+  p.files = op.files;
+  p.rotor_speed = op.rotor_speed;
+  p.wind_speed = op.wind_speed;
+  if (options.axis == OperatingPointAxis::kRotorSpeed) {
+    p.parameter = op.rotor_speed * 30 / kPi;
+  } else {
+    if (!op.wind_speed) throw InputError(Name(op) + ": no wind speed in the header; order the points by rotor speed");
+    p.parameter = *op.wind_speed;
+  }
+  p.mbc = Mbc3(op, options.mbc);
+  if (!p.mbc.applicable) throw InputError(Name(op) + ": MBC3 does not apply: " + p.mbc.reason);
+  if (op.size() < 3 && p.mbc.blades >= 3)
+    p.notes.push_back(std::to_string(op.size()) + " azimuth" + (op.size() == 1 ? "" : "s") +
+                      ": too few to average the periodic part (OpenFAST recommends 36 for MBC3)");
+  if (p.mbc.rigid_body_modes)
+    p.notes.push_back(std::to_string(p.mbc.rigid_body_modes) + " rigid-body mode" +
+                      (p.mbc.rigid_body_modes == 1 ? "" : "s") + " (the rotor's free rotation) left out");
+  for (const std::string& d : op.diagnostics) p.notes.push_back(d);
+  for (const std::string& d : p.mbc.diagnostics) p.notes.push_back(d);
+  return p;
+}
+
+// The MBC3 modes of a point as a sweep point (rigid-body modes left out); `index_of[j]` is
+// the MbcMode behind sweep mode j.
+SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index, std::vector<int>& index_of) {
+  SweepPoint s;
+  s.index = index;
+  s.values = {p.parameter};
+  s.ok = true;
+  s.period = 0;  // time-invariant (averaged) system: frequencies are not modulo Ω
+  s.rotor_speed = p.rotor_speed;
+  std::vector<int> kept;
+  for (size_t k = 0; k < p.mbc.modes.size(); ++k)
+    if (!p.mbc.modes[k].rigid_body) kept.push_back(static_cast<int>(k));
+  const Eigen::Index n = kept.empty() ? 0 : p.mbc.modes[static_cast<size_t>(kept[0])].eigenvector.size();
+  s.shapes.resize(n, static_cast<Eigen::Index>(kept.size()));
+  for (size_t j = 0; j < kept.size(); ++j) {
+    const MbcMode& m = p.mbc.modes[static_cast<size_t>(kept[j])];
+    FloquetMode f;
+    f.exponent = m.eigenvalue;
+    f.frequency_hz = m.eigenvalue.imag() / (2 * kPi);
+    f.damping_ratio = m.damping_ratio;
+    s.modes.push_back(f);
+    s.shapes.col(static_cast<Eigen::Index>(j)) = m.eigenvector;
+  }
+  index_of = kept;
+  s.max_real_exponent = p.mbc.max_real_part;
+  s.max_log_multiplier = p.mbc.max_real_part;  // no period: the sign is what counts
+  s.verdict = ClassifyStability(true, p.mbc.max_real_part, 0);
+  return s;
+}
+
+}  // namespace
+
+void LinCampbellOptions::Validate() const { campbell.Validate(); }
+
+LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
+                                  const LinCampbellOptions& options) {
+  options.Validate();
+  if (points.empty()) throw InputError("a Campbell diagram needs at least one operating point");
+  LinCampbellResult r;
+  r.axis_label = options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]";
+  for (const LinOperatingPoint& op : points) r.points.push_back(AnalysePoint(op, options));
+  std::stable_sort(r.points.begin(), r.points.end(),
+                   [](const auto& a, const auto& b) { return a.parameter < b.parameter; });
+  const auto& reference = r.points.front();
+  for (size_t i = 0; i < r.points.size(); ++i) {
+    const auto& p = r.points[i];
+    if (i > 0 && p.parameter == r.points[i - 1].parameter)
+      throw InputError(p.files.front() + " and " + r.points[i - 1].files.front() + " are at the same " +
+                       r.axis_label + " " + Value(p.parameter) + ": one set of files per operating point");
+    bool same = p.mbc.states.size() == reference.mbc.states.size();
+    for (size_t k = 0; same && k < p.mbc.states.size(); ++k)
+      same = p.mbc.states[k].description == reference.mbc.states[k].description;
+    if (!same)
+      throw InputError(p.files.front() + " has other states than " + reference.files.front() +
+                       ": modes can only be tracked across operating points of one model");
+  }
+  std::vector<std::vector<int>> index_of(r.points.size());
+  for (size_t i = 0; i < r.points.size(); ++i) r.sweep.push_back(AsSweepPoint(r.points[i], i, index_of[i]));
+  r.tracking = TrackModes(r.sweep);
+  SystemLabels labels;
+  for (const LinChannel& c : reference.mbc.states) labels.states.push_back(c.description);
+  labels.blades = reference.mbc.blades;
+  r.diagram = MakeCampbellDiagram(r.sweep, r.tracking, labels, options.campbell);
+  // MBC3 names its modes better than shares of single states can: its descriptions sum the
+  // cosine/sine pair of a cyclic family and name the whirl.
+  for (CampbellLine& line : r.diagram.lines) {
+    std::vector<std::string> names;
+    for (size_t p = 0; p < r.sweep.size(); ++p) {
+      const auto& at = r.tracking.labels[p];
+      if (line.label >= static_cast<int>(at.size()) || at[static_cast<size_t>(line.label)] < 0) continue;
+      const int mode = index_of[p][static_cast<size_t>(at[static_cast<size_t>(line.label)])];
+      names.push_back(r.points[p].mbc.modes[static_cast<size_t>(mode)].description);
+    }
+    if (!names.empty()) {
+      line.description = names.front();
+      line.description_end = names.back();
+    }
+  }
+  return r;
+}
+
+}  // namespace ltp
