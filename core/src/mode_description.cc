@@ -163,4 +163,13 @@ ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::Vecto
   return d;
 }
 
+std::vector<std::string> DescribeModeShapes(const SystemLabels& labels, const Eigen::MatrixXcd& shapes,
+                                            const ModeDescriptionOptions& options) {
+  std::vector<std::string> out(static_cast<size_t>(shapes.cols()));
+  if (!labels.states.empty() && static_cast<Eigen::Index>(labels.states.size()) != shapes.rows()) return out;
+  for (Eigen::Index k = 0; k < shapes.cols(); ++k)
+    out[static_cast<size_t>(k)] = DescribeModeShape(labels, shapes.col(k), options).text;
+  return out;
+}
+
 }  // namespace ltp

@@ -43,4 +43,9 @@ struct ModeDescription {
 ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::VectorXcd& shape,
                                   const ModeDescriptionOptions& options = {});
 
+/// The text of each column of `shapes` (one mode per column); empty texts when the shapes
+/// are empty or do not fit the labels.
+std::vector<std::string> DescribeModeShapes(const SystemLabels& labels, const Eigen::MatrixXcd& shapes,
+                                            const ModeDescriptionOptions& options = {});
+
 }  // namespace ltp
