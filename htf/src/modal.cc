@@ -5,12 +5,15 @@
 // The Fourier coefficients Ĉ_v of C(t)Ξ(t) and B̂_u of Ξ(t)⁻¹B(t) come from an FFT of uniform
 // samples; new samples are propagated from the Floquet mode samples until the spectra have
 // decayed (tail check). Any branch λ_k + jmΩp with ξ_k e^{−jmΩp t} gives the same H_z.
+#include <algorithm>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <sstream>
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/threads.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/htf/pfrf.h"
 
@@ -43,6 +46,37 @@ double PerModeTail(const std::vector<Eigen::MatrixXcd>& c, const std::vector<Eig
     if (b_all > 0) worst = std::max(worst, b_up / b_all);
   }
   return worst;
+}
+
+// Φ over [t_i, t_{i+1}], t_i = i T/count, for i = 0..count−1: the grid split into one
+// contiguous piece per core, each a single ConsecutiveTransitions pass (the pieces restart
+// the stepper once each). Fewer results than `count` when an integration failed.
+std::vector<TransitionResult> FineGridTransitions(const PeriodicSystem& system, int count,
+                                                  const IntegratorOptions& integrator) {
+  const double T = system.period();
+  const int pieces = std::max(1, std::min(ThreadsFor(0), count / 64));
+  std::vector<std::vector<TransitionResult>> parts(static_cast<size_t>(pieces));
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(pieces));  // no exception leaves OpenMP
+#pragma omp parallel for num_threads(pieces) schedule(static, 1)
+  for (int k = 0; k < pieces; ++k) {
+    const int first = count * k / pieces, last = count * (k + 1) / pieces;
+    std::vector<double> times;
+    for (int s = first; s <= last; ++s) times.push_back(T * s / count);
+    try {
+      parts[static_cast<size_t>(k)] = ConsecutiveTransitions(system, times, integrator);
+    } catch (...) {
+      errors[static_cast<size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  std::vector<TransitionResult> all;
+  for (int k = 0; k < pieces; ++k) {
+    const int expected = count * (k + 1) / pieces - count * k / pieces;
+    for (TransitionResult& r : parts[static_cast<size_t>(k)]) all.push_back(std::move(r));
+    if (static_cast<int>(parts[static_cast<size_t>(k)].size()) != expected) break;  // failed: stop here
+  }
+  return all;
 }
 
 }  // namespace
@@ -160,11 +194,9 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
     Eigen::VectorXcd decay(n);
     for (int k = 0; k < n; ++k) decay(k) = std::exp(-r.exponents[k] * h);
     std::vector<Eigen::MatrixXcd> finer(2 * S);
-    // One pass over the fine grid (the step size carries across the samples); the factors
-    // over [t_s, t_s + h] are every other one.
-    std::vector<double> fine_times(2 * S + 1);
-    for (int s = 0; s <= 2 * S; ++s) fine_times[s] = T * s / (2 * S);
-    const std::vector<TransitionResult> steps = ConsecutiveTransitions(system, fine_times, options.integrator);
+    // One pass over the fine grid per core (the step size carries across the samples); the
+    // factors over [t_s, t_s + h] are every other one.
+    const std::vector<TransitionResult> steps = FineGridTransitions(system, 2 * S, options.integrator);
     bool ok = static_cast<int>(steps.size()) == 2 * S;
     for (const TransitionResult& tr : steps) {
       r.rhs_evals += tr.rhs_evals;
