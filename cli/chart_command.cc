@@ -140,6 +140,252 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   return o;
 }
 
+// Everything one chart computed, for the writers.
+struct ChartOutcome {
+  explicit ChartOutcome(LoadedScene loaded) : scene(std::move(loaded)) {}
+  size_t count(StabilityVerdict v) const {
+    const auto it = counts.find(v);
+    return it == counts.end() ? 0 : it->second;
+  }
+  LoadedScene scene;
+  SweepGrid grid;
+  bool map = false;
+  SweepOptions options;
+  int threads = 0;
+  std::vector<SweepPoint> points;  ///< grid order
+  size_t resumed = 0;
+  double sweep_s = 0, refine_s = 0;
+  ModeTracking tracking;                 ///< 1-D
+  CampbellDiagram campbell;              ///< 1-D
+  std::vector<UnstableInterval> intervals;   ///< 1-D
+  std::vector<BoundaryPoint> boundary;       ///< maps
+  std::map<StabilityVerdict, size_t> counts;
+  double max_error = -1;  ///< over the checked points
+  size_t checked = 0;
+  std::string title;      ///< the scene and what the user set
+  std::string plot_note;
+};
+
+// The points of the grid: those the journal holds (--resume), then the rest on every rank,
+// streamed to the record. False when interrupted (Ctrl-C or --stop-after) before the end.
+bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, ChartOutcome& c) {
+  const bool root = ranks.rank == 0;
+  c.points.assign(c.grid.size(), {});
+  std::vector<char> have(c.grid.size(), 0);
+  if (root)
+    for (const SweepPoint& p : record->resumed())
+      if (p.index < c.points.size() && !have[p.index]) {
+        c.points[p.index] = p;
+        have[p.index] = 1;
+        ++c.resumed;
+      }
+  // Every rank needs the same list of missing points.
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < c.grid.size(); ++i)
+    if (!have[i]) todo.push_back(i);
+#ifdef LTP_WITH_MPI
+  if (ranks.size > 1) {
+    unsigned long count = todo.size();
+    MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+    todo.resize(count);
+    MPI_Bcast(todo.data(), static_cast<int>(count), MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+  }
+#endif
+  Progress progress(c.grid.size(), c.resumed, root && !args.json);
+  g_interrupted = false;
+  auto previous = std::signal(SIGINT, OnInterrupt);
+  const auto sweep_start = Clock::now();
+  std::mutex progress_mutex;
+  DistributedSweep(ranks, c.scene.scene, c.scene.parameters, c.grid, todo, c.options, [&](SweepPoint&& p) {
+    record->Add(p);
+    const size_t index = p.index;
+    c.points[index] = std::move(p);  // distinct indices: no two threads write one element
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    have[index] = 1;
+    progress.Tick();
+    if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
+  }, &g_interrupted);
+  std::signal(SIGINT, previous);
+  c.sweep_s = std::chrono::duration<double>(Clock::now() - sweep_start).count();
+  progress.Finish();
+  if (!root) return true;
+  const size_t done = static_cast<size_t>(std::count(have.begin(), have.end(), 1));
+  if (done == c.grid.size()) return true;
+  std::cerr << "ltp chart: interrupted after " << done << " of " << c.grid.size() << " points";
+  if (!args.csv.empty())
+    std::cerr << "; '" << args.csv << "' holds them; finish with the same command and --resume";
+  std::cerr << "\n";
+  return false;
+}
+
+// Mode tracking and the Campbell diagram (1-D), the refined boundaries, the summary counts.
+void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) {
+  if (!c.map) {
+    c.tracking = TrackModes(c.points);
+    c.campbell = MakeCampbellDiagram(c.points, c.tracking, c.scene.system.labels(), chart.campbell);
+  }
+  const BoundaryOptions bopt = ChartBoundaryOptions(chart);
+  const auto refine_start = Clock::now();
+  if (!c.map)
+    c.intervals = RefineUnstableIntervals(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
+  if (c.map && !args.no_refine)
+    c.boundary = RefineBoundaryPoints(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
+  c.refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
+  for (const SweepPoint& p : c.points) {
+    ++c.counts[p.verdict];
+    if (p.ok && p.error_estimate >= 0) {
+      ++c.checked;
+      c.max_error = std::max(c.max_error, p.error_estimate);
+    }
+  }
+  c.title = c.scene.scene.name;
+  if (!args.scene.set.empty()) {
+    c.title += " (";
+    for (size_t i = 0; i < args.scene.set.size(); ++i) c.title += (i ? ", " : "") + args.scene.set[i];
+    c.title += ")";
+  }
+}
+
+std::string Plot(const ChartArgs& args, const ChartOutcome& c) {
+  ChartPlotInput in;
+  in.title = (c.map ? "Stability map: " : "Campbell diagram: ") + c.title;
+  for (const auto& a : c.grid.axes) in.axis_labels.push_back(AxisLabel(c.scene.scene, a.name));
+  in.grid = &c.grid;
+  in.points = &c.points;
+  in.campbell = &c.campbell;
+  in.intervals = &c.intervals;
+  in.boundary = &c.boundary;
+  in.sidebands = args.sidebands;
+  in.compare = args.compare;
+  return DrawChart(in, args.plot);
+}
+
+json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c) {
+  json j = {{"scene", c.scene.scene.name},
+            {"parameters", ParametersJson(c.scene.parameters)},
+            {"states", c.scene.system.states()},
+            {"method", args.method},
+            {"integrator", args.integrator},
+            {"tol", args.tol},
+            {"points", c.grid.size()},
+            {"resumed_points", c.resumed},
+            {"stable", c.count(StabilityVerdict::kStable)},
+            {"marginal", c.count(StabilityVerdict::kMarginal)},
+            {"unstable", c.count(StabilityVerdict::kUnstable)},
+            {"failed", c.count(StabilityVerdict::kFailed)},
+            {"checked_points", c.checked},
+            {"max_error_estimate", JsonNumber(c.max_error)},
+            {"threads", c.threads},
+            {"ranks", ranks.size},
+            {"sweep_s", c.sweep_s},
+            {"refine_s", c.refine_s},
+            {"csv", args.csv},
+            {"plot", args.plot}};
+  for (const auto& a : c.grid.axes)
+    j["sweep"].push_back({{"name", a.name}, {"start", a.start}, {"stop", a.stop}, {"step", a.step},
+                          {"count", a.Values().size()}});
+  json failures = json::array();
+  for (const SweepPoint& p : c.points)
+    if (!p.ok) failures.push_back({{"values", p.values}, {"reason", p.failure}});
+  j["failures"] = failures;
+  if (!c.map) {
+    json list = json::array(), detail = json::array();
+    for (const auto& in : c.intervals) {
+      list.push_back({JsonNumber(in.lo.value), JsonNumber(in.hi.value)});
+      detail.push_back({{"lo", BoundaryJson(in.lo)}, {"hi", BoundaryJson(in.hi)}});
+    }
+    j["unstable_intervals"] = list;
+    j["unstable_interval_details"] = detail;
+    j["mode_tracking"] = {{"min_mac", JsonNumber(c.tracking.min_mac)},
+                          {"ambiguous_points", c.tracking.ambiguous.size()}};
+    j["campbell"] = CampbellJson(c.campbell);
+  } else {
+    json list = json::array(), detail = json::array();
+    for (const auto& b : c.boundary) {
+      if (!b.estimate.refined) continue;
+      list.push_back({JsonNumber(b.values[0]), JsonNumber(b.values[1])});
+    }
+    for (const auto& b : c.boundary)
+      detail.push_back({{"values", {JsonNumber(b.values[0]), JsonNumber(b.values[1])}},
+                        {"refined_parameter", c.grid.axes[static_cast<size_t>(b.axis)].name},
+                        {"entering_unstable", b.entering_unstable},
+                        {"estimate", BoundaryJson(b.estimate)}});
+    j["boundary_points"] = list;
+    j["boundary_point_details"] = detail;
+  }
+  if (!c.plot_note.empty()) j["plot_note"] = c.plot_note;
+  return j;
+}
+
+void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c) {
+  std::cout << (c.map ? "Stability map of " : "Campbell sweep of ") << c.title << "\n  ";
+  for (size_t a = 0; a < c.grid.axes.size(); ++a)
+    std::cout << (a ? " × " : "") << c.grid.axes[a].name << " = " << Num(c.grid.axes[a].start, 8) << " … "
+              << Num(c.grid.values[a].back(), 8) << " (" << c.grid.values[a].size() << " points)";
+  std::cout << "; " << args.method << " route";
+  if (c.options.method == SweepMethod::kMonodromy) std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
+  std::cout << ", " << c.threads << (c.threads == 1 ? " thread" : " threads");
+  if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
+  std::cout << "\n  " << c.grid.size() << " points in " << Num(c.sweep_s, 3) << " s";
+  if (c.resumed) std::cout << " (" << c.resumed << " resumed from the journal)";
+  std::cout << ": " << c.count(StabilityVerdict::kStable) << " stable, " << c.count(StabilityVerdict::kMarginal)
+            << " marginal, " << c.count(StabilityVerdict::kUnstable) << " unstable, "
+            << c.count(StabilityVerdict::kFailed) << " failed\n  error estimate: ";
+  if (c.checked)
+    std::cout << "max " << Num(c.max_error, 2) << " 1/s over " << c.checked << " checked points (tighter rerun)\n";
+  else
+    std::cout << "not computed (--check-every 0)\n";
+  if (!c.map) {
+    std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(c.tracking.min_mac, 3);
+    if (!c.tracking.ambiguous.empty()) std::cout << ", ambiguous at " << c.tracking.ambiguous.size() << " points";
+    std::cout << "\n";
+    PrintCampbell(std::cout, c.campbell, c.grid.axes[0].name);
+    std::cout << "\n";
+    if (c.intervals.empty()) {
+      std::cout << "  no unstable interval in the sweep\n";
+    } else {
+      std::cout << "  unstable intervals of " << c.grid.axes[0].name << " (boundaries refined to "
+                << Num(args.refine_tol, 2) << " relative; " << Num(c.refine_s, 3) << " s):\n"
+                << "              from                 to      max Re λ inside [1/s]\n";
+      for (const auto& in : c.intervals) {
+        double peak = -INFINITY;
+        for (const SweepPoint& p : c.points)
+          if (p.ok && p.values[0] >= in.lo.value && p.values[0] <= in.hi.value)
+            peak = std::max(peak, p.max_real_exponent);
+        auto end = [](const BoundaryEstimate& e) {
+          std::ostringstream s;
+          s << Num(e.value, 12, 18) << (e.refined ? " " : (e.at_sweep_edge ? "<" : "?"));
+          return s.str();
+        };
+        std::cout << "    " << end(in.lo) << " " << end(in.hi) << Num(peak, 4, 14) << "\n";
+        for (const auto* e : {&in.lo, &in.hi})
+          if (!e->refined && !e->note.empty()) std::cout << "        note: " << e->note << "\n";
+      }
+      std::cout << "    (< : the instability continues beyond the sweep; ? : not refined)\n";
+    }
+  } else {
+    size_t refined = 0;
+    for (const auto& b : c.boundary) refined += b.estimate.refined;
+    std::cout << "  boundary points: " << refined << " refined of " << c.boundary.size()
+              << " grid crossings along " << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
+              << " lines per axis (" << Num(c.refine_s, 3) << " s)\n";
+  }
+  const int failed = static_cast<int>(c.count(StabilityVerdict::kFailed));
+  if (failed) {
+    std::cout << "  failed points (first 5):\n";
+    int shown = 0;
+    for (const SweepPoint& p : c.points)
+      if (!p.ok && shown++ < 5) {
+        std::cout << "    ";
+        for (size_t a = 0; a < p.values.size(); ++a)
+          std::cout << (a ? ", " : "") << c.grid.axes[a].name << " = " << Num(p.values[a], 8);
+        std::cout << ": " << p.failure << "\n";
+      }
+  }
+  if (!args.csv.empty()) std::cout << "  wrote " << args.csv << (c.map ? "" : " and " + CrossingsCsvPath(args.csv)) << "\n";
+  if (!args.plot.empty()) std::cout << (c.plot_note.empty() ? "  wrote " + args.plot : "  " + c.plot_note) << "\n";
+}
+
 int RunChart(ChartArgs& args) {
   const Ranks ranks = StartRanks();
   struct StopAtExit {
@@ -150,255 +396,37 @@ int RunChart(ChartArgs& args) {
     if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // a bad extension fails first
     if (args.sidebands < 0 || args.sidebands > 8) throw InputError("--sidebands must be in 0..8");
     if (!(args.refine_tol > 0 && args.refine_tol < 1e-2)) throw InputError("--refine-tol must be in (0, 0.01)");
-    LoadedScene l = LoadSceneArgs(args.scene);
+    ChartOutcome c(LoadSceneArgs(args.scene));
     std::vector<SweepAxis> axes = {SweepAxis::Parse(args.sweep)};
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
-    const SweepGrid grid = MakeSweepGrid(l.scene, axes);
-    const bool map = grid.axes.size() == 2;
-    if (args.integrator.empty()) args.integrator = ToString(ChartIntegrator(ChartOptions{}, map));
+    c.grid = MakeSweepGrid(c.scene.scene, axes);
+    c.map = c.grid.axes.size() == 2;
+    if (args.integrator.empty()) args.integrator = ToString(ChartIntegrator(ChartOptions{}, c.map));
     const ChartOptions chart = MakeOptions(args);
-    const SweepOptions options = ChartSweepOptions(chart, map);
-    const int threads = ThreadsFor(options.threads);
+    c.options = ChartSweepOptions(chart, c.map);
+    c.threads = ThreadsFor(c.options.threads);
 
-    json identity = {{"scene", l.scene.name}, {"source", l.scene.source},
-                     {"parameters", ParametersJson(l.parameters)}, {"method", args.method},
+    json identity = {{"scene", c.scene.scene.name}, {"source", c.scene.scene.source},
+                     {"parameters", ParametersJson(c.scene.parameters)}, {"method", args.method},
                      {"integrator", args.integrator}, {"tol", args.tol},
-                     {"check_every", options.check_every}, {"compare", options.snapshot}};
-    for (const auto& a : grid.axes) identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
-
-    // Points already done (--resume), then the rest.
+                     {"check_every", c.options.check_every}, {"compare", c.options.snapshot}};
+    for (const auto& a : c.grid.axes) identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
     std::unique_ptr<ChartRecord> record;
-    if (root) record = std::make_unique<ChartRecord>(args.csv, grid, l.system.states(), identity, args.resume);
-    std::vector<SweepPoint> points(grid.size());
-    std::vector<char> have(grid.size(), 0);
-    size_t resumed = 0;
-    if (root)
-      for (const SweepPoint& p : record->resumed())
-        if (p.index < points.size() && !have[p.index]) {
-          points[p.index] = p;
-          have[p.index] = 1;
-          ++resumed;
-        }
-    // Every rank needs the same list of missing points.
-    std::vector<size_t> todo;
-    for (size_t i = 0; i < grid.size(); ++i)
-      if (!have[i]) todo.push_back(i);
-#ifdef LTP_WITH_MPI
-    if (ranks.size > 1) {
-      unsigned long count = todo.size();
-      MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
-      todo.resize(count);
-      MPI_Bcast(todo.data(), static_cast<int>(count), MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
-    }
-#endif
-
-    Progress progress(grid.size(), resumed, root && !args.json);
-    g_interrupted = false;
-    auto previous = std::signal(SIGINT, OnInterrupt);
-    const auto sweep_start = Clock::now();
-    std::mutex progress_mutex;
-    DistributedSweep(ranks, l.scene, l.parameters, grid, todo, options, [&](SweepPoint&& p) {
-      record->Add(p);
-      const size_t index = p.index;
-      points[index] = std::move(p);  // distinct indices: no two threads write one element
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      have[index] = 1;
-      progress.Tick();
-      if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
-    }, &g_interrupted);
-    std::signal(SIGINT, previous);
-    const double sweep_s = std::chrono::duration<double>(Clock::now() - sweep_start).count();
-    progress.Finish();
+    if (root) record = std::make_unique<ChartRecord>(args.csv, c.grid, c.scene.system.states(), identity, args.resume);
+    if (!SweepAllPoints(args, ranks, record.get(), c)) return 130;
     if (!root) return 0;
 
-    size_t done = 0;
-    for (char h : have) done += h;
-    if (done < grid.size()) {
-      std::cerr << "ltp chart: interrupted after " << done << " of " << grid.size() << " points";
-      if (!args.csv.empty())
-        std::cerr << "; '" << args.csv << "' holds them; finish with the same command and --resume";
-      std::cerr << "\n";
-      return 130;
-    }
-
-    // Mode tracking (1-D), refined boundaries.
-    ModeTracking tracking;
-    CampbellDiagram campbell;
-    if (!map) {
-      tracking = TrackModes(points);
-      campbell = MakeCampbellDiagram(points, tracking, l.system.labels(), chart.campbell);
-      if (!args.csv.empty()) WriteCrossingsCsv(CrossingsCsvPath(args.csv), campbell, grid.axes[0].name);
-    }
-    const BoundaryOptions bopt = ChartBoundaryOptions(chart);
-    const auto refine_start = Clock::now();
-    std::vector<UnstableInterval> intervals;
-    std::vector<BoundaryPoint> boundary;
-    if (!map) {
-      intervals = RefineUnstableIntervals(l.scene, l.parameters, grid, points, options, bopt);
-    }
-    if (map && !args.no_refine)
-      boundary = RefineBoundaryPoints(l.scene, l.parameters, grid, points, options, bopt);
-    const double refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
-    record->Finish(points, map ? nullptr : &campbell);
-
-    // Summary numbers.
-    std::map<StabilityVerdict, size_t> counts;
-    double max_error = -1;
-    size_t checked = 0;
-    for (const SweepPoint& p : points) {
-      ++counts[p.verdict];
-      if (p.ok && p.error_estimate >= 0) {
-        ++checked;
-        max_error = std::max(max_error, p.error_estimate);
-      }
-    }
-    // Title: the scene and what the user set (all parameters are in --json).
-    std::string title = l.scene.name;
-    if (!args.scene.set.empty()) {
-      title += " (";
-      for (size_t i = 0; i < args.scene.set.size(); ++i) title += (i ? ", " : "") + args.scene.set[i];
-      title += ")";
-    }
-    std::string plot_note;
-    if (!args.plot.empty()) {
-      ChartPlotInput in;
-      in.title = (map ? "Stability map: " : "Campbell diagram: ") + title;
-      for (const auto& a : grid.axes) in.axis_labels.push_back(AxisLabel(l.scene, a.name));
-      in.grid = &grid;
-      in.points = &points;
-      in.campbell = &campbell;
-      in.intervals = &intervals;
-      in.boundary = &boundary;
-      in.sidebands = args.sidebands;
-      in.compare = args.compare;
-      plot_note = DrawChart(in, args.plot);
-    }
-
+    Analyse(args, chart, c);
+    if (!c.map && !args.csv.empty()) WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.campbell, c.grid.axes[0].name);
+    record->Finish(c.points, c.map ? nullptr : &c.campbell);
+    if (!args.plot.empty()) c.plot_note = Plot(args, c);
+    const bool all_failed = c.count(StabilityVerdict::kFailed) == c.grid.size();
     if (args.json) {
-      json j = {{"scene", l.scene.name},
-                {"parameters", ParametersJson(l.parameters)},
-                {"states", l.system.states()},
-                {"method", args.method},
-                {"integrator", args.integrator},
-                {"tol", args.tol},
-                {"points", grid.size()},
-                {"resumed_points", resumed},
-                {"stable", counts[StabilityVerdict::kStable]},
-                {"marginal", counts[StabilityVerdict::kMarginal]},
-                {"unstable", counts[StabilityVerdict::kUnstable]},
-                {"failed", counts[StabilityVerdict::kFailed]},
-                {"checked_points", checked},
-                {"max_error_estimate", JsonNumber(max_error)},
-                {"threads", threads},
-                {"ranks", ranks.size},
-                {"sweep_s", sweep_s},
-                {"refine_s", refine_s},
-                {"csv", args.csv},
-                {"plot", args.plot}};
-      for (const auto& a : grid.axes)
-        j["sweep"].push_back({{"name", a.name}, {"start", a.start}, {"stop", a.stop}, {"step", a.step},
-                              {"count", a.Values().size()}});
-      json failures = json::array();
-      for (const SweepPoint& p : points)
-        if (!p.ok) failures.push_back({{"values", p.values}, {"reason", p.failure}});
-      j["failures"] = failures;
-      if (!map) {
-        json list = json::array(), detail = json::array();
-        for (const auto& in : intervals) {
-          list.push_back({JsonNumber(in.lo.value), JsonNumber(in.hi.value)});
-          detail.push_back({{"lo", BoundaryJson(in.lo)}, {"hi", BoundaryJson(in.hi)}});
-        }
-        j["unstable_intervals"] = list;
-        j["unstable_interval_details"] = detail;
-        j["mode_tracking"] = {{"min_mac", JsonNumber(tracking.min_mac)},
-                              {"ambiguous_points", tracking.ambiguous.size()}};
-        j["campbell"] = CampbellJson(campbell);
-      } else {
-        json list = json::array(), detail = json::array();
-        for (const auto& b : boundary) {
-          if (!b.estimate.refined) continue;
-          list.push_back({JsonNumber(b.values[0]), JsonNumber(b.values[1])});
-        }
-        for (const auto& b : boundary)
-          detail.push_back({{"values", {JsonNumber(b.values[0]), JsonNumber(b.values[1])}},
-                            {"refined_parameter", grid.axes[static_cast<size_t>(b.axis)].name},
-                            {"entering_unstable", b.entering_unstable},
-                            {"estimate", BoundaryJson(b.estimate)}});
-        j["boundary_points"] = list;
-        j["boundary_point_details"] = detail;
-      }
-      if (!plot_note.empty()) j["plot_note"] = plot_note;
-      std::cout << j.dump(2) << "\n";
-      return counts[StabilityVerdict::kFailed] == grid.size() ? 1 : 0;
-    }
-
-    std::cout << (map ? "Stability map of " : "Campbell sweep of ") << title << "\n  ";
-    for (size_t a = 0; a < grid.axes.size(); ++a)
-      std::cout << (a ? " × " : "") << grid.axes[a].name << " = " << Num(grid.axes[a].start, 8) << " … "
-                << Num(grid.values[a].back(), 8) << " (" << grid.values[a].size() << " points)";
-    std::cout << "; " << args.method << " route";
-    if (options.method == SweepMethod::kMonodromy) std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
-    std::cout << ", " << threads << (threads == 1 ? " thread" : " threads");
-    if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
-    std::cout << "\n  " << grid.size() << " points in " << Num(sweep_s, 3) << " s";
-    if (resumed) std::cout << " (" << resumed << " resumed from the journal)";
-    std::cout << ": " << counts[StabilityVerdict::kStable] << " stable, " << counts[StabilityVerdict::kMarginal]
-              << " marginal, " << counts[StabilityVerdict::kUnstable] << " unstable, "
-              << counts[StabilityVerdict::kFailed] << " failed\n  error estimate: ";
-    if (checked)
-      std::cout << "max " << Num(max_error, 2) << " 1/s over " << checked << " checked points (tighter rerun)\n";
-    else
-      std::cout << "not computed (--check-every 0)\n";
-    if (!map) {
-      std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(tracking.min_mac, 3);
-      if (!tracking.ambiguous.empty()) std::cout << ", ambiguous at " << tracking.ambiguous.size() << " points";
-      std::cout << "\n";
-      PrintCampbell(std::cout, campbell, grid.axes[0].name);
-      std::cout << "\n";
-      if (intervals.empty()) {
-        std::cout << "  no unstable interval in the sweep\n";
-      } else {
-        std::cout << "  unstable intervals of " << grid.axes[0].name << " (boundaries refined to "
-                  << Num(args.refine_tol, 2) << " relative; " << Num(refine_s, 3) << " s):\n"
-                  << "              from                 to      max Re λ inside [1/s]\n";
-        for (const auto& in : intervals) {
-          double peak = -INFINITY;
-          for (const SweepPoint& p : points)
-            if (p.ok && p.values[0] >= in.lo.value && p.values[0] <= in.hi.value)
-              peak = std::max(peak, p.max_real_exponent);
-          auto end = [](const BoundaryEstimate& e) {
-            std::ostringstream s;
-            s << Num(e.value, 12, 18) << (e.refined ? " " : (e.at_sweep_edge ? "<" : "?"));
-            return s.str();
-          };
-          std::cout << "    " << end(in.lo) << " " << end(in.hi) << Num(peak, 4, 14) << "\n";
-          for (const auto* e : {&in.lo, &in.hi})
-            if (!e->refined && !e->note.empty()) std::cout << "        note: " << e->note << "\n";
-        }
-        std::cout << "    (< : the instability continues beyond the sweep; ? : not refined)\n";
-      }
+      std::cout << ChartJson(args, ranks, c).dump(2) << "\n";
     } else {
-      size_t refined = 0;
-      for (const auto& b : boundary) refined += b.estimate.refined;
-      std::cout << "  boundary points: " << refined << " refined of " << boundary.size()
-                << " grid crossings along " << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
-                << " lines per axis (" << Num(refine_s, 3) << " s)\n";
+      PrintChart(args, ranks, c);
     }
-    const int failed = static_cast<int>(counts[StabilityVerdict::kFailed]);
-    if (failed) {
-      std::cout << "  failed points (first 5):\n";
-      int shown = 0;
-      for (const SweepPoint& p : points)
-        if (!p.ok && shown++ < 5) {
-          std::cout << "    ";
-          for (size_t a = 0; a < p.values.size(); ++a)
-            std::cout << (a ? ", " : "") << grid.axes[a].name << " = " << Num(p.values[a], 8);
-          std::cout << ": " << p.failure << "\n";
-        }
-    }
-    if (!args.csv.empty()) std::cout << "  wrote " << args.csv << (map ? "" : " and " + CrossingsCsvPath(args.csv)) << "\n";
-    if (!args.plot.empty()) std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
-    return failed == static_cast<int>(grid.size()) ? 1 : 0;
+    return all_failed ? 1 : 0;
   } catch (const std::exception& e) {
     if (ranks.size > 1) {
       std::string message = e.what();
