@@ -39,5 +39,6 @@ Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
 Command AddChartCommand(CLI::App& app);
 Command AddMbcCommand(CLI::App& app);
 Command AddCampbellCommand(CLI::App& app);
+Command AddSimulateCommand(CLI::App& app), AddIdentifyCommand(CLI::App& app);
 
 }  // namespace ltp::cli

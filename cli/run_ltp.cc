@@ -33,6 +33,8 @@ int RunLtp(int argc, char** argv) {
       AddChartCommand(app),
       AddMbcCommand(app),
       AddCampbellCommand(app),
+      AddSimulateCommand(app),
+      AddIdentifyCommand(app),
   };
 
   try {

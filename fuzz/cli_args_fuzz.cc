@@ -66,6 +66,13 @@ bool TooMuchWork(const std::vector<std::string>& args) {
         const size_t eq = v->find('=');
         if (eq != std::string::npos && std::abs(std::atof(v->c_str() + eq + 1)) > 1e4) return true;
       }
+      // Simulated time data: records × periods × samples of honest integration.
+      if (const std::string* v = ValueOf(args, i, "--periods", scratch))
+        if (std::atof(v->c_str()) > 64) return true;
+      if (const std::string* v = ValueOf(args, i, "--samples-per-period", scratch))
+        if (std::atof(v->c_str()) > 256) return true;
+      if (const std::string* v = ValueOf(args, i, "--excitation", scratch))
+        if (StartsWith(*v, "stepsine:") && ltp::ParseFrequencyRange(v->substr(9), "--excitation").size() > 20) return true;
       for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})
         if (const std::string* v = ValueOf(args, i, h, scratch))
           if (std::atof(v->c_str()) > kMaxHarmonics) return true;

@@ -1,0 +1,144 @@
+#include "time_data_csv.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "ltp/core/error.h"
+
+namespace ltp::cli {
+
+namespace {
+
+std::vector<std::string> SplitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+double Number(const std::string& text, const std::string& where) {
+  size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || text.find_first_not_of(" \t\r", used) != std::string::npos)
+    throw InputError(where + ": '" + text + "' is not a number");
+  return x;
+}
+
+}  // namespace
+
+void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment) {
+  std::ofstream out(path);
+  out.precision(15);
+  out << "# ltp time data: " << comment << "\n# period_s: " << data.period << "\n";
+  if (data.rotor_speed) out << "# rotor_speed_rad_s: " << *data.rotor_speed << "\n";
+  out << "record,excitation_hz,t";
+  const auto name = [](const std::vector<std::string>& names, Eigen::Index i, const char* fallback) {
+    if (static_cast<size_t>(i) < names.size()) return names[static_cast<size_t>(i)];
+    std::string text = fallback;  // (not fallback + to_string: g++ 12 warns falsely, -Wrestrict)
+    return text += std::to_string(i + 1);
+  };
+  const TimeRecord& first = data.records.front();
+  for (Eigen::Index i = 0; i < first.inputs.cols(); ++i) out << ",in:" << name(data.input_names, i, "u");
+  for (Eigen::Index i = 0; i < first.outputs.cols(); ++i) out << ",out:" << name(data.output_names, i, "y");
+  out << "\n";
+  for (size_t r = 0; r < data.records.size(); ++r) {
+    const TimeRecord& rec = data.records[r];
+    for (size_t s = 0; s < rec.time.size(); ++s) {
+      out << r + 1 << "," << rec.excitation_hz << "," << rec.time[s];
+      for (Eigen::Index i = 0; i < rec.inputs.cols(); ++i) out << "," << rec.inputs(static_cast<Eigen::Index>(s), i);
+      for (Eigen::Index i = 0; i < rec.outputs.cols(); ++i) out << "," << rec.outputs(static_cast<Eigen::Index>(s), i);
+      out << "\n";
+    }
+  }
+  if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+TimeData ReadTimeDataCsv(const std::string& path, double period) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read '" + path + "'");
+  TimeData data;
+  std::string line;
+  size_t number = 0, inputs = 0, outputs = 0;
+  bool header = false;
+  long current = -1;
+  std::vector<std::vector<double>> rows;
+  const auto flush = [&]() {
+    if (rows.empty()) return;
+    TimeRecord rec;
+    rec.excitation_hz = rows[0][1];
+    rec.inputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(inputs));
+    rec.outputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(outputs));
+    for (size_t s = 0; s < rows.size(); ++s) {
+      rec.time.push_back(rows[s][2]);
+      for (size_t i = 0; i < inputs; ++i) rec.inputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + i];
+      for (size_t i = 0; i < outputs; ++i)
+        rec.outputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + inputs + i];
+    }
+    data.records.push_back(std::move(rec));
+    rows.clear();
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string where = path + ":" + std::to_string(number);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      for (const auto& [key, field] : {std::pair<std::string, int>{"period_s:", 0}, {"rotor_speed_rad_s:", 1}}) {
+        const size_t at = line.find(key);
+        if (at == std::string::npos) continue;
+        const double x = Number(line.substr(at + key.size()), where);
+        if (field == 0) data.period = x;
+        else data.rotor_speed = x;
+      }
+      continue;
+    }
+    const std::vector<std::string> cells = SplitCsv(line);
+    if (!header) {
+      if (cells.size() < 5 || cells[0] != "record" || cells[1] != "excitation_hz" || cells[2] != "t")
+        throw InputError(where + ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
+      for (size_t c = 3; c < cells.size(); ++c) {
+        if (cells[c].rfind("in:", 0) == 0 && outputs == 0) {
+          ++inputs;
+          data.input_names.push_back(cells[c].substr(3));
+        } else if (cells[c].rfind("out:", 0) == 0) {
+          ++outputs;
+          data.output_names.push_back(cells[c].substr(4));
+        } else {
+          throw InputError(where + ": column '" + cells[c] + "' is not in:NAME or out:NAME (inputs first)");
+        }
+      }
+      if (inputs == 0 || outputs == 0) throw InputError(where + ": needs at least one in: and one out: column");
+      header = true;
+      continue;
+    }
+    if (cells.size() != 3 + inputs + outputs)
+      throw InputError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
+                       std::to_string(3 + inputs + outputs));
+    std::vector<double> row;
+    for (const std::string& c : cells) row.push_back(Number(c, where));
+    const long record = std::lround(row[0]);
+    if (record != current) {
+      flush();
+      current = record;
+    }
+    rows.push_back(std::move(row));
+  }
+  flush();
+  if (!header) throw InputError(path + ": no header line (record,excitation_hz,t,in:...,out:...)");
+  if (period > 0) data.period = period;
+  if (!(data.period > 0))
+    throw InputError(path + ": no '# period_s:' line: give the period with --period T or --rotor-speed W");
+  data.Validate();
+  return data;
+}
+
+}  // namespace ltp::cli

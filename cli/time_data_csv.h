@@ -1,0 +1,26 @@
+#pragma once
+// Time data as CSV, the exchange format of `ltp simulate` and `ltp identify`:
+//
+//   # ltp time data (comment lines start with '#')
+//   # period_s: 3.14159265358979
+//   # rotor_speed_rad_s: 100                      (when the system is a rotor)
+//   record,excitation_hz,t,in:u,out:y             (inputs "in:NAME", outputs "out:NAME")
+//   1,0.13,471.238898038469,1,0.0123
+//
+// One row per sample; the rows of a record are consecutive. Measured data written this way
+// (one record per step of a step-sine test) can be identified the same way.
+#include <string>
+
+#include "ltp/htf/time_data.h"
+
+namespace ltp::cli {
+
+/// @throws InputError when the file cannot be written.
+void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment);
+
+/// @throws InputError naming the line: unreadable file, no period (and `period` <= 0), a row
+/// with the wrong number of cells or a cell that is not a number, channels not marked in:/out:.
+/// `period` > 0 overrides the file's.
+TimeData ReadTimeDataCsv(const std::string& path, double period = 0);
+
+}  // namespace ltp::cli

@@ -1,0 +1,45 @@
+#pragma once
+// Partial FRFs from step-sine time data (the paper's eq. 47): in the steady state under
+// u = a cos(ωt + φ) = U e^{jωt} + c.c., every output holds the lines ω + zΩp with complex
+// amplitudes U·H_z(ω) (and their mirrors). Over a record of whole periods that also holds
+// whole cycles of ω, the discrete Fourier transform puts each line on its own bin, so
+//   H_z(ω) = Y(ω + zΩp) / U,   U = the input's bin at ω,
+// exactly, without leakage. The other bins hold only noise: their mean power σ² gives each
+// estimate a 95 % bound sqrt(ln 20)·σ/|U| (the radius that circular Gaussian noise of power σ²
+// exceeds with probability 5 %). A frequency at a multiple of Ωp/2 puts H_z(ω) and the mirror
+// of H_{z'}(ω) on one bin: one record cannot separate them, and the estimate says so.
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "ltp/htf/time_data.h"
+
+namespace ltp {
+
+struct IdentifyOptions {
+  int input = 0, output = 0;
+  int min_order = -2, max_order = 2;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct IdentifiedFrequency {
+  double excitation_hz = 0;
+  std::vector<std::complex<double>> h;  ///< H_z, z = min_order..max_order (NaN: not separable)
+  std::vector<double> bound;            ///< 95 % bound on |error| of each H_z
+  double noise = 0;                     ///< rms of the noise bins (output units)
+  bool separable = true;                ///< false at multiples of Ωp/2 (see the header)
+};
+
+struct IdentifyResult {
+  int min_order = 0, max_order = 0;
+  std::vector<IdentifiedFrequency> frequencies;  ///< one per record, by excitation frequency
+  std::vector<std::string> diagnostics;
+};
+
+/// @throws InputError when the data fail TimeData::Validate, a record does not span whole
+/// periods and whole cycles of its excitation, the input is not excited at the record's
+/// frequency, the sampling aliases a requested line, or the options do not fit the data.
+IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& options);
+
+}  // namespace ltp

@@ -1,0 +1,50 @@
+#pragma once
+// Simulated step-sine tests: the response of a periodic system to u_i(t) = a cos(2π f t) on one
+// input, one record per frequency, started from rest, recorded after the transient has
+// decayed over a whole number of periods, with optional white output noise. The data an
+// experimentalist would measure on a rig, for `ltp identify` (identify.h) and for checking it.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/htf/time_data.h"
+
+namespace ltp {
+
+struct SimulateOptions {
+  int input = 0;                      ///< the excited input
+  std::vector<double> frequencies_hz; ///< one record per frequency (> 0)
+  double amplitude = 1;
+  /// Recorded length per record, in periods T. Frequencies are moved to the nearest multiple
+  /// of 1/(periods·T) (the record then holds whole cycles of every response line: no leakage)
+  /// that is not a multiple of fp/2 (where one record cannot separate the orders), and the
+  /// move is reported.
+  int periods = 20;
+  int samples_per_period = 64;
+  /// The transient is integrated for ln(cond Ξ / settle_tol) / |max Re λ|, rounded up to whole
+  /// periods, before recording (the system must be asymptotically stable).
+  double settle_tol = 1e-10;
+  /// Output noise: white Gaussian, per output, with rms = rms(clean output) · 10^(−snr_db/20);
+  /// +inf = none. Each record draws from the generator seeded with seed + record index.
+  double noise_snr_db = std::numeric_limits<double>::infinity();
+  std::uint64_t seed = 1;
+  double rel_tol = 1e-10;  ///< RKF78 tolerance (absolute: rel_tol · amplitude · 1e-3)
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+struct SimulationResult {
+  TimeData data;
+  double settle_time = 0;            ///< s, integrated before each record
+  double max_real_exponent = 0;      ///< of the system (1/s)
+  std::vector<std::string> diagnostics;  ///< e.g. frequencies moved to the record's grid
+};
+
+/// @throws InputError for bad options, an input the system does not have, an unstable or
+/// marginal system (no steady state), or a sampling rate that aliases a response line the
+/// records must resolve.
+SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options);
+
+}  // namespace ltp

@@ -1,0 +1,61 @@
+// `ltp simulate` then `ltp identify` end to end: the estimates from the CSV against the
+// model's partial FRFs (--compare, modal route checked by htf), noise bounds, and refused data.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/ltp_cli.h"
+
+namespace {
+
+using nlohmann::json;
+using test::RunLtp;
+
+std::string Tmp(const std::string& name) { return std::string(::testing::TempDir()) + name; }
+const std::string kScene = "mathieu --set a=2 --set c=0.2 --set q=0.3";  // stable, between tongues
+
+TEST(IdentifyCli, SimulatedStepSineIdentifiesTheModel) {
+  const std::string csv = Tmp("identify_sim.csv");
+  const auto sim = RunLtp("simulate " + kScene + " --excitation stepsine:0.05:0.45:0.1 --periods 16 --out " + csv + " --json");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  EXPECT_EQ(json::parse(sim.out)["records"].get<int>(), 5);
+  const auto id = RunLtp("identify " + csv + " --orders -1:1 --compare " + kScene + " --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const json j = json::parse(id.out);
+  ASSERT_EQ(j["frequencies"].size(), 5u);
+  int compared = 0;
+  for (const json& f : j["frequencies"]) {
+    if (!f["separable"].get<bool>()) continue;
+    for (const json& h : f["H"]) {
+      const double dre = h["re"].get<double>() - h["model"][0].get<double>();
+      const double dim = h["im"].get<double>() - h["model"][1].get<double>();
+      EXPECT_LT(std::hypot(dre, dim), 1e-6) << f["excitation_hz"] << " z=" << h["z"];
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 12);
+}
+
+TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
+  const std::string csv = Tmp("identify_noisy.csv");
+  ASSERT_EQ(RunLtp("simulate " + kScene + " --excitation sine:0.13 --periods 8 --noise 30 --seed 7 --out " + csv).code, 0);
+  const auto id = RunLtp("identify " + csv + " --orders 0 --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const double bound = json::parse(id.out)["frequencies"][0]["H"][0]["bound_95"].get<double>();
+  EXPECT_GT(bound, 1e-4);  // 30 dB of noise is seen
+  EXPECT_LT(bound, 0.1);
+  // A file without a period, and one with a gap in time.
+  const std::string no_period = Tmp("identify_no_period.csv");
+  std::ofstream(no_period) << "record,excitation_hz,t,in:u,out:y\n1,0.1,0,1,0\n1,0.1,0.1,1,0\n";
+  const auto r = RunLtp("identify " + no_period);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("period"), std::string::npos) << r.err;
+  const std::string gap = Tmp("identify_gap.csv");
+  std::ofstream(gap) << "# period_s: 1\nrecord,excitation_hz,t,in:u,out:y\n1,1,0,1,0\n1,1,0.1,1,0\n1,1,0.3,1,0\n";
+  const auto g = RunLtp("identify " + gap);
+  EXPECT_EQ(g.code, 2);
+  EXPECT_NE(g.err.find("unequal sampling"), std::string::npos) << g.err;
+}
+
+}  // namespace

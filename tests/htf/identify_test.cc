@@ -1,0 +1,147 @@
+// Step-sine identification of partial FRFs from simulated time data (paper eq. 47) against the
+// model's own routes (ComputePartialFrf, modal checked by htf to ~1e-12), and the honesty of
+// its 95 % bounds under noise (coverage over many seeds).
+#include "ltp/htf/identify.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "ltp/core/error.h"
+#include "ltp/core/scene.h"
+#include "ltp/htf/pfrf.h"
+#include "ltp/htf/simulate.h"
+
+namespace ltp {
+namespace {
+
+// a = 2, q = 0.3: between the first two instability tongues (stable), natural frequency ≈ √2 rad/s.
+PeriodicSystem Mathieu() { return LoadScene("mathieu").Build({{"a", "2"}, {"c", "0.2"}, {"q", "0.3"}}); }
+
+// The model's H_z at the records' frequencies (after ltp simulate moved them to the grid).
+std::vector<std::vector<std::complex<double>>> ModelFrf(const PeriodicSystem& system, const TimeData& data,
+                                                       int min_order, int max_order) {
+  PfrfOptions o;
+  for (const TimeRecord& r : data.records) o.frequencies_hz.push_back(r.excitation_hz);
+  o.min_order = min_order;
+  o.max_order = max_order;
+  const PfrfResult r = ComputePartialFrf(system, o);
+  EXPECT_TRUE(r.ok);
+  return r.values;
+}
+
+TEST(IdentifyStepSine, NoiseFreeEstimatesEqualTheModel) {
+  const PeriodicSystem system = Mathieu();
+  SimulateOptions s;
+  s.frequencies_hz = {0.05, 0.13, 0.21, 0.4};  // around the resonance near 1/(2π) Hz and its sidebands
+  s.periods = 16;
+  s.samples_per_period = 64;
+  const SimulationResult sim = SimulateStepSine(system, s);
+  IdentifyOptions o;
+  o.min_order = -2;
+  o.max_order = 2;
+  const IdentifyResult id = IdentifyStepSine(sim.data, o);
+  const auto model = ModelFrf(system, sim.data, -2, 2);
+  ASSERT_EQ(id.frequencies.size(), 4u);
+  for (size_t f = 0; f < 4; ++f) {
+    double scale = 0;
+    for (const auto& h : model[f]) scale = std::max(scale, std::abs(h));
+    for (size_t z = 0; z < 5; ++z) {
+      EXPECT_LT(std::abs(id.frequencies[f].h[z] - model[f][z]), 1e-6 * scale)
+          << "f = " << id.frequencies[f].excitation_hz << ", z = " << int(z) - 2;
+      EXPECT_LT(id.frequencies[f].bound[z], 1e-6 * scale);  // noise-free: the bins off the lines are empty
+    }
+  }
+}
+
+TEST(IdentifyStepSine, NinetyFivePercentBoundsCoverTheTruthUnderNoise) {
+  const PeriodicSystem system = Mathieu();
+  SimulateOptions s;
+  s.frequencies_hz = {0.13, 0.22};  // on the 8-period grid: 3 and 6 cycles, not multiples of fp/2
+  s.periods = 8;
+  s.samples_per_period = 32;
+  s.noise_snr_db = 20;
+  IdentifyOptions o;
+  o.min_order = -1;
+  o.max_order = 1;
+  std::vector<std::vector<std::complex<double>>> truth;
+  int inside = 0, total = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    s.seed = 1000 * seed;
+    const SimulationResult sim = SimulateStepSine(system, s);
+    if (truth.empty()) truth = ModelFrf(system, sim.data, -1, 1);
+    const IdentifyResult id = IdentifyStepSine(sim.data, o);
+    for (size_t f = 0; f < id.frequencies.size(); ++f)
+      for (size_t z = 0; z < 3; ++z) {
+        ASSERT_TRUE(id.frequencies[f].separable);
+        ++total;
+        inside += std::abs(id.frequencies[f].h[z] - truth[f][z]) <= id.frequencies[f].bound[z];
+      }
+  }
+  // 360 trials: the binomial standard deviation of the coverage is 1.1 %.
+  const double coverage = double(inside) / total;
+  EXPECT_GT(coverage, 0.91) << inside << " of " << total;
+  EXPECT_LT(coverage, 0.99) << inside << " of " << total;
+}
+
+TEST(IdentifyStepSine, BadDataIsRefusedWithTheReason) {
+  const PeriodicSystem system = Mathieu();
+  SimulateOptions s;
+  s.frequencies_hz = {0.13};
+  s.periods = 4;
+  s.samples_per_period = 16;
+  SimulationResult sim = SimulateStepSine(system, s);
+  IdentifyOptions o;
+  TimeData gap = sim.data;
+  gap.records[0].time[5] += 0.01;
+  EXPECT_THROW(IdentifyStepSine(gap, o), InputError);
+  TimeData nan = sim.data;
+  nan.records[0].outputs(3, 0) = std::nan("");
+  EXPECT_THROW(IdentifyStepSine(nan, o), InputError);
+  TimeData cut = sim.data;  // not a whole number of periods any more
+  cut.records[0].time.pop_back();
+  cut.records[0].inputs.conservativeResize(cut.records[0].time.size(), Eigen::NoChange);
+  cut.records[0].outputs.conservativeResize(cut.records[0].time.size(), Eigen::NoChange);
+  EXPECT_THROW(IdentifyStepSine(cut, o), InputError);
+  o.max_order = 40;  // above Nyquist at 16 samples per period
+  EXPECT_THROW(IdentifyStepSine(sim.data, o), InputError);
+  SimulateOptions unstable = s;
+  EXPECT_THROW(SimulateStepSine(LoadScene("mathieu").Build({{"c", "0"}, {"q", "0.3"}, {"a", "1"}}), unstable),
+               InputError);  // undamped: no steady state
+}
+
+TEST(IdentifyStepSine, AMultipleOfHalfTheParametricFrequencyIsNotSeparable) {
+  // Data at f = fp = 1/π Hz (Mathieu: T = π): H_0 and the mirror of H_{−2} share a line.
+  TimeData data;
+  data.period = std::numbers::pi;
+  TimeRecord rec;
+  rec.excitation_hz = 1 / std::numbers::pi;
+  const int samples = 4 * 64;
+  rec.inputs.resize(samples, 1);
+  rec.outputs.resize(samples, 1);
+  for (int s = 0; s < samples; ++s) {
+    const double t = 4 * std::numbers::pi * s / samples;
+    rec.time.push_back(t);
+    rec.inputs(s, 0) = std::cos(2 * t);
+    rec.outputs(s, 0) = 0.5 * std::cos(2 * t + 0.3);
+  }
+  data.records.push_back(rec);
+  const IdentifyResult id = IdentifyStepSine(data, IdentifyOptions{});
+  ASSERT_EQ(id.frequencies.size(), 1u);
+  EXPECT_FALSE(id.frequencies[0].separable);
+  EXPECT_TRUE(std::isnan(id.frequencies[0].h[0].real()));
+  EXPECT_FALSE(id.diagnostics.empty());
+  // ltp's own simulation steps aside from such frequencies, and says so.
+  SimulateOptions s;
+  s.frequencies_hz = {1 / std::numbers::pi};
+  s.periods = 4;
+  const SimulationResult sim = SimulateStepSine(Mathieu(), s);
+  const double cycles_per_half_fp = sim.data.records[0].excitation_hz * 2 * std::numbers::pi;
+  EXPECT_GT(std::abs(cycles_per_half_fp - std::round(cycles_per_half_fp)), 0.1);
+  ASSERT_FALSE(sim.diagnostics.empty());
+  EXPECT_NE(sim.diagnostics[0].find("off the multiples of fp/2"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ltp
