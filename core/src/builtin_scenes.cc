@@ -38,7 +38,7 @@ PeriodicSystem BuildMathieu(const ParameterMap& p) {
   const FourierMatrix B = FourierMatrix::Constant((MatrixXd(2, 1) << 0, 1).finished());
   const FourierMatrix C = FourierMatrix::Constant((MatrixXd(1, 2) << 1, 0).finished());
   return PeriodicSystem::FromFourier(pi, std::move(A), B, C)
-      .WithLabels({{"y", "y_dot"}, {"u"}, {"y"}});
+      .WithLabels({.states = {"y", "y_dot"}, .inputs = {"u"}, .outputs = {"y"}});
 }
 
 // y'' + c y' + (a + b·sign(cos t)) y = u: the stiffness switches at t = π/2 and 3π/2.
@@ -53,7 +53,7 @@ PeriodicSystem BuildMeissner(const ParameterMap& p) {
   f.B = [](double, Eigen::Ref<MatrixXd> out) { out << 0, 1; };
   f.C = [](double, Eigen::Ref<MatrixXd> out) { out << 1, 0; };
   return PeriodicSystem::FromFunctions(2 * pi, 2, 1, 1, std::move(f), {pi / 2, 3 * pi / 2})
-      .WithLabels({{"y", "y_dot"}, {"u"}, {"y"}});
+      .WithLabels({.states = {"y", "y_dot"}, .inputs = {"u"}, .outputs = {"y"}});
 }
 
 // Asymmetric shaft seen from the fixed frame: m p'' + c p' + K(t) p = f, p = (x, y), with
@@ -86,7 +86,7 @@ PeriodicSystem BuildJeffcott(const ParameterMap& p) {
   cm.leftCols(2).setIdentity();
   return PeriodicSystem::FromFourier(pi / omega, std::move(A), FourierMatrix::Constant(b),
                                      FourierMatrix::Constant(cm))
-      .WithLabels({{"x", "y", "x_dot", "y_dot"}, {"fx", "fy"}, {"x", "y"}})
+      .WithLabels({.states = {"x", "y", "x_dot", "y_dot"}, .inputs = {"fx", "fy"}, .outputs = {"x", "y"}})
       .WithRotorSpeed(omega);
 }
 

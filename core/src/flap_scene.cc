@@ -52,7 +52,7 @@ PeriodicSystem BuildFlap(const ParameterMap& p) {
   const FourierMatrix B = FourierMatrix::Constant((MatrixXd(2, 1) << 0, w * w).finished());
   const FourierMatrix C = FourierMatrix::Constant((MatrixXd(1, 2) << 1, 0).finished());
   return PeriodicSystem::FromFourier(2 * pi / w, std::move(A), B, C)
-      .WithLabels({{"beta", "beta_dot"}, {"u"}, {"beta"}})
+      .WithLabels({.states = {"beta", "beta_dot"}, .inputs = {"u"}, .outputs = {"beta"}})
       .WithRotorSpeed(w);
 }
 

@@ -19,13 +19,6 @@ using cd = std::complex<double>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
-std::string Value(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 // Ωp of a point: exponents are defined modulo jΩp (infinite for a time-invariant point).
 double ExponentPeriod(const SweepPoint& point) {
   return point.period > 0 ? kTwoPi / point.period : std::numeric_limits<double>::infinity();
@@ -184,7 +177,7 @@ void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<Camp
       while (q + 1 < P && std::isfinite(line.frequency_hz[q + 1]) && locked(q + 1)) ++q;
       if (q > p) {
         notes.push_back("mode " + std::to_string(line_index + 1) + " is locked to " + std::to_string(n) + "P for " +
-                        Value(x[p]) + " … " + Value(x[q]) + " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
+                        MessageNumber(x[p]) + " … " + MessageNumber(x[q]) + " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
       } else if (p > 0 && p + 1 < P && valid(p - 1) && valid(p + 1) && (g(p - 1) < 0) != (g(p + 1) < 0)) {
         // A crossing on a grid point: its error is the residual over the slope.
         const double slope = (g(p + 1) - g(p - 1)) / (x[p + 1] - x[p - 1]);
@@ -279,7 +272,7 @@ void CampbellOptions::Validate() const {
     throw InputError("CampbellOptions::max_per_rev = " + std::to_string(max_per_rev) +
                      ". Violated constraint: in 0..100 (0 = automatic)");
   if (!(weak_damping_ratio >= 0 && weak_damping_ratio < 1))
-    throw InputError("CampbellOptions::weak_damping_ratio = " + Value(weak_damping_ratio) +
+    throw InputError("CampbellOptions::weak_damping_ratio = " + MessageNumber(weak_damping_ratio) +
                      ". Violated constraint: in [0, 1)");
   description.Validate();
 }
@@ -312,7 +305,7 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
           why = "the point failed: " + points[p].failure;
           break;
         }
-      d.diagnostics.push_back(name + " (" + line.description + ") is lost after " + Value(d.parameter[at]) +
+      d.diagnostics.push_back(name + " (" + line.description + ") is lost after " + MessageNumber(d.parameter[at]) +
                               ": " + why);
     }
   }
@@ -325,7 +318,7 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
   if (!tracking.ambiguous.empty()) {
     std::string where;
     for (size_t k = 0; k < tracking.ambiguous.size() && k < 5; ++k)
-      where += (k ? ", " : "") + Value(d.parameter[tracking.ambiguous[k]]);
+      where += (k ? ", " : "") + MessageNumber(d.parameter[tracking.ambiguous[k]]);
     if (tracking.ambiguous.size() > 5) where += ", …";
     d.diagnostics.push_back("mode tracking is ambiguous at " + std::to_string(tracking.ambiguous.size()) +
                             " points (" + where + "; MAC below 0.5 or a runner-up within 10 %): lines may swap there");

@@ -14,13 +14,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string Value(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 std::string Name(const LinOperatingPoint& op) {
   return op.files.empty() ? std::string("?") : std::filesystem::path(op.files.front()).parent_path().string() + "/" +
                                                   std::filesystem::path(op.files.front()).filename().string();
@@ -98,7 +91,7 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
     const auto& p = r.points[i];
     if (i > 0 && p.parameter == r.points[i - 1].parameter)
       throw InputError(p.files.front() + " and " + r.points[i - 1].files.front() + " are at the same " +
-                       r.axis_label + " " + Value(p.parameter) + ": one set of files per operating point");
+                       r.axis_label + " " + MessageNumber(p.parameter) + ": one set of files per operating point");
     bool same = p.mbc.states.size() == reference.mbc.states.size();
     for (size_t k = 0; same && k < p.mbc.states.size(); ++k)
       same = p.mbc.states[k].description == reference.mbc.states[k].description;

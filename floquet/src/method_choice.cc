@@ -6,6 +6,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "ltp/core/error.h"
+
 namespace ltp {
 namespace {
 
@@ -21,13 +23,6 @@ constexpr double kStiffnessLimit = 500;
 // Hill: structured / dense cost ≈ kStructuredCost · n (band/m)² (see ChooseHillSolver).
 constexpr double kStructuredCost = 0.5;
 constexpr double kStructuredMinSize = 50;
-
-std::string Format(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
 
 // Is A(t) the same at three interior points of every piece between breakpoints?
 bool ConstantBetweenBreakpoints(const PeriodicSystem& system) {
@@ -89,12 +84,12 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
                "exact (study: Meissner at round-off with any step count)";
   } else if (t.stiffness > kStiffnessLimit) {
     c.type = IntegratorType::kMagnus6;
-    c.reason = "stiff: T·max|Re eig A(t)| = " + Format(t.stiffness) +
+    c.reason = "stiff: T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
                " > 500, so explicit steps are bound by stability; Magnus 6 follows the fast "
                "decay exactly (study: the cheapest integrator on stiff.yaml and stiff-coupled)";
   } else {
     c.type = IntegratorType::kBulirschStoer;
-    c.reason = "smooth, not stiff (T·max|Re eig A(t)| = " + Format(t.stiffness) +
+    c.reason = "smooth, not stiff (T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
                "): Bulirsch–Stoer extrapolation was the cheapest adaptive integrator at tight "
                "tolerances on Mathieu, rotor and tower-rotor (study)";
   }
@@ -127,18 +122,18 @@ HillSolverChoice ChooseHillSolver(const SystemTraits& t, int harmonics, int coef
   std::ostringstream s;
   if (t.hill_stiffness > 10) {
     c.solver = HillSolver::kStructured;
-    s << "exponents far from their jΩp copies (max|Re eig A_0| = " << Format(t.hill_stiffness)
+    s << "exponents far from their jΩp copies (max|Re eig A_0| = " << MessageNumber(t.hill_stiffness, 3)
       << " Ωp > 10 Ωp): shift-invert around A_0's eigenvalues (study: the dense selection missed "
          "stiff.yaml's +150 exponent at every N)";
   } else if (m >= kStructuredMinSize && ratio <= 1) {
     c.solver = HillSolver::kStructured;
     s << "matrix " << m << " rows, band " << band << ": n shift-invert banded solves cost about "
-      << Format(ratio) << "× one dense eigensolve (model fitted to the study's crossovers)";
+      << MessageNumber(ratio, 3) << "× one dense eigensolve (model fitted to the study's crossovers)";
   } else {
     c.solver = HillSolver::kDense;
     s << "matrix " << m << " rows, band " << band << ": " 
       << (m < kStructuredMinSize ? "small enough that one dense eigensolve is cheapest"
-                                 : "n shift-invert banded solves would cost about " + Format(ratio) +
+                                 : "n shift-invert banded solves would cost about " + MessageNumber(ratio, 3) +
                                        "× one dense eigensolve (model fitted to the study's crossovers)");
   }
   c.reason = s.str();

@@ -17,13 +17,6 @@ using cd = std::complex<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 const double kBoundFactor = std::sqrt(std::log(20.0));  // P(|circular Gaussian| > r) = e^{−r²/σ²} = 5 %
 
-std::string Text(double x) {
-  std::ostringstream s;
-  s.precision(8);
-  s << x;
-  return s.str();
-}
-
 // Nearest integer to x when x is one to 1e-6; else nullopt-like −1 flag through `ok`.
 long WholeNumber(double x, bool* ok) {
   const double r = std::round(x);
@@ -50,10 +43,10 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   bool whole = false;
   const long P = WholeNumber(L / T, &whole);  // periods in the record
   if (!whole || P < 1)
-    throw InputError(where + ": " + Text(L / T) + " periods long; identification needs whole periods");
+    throw InputError(where + ": " + MessageNumber(L / T, 8) + " periods long; identification needs whole periods");
   const long kf = WholeNumber(rec.excitation_hz * L, &whole);
   if (!whole || kf < 1)
-    throw InputError(where + ": excitation " + Text(rec.excitation_hz) + " Hz makes " + Text(rec.excitation_hz * L) +
+    throw InputError(where + ": excitation " + MessageNumber(rec.excitation_hz, 8) + " Hz makes " + MessageNumber(rec.excitation_hz * L, 8) +
                      " cycles; identification needs whole cycles (ltp simulate places the frequencies so)");
   for (int z : {o.min_order, o.max_order})
     if (2 * std::abs(kf + z * P) >= N)
@@ -70,7 +63,7 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   const std::vector<cd> y = Spectrum(rec.outputs.col(o.output));
   const cd U = absolute(u, kf);
   if (!(std::abs(U) > 1e-12 * rec.inputs.col(o.input).cwiseAbs().maxCoeff()))
-    throw InputError(where + ": input " + std::to_string(o.input) + " is not excited at " + Text(rec.excitation_hz) + " Hz");
+    throw InputError(where + ": input " + std::to_string(o.input) + " is not excited at " + MessageNumber(rec.excitation_hz, 8) + " Hz");
   // Noise power: the bins 1..N/2−1 off every response line ±kf + mP.
   double power = 0;
   long count = 0;
@@ -88,7 +81,7 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   if (count == 0)
     diagnostics.push_back(where + ": no bin is free of response lines: the noise (and the bounds) cannot be estimated; record more periods");
   if (!out.separable)
-    diagnostics.push_back(where + ": " + Text(rec.excitation_hz) + " Hz is a multiple of Ωp/2: H_z and the mirror of another "
+    diagnostics.push_back(where + ": " + MessageNumber(rec.excitation_hz, 8) + " Hz is a multiple of Ωp/2: H_z and the mirror of another "
                           "order share each line, one record cannot separate them");
   for (int z = o.min_order; z <= o.max_order; ++z) {
     const cd h = absolute(y, kf + z * P) / U;

@@ -34,13 +34,6 @@ struct ForcedRealRhs {
   }
 };
 
-std::string Text(double x) {
-  std::ostringstream s;
-  s.precision(10);
-  s << x;
-  return s.str();
-}
-
 }  // namespace
 
 void SimulateOptions::Validate() const {
@@ -50,14 +43,14 @@ void SimulateOptions::Validate() const {
   if (input < 0) fail("input", std::to_string(input), ">= 0");
   if (frequencies_hz.empty()) fail("frequencies_hz", "{}", "at least one frequency");
   for (double f : frequencies_hz)
-    if (!(f > 0) || !std::isfinite(f)) fail("frequencies_hz", Text(f), "finite and > 0");
-  if (!(amplitude > 0) || !std::isfinite(amplitude)) fail("amplitude", Text(amplitude), "finite and > 0");
+    if (!(f > 0) || !std::isfinite(f)) fail("frequencies_hz", MessageNumber(f, 10), "finite and > 0");
+  if (!(amplitude > 0) || !std::isfinite(amplitude)) fail("amplitude", MessageNumber(amplitude, 10), "finite and > 0");
   if (periods < 1 || periods > 100000) fail("periods", std::to_string(periods), "in 1..100000");
   if (samples_per_period < 4 || samples_per_period > 100000)
     fail("samples_per_period", std::to_string(samples_per_period), "in 4..100000");
-  if (!(settle_tol > 0 && settle_tol < 1)) fail("settle_tol", Text(settle_tol), "in (0, 1)");
+  if (!(settle_tol > 0 && settle_tol < 1)) fail("settle_tol", MessageNumber(settle_tol, 10), "in (0, 1)");
   if (std::isnan(noise_snr_db)) fail("noise_snr_db", "nan", "a number (+inf = no noise)");
-  if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", Text(rel_tol), "in (0, 0.01)");
+  if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", MessageNumber(rel_tol, 10), "in (0, 0.01)");
 }
 
 SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options) {
@@ -80,15 +73,15 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
   if (!floquet.ok) throw InputError("the Floquet analysis that sets the settling time failed");
   r.max_real_exponent = floquet.max_real_exponent;
   if (!(floquet.max_real_exponent < 0))
-    throw InputError("the system is not asymptotically stable (max Re λ = " + Text(floquet.max_real_exponent) +
+    throw InputError("the system is not asymptotically stable (max Re λ = " + MessageNumber(floquet.max_real_exponent, 10) +
                      " 1/s): a sine never reaches a steady state to record");
   const double cond = std::isfinite(floquet.mode_condition) ? std::max(1.0, floquet.mode_condition) : 1.0;
   const double settle_periods = std::ceil(std::log(cond / options.settle_tol) / -floquet.max_real_exponent / T);
   const double total = double(options.frequencies_hz.size()) * options.periods * options.samples_per_period;
   if (total > 1e8)
-    throw InputError(Text(total) + " samples in all: more than 10^8 (split the test or sample slower)");
+    throw InputError(MessageNumber(total, 10) + " samples in all: more than 10^8 (split the test or sample slower)");
   if (settle_periods > 100000)
-    throw InputError("the transient needs " + Text(settle_periods) + " periods to decay: too lightly damped to simulate");
+    throw InputError("the transient needs " + MessageNumber(settle_periods, 10) + " periods to decay: too lightly damped to simulate");
   r.settle_time = settle_periods * T;
   const double length = options.periods * T;
   const int samples = options.periods * options.samples_per_period;
@@ -112,7 +105,7 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
       largest_move = std::max(largest_move, std::abs(f - requested));
     }
     if (2 * f * T >= options.samples_per_period)
-      throw InputError("excitation " + Text(f) + " Hz is above the Nyquist frequency of " +
+      throw InputError("excitation " + MessageNumber(f, 10) + " Hz is above the Nyquist frequency of " +
                        std::to_string(options.samples_per_period) + " samples per period");
     ForcedRealRhs rhs{system, options.input, options.amplitude, kTwoPi * f, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
     State x(static_cast<size_t>(n), 0.0);
@@ -138,7 +131,7 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
                               rec.outputs.row(s) = (c * xv + d.col(options.input) * u).transpose();
                               ++s;
                             });
-    if (!rec.outputs.allFinite()) throw InputError("the simulation diverged at " + Text(f) + " Hz");
+    if (!rec.outputs.allFinite()) throw InputError("the simulation diverged at " + MessageNumber(f, 10) + " Hz");
     if (std::isfinite(options.noise_snr_db)) {
       std::mt19937_64 rng(options.seed + k);
       std::normal_distribution<double> normal;
@@ -156,8 +149,8 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
   if (moved)
     r.diagnostics.push_back(std::to_string(moved) + " of " + std::to_string(options.frequencies_hz.size()) +
                             " excitation frequencies moved to whole cycles of the " + std::to_string(options.periods) +
-                            "-period record, off the multiples of fp/2 (grid " + Text(1 / length) + " Hz; largest move " +
-                            Text(largest_move) + " Hz): each record's own frequency is in the data");
+                            "-period record, off the multiples of fp/2 (grid " + MessageNumber(1 / length, 10) + " Hz; largest move " +
+                            MessageNumber(largest_move, 10) + " Hz): each record's own frequency is in the data");
   return r;
 }
 

@@ -136,11 +136,11 @@ TEST(PeriodicSystem, RejectsBadInput) {
 
 TEST(PeriodicSystem, WithLabelsChecksSizes) {
   const PeriodicSystem sys = PeriodicSystem::FromFourier(kPeriod, MathieuFourier());
-  const PeriodicSystem named = sys.WithLabels({{"p", "v"}, {}, {}});
+  const PeriodicSystem named = sys.WithLabels({.states = {"p", "v"}});
   EXPECT_EQ(named.labels().states, (std::vector<std::string>{"p", "v"}));
   EXPECT_TRUE(sys.labels().states.empty());  // the original is unchanged
-  EXPECT_THROW(sys.WithLabels({{"p"}, {}, {}}), InputError);
-  EXPECT_THROW(sys.WithLabels({{}, {"u"}, {}}), InputError);  // the system has no inputs
+  EXPECT_THROW(sys.WithLabels({.states = {"p"}}), InputError);
+  EXPECT_THROW(sys.WithLabels({.inputs = {"u"}}), InputError);  // the system has no inputs
 }
 
 TEST(PeriodicSystem, ToFourierSystemReproducesFunctionForm) {
@@ -150,7 +150,7 @@ TEST(PeriodicSystem, ToFourierSystemReproducesFunctionForm) {
   fn.B = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out << 0, 1 + 0.5 * std::sin(2 * t); };
   fn.C = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out << std::exp(std::cos(2 * t)), 0; };
   const PeriodicSystem sys = PeriodicSystem::FromFunctions(kPeriod, 2, 1, 1, fn)
-                                 .WithLabels({{"p", "v"}, {"force"}, {"disp"}})
+                                 .WithLabels({.states = {"p", "v"}, .inputs = {"force"}, .outputs = {"disp"}})
                                  .WithRotorSpeed(2.0);
   FourierFitOptions options;
   options.tol = 1e-13;

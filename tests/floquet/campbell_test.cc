@@ -161,8 +161,11 @@ TEST(Campbell, AFrequencyLockedToAPerRevLineIsNotCounted) {
   for (size_t k = 0; k < d.lines.size(); ++k)
     if (std::abs(d.lines[k].frequency_hz[mid] - 1.1 / (2 * kPi)) < 1e-9) locked = k;
   ASSERT_LT(locked, d.lines.size());
-  for (const CampbellCrossing& c : d.crossings)
-    if (c.line == locked) EXPECT_FALSE(c.parameter > 1.0 + 1e-3 && c.parameter < std::sqrt(1.5) - 1e-3) << c.parameter;
+  for (const CampbellCrossing& c : d.crossings) {
+    if (c.line == locked) {
+      EXPECT_FALSE(c.parameter > 1.0 + 1e-3 && c.parameter < std::sqrt(1.5) - 1e-3) << c.parameter;
+    }
+  }
   bool noted = false;
   for (const std::string& note : d.diagnostics) noted = noted || note.find("locked to 1P") != std::string::npos;
   EXPECT_TRUE(noted);

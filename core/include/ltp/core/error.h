@@ -38,4 +38,7 @@ class ResourceError : public Error {
   using Error::Error;
 };
 
+/// A number as messages and diagnostics write it: `significant` digits, "%g"-style.
+std::string MessageNumber(double x, int significant = 6);
+
 }  // namespace ltp

@@ -24,17 +24,17 @@ struct LtiSystem {
 
 /// Names of states, inputs and outputs, for output and for selecting channels by name.
 struct SystemLabels {
-  std::vector<std::string> states, inputs, outputs;
+  std::vector<std::string> states{}, inputs{}, outputs{};
   /// States that are a free rotation angle (e.g. OpenFAST's generator azimuth): each gives a
   /// Floquet exponent that is exactly 0 in theory; the analyses flag that mode as rigid-body
   /// and leave it out of the stability verdict.
-  std::vector<int> rigid_body_states;
+  std::vector<int> rigid_body_states{};
   /// Number of rotor blades (0 when the system has none or does not say) and the states that
   /// are blade coordinates, each numbered 1..blades in its label ("zeta2", "blade2_flap1",
   /// "... of blade 2, m"). Mode descriptions group them into multiblade families
   /// (collective, cyclic); other states are named singly, whatever digits their labels hold.
   int blades = 0;
-  std::vector<int> blade_states;
+  std::vector<int> blade_states{};
 };
 
 class PeriodicSystem {
