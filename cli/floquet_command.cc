@@ -10,7 +10,6 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
-#include "ltp/core/mode_description.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
@@ -102,17 +101,11 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
   return exps;
 }
 
-// What carries each mode: its shape at t = 0 in the scene's state names (mode_description.h).
-std::vector<std::string> Descriptions(const LoadedScene& l, const FloquetResult& r) {
-  return r.mode_samples.empty() ? std::vector<std::string>(r.modes.size())
-                                : DescribeModeShapes(l.system.labels(), r.mode_samples.front());
-}
-
 json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
   json mults, modes;
   json exps = ModesJson(r.modes, &mults, &modes);
-  const std::vector<std::string> descriptions = Descriptions(l, r);
-  for (size_t k = 0; k < descriptions.size() && k < modes.size(); ++k) modes[k]["description"] = descriptions[k];
+  for (size_t k = 0; k < r.mode_descriptions.size() && k < modes.size(); ++k)
+    modes[k]["description"] = r.mode_descriptions[k];
   return {{"scene", l.scene.name},
           {"parameters", ParametersJson(l.parameters)},
           {"states", r.states},
@@ -207,7 +200,7 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
   for (const auto& d : diagnostics) std::cout << "    - " << d << "\n";
 }
 
-void PrintMonodromy(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
+void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   std::cout << "  monodromy by " << r.integrator
             << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (")
             << "rel tol " << args.options.integrator.rel_tol
@@ -219,7 +212,7 @@ void PrintMonodromy(const LoadedScene& l, const FloquetArgs& args, const Floquet
     return;
   }
   if (!r.ok) std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
-  PrintModeTable(r.modes, Descriptions(l, r));
+  PrintModeTable(r.modes, r.mode_descriptions);
   std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
             << VerdictText(r.verdict) << "   (max log|ρ| = "
             << Num(r.max_log_abs_multiplier, 8) << ")\n"
@@ -367,7 +360,7 @@ int RunFloquet(FloquetArgs& args) {
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
   std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
             << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
-  if (run_mono) PrintMonodromy(l, args, r);
+  if (run_mono) PrintMonodromy(args, r);
   if (run_mono) PrintMbcCheck(MbcCheck(l, r));
   if (run_mono && run_hill) std::cout << "\n";
   if (run_hill) PrintHill(h);

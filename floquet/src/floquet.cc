@@ -13,6 +13,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "ltp/core/error.h"
+#include "ltp/core/mode_description.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/periodic_eigen.h"
@@ -557,6 +558,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     };
     for (auto& m : r.mode_samples) permute(m);
     for (auto& m : r.mode_fourier) permute(m);
+    r.mode_descriptions = DescribeModeShapes(system.labels(), r.mode_samples.front());
   }
 
   // 6. Summary numbers and checks. A state labelled rigid-body (a free rotation angle) owns

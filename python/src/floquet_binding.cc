@@ -68,6 +68,9 @@ formula beyond the error estimate): the diagnostics say why.)doc");
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|)")
       .def_readonly("mode_condition", &FloquetResult::mode_condition, "cond(Ξ(0)); large = (near-)defective")
       .def_readonly("monodromy", &FloquetResult::monodromy, "Φ(T, 0), n×n")
+      .def_readonly("mode_descriptions", &FloquetResult::mode_descriptions,
+                    "what carries each mode: shares of its displacement energy per state at t = 0, blade states "
+                    "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
       .def_property_readonly("sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); }, "uniform times of mode_samples")
       .def_property_readonly("mode_samples", [](const FloquetResult& f) {
         return ComplexStack(f.mode_samples, f.states, f.states);

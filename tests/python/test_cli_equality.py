@@ -61,6 +61,7 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
         assert same(j[key], getattr(r, key)), key
     assert j["rhs_evals"] == r.rhs_evals
     assert j["diagnostics"] == r.diagnostics
+    assert [m["description"] for m in j["modes"]] == list(r.mode_descriptions)
 
 
 HILL_CASES = [("mathieu", {"a": "1.5", "q": "2"}, []), ("meissner", {}, []),

@@ -105,6 +105,10 @@ struct FloquetResult {
   /// mode_samples[s] is ξ_k(t_s) on mode k's chosen branch.
   std::vector<double> sample_times;
   std::vector<Eigen::MatrixXcd> mode_samples;
+  /// What carries each mode: its shape ξ_k(0) in the system's state names, blade states as
+  /// multiblade families (ltp/core/mode_description.h), e.g. "zeta cyclic 78%, x 22%". Empty
+  /// without mode shapes.
+  std::vector<std::string> mode_descriptions;
   /// Fourier coefficients of the mode shapes: mode_fourier[v + H] (n × n) holds ξ_{k,v} in
   /// column k, harmonics v = −H..H.
   std::vector<Eigen::MatrixXcd> mode_fourier;
