@@ -25,8 +25,7 @@ using nlohmann::json;
 struct CampbellArgs {
   std::vector<std::string> points;
   std::string by = "rotor-speed";
-  int per_rev = CampbellOptions{}.max_per_rev;
-  double weak_damping = CampbellOptions{}.weak_damping_ratio;
+  CampbellOptions campbell;
   std::string csv, plot;
   bool json = false;
 };
@@ -36,10 +35,7 @@ LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   if (args.by == "rotor-speed") o.axis = OperatingPointAxis::kRotorSpeed;
   else if (args.by == "wind-speed") o.axis = OperatingPointAxis::kWindSpeed;
   else throw InputError("--by must be rotor-speed or wind-speed, got '" + args.by + "'");
-  if (args.per_rev < 0 || args.per_rev > 100) throw InputError("--per-rev must be in 0..100 (0 = automatic)");
-  if (!(args.weak_damping >= 0 && args.weak_damping < 1)) throw InputError("--weak-damping must be in [0, 1)");
-  o.campbell.max_per_rev = args.per_rev;
-  o.campbell.weak_damping_ratio = args.weak_damping;
+  o.campbell = args.campbell;
   return o;
 }
 
@@ -132,11 +128,7 @@ Command AddCampbellCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--by", args.by, "order and plot the points by rotor-speed (rpm) or wind-speed (m/s)")
       ->capture_default_str();
-  cmd->add_option("--per-rev", args.per_rev, "per-rev lines 1P..NP (0 = up to the highest mode)")
-      ->capture_default_str();
-  cmd->add_option("--weak-damping", args.weak_damping,
-                  "shade where a mode's damping ratio is below this (0 = never)")
-      ->capture_default_str();
+  AddCampbellArgs(cmd, args.campbell);
   cmd->add_option("--csv", args.csv, "one row per operating point (and FILE-crossings.csv)");
   cmd->add_option("--plot", args.plot, "Campbell + damping diagram (FILE.svg|.png)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");

@@ -82,6 +82,16 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
   if (!out) throw InputError("cannot write '" + path + "'");
 }
 
+void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
+  cmd->add_option("--per-rev", options.max_per_rev, "Campbell: per-rev lines 1P..NP (0 = automatic: B..3B)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
+  cmd->add_option("--weak-damping", options.weak_damping_ratio,
+                  "Campbell: shade where a mode's damping ratio is below this (0 = never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.999));
+}
+
 std::string CrossingsCsvPath(const std::string& csv) {
   const std::string stem = csv.ends_with(".csv") ? csv.substr(0, csv.size() - 4) : csv;
   return stem + "-crossings.csv";

@@ -58,8 +58,7 @@ struct ChartArgs {
   int refine_lines = ChartOptions{}.refine_lines;
   double refine_tol = ChartOptions{}.refine_tol;
   int sidebands = 1;
-  int per_rev = ChartOptions{}.campbell.max_per_rev;
-  double weak_damping = ChartOptions{}.campbell.weak_damping_ratio;
+  CampbellOptions campbell = ChartOptions{}.campbell;
   long stop_after = 0;  // tests: interrupt after this many points, as Ctrl-C would
 };
 
@@ -132,10 +131,7 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   o.refine = !args.no_refine;
   o.refine_tol = args.refine_tol;
   o.refine_lines = args.refine_lines;
-  if (args.per_rev < 0 || args.per_rev > 100) throw InputError("--per-rev must be in 0..100 (0 = automatic)");
-  if (!(args.weak_damping >= 0 && args.weak_damping < 1)) throw InputError("--weak-damping must be in [0, 1)");
-  o.campbell.max_per_rev = args.per_rev;
-  o.campbell.weak_damping_ratio = args.weak_damping;
+  o.campbell = args.campbell;
   o.Validate();
   return o;
 }
@@ -469,11 +465,7 @@ Command AddChartCommand(CLI::App& app) {
                   "boundaries are refined (0 = all)")->capture_default_str();
   cmd->add_option("--sidebands", args.sidebands, "Campbell: faint families f ± kΩp/2π, k = 1..K")
       ->capture_default_str();
-  cmd->add_option("--per-rev", args.per_rev, "Campbell: per-rev lines 1P..NP (0 = up to the highest mode)")
-      ->capture_default_str();
-  cmd->add_option("--weak-damping", args.weak_damping,
-                  "Campbell: shade where a mode's damping ratio is below this (0 = never)")
-      ->capture_default_str();
+  AddCampbellArgs(cmd, args.campbell);
   cmd->add_option("--stop-after", args.stop_after, "testing: stop after N points as if interrupted")
       ->group("");  // hidden
   return {cmd, [] { return RunChart(args); }};
