@@ -17,11 +17,11 @@ using cd = std::complex<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 const double kBoundFactor = std::sqrt(std::log(20.0));  // P(|circular Gaussian| > r) = e^{−r²/σ²} = 5 %
 
-// Nearest integer to x when x is one to 1e-6; else nullopt-like −1 flag through `ok`.
+// Nearest integer to x, with *ok = x is one to 1e-6 (and small enough to count samples).
 long WholeNumber(double x, bool* ok) {
   const double r = std::round(x);
-  *ok = std::abs(x - r) <= 1e-6 * std::max(1.0, std::abs(x));
-  return static_cast<long>(r);
+  *ok = std::abs(r) < 1e12 && std::abs(x - r) <= 1e-6 * std::max(1.0, std::abs(x));
+  return *ok ? static_cast<long>(r) : 0;
 }
 
 // DFT of a real column: c_k = (1/N) Σ_n y_n e^{−j2πkn/N}, k = 0..N−1.
@@ -48,6 +48,9 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   if (!whole || kf < 1)
     throw InputError(where + ": excitation " + MessageNumber(rec.excitation_hz, 8) + " Hz makes " + MessageNumber(rec.excitation_hz * L, 8) +
                      " cycles; identification needs whole cycles (ltp simulate places the frequencies so)");
+  if (P > N || kf >= N)
+    throw InputError(where + ": " + std::to_string(N) + " samples cannot resolve the excitation (" +
+                     std::to_string(kf) + " cycles in " + std::to_string(P) + " periods): sample faster");
   for (int z : {o.min_order, o.max_order})
     if (2 * std::abs(kf + z * P) >= N)
       throw InputError(where + ": the line of order " + std::to_string(z) + " lies above the Nyquist frequency: " +

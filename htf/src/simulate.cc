@@ -90,6 +90,9 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
   std::set<long> used;
   for (size_t k = 0; k < options.frequencies_hz.size(); ++k) {
     const double requested = options.frequencies_hz[k];
+    if (!(2 * requested * T < options.samples_per_period))  // first: keeps the cycle count small
+      throw InputError("excitation " + MessageNumber(requested, 10) + " Hz is above the Nyquist frequency of " +
+                       std::to_string(options.samples_per_period) + " samples per period");
     // Whole cycles per record, and not a multiple of fp/2 (2k/P whole), where one record
     // cannot separate H_z from the mirror of another order (identify.h): one grid step aside.
     long cycles = std::max(1L, std::lround(requested * length));
