@@ -165,16 +165,17 @@ void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<Camp
     const auto locked = [&](size_t p) {
       return std::abs(g(p)) <= 1e-8 * (std::abs(line.frequency_hz[p]) + std::abs(n * d.rotor_speed[p] / kTwoPi));
     };
-    const auto valid = [&](size_t p) {
-      return p < P && std::isfinite(line.frequency_hz[p]) && std::isfinite(d.rotor_speed[p]) && !locked(p);
+    const auto tracked = [&](size_t p) {
+      return p < P && std::isfinite(line.frequency_hz[p]) && std::isfinite(d.rotor_speed[p]);
     };
+    const auto valid = [&](size_t p) { return tracked(p) && !locked(p); };
     for (size_t p = 0; p < P;) {  // locked stretches
-      if (!std::isfinite(line.frequency_hz[p]) || !std::isfinite(d.rotor_speed[p]) || !locked(p)) {
+      if (!tracked(p) || !locked(p)) {
         ++p;
         continue;
       }
       size_t q = p;
-      while (q + 1 < P && std::isfinite(line.frequency_hz[q + 1]) && locked(q + 1)) ++q;
+      while (tracked(q + 1) && locked(q + 1)) ++q;
       if (q > p) {
         notes.push_back("mode " + std::to_string(line_index + 1) + " is locked to " + std::to_string(n) + "P for " +
                         MessageNumber(x[p]) + " … " + MessageNumber(x[q]) + " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
@@ -243,8 +244,8 @@ std::vector<std::pair<double, double>> WeaklyDamped(const std::vector<SweepPoint
   std::vector<char> weak(P, 0);
   for (size_t p = 0; p < P; ++p) {
     if (points[p].verdict != StabilityVerdict::kStable) continue;
+    const double scale = points[p].period > 0 ? kTwoPi / points[p].period : 0;
     for (const CampbellLine& line : d.lines) {
-      const double scale = points[p].period > 0 ? kTwoPi / points[p].period : 0;
       const bool rigid = std::hypot(line.real_part[p], kTwoPi * line.frequency_hz[p]) <= 1e-9 * scale;
       if (std::isfinite(line.damping_ratio[p]) && !rigid && line.damping_ratio[p] < threshold) weak[p] = 1;
     }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 #include <sstream>
 
@@ -14,10 +13,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string Name(const LinOperatingPoint& op) {
-  return op.files.empty() ? std::string("?") : std::filesystem::path(op.files.front()).parent_path().string() + "/" +
-                                                  std::filesystem::path(op.files.front()).filename().string();
-}
+std::string Name(const LinOperatingPoint& op) { return op.files.empty() ? std::string("?") : op.files.front(); }
 
 LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOptions& options) {
   LinCampbellPoint p;
