@@ -23,7 +23,8 @@ namespace {
 
 // `ltp chart` map defaults: Bulirsch–Stoer at rel tol 1e-10, which keeps max log|ρ| within
 // 1.5e-9 of an rkf78 run at 1e-14 on a 21 × 21 sample of this map (rkf78 at 1e-10: 1.3e-9).
-ltp::SweepOptions MapOptions(int threads, ltp::IntegratorType type = ltp::IntegratorType::kBulirschStoer) {
+ltp::SweepOptions MapOptions(int threads,
+                             ltp::IntegratorType type = ltp::IntegratorType::kBulirschStoer) {
   ltp::SweepOptions o;
   o.modes = false;
   o.check_every = 0;
@@ -49,11 +50,12 @@ double RunMap(const Map& m, const std::vector<size_t>& indices, int threads,
   std::vector<size_t> position(m.grid.size());
   for (size_t i = 0; i < indices.size(); ++i) position[indices[i]] = i;
   const auto start = std::chrono::steady_clock::now();
-  ltp::RunSweep(m.scene, m.base, m.grid, indices, MapOptions(threads, type), [&](ltp::SweepPoint&& p) {
-    if (!values) return;
-    std::lock_guard<std::mutex> lock(mutex);
-    (*values)[position[p.index]] = p.max_log_multiplier;
-  });
+  ltp::RunSweep(m.scene, m.base, m.grid, indices, MapOptions(threads, type),
+                [&](ltp::SweepPoint&& p) {
+                  if (!values) return;
+                  std::lock_guard<std::mutex> lock(mutex);
+                  (*values)[position[p.index]] = p.max_log_multiplier;
+                });
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -74,14 +76,17 @@ void BM_MathieuMap400(benchmark::State& state) {
 BENCHMARK(BM_MathieuMap400)
     ->Arg(static_cast<int>(ltp::IntegratorType::kBulirschStoer))
     ->Arg(static_cast<int>(ltp::IntegratorType::kRkf78))
-    ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 
 void BM_VersusScipy(benchmark::State& state) {
   const Map m;
   const std::string script = std::string(LTP_SOURCE_DIR) + "/benchmarks/peers/mathieu_map_scipy.py";
   const int count = 400;
   for (auto _ : state) {
-    FILE* p = popen(("/usr/bin/python3 " + script + " " + std::to_string(count) + " 0.02 2>&1").c_str(), "r");
+    FILE* p = popen(
+        ("/usr/bin/python3 " + script + " " + std::to_string(count) + " 0.02 2>&1").c_str(), "r");
     std::string out;
     std::array<char, 65536> buf;
     while (p && fgets(buf.data(), buf.size(), p)) out += buf.data();
@@ -94,7 +99,8 @@ void BM_VersusScipy(benchmark::State& state) {
     // The same points (same index rule as the script), one thread and all threads.
     const size_t total = m.grid.size(), stride = total / count;
     std::vector<size_t> indices;
-    for (size_t i = 0; i < total && indices.size() < static_cast<size_t>(count); i += stride) indices.push_back(i);
+    for (size_t i = 0; i < total && indices.size() < static_cast<size_t>(count); i += stride)
+      indices.push_back(i);
     std::vector<double> values;
     const double one_thread = RunMap(m, indices, 1, &values);
     const double all_threads = RunMap(m, indices, 0);

@@ -34,7 +34,6 @@ ltp::PeriodicSystem Jeffcott() {
   return ltp::PeriodicSystem::FromFourier(std::numbers::pi / omega, A);
 }
 
-
 void Run(benchmark::State& state, const ltp::PeriodicSystem& system, HillSolver solver) {
   HillOptions o;
   o.harmonics = static_cast<int>(state.range(0));
@@ -55,14 +54,28 @@ void Run(benchmark::State& state, const ltp::PeriodicSystem& system, HillSolver 
 void BM_Dense_n4(benchmark::State& s) { Run(s, Jeffcott(), HillSolver::kDense); }
 void BM_Structured_n4(benchmark::State& s) { Run(s, Jeffcott(), HillSolver::kStructured); }
 void BM_Dense_n40(benchmark::State& s) { Run(s, ltp::test::MathieuChain(20), HillSolver::kDense); }
-void BM_Structured_n40(benchmark::State& s) { Run(s, ltp::test::MathieuChain(20), HillSolver::kStructured); }
+void BM_Structured_n40(benchmark::State& s) {
+  Run(s, ltp::test::MathieuChain(20), HillSolver::kStructured);
+}
 
 BENCHMARK(BM_Dense_n4)->RangeMultiplier(2)->Range(2, 128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Structured_n4)->RangeMultiplier(2)->Range(2, 512)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Dense_n40)->DenseRange(1, 4, 1)->Arg(6)->Arg(8)->Arg(12)->Arg(16)
+BENCHMARK(BM_Dense_n40)
+    ->DenseRange(1, 4, 1)
+    ->Arg(6)
+    ->Arg(8)
+    ->Arg(12)
+    ->Arg(16)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Structured_n40)->DenseRange(1, 4, 1)->Arg(6)->Arg(8)->Arg(12)->Arg(16)->Arg(32)
-    ->Arg(64)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Structured_n40)
+    ->DenseRange(1, 4, 1)
+    ->Arg(6)
+    ->Arg(8)
+    ->Arg(12)
+    ->Arg(16)
+    ->Arg(32)
+    ->Arg(64)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -3,7 +3,8 @@
 // steps) that still reaches 1e-10 is found once, before timing, against an rkf78 reference at
 // rel_tol 1e-14; the counters report the error actually reached.
 //
-//   build/benchmarks/monodromy_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only
+//   build/benchmarks/monodromy_benchmark --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -101,12 +102,18 @@ void BM_Chain40FullAnalysis(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, dopri5, IntegratorType::kDopri5)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_adams, IntegratorType::kCvodeAdams)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus4, IntegratorType::kMagnus4)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus6, IntegratorType::kMagnus6)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, dopri5, IntegratorType::kDopri5)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, rkf78, IntegratorType::kRkf78)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_bdf, IntegratorType::kCvodeBdf)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, cvode_adams, IntegratorType::kCvodeAdams)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus4, IntegratorType::kMagnus4)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus6, IntegratorType::kMagnus6)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Chain40, dopri5, IntegratorType::kDopri5)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMillisecond);

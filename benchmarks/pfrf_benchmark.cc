@@ -42,14 +42,16 @@ PeriodicSystem Chain40() {
   A.SetHarmonic(0, a0);
   A.SetHarmonic(1, a1);
   Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n, 1), C = Eigen::MatrixXd::Zero(1, n);
-  B(n - 1, 0) = 1;  // force on the free end
+  B(n - 1, 0) = 1;      // force on the free end
   C(0, kDofs - 1) = 1;  // its displacement (driving point)
-  return PeriodicSystem::FromFourier(1.0, A, FourierMatrix::Constant(B), FourierMatrix::Constant(C));
+  return PeriodicSystem::FromFourier(1.0, A, FourierMatrix::Constant(B),
+                                     FourierMatrix::Constant(C));
 }
 
 std::vector<double> Omegas() {
   std::vector<double> w;
-  for (int i = 0; i < kFrequencies; ++i) w.push_back(2 * std::numbers::pi * kBandHz * i / (kFrequencies - 1));
+  for (int i = 0; i < kFrequencies; ++i)
+    w.push_back(2 * std::numbers::pi * kBandHz * i / (kFrequencies - 1));
   return w;
 }
 

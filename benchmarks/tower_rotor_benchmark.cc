@@ -1,7 +1,8 @@
 // The paper's system (built-in scene tower-rotor, 22 states, Ωp = 100 rad/s): the jobs of the
 // speed issues, side by side in one run so that their ratios are meaningful on a shared machine.
 //
-//   build/benchmarks/tower_rotor_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only
+//   build/benchmarks/tower_rotor_benchmark --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only
 //
 // FloquetFull            `ltp floquet tower-rotor`: modes, error estimate (two integrations)
 // FloquetFull/256        the same with the 256 mode samples (= segments) the sample rule chose

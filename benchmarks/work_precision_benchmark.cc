@@ -141,8 +141,8 @@ StudyScene ClosedFormScene(const std::string& name, const std::string& title, Pe
 // A scene without a closed form: the monodromy methods are measured against Hill at
 // `hill_harmonics` (structured, FFT fit to 1e-15), Hill's against rkf78 at `mono_tol`; their
 // agreement is the floor below which no error is measurable.
-StudyScene CrossReferencedScene(const std::string& name, const std::string& title, PeriodicSystem sys,
-                                double mono_tol, int hill_harmonics) {
+StudyScene CrossReferencedScene(const std::string& name, const std::string& title,
+                                PeriodicSystem sys, double mono_tol, int hill_harmonics) {
   StudyScene sc;
   sc.name = name;
   sc.title = title;
@@ -150,7 +150,8 @@ StudyScene CrossReferencedScene(const std::string& name, const std::string& titl
   const auto mono = MonoReference(sc.sys, mono_tol);
   const auto hill = HillReference(sc.sys, hill_harmonics, mono);
   sc.ref_for_mono = hill;
-  sc.ref_mono_source = "Hill structured N = " + std::to_string(hill_harmonics) + " (FFT fit to 1e-15 when not in Fourier form)";
+  sc.ref_mono_source = "Hill structured N = " + std::to_string(hill_harmonics) +
+                       " (FFT fit to 1e-15 when not in Fourier form)";
   sc.ref_for_hill = mono;
   sc.ref_hill_source = "monodromy rkf78 rel tol " + Fmt(mono_tol);
   sc.reference_agreement = ExponentError(hill, mono, sc.sys.omega());
@@ -177,10 +178,12 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
     const Eigen::Matrix2d phi = test::MeissnerMonodromy(2, 0.5, 0.05);
     std::vector<cd> exact;
     for (int k = 0; k < 2; ++k) exact.push_back(std::log(cd(phi.eigenvalues()(k))) / (2 * kPi));
-    StudyScene sc = ClosedFormScene("meissner", "Meissner a=2, b=0.5, c=0.05 (n = 2, jumps)",
-                                    LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}}),
-                                    exact, "closed-form monodromy (product of 3 matrix exponentials)");
-    sc.scale = Scale(MonoReference(sc.sys, 1e-13));  // |λ| on the physical branch, not the principal log
+    StudyScene sc =
+        ClosedFormScene("meissner", "Meissner a=2, b=0.5, c=0.05 (n = 2, jumps)",
+                        LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}}),
+                        exact, "closed-form monodromy (product of 3 matrix exponentials)");
+    sc.scale =
+        Scale(MonoReference(sc.sys, 1e-13));  // |λ| on the physical branch, not the principal log
     sc.pfrf = true;
     sc.time_route = true;
     sc.freqs_hz = {0.03, 0.11, 0.19, 0.27, 0.35, 0.43};
@@ -189,19 +192,22 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
   }
   if (want("stiff")) {
     // Upper triangular: the exponents are the period averages of the diagonal (closed form).
-    scenes.push_back(ClosedFormScene("stiff", "stiff.yaml: exponents -800, 150, -3 (ρ = e^{-5027}, e^{942})",
-                                     LoadScene(std::string(LTP_SOURCE_DIR) + "/tests/data/stiff.yaml").Build(),
-                                     {cd(-800, 0), cd(150, 0), cd(-3, 0)},
-                                     "closed form (triangular: averages of the diagonal)"));
+    scenes.push_back(
+        ClosedFormScene("stiff", "stiff.yaml: exponents -800, 150, -3 (ρ = e^{-5027}, e^{942})",
+                        LoadScene(std::string(LTP_SOURCE_DIR) + "/tests/data/stiff.yaml").Build(),
+                        {cd(-800, 0), cd(150, 0), cd(-3, 0)},
+                        "closed form (triangular: averages of the diagonal)"));
   }
   if (want("stiff-coupled")) {
     // stiff.yaml is triangular, which makes Magnus exact at any step count; this one has the
     // same exponents' range but every state coupled (tests/support/systems.h: Lyapunov-
     // reducible, exponents exactly diag Λ), so each method has to earn its accuracy.
     StudyScene sc = ClosedFormScene(
-        "stiff-coupled", "stiff, coupled: R(t) Λ R(t)ᵀ + Ṙ Rᵀ, exponents -800, 150, -3, -0.5 (n = 4)",
+        "stiff-coupled",
+        "stiff, coupled: R(t) Λ R(t)ᵀ + Ṙ Rᵀ, exponents -800, 150, -3, -0.5 (n = 4)",
         test::Reducible4(Eigen::Vector4d(-800, 150, -3, -0.5)),
-        {cd(-800, 0), cd(150, 0), cd(-3, 0), cd(-0.5, 0)}, "closed form (Lyapunov-reducible: diag Λ)");
+        {cd(-800, 0), cd(150, 0), cd(-3, 0), cd(-0.5, 0)},
+        "closed form (Lyapunov-reducible: diag Λ)");
     sc.max_dense_size = 400;
     sc.max_structured_n = 64;
     scenes.push_back(std::move(sc));
@@ -214,8 +220,9 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
     scenes.push_back(std::move(sc));
   }
   if (want("tower-rotor")) {
-    StudyScene sc = CrossReferencedScene("tower-rotor", "tower-rotor (n = 22, the reference paper system)",
-                                         LoadScene("tower-rotor").Build(), 1e-13, 64);
+    StudyScene sc =
+        CrossReferencedScene("tower-rotor", "tower-rotor (n = 22, the reference paper system)",
+                             LoadScene("tower-rotor").Build(), 1e-13, 64);
     sc.max_dense_size = 800;
     sc.max_koopman_size = 500;
     sc.max_structured_n = 128;
@@ -228,8 +235,8 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
 
 // --- Floquet exponent methods ------------------------------------------------------------------
 
-Row NewRow(const StudyScene& sc, const std::string& method, const std::string& knob_name, double knob,
-           const std::string& panel = "exponents") {
+Row NewRow(const StudyScene& sc, const std::string& method, const std::string& knob_name,
+           double knob, const std::string& panel = "exponents") {
   Row row;
   row.scene = sc.name;
   row.panel = panel;
@@ -255,11 +262,11 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
   };
   // `auto` last: the automatic choice (ltp/floquet/method_choice.h) drawn over the lines it
   // chooses from, so the chart shows whether it follows their lower envelope.
-  const std::vector<Line> lines = {{IntegratorType::kDopri5, false}, {IntegratorType::kRkf78, false},
-                                   {IntegratorType::kBulirschStoer, false},
-                                   {IntegratorType::kCvodeBdf, false}, {IntegratorType::kCvodeAdams, false},
-                                   {IntegratorType::kMagnus4, true}, {IntegratorType::kMagnus6, true},
-                                   {IntegratorType::kAuto, false}};
+  const std::vector<Line> lines = {
+      {IntegratorType::kDopri5, false},        {IntegratorType::kRkf78, false},
+      {IntegratorType::kBulirschStoer, false}, {IntegratorType::kCvodeBdf, false},
+      {IntegratorType::kCvodeAdams, false},    {IntegratorType::kMagnus4, true},
+      {IntegratorType::kMagnus6, true},        {IntegratorType::kAuto, false}};
   for (const Line& line : lines) {
     const int points = cfg.quick ? 3 : (line.fixed ? 5 : 6);
     for (int i = 0; i < points; ++i) {
@@ -290,7 +297,8 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
         e.compute_modes = true;
         const FloquetResult re = AnalyzeFloquet(s, e);
         row.estimate = re.ok ? re.error_estimate : -1;
-        row.estimate_error = re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
+        row.estimate_error =
+            re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
       }
       Finish(row, sc);
       rows.push_back(row);
@@ -317,7 +325,8 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
     e.compute_modes = true;
     const FloquetResult re = AnalyzeFloquet(s, e);
     row.estimate = re.ok ? re.error_estimate : -1;
-    row.estimate_error = re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
+    row.estimate_error =
+        re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
     if (re.ok && !re.diagnostics.empty() && row.note.empty()) row.note = re.diagnostics.front();
     Finish(row, sc);
     rows.push_back(row);
@@ -349,7 +358,8 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
       }
       row.ok = h.ok;
       row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, s.omega()) : kInf;
-      if (!h.ok && row.note.empty()) row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front();
+      if (!h.ok && row.note.empty())
+        row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front();
       // What `ltp floquet --method hill --harmonics N` reports (N vs N+Δ, Koopman–Hill).
       HillOptions e;
       e.harmonics = N;
@@ -367,8 +377,8 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
       }
       Finish(row, sc);
       rows.push_back(row);
-      std::cerr << "  " << sc.name << " " << row.method << " N=" << N << " err " << Fmt(row.error_rel)
-                << " cpu " << Fmt(row.t.cpu_s) << " s\n";
+      std::cerr << "  " << sc.name << " " << row.method << " N=" << N << " err "
+                << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
       if (row.t.wall_s > 3) break;
     }
   }
@@ -381,7 +391,8 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
     o.harmonics = kHillAutoStartHarmonics;  // where `ltp floquet --harmonics auto` starts
     HillResult h;
     try {
-      row.t = TimeIt([&] { h = AnalyzeHillAuto(s, o, tol, sc.max_structured_n); }, cfg.repeats, cfg.budget_s);
+      row.t = TimeIt([&] { h = AnalyzeHillAuto(s, o, tol, sc.max_structured_n); }, cfg.repeats,
+                     cfg.budget_s);
     } catch (const Error& e) {
       row.note = e.what();
     }
@@ -392,8 +403,8 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
     if (row.note.empty()) row.note = "picked N = " + std::to_string(h.harmonics) + " " + h.solver;
     Finish(row, sc);
     rows.push_back(row);
-    std::cerr << "  " << sc.name << " " << row.method << " tol=" << tol << " err " << Fmt(row.error_rel)
-              << " cpu " << Fmt(row.t.cpu_s) << " s (" << row.note << ")\n";
+    std::cerr << "  " << sc.name << " " << row.method << " tol=" << tol << " err "
+              << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s (" << row.note << ")\n";
     if (row.t.wall_s > 3) break;
   }
   // Koopman–Hill: Φ(T) ≈ C expm(H_N T) W, then eig; no selection among Hill eigenvalues.
@@ -432,7 +443,8 @@ using Values = std::vector<PartialFrfs>;  // per frequency
 double FrfError(const Values& got, const Values& ref, double* scale_out = nullptr) {
   double scale = 0, err = 0;
   for (size_t f = 0; f < ref.size(); ++f)
-    for (size_t z = 0; z < ref[f].size(); ++z) scale = std::max(scale, ref[f][z].cwiseAbs().maxCoeff());
+    for (size_t z = 0; z < ref[f].size(); ++z)
+      scale = std::max(scale, ref[f][z].cwiseAbs().maxCoeff());
   for (size_t f = 0; f < ref.size(); ++f) {
     if (f >= got.size()) return kInf;
     for (size_t z = 0; z < ref[f].size(); ++z) {
@@ -445,7 +457,8 @@ double FrfError(const Values& got, const Values& ref, double* scale_out = nullpt
   return err;
 }
 
-Values ShootingValues(const PeriodicSystem& s, const std::vector<double>& fhz, double tol, bool* ok) {
+Values ShootingValues(const PeriodicSystem& s, const std::vector<double>& fhz, double tol,
+                      bool* ok) {
   ShootingOptions so;
   so.rel_tol = tol;
   so.abs_tol = tol * 1e-3;
@@ -508,11 +521,11 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
     row.error_rel = row.error_abs / hscale;
     if (!std::isfinite(row.error_abs)) row.ok = false;
     rows.push_back(row);
-    std::cerr << "  " << sc.name << " pfrf " << row.method << " " << row.knob_name << "=" << row.knob
-              << " err " << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
+    std::cerr << "  " << sc.name << " pfrf " << row.method << " " << row.knob_name << "="
+              << row.knob << " err " << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
   };
-  const std::vector<double> tols = cfg.quick ? std::vector<double>{1e-5, 1e-10}
-                                             : std::vector<double>{1e-4, 1e-8, 1e-12};
+  const std::vector<double> tols =
+      cfg.quick ? std::vector<double>{1e-5, 1e-10} : std::vector<double>{1e-4, 1e-8, 1e-12};
   for (double tol : tols) {
     Row row = NewRow(sc, "modal (Floquet rkf78)", "rel_tol", tol, "pfrf");
     Values v;
@@ -546,7 +559,8 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
     FloquetOptions fo = MonoOptions(IntegratorType::kRkf78);
     fo.compute_modes = true;
     const FloquetResult fl = AnalyzeFloquet(s, fo);
-    for (double settle : cfg.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
+    for (double settle :
+         cfg.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
       Row row = NewRow(sc, "time (step-sine)", "settle_tol", settle, "pfrf");
       Values v;
       row.t = TimeIt(
@@ -578,35 +592,38 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
     ref_channel.emplace_back();
     for (const auto& m : h) ref_channel.back().push_back(m.block(0, 0, 1, 1));
   }
-  for (const PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting})
-  for (double tol : {1e-10}) {
-    const std::string method = route == PfrfRoute::kAuto ? "ltp pfrf auto (default)"
-                                                         : "ltp pfrf --route " + std::string(ToString(route));
-    Row row = NewRow(sc, method, "rel_tol", tol, "pfrf");
-    Values v;
-    PfrfResult pr;
-    row.t = TimeIt(
-        [&] {
-          PfrfOptions po;
-          po.frequencies_hz = fhz;
-          po.min_order = kMinOrder;
-          po.max_order = kMaxOrder;
-          po.primary = route;
-          po.floquet.integrator.type = IntegratorType::kAuto;
-          po.floquet.integrator.rel_tol = tol;
-          po.modal.integrator.type = IntegratorType::kAuto;
-          pr = ComputePartialFrf(s, po);
-        },
-        cfg.repeats, cfg.budget_s);
-    row.ok = pr.ok;
-    for (size_t f = 0; f < fhz.size(); ++f) {
-      PartialFrfs h(kMaxOrder - kMinOrder + 1, Eigen::MatrixXcd::Zero(1, 1));
-      for (int z = kMinOrder; z <= kMaxOrder; ++z) h[z - kMinOrder](0, 0) = pr.values[f][z - kMinOrder];
-      v.push_back(h);
+  for (const PfrfRoute route :
+       {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting})
+    for (double tol : {1e-10}) {
+      const std::string method = route == PfrfRoute::kAuto
+                                     ? "ltp pfrf auto (default)"
+                                     : "ltp pfrf --route " + std::string(ToString(route));
+      Row row = NewRow(sc, method, "rel_tol", tol, "pfrf");
+      Values v;
+      PfrfResult pr;
+      row.t = TimeIt(
+          [&] {
+            PfrfOptions po;
+            po.frequencies_hz = fhz;
+            po.min_order = kMinOrder;
+            po.max_order = kMaxOrder;
+            po.primary = route;
+            po.floquet.integrator.type = IntegratorType::kAuto;
+            po.floquet.integrator.rel_tol = tol;
+            po.modal.integrator.type = IntegratorType::kAuto;
+            pr = ComputePartialFrf(s, po);
+          },
+          cfg.repeats, cfg.budget_s);
+      row.ok = pr.ok;
+      for (size_t f = 0; f < fhz.size(); ++f) {
+        PartialFrfs h(kMaxOrder - kMinOrder + 1, Eigen::MatrixXcd::Zero(1, 1));
+        for (int z = kMinOrder; z <= kMaxOrder; ++z)
+          h[z - kMinOrder](0, 0) = pr.values[f][z - kMinOrder];
+        v.push_back(h);
+      }
+      row.note = "picked " + pr.route_choice.substr(0, pr.route_choice.find(':'));
+      add(row, v, ref_channel);  // a sweep reports one channel: compared on that channel
     }
-    row.note = "picked " + pr.route_choice.substr(0, pr.route_choice.find(':'));
-    add(row, v, ref_channel);  // a sweep reports one channel: compared on that channel
-  }
   // Honesty of the sweep a user runs (`ltp pfrf`: automatic route and checks), here with a
   // check at every frequency so every value has its own estimate.
   PfrfOptions po;
@@ -647,8 +664,8 @@ void WriteCsv(const std::vector<Row>& rows, const std::string& path) {
     for (char& c : note)
       if (c == ',' || c == '\n' || c == '"') c = ';';
     f << r.scene << "," << r.panel << "," << r.method << "," << r.knob_name << "," << r.knob << ","
-      << r.ok << "," << r.error_abs << "," << r.error_rel << "," << r.t.cpu_s << "," << r.t.wall_s << ","
-      << r.t.repeats << "," << r.estimate << "," << r.estimate_error << "," << note << "\n";
+      << r.ok << "," << r.error_abs << "," << r.error_rel << "," << r.t.cpu_s << "," << r.t.wall_s
+      << "," << r.t.repeats << "," << r.estimate << "," << r.estimate_error << "," << note << "\n";
   }
 }
 
@@ -670,7 +687,8 @@ void WriteGnuplot(const StudyScene& sc, const std::vector<Row>& rows, const std:
       int written = 0;
       d << "# " << panel << " / " << m << "\n";
       for (const Row& r : rows)
-        if (r.scene == sc.name && r.panel == panel && r.method == m && r.ok && std::isfinite(r.error_rel)) {
+        if (r.scene == sc.name && r.panel == panel && r.method == m && r.ok &&
+            std::isfinite(r.error_rel)) {
           // Errors below 1e-16 relative are round-off: drawn at the floor of the chart.
           d << r.t.cpu_s << " " << std::max(r.error_rel, 1e-16) << " " << r.knob << "\n";
           ++written;
@@ -682,7 +700,8 @@ void WriteGnuplot(const StudyScene& sc, const std::vector<Row>& rows, const std:
   }
   const bool two = sc.pfrf;
   std::ofstream g(dir + "/" + sc.name + ".gp");
-  g << "set terminal svg size " << (two ? 1200 : 640) << ",480 dynamic font 'sans,11' background rgb 'white'\n"
+  g << "set terminal svg size " << (two ? 1200 : 640)
+    << ",480 dynamic font 'sans,11' background rgb 'white'\n"
     << "set output '" << svg << "'\n"
     << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
     << "set grid\nset key outside below maxrows 4 font ',9'\n"
@@ -693,8 +712,9 @@ void WriteGnuplot(const StudyScene& sc, const std::vector<Row>& rows, const std:
     std::vector<std::string> cmds;
     for (size_t i = 0; i < blocks.size(); ++i) {
       if (blocks[i].first != panel) continue;
-      cmds.push_back("'" + dat + "' index " + std::to_string(i) + " using 1:2 with linespoints pt " +
-                     std::to_string(idx % 13 + 1) + " lw 1.5 title '" + blocks[i].second + "'");
+      cmds.push_back("'" + dat + "' index " + std::to_string(i) +
+                     " using 1:2 with linespoints pt " + std::to_string(idx % 13 + 1) +
+                     " lw 1.5 title '" + blocks[i].second + "'");
       ++idx;
     }
     if (cmds.empty()) continue;
@@ -730,8 +750,7 @@ void Honesty(const std::vector<Row>& rows, std::ostream& out) {
   std::map<std::string, Acc> by;
   for (const Row& r : rows) {
     if (r.estimate_error < 0) continue;
-    const std::string key = r.panel == "pfrf-honesty" ? "partial FRF (ltp pfrf default)"
-                                                      : r.method;
+    const std::string key = r.panel == "pfrf-honesty" ? "partial FRF (ltp pfrf default)" : r.method;
     Acc& a = by[key];
     if (r.estimate < 0 || !std::isfinite(r.estimate_error)) {
       ++a.none;
@@ -754,7 +773,8 @@ void Honesty(const std::vector<Row>& rows, std::ostream& out) {
       a.factors.push_back(r.estimate / r.estimate_error);
     }
   }
-  out << "| method | points | under-estimates | median over-estimation | error at the reference floor | "
+  out << "| method | points | under-estimates | median over-estimation | error at the reference "
+         "floor | "
          "no estimate / failed |\n"
       << "|---|---|---|---|---|---|\n";
   int total = 0, under = 0, measurable = 0;
@@ -766,13 +786,15 @@ void Honesty(const std::vector<Row>& rows, std::ostream& out) {
     all.insert(all.end(), a.factors.begin(), a.factors.end());
     out << "| " << k << " | " << a.points << " | " << a.under << " ("
         << Fmt3(a.points > a.at_floor ? 100.0 * a.under / (a.points - a.at_floor) : 0) << " %) | "
-        << (a.factors.empty() ? std::string("—") : Fmt3(Median(a.factors)) + "×") << " | " << a.at_floor
-        << " | " << a.none << " |\n";
+        << (a.factors.empty() ? std::string("—") : Fmt3(Median(a.factors)) + "×") << " | "
+        << a.at_floor << " | " << a.none << " |\n";
   }
-  out << "| **all** | " << total << " | " << under << " (" << Fmt3(measurable ? 100.0 * under / measurable : 0)
-      << " %) | " << (all.empty() ? std::string("—") : Fmt3(Median(all)) + "×") << " | | |\n\n";
+  out << "| **all** | " << total << " | " << under << " ("
+      << Fmt3(measurable ? 100.0 * under / measurable : 0) << " %) | "
+      << (all.empty() ? std::string("—") : Fmt3(Median(all)) + "×") << " | | |\n\n";
   for (const auto& [k, a] : by)
-    for (size_t i = 0; i < a.worst.size() && i < 6; ++i) out << "- under-estimate, " << k << ": " << a.worst[i] << "\n";
+    for (size_t i = 0; i < a.worst.size() && i < 6; ++i)
+      out << "- under-estimate, " << k << ": " << a.worst[i] << "\n";
 }
 
 // Does every automatic choice follow the charts? For each `auto` point: the cheapest other
@@ -780,7 +802,8 @@ void Honesty(const std::vector<Row>& rows, std::ostream& out) {
 // and the CPU-time ratio auto / that method (1 = auto picked the winner; < 1: auto beat every
 // measured point, e.g. by choosing a resolution between the study's knob values).
 void AutoChoiceTable(const std::vector<Row>& rows, std::ostream& out) {
-  out << "| scene | panel | auto (knob) | picked | error | CPU | cheapest other at that error | its CPU | auto / cheapest |\n"
+  out << "| scene | panel | auto (knob) | picked | error | CPU | cheapest other at that error | "
+         "its CPU | auto / cheapest |\n"
       << "|---|---|---|---|---|---|---|---|---|\n";
   std::vector<double> ratios;
   for (const Row& a : rows) {
@@ -793,14 +816,15 @@ void AutoChoiceTable(const std::vector<Row>& rows, std::ostream& out) {
     };
     const Row* best = nullptr;
     for (const Row& c : rows) {
-      if (c.scene != a.scene || c.panel != a.panel || !c.ok || c.method.find("auto") != std::string::npos ||
-          family(c) != family(a))
+      if (c.scene != a.scene || c.panel != a.panel || !c.ok ||
+          c.method.find("auto") != std::string::npos || family(c) != family(a))
         continue;
       if (c.error_abs > std::max(2 * a.error_abs, a.floor)) continue;
       if (!best || c.t.cpu_s < best->t.cpu_s) best = &c;
     }
-    out << "| " << a.scene << " | " << a.panel << " | " << a.method << " (" << a.knob_name << " " << Fmt3(a.knob)
-        << ") | " << a.note << " | " << Fmt3(a.error_rel) << " | " << Fmt3(a.t.cpu_s * 1e3) << " ms | ";
+    out << "| " << a.scene << " | " << a.panel << " | " << a.method << " (" << a.knob_name << " "
+        << Fmt3(a.knob) << ") | " << a.note << " | " << Fmt3(a.error_rel) << " | "
+        << Fmt3(a.t.cpu_s * 1e3) << " ms | ";
     if (best) {
       const double ratio = a.t.cpu_s / best->t.cpu_s;
       ratios.push_back(ratio);
@@ -811,8 +835,9 @@ void AutoChoiceTable(const std::vector<Row>& rows, std::ostream& out) {
     }
   }
   if (!ratios.empty())
-    out << "\nMedian auto / cheapest: " << Fmt3(Median(ratios)) << "; worst: "
-        << Fmt3(*std::max_element(ratios.begin(), ratios.end())) << " (" << ratios.size() << " points).\n";
+    out << "\nMedian auto / cheapest: " << Fmt3(Median(ratios))
+        << "; worst: " << Fmt3(*std::max_element(ratios.begin(), ratios.end())) << " ("
+        << ratios.size() << " points).\n";
 }
 
 }  // namespace
@@ -842,10 +867,13 @@ int main(int argc, char** argv) {
     } else if (a == "--repeats" && i + 1 < argc) {
       cfg.repeats = std::atoi(argv[++i]);
     } else if (a == "--help" || a == "-h") {
-      std::cout << "usage: work_precision_benchmark [--out DIR] [--quick] [--scenes a,b,...] [--repeats R]\n"
+      std::cout << "usage: work_precision_benchmark [--out DIR] [--quick] [--scenes a,b,...] "
+                   "[--repeats R]\n"
                    "       [--failure-map-only | --no-failure-map]\n"
-                   "scenes: mathieu meissner stiff stiff-coupled rotor tower-rotor; writes DIR/work_precision.csv, "
-                   "DIR/<scene>.gp, DIR/honesty.md, DIR/auto_choice.md, DIR/failure_map.md, DIR/references.txt,\n"
+                   "scenes: mathieu meissner stiff stiff-coupled rotor tower-rotor; writes "
+                   "DIR/work_precision.csv, "
+                   "DIR/<scene>.gp, DIR/honesty.md, DIR/auto_choice.md, DIR/failure_map.md, "
+                   "DIR/references.txt,\n"
                    "DIR/pfrf_reference.csv\n";
       return 0;
     } else {
@@ -856,7 +884,8 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(cfg.out);
   std::ofstream log(cfg.out + "/references.txt");
   if (run_study)  // channel (0, 0); one block per PFRF scene, appended by RunPfrf
-    std::ofstream(cfg.out + "/pfrf_reference.csv") << "scene,freq_hz,order,re,im,reference_agreement_rel\n";
+    std::ofstream(cfg.out + "/pfrf_reference.csv")
+        << "scene,freq_hz,order,re,im,reference_agreement_rel\n";
   const double t0 = WallNow();
   std::vector<Row> rows;
   std::vector<StudyScene> scenes;
@@ -867,7 +896,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (const StudyScene& sc : scenes) {
-    log << sc.name << ": " << sc.title << "\n  monodromy methods measured against: " << sc.ref_mono_source
+    log << sc.name << ": " << sc.title
+        << "\n  monodromy methods measured against: " << sc.ref_mono_source
         << "\n  Hill methods measured against: " << sc.ref_hill_source
         << "\n  scale max(1, max|λ|) = " << Fmt(sc.scale);
     if (sc.reference_agreement >= 0)

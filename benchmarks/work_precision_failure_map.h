@@ -9,9 +9,9 @@
 // one exists). Used by benchmarks/work_precision_benchmark.cc (README table) and by
 // tests/htf/failure_map_test.cc (which asserts that no cell is silent).
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <complex>
+#include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <map>
@@ -19,6 +19,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "ltp/core/error.h"
@@ -29,7 +30,6 @@
 #include "ltp/htf/pfrf.h"
 #include "support/systems.h"
 #include "work_precision_common.h"
-#include <unsupported/Eigen/MatrixFunctions>
 
 namespace ltp::wp {
 
@@ -37,10 +37,14 @@ enum class Verdict { kWorks, kFailsSaysSo, kFailsSilently, kNotApplicable };
 
 inline const char* VerdictText(Verdict v) {
   switch (v) {
-    case Verdict::kWorks: return "works";
-    case Verdict::kFailsSaysSo: return "fails, says so";
-    case Verdict::kFailsSilently: return "**FAILS SILENTLY**";
-    case Verdict::kNotApplicable: return "n/a";
+    case Verdict::kWorks:
+      return "works";
+    case Verdict::kFailsSaysSo:
+      return "fails, says so";
+    case Verdict::kFailsSilently:
+      return "**FAILS SILENTLY**";
+    case Verdict::kNotApplicable:
+      return "n/a";
   }
   return "?";
 }
@@ -139,9 +143,10 @@ inline std::string SourceDir() {
 }
 
 inline bool Warns(const std::vector<std::string>& diagnostics, std::string* which) {
-  static const char* kWords[] = {"defective", "not converged", "failed", "unreliable", "ill-conditioned",
-                                 "singular", "resonan", "did not reach", "not reached", "exceed",
-                                 "no exact", "lost", "loses", "undecided", "could not"};
+  static const char* kWords[] = {"defective",       "not converged", "failed",   "unreliable",
+                                 "ill-conditioned", "singular",      "resonan",  "did not reach",
+                                 "not reached",     "exceed",        "no exact", "lost",
+                                 "loses",           "undecided",     "could not"};
   for (const auto& d : diagnostics)
     for (const char* w : kWords)
       if (d.find(w) != std::string::npos) {
@@ -166,9 +171,10 @@ inline Cell Judge(bool ok, double err, double estimate, double scale,
     c.verdict = Verdict::kFailsSaysSo;
     // What it said: its warning if it gave one (the first diagnostics may be informational,
     // such as which integrator `auto` picked), else its last word.
-    c.how = !failure.empty() ? failure
-            : warns          ? warning
-            : diagnostics.empty() ? "not ok" : diagnostics.back().substr(0, 90);
+    c.how = !failure.empty()      ? failure
+            : warns               ? warning
+            : diagnostics.empty() ? "not ok"
+                                  : diagnostics.back().substr(0, 90);
   } else if (covers) {
     c.verdict = Verdict::kFailsSaysSo;
     c.how = "estimate covers the error";
@@ -178,7 +184,8 @@ inline Cell Judge(bool ok, double err, double estimate, double scale,
   } else {
     c.verdict = Verdict::kFailsSilently;
     std::ostringstream h;
-    h << "error " << std::setprecision(2) << c.error_rel << " relative, estimate " << c.estimate_rel;
+    h << "error " << std::setprecision(2) << c.error_rel << " relative, estimate "
+      << c.estimate_rel;
     c.how = h.str();
   }
   return c;
@@ -191,13 +198,21 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
   using namespace fm;
   std::vector<Regime> r;
   r.push_back({"multipliers beyond the double range (stiff.yaml: ρ = e^{-5027}, e^{942})",
-               "closed form (triangular)", WithIo(LoadScene(SourceDir() + "/tests/data/stiff.yaml").Build()),
-               {cd(-800, 0), cd(150, 0), cd(-3, 0)}, {0.1, 1.3}});
+               "closed form (triangular)",
+               WithIo(LoadScene(SourceDir() + "/tests/data/stiff.yaml").Build()),
+               {cd(-800, 0), cd(150, 0), cd(-3, 0)},
+               {0.1, 1.3}});
   // Overdamped y'' + 2000 y' + (1 − 2·0.5 cos Ωp t) y, Ωp = 200: exponents ≈ −2000 and ≈ −5e-4.
-  r.push_back({"stiff damping, fast rotation (c = 2000, Ωp = 200)", "monodromy rkf78 1e-13 vs Hill N = 32",
-               WithIo(test::Mathieu(1, 0.5, 2000, 200)), {}, {1.0, 40.0}});
-  r.push_back({"discontinuous coefficients (Meissner a=2, b=0.5, c=0.05)", "closed-form monodromy",
-               WithIo(LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}})), {}, {0.1, 0.3}});
+  r.push_back({"stiff damping, fast rotation (c = 2000, Ωp = 200)",
+               "monodromy rkf78 1e-13 vs Hill N = 32",
+               WithIo(test::Mathieu(1, 0.5, 2000, 200)),
+               {},
+               {1.0, 40.0}});
+  r.push_back({"discontinuous coefficients (Meissner a=2, b=0.5, c=0.05)",
+               "closed-form monodromy",
+               WithIo(LoadScene("meissner").Build({{"a", "2"}, {"b", "0.5"}, {"c", "0.05"}})),
+               {},
+               {0.1, 0.3}});
   {
     const Eigen::Matrix2d phi = [] {
       auto E = [](double k, double tau) -> Eigen::Matrix2d {
@@ -207,18 +222,32 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
       };
       return Eigen::Matrix2d(E(2.5, kPi / 2) * E(1.5, kPi) * E(2.5, kPi / 2));
     }();
-    for (int k = 0; k < 2; ++k) r.back().exact.push_back(std::log(cd(phi.eigenvalues()(k))) / (2 * kPi));
+    for (int k = 0; k < 2; ++k)
+      r.back().exact.push_back(std::log(cd(phi.eigenvalues()(k))) / (2 * kPi));
   }
   r.push_back({"exponents on the strip edge (Mathieu a=1.5, q=2: negative real multipliers)",
-               "monodromy rkf78 1e-13 vs Hill N = 32", WithIo(test::Mathieu(1.5, 2, 0.05)), {}, {0.1, 0.25}});
-  r.push_back({"defective double multiplier at +1 (Jordan block, Lyapunov-reducible)", "closed form: λ = 0, 0",
-               WithIo(Defective(1.0)), {cd(0, 0), cd(0, 0)}, {0.3, 0.7}});
-  r.push_back({"defective double multiplier at −1 (Jordan block, Lyapunov-reducible)", "closed form: λ = j/2, j/2",
-               WithIo(Defective(0.5)), {cd(0, 0.5), cd(0, 0.5)}, {0.2, 0.9}});
+               "monodromy rkf78 1e-13 vs Hill N = 32",
+               WithIo(test::Mathieu(1.5, 2, 0.05)),
+               {},
+               {0.1, 0.25}});
+  r.push_back({"defective double multiplier at +1 (Jordan block, Lyapunov-reducible)",
+               "closed form: λ = 0, 0",
+               WithIo(Defective(1.0)),
+               {cd(0, 0), cd(0, 0)},
+               {0.3, 0.7}});
+  r.push_back({"defective double multiplier at −1 (Jordan block, Lyapunov-reducible)",
+               "closed form: λ = j/2, j/2",
+               WithIo(Defective(0.5)),
+               {cd(0, 0.5), cd(0, 0.5)},
+               {0.2, 0.9}});
   {
     // Undamped stable Mathieu excited exactly at its Floquet frequency: H is infinite there.
     Regime res{"undamped, excited exactly at a resonance (Mathieu a=1.5, q=0.2, c=0)",
-               "H is infinite: any finite value must come with a warning", WithIo(test::Mathieu(1.5, 0.2, 0)), {}, {}, true};
+               "H is infinite: any finite value must come with a warning",
+               WithIo(test::Mathieu(1.5, 0.2, 0)),
+               {},
+               {},
+               true};
     FloquetOptions o;
     o.integrator.type = IntegratorType::kRkf78;
     o.integrator.rel_tol = 1e-14;
@@ -228,13 +257,23 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
     res.freqs_hz = {f};
     r.push_back(res);
   }
-  r.push_back({"very slow rotation (Jeffcott, Ω = 0.02: Ωp/ω₀ ≈ 0.04)", "closed form: rotating-frame eigenvalues",
-               WithIo(test::Jeffcott(1, 1, 1.5, 0.05, 0.02)), JeffcottExact(1, 1, 1.5, 0.05, 0.02), {0.1, 0.2}});
-  r.push_back({"very high harmonic content (stiffness pulse, ‖A_w‖ ~ e^{−0.14|w|})", "monodromy rkf78 1e-13 vs Hill N = 256",
-               WithIo(Pulse()), {}, {0.1, 0.3}});
+  r.push_back({"very slow rotation (Jeffcott, Ω = 0.02: Ωp/ω₀ ≈ 0.04)",
+               "closed form: rotating-frame eigenvalues",
+               WithIo(test::Jeffcott(1, 1, 1.5, 0.05, 0.02)),
+               JeffcottExact(1, 1, 1.5, 0.05, 0.02),
+               {0.1, 0.2}});
+  r.push_back({"very high harmonic content (stiffness pulse, ‖A_w‖ ~ e^{−0.14|w|})",
+               "monodromy rkf78 1e-13 vs Hill N = 256",
+               WithIo(Pulse()),
+               {},
+               {0.1, 0.3}});
   r.back().hill_ref_harmonics = 256;
-  r.push_back({quick ? "large n (chain of 10 Mathieu oscillators, n = 20)" : "large n (chain of 20 Mathieu oscillators, n = 40)",
-               "monodromy rkf78 1e-13 vs Hill structured N = 24", WithIo(test::MathieuChain(quick ? 10 : 20, 0.05, 0.3)), {}, {0.1, 0.2}});
+  r.push_back({quick ? "large n (chain of 10 Mathieu oscillators, n = 20)"
+                     : "large n (chain of 20 Mathieu oscillators, n = 40)",
+               "monodromy rkf78 1e-13 vs Hill structured N = 24",
+               WithIo(test::MathieuChain(quick ? 10 : 20, 0.05, 0.3)),
+               {},
+               {0.1, 0.2}});
   r.back().hill_ref_harmonics = 24;
   return r;
 }
@@ -244,14 +283,22 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
                                 const std::string& only = "") {
   using namespace fm;
   FailureMap map;
-  map.methods = {"monodromy (ltp floquet)", "monodromy single-shot", "Hill auto solver (auto N)",
-                 "Hill structured (auto N)", "Koopman–Hill", "PFRF auto (ltp pfrf)", "PFRF modal",
-                 "PFRF htf", "PFRF shooting", "PFRF time"};
+  map.methods = {"monodromy (ltp floquet)",
+                 "monodromy single-shot",
+                 "Hill auto solver (auto N)",
+                 "Hill structured (auto N)",
+                 "Koopman–Hill",
+                 "PFRF auto (ltp pfrf)",
+                 "PFRF modal",
+                 "PFRF htf",
+                 "PFRF shooting",
+                 "PFRF time"};
   map.regimes = FailureRegimes(quick);
   if (!only.empty())
-    map.regimes.erase(std::remove_if(map.regimes.begin(), map.regimes.end(),
-                                     [&](const Regime& r) { return r.name.find(only) == std::string::npos; }),
-                      map.regimes.end());
+    map.regimes.erase(
+        std::remove_if(map.regimes.begin(), map.regimes.end(),
+                       [&](const Regime& r) { return r.name.find(only) == std::string::npos; }),
+        map.regimes.end());
   for (const Regime& reg : map.regimes) {
     const PeriodicSystem& s = reg.sys;
     const double omega = s.omega();
@@ -320,7 +367,8 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       Cell c;
       const HillResult& h = hill_auto;
       if (h.koopman_log_multipliers.empty()) {
-        c = Judge(false, kInf, -1, scale, {}, h.koopman_discrepancy < 0 ? "skipped (matrix too large), says so" : "no result");
+        c = Judge(false, kInf, -1, scale, {},
+                  h.koopman_discrepancy < 0 ? "skipped (matrix too large), says so" : "no result");
       } else {
         const auto e = FromLogMultipliers(h.koopman_log_multipliers, h.period);
         const double err = ExponentError(e, ref_for_hill, s.omega());
@@ -380,8 +428,8 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       *ok = false;
       return ref_shoot;
     };
-    for (PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting,
-                            PfrfRoute::kTime}) {
+    for (PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf,
+                            PfrfRoute::kShooting, PfrfRoute::kTime}) {
       PfrfOptions po;
       po.frequencies_hz = reg.freqs_hz;
       po.min_order = -2;
@@ -400,7 +448,8 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
         const PfrfResult pr = ComputePartialFrf(s, po);
         bool ref_ok = false;
         // Auto: measured against a reference from a route other than the one it picked.
-        const auto& ref = reference_for(route == PfrfRoute::kAuto ? pr.routes.front().route : route, &ref_ok);
+        const auto& ref =
+            reference_for(route == PfrfRoute::kAuto ? pr.routes.front().route : route, &ref_ok);
         double hscale = 0, err = 0, est = kInf, worst_ratio = kInf;
         std::string worst_at;
         bool finite = pr.ok;
@@ -425,8 +474,9 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
                 if (pr.error_estimate[f][z] / d < worst_ratio) {
                   worst_ratio = pr.error_estimate[f][z] / d;
                   std::ostringstream w;
-                  w << std::setprecision(2) << " at f = " << reg.freqs_hz[f] << " Hz, z = " << int(z) - 2
-                    << ": |H| " << std::abs(rv) << ", error " << d << ", estimate " << pr.error_estimate[f][z];
+                  w << std::setprecision(2) << " at f = " << reg.freqs_hz[f]
+                    << " Hz, z = " << int(z) - 2 << ": |H| " << std::abs(rv) << ", error " << d
+                    << ", estimate " << pr.error_estimate[f][z];
                   worst_at = w.str();
                 }
                 if (!(pr.error_estimate[f][z] >= d)) covered = false;
@@ -464,8 +514,9 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
           c = Judge(finite, err, covered ? est : 0, hscale, pr.diagnostics);
           if (c.verdict == Verdict::kFailsSilently) {
             std::ostringstream h;
-            h << "error " << std::setprecision(2) << c.error_rel << " relative; smallest estimate/error "
-              << worst_ratio << worst_at << " (reference spread " << spread / hscale << ")";
+            h << "error " << std::setprecision(2) << c.error_rel
+              << " relative; smallest estimate/error " << worst_ratio << worst_at
+              << " (reference spread " << spread / hscale << ")";
             c.how = h.str();
           }
         }
@@ -477,7 +528,8 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
     }
     if (progress) {
       *progress << "failure map: " << reg.name << ":";
-      for (size_t m = 0; m < row.size(); ++m) *progress << " " << std::setprecision(2) << row[m].elapsed_s << "s";
+      for (size_t m = 0; m < row.size(); ++m)
+        *progress << " " << std::setprecision(2) << row[m].elapsed_s << "s";
       *progress << "\n";
     }
     map.cells.push_back(row);
@@ -509,7 +561,8 @@ inline void WriteFailureMap(const FailureMap& map, std::ostream& out) {
     out << "\n";
   }
   out << "\n";
-  for (size_t i = 0; i < footnotes.size(); ++i) out << "[" << i + 1 << "] " << footnotes[i] << "  \n";
+  for (size_t i = 0; i < footnotes.size(); ++i)
+    out << "[" << i + 1 << "] " << footnotes[i] << "  \n";
   for (const auto& n : map.notes) out << "- " << n << "\n";
 }
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "campbell_output.h"
 #include "chart_plot.h"
@@ -32,9 +32,12 @@ struct CampbellArgs {
 
 LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   LinCampbellOptions o;
-  if (args.by == "rotor-speed") o.axis = OperatingPointAxis::kRotorSpeed;
-  else if (args.by == "wind-speed") o.axis = OperatingPointAxis::kWindSpeed;
-  else throw InputError("--by must be rotor-speed or wind-speed, got '" + args.by + "'");
+  if (args.by == "rotor-speed")
+    o.axis = OperatingPointAxis::kRotorSpeed;
+  else if (args.by == "wind-speed")
+    o.axis = OperatingPointAxis::kWindSpeed;
+  else
+    throw InputError("--by must be rotor-speed or wind-speed, got '" + args.by + "'");
   o.campbell = args.campbell;
   return o;
 }
@@ -51,8 +54,10 @@ void WriteLinesCsv(const std::string& path, const LinCampbellResult& r, const st
     out << r.diagram.parameter[p] << "," << r.points[p].rotor_speed * 30 / std::numbers::pi << ",";
     if (r.points[p].wind_speed) out << *r.points[p].wind_speed;
     for (const CampbellLine& line : r.diagram.lines) {
-      if (std::isfinite(line.frequency_hz[p])) out << "," << line.frequency_hz[p] << "," << line.damping_ratio[p];
-      else out << ",,";
+      if (std::isfinite(line.frequency_hz[p]))
+        out << "," << line.frequency_hz[p] << "," << line.damping_ratio[p];
+      else
+        out << ",,";
     }
     out << "\n";
   }
@@ -85,21 +90,28 @@ int RunCampbell(const CampbellArgs& args) {
   if (args.json) {
     json points = json::array();
     for (const LinCampbellPoint& p : r.points)
-      points.push_back({{"files", p.files},
-                        {"parameter", JsonNumber(p.parameter)},
-                        {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
-                        {"wind_speed_m_s", p.wind_speed ? JsonNumber(*p.wind_speed) : json(nullptr)},
-                        {"blades", p.mbc.blades},
-                        {"max_real_part", JsonNumber(p.mbc.max_real_part)},
-                        {"notes", p.notes}});
-    json j = {{"axis", r.axis_label}, {"points", points}, {"campbell", CampbellJson(r.diagram)},
-              {"csv", args.csv}, {"plot", args.plot}};
+      points.push_back(
+          {{"files", p.files},
+           {"parameter", JsonNumber(p.parameter)},
+           {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
+           {"wind_speed_m_s", p.wind_speed ? JsonNumber(*p.wind_speed) : json(nullptr)},
+           {"blades", p.mbc.blades},
+           {"max_real_part", JsonNumber(p.mbc.max_real_part)},
+           {"notes", p.notes}});
+    json j = {{"axis", r.axis_label},
+              {"points", points},
+              {"campbell", CampbellJson(r.diagram)},
+              {"csv", args.csv},
+              {"plot", args.plot}};
     if (!plot_note.empty()) j["plot_note"] = plot_note;
     std::cout << j.dump(2) << "\n";
     return 0;
   }
-  std::cout << "Campbell diagram of " << r.points.size() << " operating points (MBC3 at each, modes tracked by MAC)\n"
-            << "  " << (options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]")
+  std::cout << "Campbell diagram of " << r.points.size()
+            << " operating points (MBC3 at each, modes tracked by MAC)\n"
+            << "  "
+            << (options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]"
+                                                                : "wind speed [m/s]")
             << "   files   blades   max Re λ [1/s]   directory\n";
   for (const LinCampbellPoint& p : r.points) {
     std::cout << "  " << Num(p.parameter, 6, 17) << Num(static_cast<double>(p.files.size()), 3, 8)
@@ -109,8 +121,10 @@ int RunCampbell(const CampbellArgs& args) {
   }
   std::cout << "\n";
   PrintCampbell(std::cout, r.diagram, axis);
-  if (!args.csv.empty()) std::cout << "  wrote " << args.csv << " and " << CrossingsCsvPath(args.csv) << "\n";
-  if (!args.plot.empty()) std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
+  if (!args.csv.empty())
+    std::cout << "  wrote " << args.csv << " and " << CrossingsCsvPath(args.csv) << "\n";
+  if (!args.plot.empty())
+    std::cout << (plot_note.empty() ? "  wrote " + args.plot : "  " + plot_note) << "\n";
   return 0;
 }
 
@@ -120,13 +134,15 @@ Command AddCampbellCommand(CLI::App& app) {
   static CampbellArgs args;
   args = CampbellArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
-      "campbell", "Campbell diagram of OpenFAST .lin files at several operating points (MBC3 at "
-                  "each, modes tracked across points, per-rev crossings)");
+      "campbell",
+      "Campbell diagram of OpenFAST .lin files at several operating points (MBC3 at "
+      "each, modes tracked across points, per-rev crossings)");
   cmd->add_option("points", args.points,
                   "one argument per operating point: a directory of its azimuth .lin files, or a "
                   "quoted glob")
       ->required();
-  cmd->add_option("--by", args.by, "order and plot the points by rotor-speed (rpm) or wind-speed (m/s)")
+  cmd->add_option("--by", args.by,
+                  "order and plot the points by rotor-speed (rpm) or wind-speed (m/s)")
       ->capture_default_str();
   AddCampbellArgs(cmd, args.campbell);
   cmd->add_option("--csv", args.csv, "one row per operating point (and FILE-crossings.csv)");

@@ -17,7 +17,8 @@ json CampbellJson(const CampbellDiagram& d) {
     const CampbellLine& line = d.lines[k];
     json j = {{"mode", k + 1}, {"description", line.description}};
     if (line.description_end != line.description) j["description_end"] = line.description_end;
-    if (line.lost_after >= 0) j["lost_after"] = JsonNumber(d.parameter[static_cast<size_t>(line.lost_after)]);
+    if (line.lost_after >= 0)
+      j["lost_after"] = JsonNumber(d.parameter[static_cast<size_t>(line.lost_after)]);
     lines.push_back(j);
   }
   for (const CampbellCrossing& c : d.crossings)
@@ -31,8 +32,11 @@ json CampbellJson(const CampbellDiagram& d) {
                          {"real_part", JsonNumber(c.real_part)},
                          {"damping_ratio", JsonNumber(c.damping_ratio)}});
   for (const auto& [lo, hi] : d.weakly_damped) weak.push_back({JsonNumber(lo), JsonNumber(hi)});
-  return {{"lines", lines}, {"per_rev", d.per_rev}, {"crossings", crossings},
-          {"weakly_damped", weak}, {"diagnostics", d.diagnostics}};
+  return {{"lines", lines},
+          {"per_rev", d.per_rev},
+          {"crossings", crossings},
+          {"weakly_damped", weak},
+          {"diagnostics", d.diagnostics}};
 }
 
 void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::string& axis) {
@@ -56,10 +60,12 @@ void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::strin
       const CampbellCrossing& c = d.crossings[k];
       out << "    " << Num(static_cast<double>(c.line + 1), 3, 4) << Num(c.per_rev, 3, 5) << "P "
           << Num(c.parameter, 8, 14) << Num(c.parameter_error, 2, 10) << Num(c.rotor_speed, 7, 13)
-          << Num(c.frequency_hz, 7, 11) << Num(c.real_part, 4, 14) << Num(c.damping_ratio, 3, 10) << "\n";
+          << Num(c.frequency_hz, 7, 11) << Num(c.real_part, 4, 14) << Num(c.damping_ratio, 3, 10)
+          << "\n";
     }
     if (d.crossings.size() > kShown)
-      out << "    … " << d.crossings.size() - kShown << " more (all of them in --json and the --csv crossings file)\n";
+      out << "    … " << d.crossings.size() - kShown
+          << " more (all of them in --json and the --csv crossings file)\n";
   }
   for (const auto& [lo, hi] : d.weakly_damped)
     out << "  weakly damped for " << axis << " in [" << Num(lo, 6) << ", " << Num(hi, 6) << "]\n";
@@ -76,14 +82,15 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
     for (char& ch : description)
       if (ch == '"') ch = '\'';
     out << c.line + 1 << ",\"" << description << "\"," << c.per_rev << "," << c.parameter << ","
-        << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz << "," << c.real_part << ","
-        << c.damping_ratio << "\n";
+        << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz << "," << c.real_part
+        << "," << c.damping_ratio << "\n";
   }
   if (!out) throw InputError("cannot write '" + path + "'");
 }
 
 void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
-  cmd->add_option("--per-rev", options.max_per_rev, "Campbell: per-rev lines 1P..NP (0 = automatic: B..3B)")
+  cmd->add_option("--per-rev", options.max_per_rev,
+                  "Campbell: per-rev lines 1P..NP (0 = automatic: B..3B)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
   cmd->add_option("--weak-damping", options.weak_damping_ratio,

@@ -28,12 +28,12 @@
 #include "chart_record.h"
 #include "command.h"
 #include "format.h"
-#include "ltp/floquet/chart_options.h"
-#include "ltp/floquet/threads.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/chart_options.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/floquet/sweep.h"
+#include "ltp/floquet/threads.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -81,7 +81,10 @@ std::string AxisLabel(const Scene& scene, const std::string& name) {
 class Progress {
  public:
   Progress(size_t total, size_t already, bool enabled)
-      : total_(total), done_(already), start_done_(already), enabled_(enabled && isatty(STDERR_FILENO)) {}
+      : total_(total),
+        done_(already),
+        start_done_(already),
+        enabled_(enabled && isatty(STDERR_FILENO)) {}
   void Tick() {
     ++done_;
     if (!enabled_) return;
@@ -92,11 +95,12 @@ class Progress {
     const double rate = (done_ - start_done_) / std::max(elapsed, 1e-9);
     const double eta = rate > 0 ? (total_ - done_) / rate : 0;
     const int width = 30;
-    const int filled = static_cast<int>(width * double(done_) / double(std::max<size_t>(total_, 1)));
+    const int filled =
+        static_cast<int>(width * double(done_) / double(std::max<size_t>(total_, 1)));
     std::cerr << "\r  [" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
-              << std::setw(3) << (100 * done_ / std::max<size_t>(total_, 1)) << "%  " << done_ << "/"
-              << total_ << " points  " << std::fixed << std::setprecision(1) << elapsed << " s, ETA "
-              << eta << " s   " << std::defaultfloat << std::setprecision(6)
+              << std::setw(3) << (100 * done_ / std::max<size_t>(total_, 1)) << "%  " << done_
+              << "/" << total_ << " points  " << std::fixed << std::setprecision(1) << elapsed
+              << " s, ETA " << eta << " s   " << std::defaultfloat << std::setprecision(6)
               << std::flush;
   }
   void Finish() {
@@ -110,14 +114,16 @@ class Progress {
 };
 
 json BoundaryJson(const BoundaryEstimate& e) {
-  return {{"value", JsonNumber(e.value)}, {"refined", e.refined}, {"bracket", JsonNumber(e.bracket)},
-          {"at_sweep_edge", e.at_sweep_edge}, {"evaluations", e.evaluations}, {"note", e.note}};
+  return {{"value", JsonNumber(e.value)},     {"refined", e.refined},
+          {"bracket", JsonNumber(e.bracket)}, {"at_sweep_edge", e.at_sweep_edge},
+          {"evaluations", e.evaluations},     {"note", e.note}};
 }
 
 ChartOptions MakeOptions(const ChartArgs& args) {
   ChartOptions o;
   const auto method = ParseSweepMethod(args.method);
-  if (!method) throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
+  if (!method)
+    throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
   o.method = *method;
   const auto type = ParseIntegratorType(args.integrator);
   if (!type) throw InputError("--integrator: unknown integrator '" + args.integrator + "'");
@@ -151,14 +157,14 @@ struct ChartOutcome {
   std::vector<SweepPoint> points;  ///< grid order
   size_t resumed = 0;
   double sweep_s = 0, refine_s = 0;
-  ModeTracking tracking;                 ///< 1-D
-  CampbellDiagram campbell;              ///< 1-D
-  std::vector<UnstableInterval> intervals;   ///< 1-D
-  std::vector<BoundaryPoint> boundary;       ///< maps
+  ModeTracking tracking;                    ///< 1-D
+  CampbellDiagram campbell;                 ///< 1-D
+  std::vector<UnstableInterval> intervals;  ///< 1-D
+  std::vector<BoundaryPoint> boundary;      ///< maps
   std::map<StabilityVerdict, size_t> counts;
   double max_error = -1;  ///< over the checked points
   size_t checked = 0;
-  std::string title;      ///< the scene and what the user set
+  std::string title;  ///< the scene and what the user set
   std::string plot_note;
 };
 
@@ -192,15 +198,18 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
   auto previous = std::signal(SIGINT, OnInterrupt);
   const auto sweep_start = Clock::now();
   std::mutex progress_mutex;
-  DistributedSweep(ranks, c.scene.scene, c.scene.parameters, c.grid, todo, c.options, [&](SweepPoint&& p) {
-    record->Add(p);
-    const size_t index = p.index;
-    c.points[index] = std::move(p);  // distinct indices: no two threads write one element
-    std::lock_guard<std::mutex> lock(progress_mutex);
-    have[index] = 1;
-    progress.Tick();
-    if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
-  }, &g_interrupted);
+  DistributedSweep(
+      ranks, c.scene.scene, c.scene.parameters, c.grid, todo, c.options,
+      [&](SweepPoint&& p) {
+        record->Add(p);
+        const size_t index = p.index;
+        c.points[index] = std::move(p);  // distinct indices: no two threads write one element
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        have[index] = 1;
+        progress.Tick();
+        if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
+      },
+      &g_interrupted);
   std::signal(SIGINT, previous);
   c.sweep_s = std::chrono::duration<double>(Clock::now() - sweep_start).count();
   progress.Finish();
@@ -223,9 +232,11 @@ void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) 
   const BoundaryOptions bopt = ChartBoundaryOptions(chart);
   const auto refine_start = Clock::now();
   if (!c.map)
-    c.intervals = RefineUnstableIntervals(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
+    c.intervals = RefineUnstableIntervals(c.scene.scene, c.scene.parameters, c.grid, c.points,
+                                          c.options, bopt);
   if (c.map && !args.no_refine)
-    c.boundary = RefineBoundaryPoints(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
+    c.boundary =
+        RefineBoundaryPoints(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
   c.refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
   for (const SweepPoint& p : c.points) {
     ++c.counts[p.verdict];
@@ -237,7 +248,8 @@ void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) 
   c.title = c.scene.scene.name;
   if (!args.scene.set.empty()) {
     c.title += " (";
-    for (size_t i = 0; i < args.scene.set.size(); ++i) c.title += (i ? ", " : "") + args.scene.set[i];
+    for (size_t i = 0; i < args.scene.set.size(); ++i)
+      c.title += (i ? ", " : "") + args.scene.set[i];
     c.title += ")";
   }
 }
@@ -278,7 +290,10 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
             {"csv", args.csv},
             {"plot", args.plot}};
   for (const auto& a : c.grid.axes)
-    j["sweep"].push_back({{"name", a.name}, {"start", a.start}, {"stop", a.stop}, {"step", a.step},
+    j["sweep"].push_back({{"name", a.name},
+                          {"start", a.start},
+                          {"stop", a.stop},
+                          {"step", a.step},
                           {"count", a.Values().size()}});
   json failures = json::array();
   for (const SweepPoint& p : c.points)
@@ -316,24 +331,29 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
 void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c) {
   std::cout << (c.map ? "Stability map of " : "Campbell sweep of ") << c.title << "\n  ";
   for (size_t a = 0; a < c.grid.axes.size(); ++a)
-    std::cout << (a ? " × " : "") << c.grid.axes[a].name << " = " << Num(c.grid.axes[a].start, 8) << " … "
-              << Num(c.grid.values[a].back(), 8) << " (" << c.grid.values[a].size() << " points)";
+    std::cout << (a ? " × " : "") << c.grid.axes[a].name << " = " << Num(c.grid.axes[a].start, 8)
+              << " … " << Num(c.grid.values[a].back(), 8) << " (" << c.grid.values[a].size()
+              << " points)";
   std::cout << "; " << args.method << " route";
-  if (c.options.method == SweepMethod::kMonodromy) std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
+  if (c.options.method == SweepMethod::kMonodromy)
+    std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
   std::cout << ", " << c.threads << (c.threads == 1 ? " thread" : " threads");
   if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
   std::cout << "\n  " << c.grid.size() << " points in " << Num(c.sweep_s, 3) << " s";
   if (c.resumed) std::cout << " (" << c.resumed << " resumed from the journal)";
-  std::cout << ": " << c.count(StabilityVerdict::kStable) << " stable, " << c.count(StabilityVerdict::kMarginal)
-            << " marginal, " << c.count(StabilityVerdict::kUnstable) << " unstable, "
+  std::cout << ": " << c.count(StabilityVerdict::kStable) << " stable, "
+            << c.count(StabilityVerdict::kMarginal) << " marginal, "
+            << c.count(StabilityVerdict::kUnstable) << " unstable, "
             << c.count(StabilityVerdict::kFailed) << " failed\n  error estimate: ";
   if (c.checked)
-    std::cout << "max " << Num(c.max_error, 2) << " 1/s over " << c.checked << " checked points (tighter rerun)\n";
+    std::cout << "max " << Num(c.max_error, 2) << " 1/s over " << c.checked
+              << " checked points (tighter rerun)\n";
   else
     std::cout << "not computed (--check-every 0)\n";
   if (!c.map) {
     std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(c.tracking.min_mac, 3);
-    if (!c.tracking.ambiguous.empty()) std::cout << ", ambiguous at " << c.tracking.ambiguous.size() << " points";
+    if (!c.tracking.ambiguous.empty())
+      std::cout << ", ambiguous at " << c.tracking.ambiguous.size() << " points";
     std::cout << "\n";
     PrintCampbell(std::cout, c.campbell, c.grid.axes[0].name);
     std::cout << "\n";
@@ -363,7 +383,8 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
     size_t refined = 0;
     for (const auto& b : c.boundary) refined += b.estimate.refined;
     std::cout << "  boundary points: " << refined << " refined of " << c.boundary.size()
-              << " grid crossings along " << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
+              << " grid crossings along "
+              << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
               << " lines per axis (" << Num(c.refine_s, 3) << " s)\n";
   }
   const int failed = static_cast<int>(c.count(StabilityVerdict::kFailed));
@@ -378,8 +399,11 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
         std::cout << ": " << p.failure << "\n";
       }
   }
-  if (!args.csv.empty()) std::cout << "  wrote " << args.csv << (c.map ? "" : " and " + CrossingsCsvPath(args.csv)) << "\n";
-  if (!args.plot.empty()) std::cout << (c.plot_note.empty() ? "  wrote " + args.plot : "  " + c.plot_note) << "\n";
+  if (!args.csv.empty())
+    std::cout << "  wrote " << args.csv << (c.map ? "" : " and " + CrossingsCsvPath(args.csv))
+              << "\n";
+  if (!args.plot.empty())
+    std::cout << (c.plot_note.empty() ? "  wrote " + args.plot : "  " + c.plot_note) << "\n";
 }
 
 int RunChart(ChartArgs& args) {
@@ -391,7 +415,8 @@ int RunChart(ChartArgs& args) {
   try {
     if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // a bad extension fails first
     if (args.sidebands < 0 || args.sidebands > 8) throw InputError("--sidebands must be in 0..8");
-    if (!(args.refine_tol > 0 && args.refine_tol < 1e-2)) throw InputError("--refine-tol must be in (0, 0.01)");
+    if (!(args.refine_tol > 0 && args.refine_tol < 1e-2))
+      throw InputError("--refine-tol must be in (0, 0.01)");
     ChartOutcome c(LoadSceneArgs(args.scene));
     std::vector<SweepAxis> axes = {SweepAxis::Parse(args.sweep)};
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
@@ -402,18 +427,26 @@ int RunChart(ChartArgs& args) {
     c.options = ChartSweepOptions(chart, c.map);
     c.threads = ThreadsFor(c.options.threads);
 
-    json identity = {{"scene", c.scene.scene.name}, {"source", c.scene.scene.source},
-                     {"parameters", ParametersJson(c.scene.parameters)}, {"method", args.method},
-                     {"integrator", args.integrator}, {"tol", args.tol},
-                     {"check_every", c.options.check_every}, {"compare", c.options.snapshot}};
-    for (const auto& a : c.grid.axes) identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
+    json identity = {{"scene", c.scene.scene.name},
+                     {"source", c.scene.scene.source},
+                     {"parameters", ParametersJson(c.scene.parameters)},
+                     {"method", args.method},
+                     {"integrator", args.integrator},
+                     {"tol", args.tol},
+                     {"check_every", c.options.check_every},
+                     {"compare", c.options.snapshot}};
+    for (const auto& a : c.grid.axes)
+      identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
     std::unique_ptr<ChartRecord> record;
-    if (root) record = std::make_unique<ChartRecord>(args.csv, c.grid, c.scene.system.states(), identity, args.resume);
+    if (root)
+      record = std::make_unique<ChartRecord>(args.csv, c.grid, c.scene.system.states(), identity,
+                                             args.resume);
     if (!SweepAllPoints(args, ranks, record.get(), c)) return 130;
     if (!root) return 0;
 
     Analyse(args, chart, c);
-    if (!c.map && !args.csv.empty()) WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.campbell, c.grid.axes[0].name);
+    if (!c.map && !args.csv.empty())
+      WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.campbell, c.grid.axes[0].name);
     record->Finish(c.points, c.map ? nullptr : &c.campbell);
     if (!args.plot.empty()) c.plot_note = Plot(args, c);
     const bool all_failed = c.count(StabilityVerdict::kFailed) == c.grid.size();
@@ -443,26 +476,33 @@ Command AddChartCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "chart", "Campbell/damping diagrams (one --sweep) or stability maps (--sweep and --sweep2)");
   AddSceneArgs(cmd, args.scene);
-  cmd->add_option("--sweep", args.sweep, "NAME=START:STOP:STEP, e.g. Omega=0.3:1.8:0.005")->required();
+  cmd->add_option("--sweep", args.sweep, "NAME=START:STOP:STEP, e.g. Omega=0.3:1.8:0.005")
+      ->required();
   cmd->add_option("--sweep2", args.sweep2, "second parameter for a stability map, e.g. q=0:8:0.02");
   cmd->add_option("--method", args.method, "monodromy | hill")->capture_default_str();
-  cmd->add_option("--integrator", args.integrator,
-                  "monodromy integrator (see `ltp floquet --help`); default bs for maps, rkf78 for 1-D");
+  cmd->add_option(
+      "--integrator", args.integrator,
+      "monodromy integrator (see `ltp floquet --help`); default bs for maps, rkf78 for 1-D");
   cmd->add_option("--tol", args.tol, "integrator relative tolerance (hill: truncation tolerance)")
       ->capture_default_str();
   cmd->add_option("--threads", args.threads, "threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--csv", args.csv, "one row per point, written as points complete");
   cmd->add_flag("--resume", args.resume, "finish the interrupted sweep of --csv FILE");
-  cmd->add_option("--plot", args.plot, "Campbell + damping diagram or stability map (FILE.svg|.png)");
+  cmd->add_option("--plot", args.plot,
+                  "Campbell + damping diagram or stability map (FILE.svg|.png)");
   cmd->add_flag("--json", args.json, "one JSON summary on stdout");
-  cmd->add_flag("--compare", args.compare, "also snapshot A(0) and averaged-system frequencies (1-D)");
-  cmd->add_option("--check-every", args.check_every,
-                  "error estimate on every K-th point (default: all for 1-D, every 97th for maps; 0 = none)");
+  cmd->add_flag("--compare", args.compare,
+                "also snapshot A(0) and averaged-system frequencies (1-D)");
+  cmd->add_option(
+      "--check-every", args.check_every,
+      "error estimate on every K-th point (default: all for 1-D, every 97th for maps; 0 = none)");
   cmd->add_flag("--no-refine", args.no_refine, "do not refine boundaries beyond the grid");
   cmd->add_option("--refine-tol", args.refine_tol, "relative tolerance of refined boundaries")
       ->capture_default_str();
-  cmd->add_option("--refine-lines", args.refine_lines, "maps: grid lines per axis along which "
-                  "boundaries are refined (0 = all)")->capture_default_str();
+  cmd->add_option("--refine-lines", args.refine_lines,
+                  "maps: grid lines per axis along which "
+                  "boundaries are refined (0 = all)")
+      ->capture_default_str();
   cmd->add_option("--sidebands", args.sidebands, "Campbell: faint families f ± kΩp/2π, k = 1..K")
       ->capture_default_str();
   AddCampbellArgs(cmd, args.campbell);

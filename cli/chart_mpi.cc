@@ -59,23 +59,28 @@ size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterM
     const size_t end = std::min(indices.size(), next + round);
     // Round-robin within the round: neighbouring points (similar cost) go to different ranks.
     std::vector<size_t> mine;
-    for (size_t i = next + static_cast<size_t>(ranks.rank); i < end; i += static_cast<size_t>(ranks.size))
+    for (size_t i = next + static_cast<size_t>(ranks.rank); i < end;
+         i += static_cast<size_t>(ranks.size))
       mine.push_back(indices[i]);
     const auto start = std::chrono::steady_clock::now();
     std::string payload;
     std::mutex payload_mutex;
-    done += RunSweep(scene, base, grid, mine, options, [&](SweepPoint&& p) {
-      if (ranks.rank == 0) {
-        on_point(std::move(p));
-      } else {
-        const std::string line = PointToJson(p).dump() + "\n";
-        std::lock_guard<std::mutex> lock(payload_mutex);
-        payload += line;
-      }
-    }, cancel);
+    done += RunSweep(
+        scene, base, grid, mine, options,
+        [&](SweepPoint&& p) {
+          if (ranks.rank == 0) {
+            on_point(std::move(p));
+          } else {
+            const std::string line = PointToJson(p).dump() + "\n";
+            std::lock_guard<std::mutex> lock(payload_mutex);
+            payload += line;
+          }
+        },
+        cancel);
     // Gather the other ranks' points on rank 0.
     int length = static_cast<int>(payload.size());
-    std::vector<int> lengths(static_cast<size_t>(ranks.size)), offsets(static_cast<size_t>(ranks.size));
+    std::vector<int> lengths(static_cast<size_t>(ranks.size)),
+        offsets(static_cast<size_t>(ranks.size));
     MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
     std::string all;
     if (ranks.rank == 0) {
@@ -99,7 +104,8 @@ size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterM
     }
     // Grow the rounds until one takes about two seconds: frequent enough that little is lost
     // to a killed job, rare enough that the gathers cost nothing.
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     MPI_Allreduce(MPI_IN_PLACE, &elapsed, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     if (elapsed < 1.0) round *= 2;
     next = end;

@@ -28,7 +28,8 @@ void Bands(std::ostringstream& g, const ChartPlotInput& in) {
   int id = 1;
   if (in.intervals)
     for (const auto& band : *in.intervals)
-      g << "set object " << id++ << " rect from " << V(band.lo.value) << ", graph 0 to " << V(band.hi.value)
+      g << "set object " << id++ << " rect from " << V(band.lo.value) << ", graph 0 to "
+        << V(band.hi.value)
         << ", graph 1 behind fillcolor rgb '#f6c6c6' fillstyle solid 0.6 noborder\n";
   for (const auto& [lo, hi] : in.campbell->weakly_damped)
     g << "set object " << id++ << " rect from " << V(lo) << ", graph 0 to " << V(hi)
@@ -45,7 +46,8 @@ std::string LegendTitle(size_t k, const std::string& description) {
 // Right margin (characters) that fits the longest legend entry.
 int LegendMargin(const CampbellDiagram& d) {
   size_t longest = 36;  // the per-rev entry
-  for (size_t k = 0; k < d.lines.size(); ++k) longest = std::max(longest, LegendTitle(k, d.lines[k].description).size());
+  for (size_t k = 0; k < d.lines.size(); ++k)
+    longest = std::max(longest, LegendTitle(k, d.lines[k].description).size());
   return static_cast<int>(std::min<size_t>(longest, 64) * 3 / 4 + 8);
 }
 
@@ -93,11 +95,13 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
     for (const CampbellLine& line : d.lines)
       if (line.lost_after >= 0) {
         const size_t p = static_cast<size_t>(line.lost_after);
-        g << V(d.parameter[p]) << " " << V(line.frequency_hz[p]) << " " << V(line.real_part[p]) << "\n";
+        g << V(d.parameter[p]) << " " << V(line.frequency_hz[p]) << " " << V(line.real_part[p])
+          << "\n";
       }
     g << "EOD\n";
   }
-  const bool compare = in.compare && !points.empty() && !points.front().snapshot_eigenvalues.empty();
+  const bool compare =
+      in.compare && !points.empty() && !points.front().snapshot_eigenvalues.empty();
   if (compare) {
     g << "$S << EOD\n";
     for (const SweepPoint& pt : points)
@@ -128,8 +132,8 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
     if (last == P) continue;
     const bool right = last + 1 == P;
     g << "set label " << 100 + k << " '" << d.per_rev[k] << "P' at " << V(d.parameter[last]) << ", "
-      << V(d.per_rev[k] * d.rotor_speed[last] / (2 * kPi)) << (right ? " offset 0.5,0" : " offset -1,-0.6")
-      << " font ',8' tc rgb '#606060'\n";
+      << V(d.per_rev[k] * d.rotor_speed[last] / (2 * kPi))
+      << (right ? " offset 0.5,0" : " offset -1,-0.6") << " font ',8' tc rgb '#606060'\n";
   }
   std::ostringstream plot;
   plot << "plot ";
@@ -141,20 +145,28 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
   const int stride = 2 + 2 * in.sidebands;
   for (size_t k = 0; k < L; ++k)
     for (int s = 0; s < 2 * in.sidebands; ++s)
-      add("$M using 1:" + std::to_string(2 + k * stride + 2 + s) + " with lines lw 0.6 lc rgb '#e6e6e6' notitle");
+      add("$M using 1:" + std::to_string(2 + k * stride + 2 + s) +
+          " with lines lw 0.6 lc rgb '#e6e6e6' notitle");
   for (size_t k = 0; k < d.per_rev.size(); ++k) {
     // Multiples of the blade count excite the fixed frame: drawn darker.
     const bool blade = d.blades > 1 && d.per_rev[k] % d.blades == 0;
-    add("$R using 1:" + std::to_string(2 + k) + " with lines dt 2 lw " + (blade ? "1.6" : "1") + " lc rgb '" +
-        (blade ? "#404040" : "#a0a0a0") + "' " +
-        (k == 0 ? "title 'n·Ω/2π" + std::string(d.blades > 1 ? " (dark: multiples of " + std::to_string(d.blades) + " blades)" : "") + "'"
+    add("$R using 1:" + std::to_string(2 + k) + " with lines dt 2 lw " + (blade ? "1.6" : "1") +
+        " lc rgb '" + (blade ? "#404040" : "#a0a0a0") + "' " +
+        (k == 0 ? "title 'n·Ω/2π" +
+                      std::string(d.blades > 1 ? " (dark: multiples of " +
+                                                     std::to_string(d.blades) + " blades)"
+                                               : "") +
+                      "'"
                 : "notitle"));
   }
   for (size_t k = 0; k < L; ++k)
-    add("$M using 1:" + std::to_string(2 + k * stride) + " with lines lw 2 lc rgb '" + kColors[k % kColorCount] +
-        "' title \"" + LegendTitle(k, d.lines[k].description) + "\"");
-  if (!d.crossings.empty()) add("$X using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb '#000000' title 'crossings'");
-  if (lost) add("$L using 1:2 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' title 'line lost (see output)'");
+    add("$M using 1:" + std::to_string(2 + k * stride) + " with lines lw 2 lc rgb '" +
+        kColors[k % kColorCount] + "' title \"" + LegendTitle(k, d.lines[k].description) + "\"");
+  if (!d.crossings.empty())
+    add("$X using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb '#000000' title 'crossings'");
+  if (lost)
+    add("$L using 1:2 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' title 'line lost (see "
+        "output)'");
   if (compare) {
     add("$S using 1:2 with points pt 7 ps 0.25 lc rgb '#444444' title 'snapshot A(0)'");
     add("$A using 1:2 with points pt 6 ps 0.35 lc rgb '#e08000' title 'averaged A_0'");
@@ -168,8 +180,9 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
   damp << "plot ";
   first = true;
   for (size_t k = 0; k < L; ++k) {
-    damp << (first ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1 << " with lines lw 2 lc rgb '"
-         << kColors[k % kColorCount] << "' notitle";  // colours as in the frequency panel's legend
+    damp << (first ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1
+         << " with lines lw 2 lc rgb '" << kColors[k % kColorCount]
+         << "' notitle";  // colours as in the frequency panel's legend
     first = false;
   }
   if (lost) damp << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
@@ -197,7 +210,8 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
   for (size_t i1 = 0; i1 < n1; ++i1) {
     for (size_t i0 = 0; i0 < n0; ++i0) {
       const SweepPoint& p = points[i0 + n0 * i1];
-      g << V(p.values[0]) << " " << V(p.values[1]) << " " << (p.ok ? V(p.max_real_exponent) : "NaN") << "\n";
+      g << V(p.values[0]) << " " << V(p.values[1]) << " " << (p.ok ? V(p.max_real_exponent) : "NaN")
+        << "\n";
     }
     g << "\n";
   }
@@ -213,13 +227,15 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
     << "set xlabel \"" << GnuplotEscape(in.axis_labels.at(0)) << "\"\n"
     << "set ylabel \"" << GnuplotEscape(in.axis_labels.at(1)) << "\"\n"
     << "set cblabel 'max Re λ  [1/s]   (blue: stable, white: marginal, red: unstable)'\n"
-    << "set palette defined (-1 '#2166ac', -1e-4 '#a6cee3', 0 '#ffffff', 1e-4 '#fddbc7', 1 '#b2182b')\n"
+    << "set palette defined (-1 '#2166ac', -1e-4 '#a6cee3', 0 '#ffffff', 1e-4 '#fddbc7', 1 "
+       "'#b2182b')\n"
     << "set cbrange [" << V(-scale) << ":" << V(scale) << "]\n"
     << "set xrange [" << V(grid.values[0].front()) << ":" << V(grid.values[0].back()) << "]\n"
     << "set yrange [" << V(grid.values[1].front()) << ":" << V(grid.values[1].back()) << "]\n"
     << "set key top left opaque box\nset tics out\n";
   g << "plot $G using 1:2:3 with image notitle";
-  if (boundary) g << ", $B using 1:2 with points pt 7 ps 0.35 lc rgb '#000000' title 'refined boundary points'";
+  if (boundary)
+    g << ", $B using 1:2 with points pt 7 ps 0.35 lc rgb '#000000' title 'refined boundary points'";
   g << "\n";
   return g.str();
 }
@@ -240,7 +256,8 @@ std::string DrawChart(const ChartPlotInput& in, const std::string& file) {
     out << script;
     if (!out) throw InputError("cannot write '" + gp + "'");
     return "gnuplot is not installed: wrote the plot script '" + gp +
-           "' (data inline); render it with `gnuplot " + gp + "` after `apt-get install gnuplot-nox`";
+           "' (data inline); render it with `gnuplot " + gp +
+           "` after `apt-get install gnuplot-nox`";
   }
   RunGnuplot(file, script);
   return "";

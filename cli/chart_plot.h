@@ -13,14 +13,15 @@ namespace ltp::cli {
 struct ChartPlotInput {
   std::string title;
   /// What the Campbell diagram's frequencies and real parts are (panel titles).
-  std::string eigenvalues = "Floquet frequencies", real_parts = "real parts of the Floquet exponents";
-  std::vector<std::string> axis_labels;  ///< "Omega [rad/s]"
+  std::string eigenvalues = "Floquet frequencies",
+              real_parts = "real parts of the Floquet exponents";
+  std::vector<std::string> axis_labels;             ///< "Omega [rad/s]"
   const SweepGrid* grid = nullptr;                  ///< null: a Campbell diagram without a grid
   const std::vector<SweepPoint>* points = nullptr;  ///< whole grid, index order
   const CampbellDiagram* campbell = nullptr;        ///< 1-D
   const std::vector<UnstableInterval>* intervals = nullptr;  ///< 1-D
   const std::vector<BoundaryPoint>* boundary = nullptr;      ///< 2-D
-  int sidebands = 2;   ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
+  int sidebands = 2;     ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
   bool compare = false;  ///< draw snapshot and averaged-system frequencies (1-D)
 };
 

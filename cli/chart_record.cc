@@ -7,11 +7,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <optional>
 #include <cstdio>
 #include <filesystem>
-#include <set>
 #include <iomanip>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "ltp/core/error.h"
@@ -152,21 +152,24 @@ SweepPoint PointFromJson(const json& j) {
   }
   const json& shapes = field("shapes");
   if (!shapes.empty()) {
-    p.shapes.resize(static_cast<Eigen::Index>(shapes.at(0).size()), static_cast<Eigen::Index>(shapes.size()));
+    p.shapes.resize(static_cast<Eigen::Index>(shapes.at(0).size()),
+                    static_cast<Eigen::Index>(shapes.size()));
     for (size_t k = 0; k < shapes.size(); ++k)
       for (size_t i = 0; i < shapes[k].size(); ++i)
         p.shapes(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = {
             FromNumber(shapes[k][i].at(0)), FromNumber(shapes[k][i].at(1))};
   }
-  for (const auto& x : field("snapshot")) p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
-  for (const auto& x : field("averaged")) p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  for (const auto& x : field("snapshot"))
+    p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
+  for (const auto& x : field("averaged"))
+    p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
   for (const auto& d : field("diagnostics")) p.diagnostics.push_back(d.get<std::string>());
   p.elapsed_s = j.at("elapsed_s").get<double>();
   return p;
 }
 
-ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
-                         const json& identity, bool resume)
+ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, const json& identity,
+                         bool resume)
     : path_(std::move(path)), grid_(grid), states_(states) {
   if (path_.empty()) {
     if (resume) throw InputError("--resume needs --csv FILE: the file of the interrupted sweep");
@@ -183,8 +186,10 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
     const std::optional<json> header = ParseJournalLine(line);
     if (!header) throw InputError("--resume: '" + journal + "' line 1 is not a journal header");
     if (header->value("identity", json()) != identity)
-      throw InputError("--resume: '" + journal + "' belongs to a different sweep (scene, "
-                       "parameters, sweep ranges or method differ); run without --resume to start over");
+      throw InputError(
+          "--resume: '" + journal +
+          "' belongs to a different sweep (scene, "
+          "parameters, sweep ranges or method differ); run without --resume to start over");
     Lock();
     // A line cut short by a kill, altered after the fact, or naming an index this grid does
     // not have (or a second time) is not a point: it is simply computed again.
@@ -201,11 +206,13 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states,
         json point = *j;
         if (point.contains("diagnostics")) {  // ids → texts; an unknown id drops the point
           json texts = json::array();
-          for (const json& id : point.at("diagnostics")) texts.push_back(diagnostic_texts.at(id.get<int>()));
+          for (const json& id : point.at("diagnostics"))
+            texts.push_back(diagnostic_texts.at(id.get<int>()));
           point["diagnostics"] = texts;
         }
         SweepPoint p = PointFromJson(point);
-        if (p.index >= grid_.size() || p.values != grid_.PointValues(p.index) || !seen.insert(p.index).second)
+        if (p.index >= grid_.size() || p.values != grid_.PointValues(p.index) ||
+            !seen.insert(p.index).second)
           continue;
         resumed_.push_back(std::move(p));
       } catch (const std::exception&) {
@@ -255,8 +262,10 @@ std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbel
     << (p.ok ? (p.verdict == StabilityVerdict::kUnstable ? "0" : "1") : "") << ","
     << ToString(p.verdict) << "," << Full(p.error_estimate);
   const auto cells = [&](double f, double re, double zeta) {
-    if (std::isfinite(f)) r << "," << Full(f) << "," << Full(re) << "," << Full(zeta);
-    else r << ",,,";
+    if (std::isfinite(f))
+      r << "," << Full(f) << "," << Full(re) << "," << Full(zeta);
+    else
+      r << ",,,";
   };
   if (campbell) {
     for (const CampbellLine& line : campbell->lines)
@@ -329,16 +338,18 @@ void ChartRecord::Lock() {
       const std::string pid = std::to_string(::getpid()) + "\n";
       const ssize_t written = ::write(fd, pid.data(), pid.size());
       ::close(fd);
-      if (written != static_cast<ssize_t>(pid.size())) throw InputError("cannot write '" + lock + "'");
+      if (written != static_cast<ssize_t>(pid.size()))
+        throw InputError("cannot write '" + lock + "'");
       locked_ = true;
       return;
     }
     std::ifstream in(lock);
     long owner = 0;
     in >> owner;
-    if (owner > 0 && owner != ::getpid() && (::kill(static_cast<pid_t>(owner), 0) == 0 || errno == EPERM))
-      throw InputError("another ltp chart (process " + std::to_string(owner) + ") is writing '" + path_ +
-                       "'; wait for it, or use another --csv file");
+    if (owner > 0 && owner != ::getpid() &&
+        (::kill(static_cast<pid_t>(owner), 0) == 0 || errno == EPERM))
+      throw InputError("another ltp chart (process " + std::to_string(owner) + ") is writing '" +
+                       path_ + "'; wait for it, or use another --csv file");
     std::filesystem::remove(lock);  // stale: its writer is gone
   }
   throw InputError("cannot lock '" + path_ + "' (" + lock + ")");

@@ -3,7 +3,8 @@
 //
 //   FILE                 one CSV row per point, appended and flushed as points complete
 //                        (completion order, modes in each point's own order) and rewritten
-//                        sorted by grid index with one column set per Campbell line when the sweep ends;
+//                        sorted by grid index with one column set per Campbell line when the sweep
+//                        ends;
 //   FILE.points.jsonl    the journal: every completed point as one JSON line followed by a
 //                        tab and its FNV-1a checksum, flushed; `--resume` reads it and
 //                        computes only the missing points. A line that is torn, forged
@@ -19,9 +20,9 @@
 //                        killed process is taken over.
 #include <chrono>
 #include <cstddef>
-#include <mutex>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

@@ -35,10 +35,10 @@ Command AddScenesCommand(CLI::App& app);
 Command AddInfoCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddHillCommand(CLI::App& app);
-Command AddPfrfCommand(CLI::App& app), AddSnapshotCommand(CLI::App& app);
+Command AddPfrfCommand(CLI::App&app), AddSnapshotCommand(CLI::App&app);
 Command AddChartCommand(CLI::App& app);
 Command AddMbcCommand(CLI::App& app);
 Command AddCampbellCommand(CLI::App& app);
-Command AddSimulateCommand(CLI::App& app), AddIdentifyCommand(CLI::App& app);
+Command AddSimulateCommand(CLI::App&app), AddIdentifyCommand(CLI::App&app);
 
 }  // namespace ltp::cli

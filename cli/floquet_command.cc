@@ -4,17 +4,17 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
 #include "ltp/core/mbc.h"
 #include "ltp/core/rotor.h"
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -48,7 +48,8 @@ void ResolveOptions(FloquetArgs& args) {
     throw InputError("unknown integrator '" + args.integrator +
                      "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm)");
   if (!ParseHillSolver(args.hill_solver))
-    throw InputError("--hill-solver must be auto, dense or structured, got '" + args.hill_solver + "'");
+    throw InputError("--hill-solver must be auto, dense or structured, got '" + args.hill_solver +
+                     "'");
   args.options.integrator.type = *type;
   if (args.segments == "auto") {
     args.options.segments = 0;
@@ -56,9 +57,11 @@ void ResolveOptions(FloquetArgs& args) {
     try {
       size_t used = 0;
       args.options.segments = std::stoi(args.segments, &used);
-      if (used != args.segments.size() || args.options.segments < 1) throw std::invalid_argument("");
+      if (used != args.segments.size() || args.options.segments < 1)
+        throw std::invalid_argument("");
     } catch (const std::exception&) {
-      throw InputError("--segments must be a positive integer or 'auto', got '" + args.segments + "'");
+      throw InputError("--segments must be a positive integer or 'auto', got '" + args.segments +
+                       "'");
     }
   }
   if (args.method != "monodromy" && args.method != "hill" && args.method != "both")
@@ -69,7 +72,8 @@ void ResolveOptions(FloquetArgs& args) {
       const int n = std::stoi(args.harmonics, &used);
       if (used != args.harmonics.size() || n < 1) throw std::invalid_argument("");
     } catch (const std::exception&) {
-      throw InputError("--harmonics must be a positive integer or 'auto', got '" + args.harmonics + "'");
+      throw InputError("--harmonics must be a positive integer or 'auto', got '" + args.harmonics +
+                       "'");
     }
   }
   if (args.multipliers == "schur" || args.multipliers == "periodic-schur") {
@@ -77,7 +81,8 @@ void ResolveOptions(FloquetArgs& args) {
   } else if (args.multipliers == "single-shot") {
     args.options.multipliers = MultiplierMethod::kSingleShot;
   } else {
-    throw InputError("--multipliers must be 'schur' or 'single-shot', got '" + args.multipliers + "'");
+    throw InputError("--multipliers must be 'schur' or 'single-shot', got '" + args.multipliers +
+                     "'");
   }
 }
 
@@ -86,7 +91,8 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
   *multipliers = json::array();
   *extra = json::array();
   for (const FloquetMode& m : modes) {
-    exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
+    exps.push_back({{"re", JsonNumber(m.exponent.real())},
+                    {"im", JsonNumber(m.exponent.imag())},
                     {"frequency_hz", JsonNumber(m.frequency_hz)},
                     {"damping_ratio", JsonNumber(m.damping_ratio)}});
     const double mag = ExpClamped(m.log_multiplier.real());
@@ -94,7 +100,9 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
                             {"im", JsonNumber(mag * std::sin(m.log_multiplier.imag()))},
                             {"log_abs", JsonNumber(m.log_multiplier.real())},
                             {"arg", JsonNumber(m.log_multiplier.imag())}});
-    extra->push_back({{"branch", m.branch}, {"rigid_body", m.rigid_body}, {"central_weight", JsonNumber(m.central_weight)},
+    extra->push_back({{"branch", m.branch},
+                      {"rigid_body", m.rigid_body},
+                      {"central_weight", JsonNumber(m.central_weight)},
                       {"branch_margin", JsonNumber(m.branch_margin)},
                       {"eigenvector_residual", JsonNumber(m.eigvec_residual)}});
   }
@@ -169,8 +177,10 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"diagnostics", h.diagnostics}};
 }
 
-void PrintModeTable(const std::vector<FloquetMode>& modes, const std::vector<std::string>& descriptions = {}) {
-  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ       log|ρ|    arg ρ [rad]  branch"
+void PrintModeTable(const std::vector<FloquetMode>& modes,
+                    const std::vector<std::string>& descriptions = {}) {
+  std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ       log|ρ|    "
+               "arg ρ [rad]  branch"
             << (descriptions.empty() ? "" : "   carried by (energy at t = 0)") << "\n";
   for (size_t k = 0; k < modes.size(); ++k) {
     const FloquetMode& m = modes[k];
@@ -186,10 +196,14 @@ void PrintModeTable(const std::vector<FloquetMode>& modes, const std::vector<std
 // The headline: stable / unstable only beyond the error estimate.
 std::string VerdictText(StabilityVerdict verdict) {
   switch (verdict) {
-    case StabilityVerdict::kStable: return "STABLE";
-    case StabilityVerdict::kUnstable: return "UNSTABLE";
-    case StabilityVerdict::kMarginal: return "MARGINAL (|max Re λ| within the error estimate: undecided)";
-    case StabilityVerdict::kFailed: return "NOT DECIDED: the result failed its own checks";
+    case StabilityVerdict::kStable:
+      return "STABLE";
+    case StabilityVerdict::kUnstable:
+      return "UNSTABLE";
+    case StabilityVerdict::kMarginal:
+      return "MARGINAL (|max Re λ| within the error estimate: undecided)";
+    case StabilityVerdict::kFailed:
+      return "NOT DECIDED: the result failed its own checks";
   }
   return "?";
 }
@@ -202,28 +216,28 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
 
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   std::cout << "  monodromy by " << r.integrator
-            << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (")
-            << "rel tol " << args.options.integrator.rel_tol
-            << ") over K = " << r.segments << " segments; multipliers by " << r.multiplier_method
-            << "\n";
+            << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (") << "rel tol "
+            << args.options.integrator.rel_tol << ") over K = " << r.segments
+            << " segments; multipliers by " << r.multiplier_method << "\n";
   if (r.modes.empty()) {
     std::cout << "\n  FAILED\n";
     PrintDiagnostics(r.diagnostics);
     return;
   }
-  if (!r.ok) std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
+  if (!r.ok)
+    std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
   PrintModeTable(r.modes, r.mode_descriptions);
-  std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
-            << VerdictText(r.verdict) << "   (max log|ρ| = "
-            << Num(r.max_log_abs_multiplier, 8) << ")\n"
-            << "  error estimate " << Num(r.error_estimate, 2)
-            << " 1/s on every exponent (difference to the run at the requested tolerance on\n"
-            << "  half as many segments; the numbers shown come from the refined, 100× tighter run)\n"
-            << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
-            << Num(r.mode_condition, 3) << ", " << r.rhs_evals << " evaluations of A(t), "
-            << Num(r.elapsed_s * 1e3, 3) << " ms\n"
-            << "  branch: Im λ chosen so each periodic mode shape's Fourier energy is centred on "
-               "harmonic 0\n";
+  std::cout
+      << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  " << VerdictText(r.verdict)
+      << "   (max log|ρ| = " << Num(r.max_log_abs_multiplier, 8) << ")\n"
+      << "  error estimate " << Num(r.error_estimate, 2)
+      << " 1/s on every exponent (difference to the run at the requested tolerance on\n"
+      << "  half as many segments; the numbers shown come from the refined, 100× tighter run)\n"
+      << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
+      << Num(r.mode_condition, 3) << ", " << r.rhs_evals << " evaluations of A(t), "
+      << Num(r.elapsed_s * 1e3, 3) << " ms\n"
+      << "  branch: Im λ chosen so each periodic mode shape's Fourier energy is centred on "
+         "harmonic 0\n";
   PrintDiagnostics(r.diagnostics);
 }
 
@@ -236,7 +250,8 @@ void PrintHill(const HillResult& h) {
     PrintDiagnostics(h.diagnostics);
     return;
   }
-  if (!h.ok) std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
+  if (!h.ok)
+    std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
   PrintModeTable(h.modes);
   std::cout << "\n  max Re λ = " << Num(h.max_real_exponent, 8) << " 1/s  →  "
             << VerdictText(h.verdict) << "\n"
@@ -248,10 +263,12 @@ void PrintHill(const HillResult& h) {
   if (h.decay.kind == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(h.decay.rate, 3) << ")";
   std::cout << ", " << Num(h.elapsed_s * 1e3, 3) << " ms\n"
             << "  error estimate " << Num(h.error_estimate, 2) << " 1/s on every exponent";
-  if (h.fourier_fit_error > 0) std::cout << " (of which the Fourier fit of A: " << Num(h.fourier_fit_error, 2) << ")";
+  if (h.fourier_fit_error > 0)
+    std::cout << " (of which the Fourier fit of A: " << Num(h.fourier_fit_error, 2) << ")";
   std::cout << "\n";
   if (h.tolerance_met && !*h.tolerance_met)
-    std::cout << "  tolerance NOT reached (see diagnostics): the estimate is what this N delivers\n";
+    std::cout
+        << "  tolerance NOT reached (see diagnostics): the estimate is what this N delivers\n";
   PrintDiagnostics(h.diagnostics);
 }
 
@@ -288,7 +305,8 @@ void PrintMbcCheck(const json& check) {
             << " blades): the Floquet exponents equal the eigenvalues of the constant "
                "multi-blade-coordinate system modulo jΩ to "
             << Num(check["max_difference"].is_number() ? check["max_difference"].get<double>()
-                                                       : std::numeric_limits<double>::infinity(), 2)
+                                                       : std::numeric_limits<double>::infinity(),
+                   2)
             << " 1/s\n";
 }
 
@@ -319,7 +337,8 @@ int RunFloquet(FloquetArgs& args) {
     if (!csv) throw InputError("cannot write '" + args.modes_csv + "'");
     csv << "t";
     for (int k = 0; k < r.states; ++k)
-      for (int i = 0; i < r.states; ++i) csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
+      for (int i = 0; i < r.states; ++i)
+        csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
     csv << "\n" << std::setprecision(12);
     for (size_t s = 0; s < r.mode_samples.size(); ++s) {
       csv << r.sample_times[s];
@@ -331,8 +350,10 @@ int RunFloquet(FloquetArgs& args) {
   }
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
-  if (run_mono && !r.ok) SetFailureFrom("monodromy route", r.diagnostics);
-  else if (run_hill && !h.ok) SetFailureFrom("Hill's method", h.diagnostics);
+  if (run_mono && !r.ok)
+    SetFailureFrom("monodromy route", r.diagnostics);
+  else if (run_hill && !h.ok)
+    SetFailureFrom("Hill's method", h.diagnostics);
 
   if (args.json) {
     json j;
@@ -348,8 +369,7 @@ int RunFloquet(FloquetArgs& args) {
            {"monodromy", MonodromyJson(l, args, r)},
            {"hill", HillJson(l, h)},
            {"disagreement", JsonNumber(Disagreement(r.modes, h.modes, 2 * kPi / h.period))},
-           {"combined_error_estimate",
-            JsonNumber(std::max(r.error_estimate, h.error_estimate))}};
+           {"combined_error_estimate", JsonNumber(std::max(r.error_estimate, h.error_estimate))}};
     }
     std::cout << j.dump(2) << "\n";
     return ok || args.keep_going ? 0 : 1;
@@ -365,7 +385,8 @@ int RunFloquet(FloquetArgs& args) {
   if (run_mono && run_hill) std::cout << "\n";
   if (run_hill) PrintHill(h);
   if (run_mono && run_hill)
-    std::cout << "\n  the two routes disagree by " << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
+    std::cout << "\n  the two routes disagree by "
+              << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
               << " 1/s (largest difference of matched exponents; estimates "
               << Num(r.error_estimate, 2) << " and " << Num(h.error_estimate, 2) << ")\n";
   return ok || args.keep_going ? 0 : 1;
@@ -381,7 +402,8 @@ Command AddFloquetCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--integrator", args.integrator,
                   "auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm "
-                  "(auto: the work-precision study's cheapest for the system; the output says which and why)")
+                  "(auto: the work-precision study's cheapest for the system; the output says "
+                  "which and why)")
       ->capture_default_str();
   cmd->add_option("--hill-solver", args.hill_solver,
                   "Hill's eigensolver: auto | dense | structured (auto: per N, as the study found)")
@@ -396,12 +418,15 @@ Command AddFloquetCommand(CLI::App& app) {
   cmd->add_option("--method", args.method,
                   "monodromy | hill | both (both: side by side, with their disagreement)")
       ->capture_default_str();
-  cmd->add_option("--harmonics", args.harmonics,
-                  "Hill truncation N (harmonics -N..N), or auto (doubled until N vs N+Δ agree to --tol)")
+  cmd->add_option(
+         "--harmonics", args.harmonics,
+         "Hill truncation N (harmonics -N..N), or auto (doubled until N vs N+Δ agree to --tol)")
       ->capture_default_str();
-  cmd->add_option("--segments", args.segments, "number of segments K, or auto")->capture_default_str();
-  cmd->add_option("--multipliers", args.multipliers,
-                  "schur (periodic Schur of the segment factors) | single-shot (eig of the formed Φ)")
+  cmd->add_option("--segments", args.segments, "number of segments K, or auto")
+      ->capture_default_str();
+  cmd->add_option(
+         "--multipliers", args.multipliers,
+         "schur (periodic Schur of the segment factors) | single-shot (eig of the formed Φ)")
       ->capture_default_str();
   cmd->add_option("--mode-samples", args.options.mode_samples,
                   "samples of the mode shapes per period (power of two; 0 = automatic)")
@@ -413,7 +438,8 @@ Command AddFloquetCommand(CLI::App& app) {
                 "exit 0 even when the analysis failed its own checks (the output still says so; "
                 "default: exit 1)");
   cmd->add_option("--modes-csv", args.modes_csv, "write the periodic mode shapes ξ_k(t) to CSV");
-  cmd->add_option("--plot", args.plot, "draw exponents and mode-shape spectra (FILE.svg or FILE.png)");
+  cmd->add_option("--plot", args.plot,
+                  "draw exponents and mode-shape spectra (FILE.svg or FILE.png)");
   return {cmd, [] { return RunFloquet(args); }};
 }
 

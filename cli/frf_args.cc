@@ -23,7 +23,8 @@ void Progress::operator()(int done, int total) {
   if (percent == last_percent_) return;
   last_percent_ = percent;
   shown_ = true;
-  std::cerr << "\r" << label_ << " " << done << "/" << total << " (" << percent << "%)" << std::flush;
+  std::cerr << "\r" << label_ << " " << done << "/" << total << " (" << percent << "%)"
+            << std::flush;
 }
 
 }  // namespace ltp::cli

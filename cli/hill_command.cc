@@ -56,8 +56,8 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
   for (size_t i = 0; i < k; ++i) csv << ",error_" << i;
   csv << "\n" << std::setprecision(12);
   for (const HillStudyRow& r : s.rows) {
-    csv << r.harmonics << "," << r.matrix_size << "," << r.max_error << "," << r.apriori_bound << ","
-        << r.truncation_estimate << "," << r.selection_margin << "," << r.tail_weight << ","
+    csv << r.harmonics << "," << r.matrix_size << "," << r.max_error << "," << r.apriori_bound
+        << "," << r.truncation_estimate << "," << r.selection_margin << "," << r.tail_weight << ","
         << r.ambiguous << "," << r.elapsed_s;
     for (double e : r.errors) csv << "," << e;
     csv << "\n";
@@ -87,7 +87,8 @@ int RunHill(HillArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
   HillOptions options;
   const auto solver = ParseHillSolver(args.solver);
-  if (!solver) throw InputError("--solver must be 'auto', 'dense' or 'structured', got '" + args.solver + "'");
+  if (!solver)
+    throw InputError("--solver must be 'auto', 'dense' or 'structured', got '" + args.solver + "'");
   options.solver = *solver;
   const auto rule = ParseHillSelectionRule(args.selection);
   if (!rule)
@@ -114,18 +115,22 @@ int RunHill(HillArgs& args) {
     for (const HillStudyRow& r : s.rows) {
       json errs = json::array();
       for (double e : r.errors) errs.push_back(JsonNumber(e));
-      rows.push_back({{"harmonics", r.harmonics}, {"matrix_size", r.matrix_size},
-                      {"errors", errs}, {"max_error", JsonNumber(r.max_error)},
+      rows.push_back({{"harmonics", r.harmonics},
+                      {"matrix_size", r.matrix_size},
+                      {"errors", errs},
+                      {"max_error", JsonNumber(r.max_error)},
                       {"apriori_bound", JsonNumber(r.apriori_bound)},
                       {"truncation_estimate", JsonNumber(r.truncation_estimate)},
                       {"selection_margin", JsonNumber(r.selection_margin)},
-                      {"tail_weight", JsonNumber(r.tail_weight)}, {"ambiguous", r.ambiguous},
+                      {"tail_weight", JsonNumber(r.tail_weight)},
+                      {"ambiguous", r.ambiguous},
                       {"elapsed_s", r.elapsed_s}});
     }
     json exps = json::array();
     for (size_t k = 0; k < last.modes.size(); ++k) {
       const FloquetMode& m = last.modes[k];
-      exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
+      exps.push_back({{"re", JsonNumber(m.exponent.real())},
+                      {"im", JsonNumber(m.exponent.imag())},
                       {"frequency_hz", JsonNumber(m.frequency_hz)},
                       {"damping_ratio", JsonNumber(m.damping_ratio)},
                       {"selection_margin", JsonNumber(last.info[k].selection_margin)},
@@ -134,7 +139,8 @@ int RunHill(HillArgs& args) {
                       {"ambiguous", last.info[k].ambiguous}});
     }
     json ref = json::array();
-    for (const auto& e : s.reference) ref.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())}});
+    for (const auto& e : s.reference)
+      ref.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())}});
     json j = {{"scene", l.scene.name},
               {"parameters", ParametersJson(l.parameters)},
               {"states", l.system.states()},
@@ -142,9 +148,11 @@ int RunHill(HillArgs& args) {
               {"method", "hill"},
               {"solver", std::string(ToString(options.solver))},
               {"selection_rule", std::string(ToString(options.selection))},
-              {"coefficient_decay", {{"kind", s.decay.kind}, {"rate", JsonNumber(s.decay.rate)},
-                                     {"harmonics", s.decay.harmonics},
-                                     {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
+              {"coefficient_decay",
+               {{"kind", s.decay.kind},
+                {"rate", JsonNumber(s.decay.rate)},
+                {"harmonics", s.decay.harmonics},
+                {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
               {"convergence", {{"kind", s.rate_kind}, {"rate", JsonNumber(s.rate)}}},
               {"reference", ref},
               {"rows", rows},
@@ -163,10 +171,10 @@ int RunHill(HillArgs& args) {
   const double T = l.system.period();
   std::cout << "Hill convergence study of " << l.scene.name;
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
-  std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10) << " s (Ωp = "
-            << Num(2 * kPi / T, 8) << " rad/s); solver " << ToString(options.solver)
-            << ", selection by " << ToString(options.selection) << "\n  coefficients of A: "
-            << s.decay.kind;
+  std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
+            << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s); solver " << ToString(options.solver)
+            << ", selection by " << ToString(options.selection)
+            << "\n  coefficients of A: " << s.decay.kind;
   if (s.decay.kind == "exponential") std::cout << " decay (b = " << Num(s.decay.rate, 3) << ")";
   if (s.decay.kind == "algebraic")
     std::cout << " decay (|A_w| ~ |w|^-" << Num(s.decay.rate, 3) << ", discontinuous A(t))";
@@ -174,7 +182,8 @@ int RunHill(HillArgs& args) {
   if (s.decay.fourier_tail > 0) std::cout << ", fit tail " << Num(s.decay.fourier_tail, 2);
   std::cout << "\n  reference: "
             << (have_ref ? "monodromy route (dopri5, rel tol 1e-12), error modulo jΩp" : "none")
-            << "\n\n       N   size   error vs ref  a-priori bound   N vs N+Δ   margin      tail   time [ms]\n";
+            << "\n\n       N   size   error vs ref  a-priori bound   N vs N+Δ   margin      tail   "
+               "time [ms]\n";
   for (const HillStudyRow& r : s.rows) {
     std::cout << std::setw(8) << r.harmonics << std::setw(7) << r.matrix_size
               << Num(r.max_error, 3, 15) << Num(r.apriori_bound, 3, 16)
@@ -211,12 +220,15 @@ Command AddHillCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--max-harmonics", args.max_harmonics, "largest truncation N (harmonics -N..N)")
       ->capture_default_str();
-  cmd->add_option("--solver", args.solver, "auto | dense (zgeev, full spectrum) | structured (banded shift-invert); auto: per N, "
-                  "as the work-precision study found")
+  cmd->add_option(
+         "--solver", args.solver,
+         "auto | dense (zgeev, full spectrum) | structured (banded shift-invert); auto: per N, "
+         "as the work-precision study found")
       ->capture_default_str();
   cmd->add_option("--selection", args.selection, "centroid | central-weight | strip")
       ->capture_default_str();
-  cmd->add_flag("--no-reference", args.no_reference, "skip the monodromy reference (no error column)");
+  cmd->add_flag("--no-reference", args.no_reference,
+                "skip the monodromy reference (no error column)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_option("--csv", args.csv, "write the study table to CSV");
   cmd->add_option("--plot", args.plot, "chart of error and estimates vs N (FILE.svg or FILE.png)");

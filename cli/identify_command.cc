@@ -39,8 +39,8 @@ struct IdentifyArgs {
 
 // |H_z| per order against the excitation frequency: the estimates with their 95 % bounds as
 // error bars, the model's values as lines (--compare).
-void PlotIdentified(const std::string& file, const IdentifyResult& r, const std::vector<std::vector<cd>>& model,
-                    const std::string& title) {
+void PlotIdentified(const std::string& file, const IdentifyResult& r,
+                    const std::vector<std::vector<cd>>& model, const std::string& title) {
   const int Z = r.max_order - r.min_order + 1;
   std::ostringstream g;
   g << GnuplotTerminal(file, 1000, 650) << "set output '" << file << "'\n";
@@ -48,25 +48,31 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r, const std:
     g << "$E" << z << " << EOD\n";
     for (const auto& f : r.frequencies)
       if (f.separable)
-        g << f.excitation_hz << " " << std::abs(f.h[static_cast<size_t>(z)]) << " " << f.bound[static_cast<size_t>(z)] << "\n";
+        g << f.excitation_hz << " " << std::abs(f.h[static_cast<size_t>(z)]) << " "
+          << f.bound[static_cast<size_t>(z)] << "\n";
     g << "EOD\n";
     if (!model.empty()) {
       g << "$M" << z << " << EOD\n";
       for (size_t f = 0; f < r.frequencies.size(); ++f)
-        g << r.frequencies[f].excitation_hz << " " << std::abs(model[f][static_cast<size_t>(z)]) << "\n";
+        g << r.frequencies[f].excitation_hz << " " << std::abs(model[f][static_cast<size_t>(z)])
+          << "\n";
       g << "EOD\n";
     }
   }
   g << "set title \"" << GnuplotEscape(title) << "\"\nset xlabel 'excitation frequency  [Hz]'\n"
-    << "set ylabel '|H_z|'\nset logscale y\nset format y '10^{%L}'\nset grid\nset key outside right top\n";
-  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
+    << "set ylabel '|H_z|'\nset logscale y\nset format y '10^{%L}'\nset grid\nset key outside "
+       "right top\n";
+  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                          "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
   g << "plot ";
   for (int z = 0; z < Z; ++z) {
     const std::string color = colors[z % 9];
-    g << (z ? ", \\\n     " : "") << "$E" << z << " using 1:2:3 with yerrorbars pt 7 ps 0.6 lc rgb '" << color
+    g << (z ? ", \\\n     " : "") << "$E" << z
+      << " using 1:2:3 with yerrorbars pt 7 ps 0.6 lc rgb '" << color
       << "' title 'z = " << z + r.min_order << " (step-sine, 95 % bound)'";
     if (!model.empty())
-      g << ", $M" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color << "' title 'z = " << z + r.min_order << " model'";
+      g << ", $M" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color
+        << "' title 'z = " << z + r.min_order << " model'";
   }
   g << "\n";
   RunGnuplot(file, g.str());
@@ -74,14 +80,21 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r, const std:
 
 int RunIdentify(const IdentifyArgs& args) {
   if (args.method != "stepsine")
-    throw InputError("--method: only stepsine is built so far (broadband least squares over several records is not), got '" +
-                     args.method + "'");
-  if (args.period < 0 || args.rotor_speed < 0) throw InputError("--period and --rotor-speed must be > 0");
-  const double period = args.period > 0 ? args.period : (args.rotor_speed > 0 ? 2 * std::numbers::pi / args.rotor_speed : 0);
+    throw InputError(
+        "--method: only stepsine is built so far (broadband least squares over several records is "
+        "not), got '" +
+        args.method + "'");
+  if (args.period < 0 || args.rotor_speed < 0)
+    throw InputError("--period and --rotor-speed must be > 0");
+  const double period = args.period > 0
+                            ? args.period
+                            : (args.rotor_speed > 0 ? 2 * std::numbers::pi / args.rotor_speed : 0);
   const TimeData data = ReadTimeDataCsv(args.data, period);
   IdentifyOptions o;
-  o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()), "--input", "input");
-  o.output = ResolveChannel(args.output, data.output_names, static_cast<int>(data.output_names.size()), "--output", "output");
+  o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()),
+                           "--input", "input");
+  o.output = ResolveChannel(args.output, data.output_names,
+                            static_cast<int>(data.output_names.size()), "--output", "output");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   const IdentifyResult r = IdentifyStepSine(data, o);
   const int Z = o.max_order - o.min_order + 1;
@@ -89,8 +102,8 @@ int RunIdentify(const IdentifyArgs& args) {
   if (!args.compare.empty()) {
     const LoadedScene l = LoadSceneInput({args.compare}, args.set);
     if (std::abs(l.system.period() - data.period) > 1e-9 * data.period)
-      throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) + " s is not the data's " +
-                       Num(data.period, 10) + " s");
+      throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) +
+                       " s is not the data's " + Num(data.period, 10) + " s");
     PfrfOptions po;
     for (const auto& f : r.frequencies) po.frequencies_hz.push_back(f.excitation_hz);
     po.min_order = o.min_order;
@@ -102,41 +115,57 @@ int RunIdentify(const IdentifyArgs& args) {
   if (!args.csv.empty()) {
     std::ofstream out(args.csv);
     out.precision(12);
-    out << "f_exc_hz,z,re,im,abs,phase_deg,bound_95" << (model.empty() ? "" : ",model_re,model_im") << "\n";
+    out << "f_exc_hz,z,re,im,abs,phase_deg,bound_95" << (model.empty() ? "" : ",model_re,model_im")
+        << "\n";
     for (size_t f = 0; f < r.frequencies.size(); ++f)
       for (int z = 0; z < Z; ++z) {
         const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
-        out << r.frequencies[f].excitation_hz << "," << z + o.min_order << "," << h.real() << "," << h.imag() << ","
-            << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << "," << r.frequencies[f].bound[static_cast<size_t>(z)];
-        if (!model.empty()) out << "," << model[f][static_cast<size_t>(z)].real() << "," << model[f][static_cast<size_t>(z)].imag();
+        out << r.frequencies[f].excitation_hz << "," << z + o.min_order << "," << h.real() << ","
+            << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << ","
+            << r.frequencies[f].bound[static_cast<size_t>(z)];
+        if (!model.empty())
+          out << "," << model[f][static_cast<size_t>(z)].real() << ","
+              << model[f][static_cast<size_t>(z)].imag();
         out << "\n";
       }
     if (!out) throw InputError("cannot write '" + args.csv + "'");
   }
-  if (!args.plot.empty()) PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data);
+  if (!args.plot.empty())
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data);
   if (args.json) {
     json freqs = json::array();
     for (size_t f = 0; f < r.frequencies.size(); ++f) {
       json h = json::array();
       for (int z = 0; z < Z; ++z) {
         const cd v = r.frequencies[f].h[static_cast<size_t>(z)];
-        json e = {{"z", z + o.min_order}, {"re", JsonNumber(v.real())}, {"im", JsonNumber(v.imag())},
+        json e = {{"z", z + o.min_order},
+                  {"re", JsonNumber(v.real())},
+                  {"im", JsonNumber(v.imag())},
                   {"bound_95", JsonNumber(r.frequencies[f].bound[static_cast<size_t>(z)])}};
-        if (!model.empty()) e["model"] = {JsonNumber(model[f][static_cast<size_t>(z)].real()), JsonNumber(model[f][static_cast<size_t>(z)].imag())};
+        if (!model.empty())
+          e["model"] = {JsonNumber(model[f][static_cast<size_t>(z)].real()),
+                        JsonNumber(model[f][static_cast<size_t>(z)].imag())};
         h.push_back(e);
       }
-      freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz}, {"separable", r.frequencies[f].separable},
-                       {"noise_rms", JsonNumber(r.frequencies[f].noise)}, {"H", h}});
+      freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz},
+                       {"separable", r.frequencies[f].separable},
+                       {"noise_rms", JsonNumber(r.frequencies[f].noise)},
+                       {"H", h}});
     }
-    std::cout << json{{"data", args.data}, {"method", args.method}, {"period_s", data.period}, {"input", o.input},
-                      {"output", o.output}, {"records", data.records.size()}, {"frequencies", freqs},
-                      {"diagnostics", r.diagnostics}}.dump(2)
+    std::cout << json{{"data", args.data},       {"method", args.method},
+                      {"period_s", data.period}, {"input", o.input},
+                      {"output", o.output},      {"records", data.records.size()},
+                      {"frequencies", freqs},    {"diagnostics", r.diagnostics}}
+                     .dump(2)
               << "\n";
     return 0;
   }
-  std::cout << "Partial FRFs identified from " << args.data << " (step-sine, eq. 47): " << r.frequencies.size()
-            << " records, T = " << Num(data.period, 10) << " s, output " << o.output << " / input " << o.input << "\n"
-            << "    f_exc [Hz]    z       |H_z|    ± 95 %     phase [°]" << (model.empty() ? "" : "   |model − H_z|") << "\n";
+  std::cout << "Partial FRFs identified from " << args.data
+            << " (step-sine, eq. 47): " << r.frequencies.size()
+            << " records, T = " << Num(data.period, 10) << " s, output " << o.output << " / input "
+            << o.input << "\n"
+            << "    f_exc [Hz]    z       |H_z|    ± 95 %     phase [°]"
+            << (model.empty() ? "" : "   |model − H_z|") << "\n";
   for (size_t f = 0; f < r.frequencies.size(); ++f)
     for (int z = 0; z < Z; ++z) {
       const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
@@ -145,8 +174,10 @@ int RunIdentify(const IdentifyArgs& args) {
                   << "   not separable from one record (a multiple of fp/2)\n";
         continue;
       }
-      std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5) << Num(std::abs(h), 4, 12)
-                << Num(r.frequencies[f].bound[static_cast<size_t>(z)], 2, 10) << Num(PhaseDeg(h.real(), h.imag()), 4, 14);
+      std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5)
+                << Num(std::abs(h), 4, 12)
+                << Num(r.frequencies[f].bound[static_cast<size_t>(z)], 2, 10)
+                << Num(PhaseDeg(h.real(), h.imag()), 4, 14);
       if (!model.empty()) std::cout << Num(std::abs(model[f][static_cast<size_t>(z)] - h), 2, 16);
       std::cout << "\n";
     }
@@ -161,7 +192,8 @@ int RunIdentify(const IdentifyArgs& args) {
 Command AddIdentifyCommand(CLI::App& app) {
   static IdentifyArgs args;
   args = IdentifyArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
-  auto* cmd = app.add_subcommand("identify", "partial FRFs from step-sine time data (CSV of ltp simulate or a rig)");
+  auto* cmd = app.add_subcommand(
+      "identify", "partial FRFs from step-sine time data (CSV of ltp simulate or a rig)");
   cmd->add_option("data", args.data, "the time-data CSV")->required();
   cmd->add_option("--method", args.method, "stepsine")->capture_default_str();
   cmd->add_option("--period", args.period, "period T (s), when the file does not give it");
@@ -169,10 +201,12 @@ Command AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--input", args.input, "input (index or name)")->capture_default_str();
   cmd->add_option("--output", args.output, "output (index or name)")->capture_default_str();
   cmd->add_option("--orders", args.orders, "ZMIN:ZMAX")->capture_default_str();
-  cmd->add_option("--compare", args.compare, "a scene whose model values to set beside the estimates");
+  cmd->add_option("--compare", args.compare,
+                  "a scene whose model values to set beside the estimates");
   cmd->add_option("--set", args.set, "NAME=VALUE for the --compare scene (as the data were made)");
   cmd->add_option("--csv", args.csv, "one row per frequency and order");
-  cmd->add_option("--plot", args.plot, "|H_z| with 95 % bounds (and the model) against frequency (FILE.svg|.png)");
+  cmd->add_option("--plot", args.plot,
+                  "|H_z| with 95 % bounds (and the model) against frequency (FILE.svg|.png)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   return {cmd, [] { return RunIdentify(args); }};
 }

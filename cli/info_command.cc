@@ -3,8 +3,8 @@
 #include <complex>
 #include <iomanip>
 #include <iostream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "command.h"
 #include "format.h"
@@ -32,7 +32,8 @@ int RunInfo(const InfoArgs& args) {
   fit_options.tol = 1e-10;
   const SystemFourier fourier = ToFourier(sys, fit_options);
   const LtiSystem snap = sys.Snapshot(args.at);
-  Eigen::VectorXcd eig = snap.A.size() ? Eigen::VectorXcd(snap.A.eigenvalues()) : Eigen::VectorXcd();
+  Eigen::VectorXcd eig =
+      snap.A.size() ? Eigen::VectorXcd(snap.A.eigenvalues()) : Eigen::VectorXcd();
   std::vector<std::complex<double>> ev(eig.data(), eig.data() + eig.size());
   std::sort(ev.begin(), ev.end(), [](auto a, auto b) {
     return std::abs(a.imag()) != std::abs(b.imag()) ? std::abs(a.imag()) < std::abs(b.imag())
@@ -40,10 +41,13 @@ int RunInfo(const InfoArgs& args) {
   });
   const char* form = sys.form() == PeriodicSystem::Form::kFourier             ? "Fourier series"
                      : sys.form() == PeriodicSystem::Form::kPiecewiseConstant ? "piecewise constant"
-                                                                               : "time function";
+                                                                              : "time function";
   auto fit_json = [](const FourierFit& f) {
-    return json{{"harmonics", f.series.max_harmonic()}, {"converged", f.converged},
-                {"tail", JsonNumber(f.tail)}, {"decay", f.decay}, {"decay_rate", JsonNumber(f.decay_rate)}};
+    return json{{"harmonics", f.series.max_harmonic()},
+                {"converged", f.converged},
+                {"tail", JsonNumber(f.tail)},
+                {"decay", f.decay},
+                {"decay_rate", JsonNumber(f.decay_rate)}};
   };
   if (args.json) {
     json j = {{"scene", l.scene.name},
@@ -55,12 +59,16 @@ int RunInfo(const InfoArgs& args) {
               {"omega_p", sys.omega()},
               {"form", form},
               {"breakpoints", sys.breakpoints()},
-              {"harmonics", {{"A", fit_json(fourier.A)}, {"B", fit_json(fourier.B)},
-                             {"C", fit_json(fourier.C)}, {"D", fit_json(fourier.D)}}},
+              {"harmonics",
+               {{"A", fit_json(fourier.A)},
+                {"B", fit_json(fourier.B)},
+                {"C", fit_json(fourier.C)},
+                {"D", fit_json(fourier.D)}}},
               {"snapshot_time", args.at}};
     json e = json::array();
     for (auto z : ev)
-      e.push_back({{"re", JsonNumber(z.real())}, {"im", JsonNumber(z.imag())},
+      e.push_back({{"re", JsonNumber(z.real())},
+                   {"im", JsonNumber(z.imag())},
                    {"frequency_hz", JsonNumber(z.imag() / (2 * kPi))}});
     j["snapshot_eigenvalues"] = e;
     std::cout << j.dump(2) << "\n";
@@ -82,7 +90,8 @@ int RunInfo(const InfoArgs& args) {
   auto row = [](const char* name, const FourierFit& f) {
     std::cout << "    " << name << ": " << f.series.max_harmonic() << " harmonics, decay "
               << f.decay;
-    if (f.decay == "exponential") std::cout << " (rate " << Num(f.decay_rate, 3) << " per harmonic)";
+    if (f.decay == "exponential")
+      std::cout << " (rate " << Num(f.decay_rate, 3) << " per harmonic)";
     if (f.decay == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(f.decay_rate, 3) << ")";
     std::cout << (f.converged ? "" : ", NOT converged: dropped tail " + Num(f.tail, 2)) << "\n";
   };
@@ -98,10 +107,11 @@ int RunInfo(const InfoArgs& args) {
       std::cout << "    " << std::setw(3) << m.index << Num(m.frequency_hz, 5, 12)
                 << Num(m.fe_frequency_hz, 5, 9)
                 << (m.paper_fem_hz > 0 ? Num(m.paper_fem_hz, 4, 11) : std::string(11, ' '))
-                << (m.paper_mbs_hz > 0 ? Num(m.paper_mbs_hz, 4, 11) : std::string(11, ' '))
-                << "   " << m.description << "\n";
+                << (m.paper_mbs_hz > 0 ? Num(m.paper_mbs_hz, 4, 11) : std::string(11, ' ')) << "   "
+                << m.description << "\n";
   }
-  std::cout << "snapshot eigenvalues at t = " << args.at << " (frozen LTI system; not the Floquet exponents):\n";
+  std::cout << "snapshot eigenvalues at t = " << args.at
+            << " (frozen LTI system; not the Floquet exponents):\n";
   for (auto z : ev)
     std::cout << "    " << Num(z.real(), 8, 14) << " " << (z.imag() < 0 ? "-" : "+") << " "
               << Num(std::abs(z.imag()), 8, 12) << " j    (" << Num(z.imag() / (2 * kPi), 6)

@@ -8,9 +8,9 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
-#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "format.h"
@@ -89,7 +89,8 @@ json FloquetJson(const SampledFloquetResult& f) {
           {"max_real_exponent_trig", JsonNumber(f.max_real_trig)},
           {"stable", f.stable},
           {"max_difference", JsonNumber(f.max_difference)},
-          {"max_difference_to_mbc", f.max_to_reference >= 0 ? JsonNumber(f.max_to_reference) : json(nullptr)},
+          {"max_difference_to_mbc",
+           f.max_to_reference >= 0 ? JsonNumber(f.max_to_reference) : json(nullptr)},
           {"error_estimate_hold", JsonNumber(f.hold.error_estimate)},
           {"error_estimate_trig", JsonNumber(f.trig.error_estimate)},
           {"elapsed_s", f.hold.elapsed_s + f.trig.elapsed_s},
@@ -133,15 +134,17 @@ void PrintHeader(const LinOperatingPoint& op, const Mbc3Result& r) {
   for (int k = 0; k < op.size(); ++k)
     std::cout << (k ? ", " : "") << std::filesystem::path(op.files[k]).filename().string() << " ("
               << Fixed(op.azimuths[k] * 180 / kPi, 1) << "°)";
-  std::cout << "\n  rotor      Ω = " << Num(op.rotor_speed, 6) << " rad/s = "
-            << Num(op.rotor_speed * 30 / kPi, 6) << " rpm (1P = " << Hz(op.rotor_speed)
-            << " Hz); " << op.states.size() << " states, " << r.blades << " blades ("
-            << r.state_coordinates.groups.size() << " blade tuples of states)\n";
+  std::cout << "\n  rotor      Ω = " << Num(op.rotor_speed, 6)
+            << " rad/s = " << Num(op.rotor_speed * 30 / kPi, 6)
+            << " rpm (1P = " << Hz(op.rotor_speed) << " Hz); " << op.states.size() << " states, "
+            << r.blades << " blades (" << r.state_coordinates.groups.size()
+            << " blade tuples of states)\n";
 }
 
 void PrintTable(const Mbc3Result& r) {
-  std::cout << "  transform  multi-blade coordinates after Bir (2008, NREL/CP-500-42553) eq. 29, as "
-               "OpenFAST's MBC3;\n             ";
+  std::cout
+      << "  transform  multi-blade coordinates after Bir (2008, NREL/CP-500-42553) eq. 29, as "
+         "OpenFAST's MBC3;\n             ";
   if (r.transformed.size() == 1)
     std::cout << "one azimuth: its transformed state matrix, nothing to average\n\n";
   else
@@ -167,9 +170,8 @@ void PrintTable(const Mbc3Result& r) {
 }
 
 void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
-  std::cout << "\nFloquet analysis of the same " << f.samples << (f.samples == 1 ? " sample (" : " samples (")
-            << f.coordinates
-            << ", not averaged)\n"
+  std::cout << "\nFloquet analysis of the same " << f.samples
+            << (f.samples == 1 ? " sample (" : " samples (") << f.coordinates << ", not averaged)\n"
             << "  hold: each sample held over the nearest azimuths (exact product of exponentials, "
             << f.hold.segments << " segments)\n"
             << "  trig: trigonometric interpolation through the samples (" << f.trig.integrator
@@ -206,9 +208,9 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
   bool rigid = false;
   for (const SampledFloquetMode& m : f.modes) rigid = rigid || m.rigid_body;
   std::cout << "\n  max Re λ" << (rigid ? " (rigid body excluded)" : "") << ": hold "
-            << Num(f.max_real_hold, 6) << ", trig "
-            << Num(f.max_real_trig, 6) << " 1/s  →  " << (f.stable ? "STABLE" : "UNSTABLE")
-            << "\n  the routes differ by up to " << Num(f.max_difference, 3) << " 1/s";
+            << Num(f.max_real_hold, 6) << ", trig " << Num(f.max_real_trig, 6) << " 1/s  →  "
+            << (f.stable ? "STABLE" : "UNSTABLE") << "\n  the routes differ by up to "
+            << Num(f.max_difference, 3) << " 1/s";
   if (f.max_to_reference >= 0)
     std::cout << "; Floquet vs MBC3 up to " << Num(f.max_to_reference, 3) << " 1/s";
   std::cout << "\n  notes:\n";
@@ -230,8 +232,9 @@ int RunMbc(const MbcArgs& args) {
     fo.floquet.integrator.rel_tol = args.tol;
     f = AnalyzeSampledFloquet(op, r, fo);
   } else if (args.floquet) {
-    floquet_skipped = "rotor speed 0: a parked rotor is time-invariant, so there is no period "
-                      "and no Floquet analysis";
+    floquet_skipped =
+        "rotor speed 0: a parked rotor is time-invariant, so there is no period "
+        "and no Floquet analysis";
   }
   if (!args.csv.empty()) WriteCsv(args.csv, r, f ? &*f : nullptr);
   const bool ok = (r.applicable || f) && (!f || f->ok);
@@ -249,8 +252,8 @@ int RunMbc(const MbcArgs& args) {
               {"periodic_part", JsonNumber(r.periodic_part)},
               {"modes", modes},
               {"rigid_body_modes", r.rigid_body_modes},
-              {"max_real_part", r.applicable && !r.modes.empty() ? JsonNumber(r.max_real_part)
-                                                                 : json(nullptr)},
+              {"max_real_part",
+               r.applicable && !r.modes.empty() ? JsonNumber(r.max_real_part) : json(nullptr)},
               {"diagnostics", r.diagnostics},
               {"notes", LinCaveats(op)}};
     if (!r.applicable) j["reason"] = r.reason;
@@ -276,8 +279,9 @@ Command AddMbcCommand(CLI::App& app) {
   static MbcArgs args;
   args = MbcArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
-      "mbc", "Campbell table (MBC3 with azimuth averaging) of OpenFAST .lin files, with the "
-             "Floquet analysis of the same azimuth samples");
+      "mbc",
+      "Campbell table (MBC3 with azimuth averaging) of OpenFAST .lin files, with the "
+      "Floquet analysis of the same azimuth samples");
   cmd->add_option("files", args.files,
                   "OpenFAST .lin files at one operating point (one per azimuth), a directory of "
                   "them, or a glob")

@@ -29,7 +29,8 @@ struct PfrfArgs {
   SceneArgs scene;
   std::string input = "0", output = "0";
   std::string freq;
-  std::string orders = std::to_string(PfrfOptions{}.min_order) + ":" + std::to_string(PfrfOptions{}.max_order);
+  std::string orders =
+      std::to_string(PfrfOptions{}.min_order) + ":" + std::to_string(PfrfOptions{}.max_order);
   std::string route{ToString(PfrfOptions{}.primary)};
   int check_every = PfrfOptions{}.check_every;
   int htf_harmonics = HtfOptions{}.harmonics;
@@ -41,17 +42,20 @@ struct PfrfArgs {
 void WriteCsv(const PfrfResult& r, const std::string& file) {
   std::ofstream csv(file);
   if (!csv) throw InputError("cannot write '" + file + "'");
-  csv << "f_exc_hz,z,f_resp_hz,re,im,abs,phase_deg,error_estimate,checked\n" << std::setprecision(15);
+  csv << "f_exc_hz,z,f_resp_hz,re,im,abs,phase_deg,error_estimate,checked\n"
+      << std::setprecision(15);
   for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
     for (int z = r.min_order; z <= r.max_order; ++z) {
       const std::complex<double> h = r.values[i][z - r.min_order];
       csv << r.frequencies_hz[i] << "," << z << "," << r.frequencies_hz[i] + z * r.fp_hz << ","
-          << h.real() << "," << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag())
-          << "," << r.error_estimate[i][z - r.min_order] << "," << (r.checked[i] ? 1 : 0) << "\n";
+          << h.real() << "," << h.imag() << "," << std::abs(h) << ","
+          << PhaseDeg(h.real(), h.imag()) << "," << r.error_estimate[i][z - r.min_order] << ","
+          << (r.checked[i] ? 1 : 0) << "\n";
     }
 }
 
-void Plot(const PfrfResult& r, const std::string& title, double threshold, const std::string& file) {
+void Plot(const PfrfResult& r, const std::string& title, double threshold,
+          const std::string& file) {
   double global = 0;
   for (double m : r.order_max) global = std::max(global, m);
   std::ostringstream s;
@@ -101,17 +105,23 @@ int RunPfrf(PfrfArgs& args) {
   o.check_every = args.check_every;
   o.htf.harmonics = args.htf_harmonics;
   if (!SelectPfrfRoutes(args.route, &o))
-    throw InputError("--route must be auto, modal, htf, shooting, time or all, got '" + args.route + "'");
+    throw InputError("--route must be auto, modal, htf, shooting, time or all, got '" + args.route +
+                     "'");
   Progress progress("pfrf");
   o.progress = [&progress](int done, int total) { progress(done, total); };
   const PfrfResult r = ComputePartialFrf(sys, o);
-  const std::string in_name = o.input < static_cast<int>(sys.labels().inputs.size()) ? sys.labels().inputs[o.input] : "";
-  const std::string out_name = o.output < static_cast<int>(sys.labels().outputs.size()) ? sys.labels().outputs[o.output] : "";
+  const std::string in_name =
+      o.input < static_cast<int>(sys.labels().inputs.size()) ? sys.labels().inputs[o.input] : "";
+  const std::string out_name = o.output < static_cast<int>(sys.labels().outputs.size())
+                                   ? sys.labels().outputs[o.output]
+                                   : "";
 
   if (!args.csv.empty()) WriteCsv(r, args.csv);
   if (!args.plot.empty())
-    Plot(r, GnuplotEscape(l.scene.name + " " + (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
-                (in_name.empty() ? std::to_string(o.input) : in_name)),
+    Plot(r,
+         GnuplotEscape(l.scene.name + " " +
+                       (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
+                       (in_name.empty() ? std::to_string(o.input) : in_name)),
          args.plot_threshold, args.plot);
 
   if (args.json) {
@@ -128,20 +138,28 @@ int RunPfrf(PfrfArgs& args) {
                         {"diagnostics", run.diagnostics}});
     }
     for (const Resonance& p : r.resonances)
-      res.push_back({{"z", p.order}, {"f_exc_hz", p.f_exc_hz}, {"f_resp_hz", p.f_resp_hz},
-                     {"abs", JsonNumber(p.magnitude)}, {"mode", p.mode + 1}, {"harmonic", p.harmonic},
-                     {"mode_line_hz", JsonNumber(p.mode_line_hz)}, {"share", JsonNumber(p.share)}});
+      res.push_back({{"z", p.order},
+                     {"f_exc_hz", p.f_exc_hz},
+                     {"f_resp_hz", p.f_resp_hz},
+                     {"abs", JsonNumber(p.magnitude)},
+                     {"mode", p.mode + 1},
+                     {"harmonic", p.harmonic},
+                     {"mode_line_hz", JsonNumber(p.mode_line_hz)},
+                     {"share", JsonNumber(p.share)}});
     for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
       for (int z = r.min_order; z <= r.max_order; ++z) {
         const auto h = r.values[i][z - r.min_order];
-        points.push_back({{"f_exc_hz", r.frequencies_hz[i]}, {"z", z},
+        points.push_back({{"f_exc_hz", r.frequencies_hz[i]},
+                          {"z", z},
                           {"f_resp_hz", r.frequencies_hz[i] + z * r.fp_hz},
-                          {"re", JsonNumber(h.real())}, {"im", JsonNumber(h.imag())},
+                          {"re", JsonNumber(h.real())},
+                          {"im", JsonNumber(h.imag())},
                           {"error_estimate", JsonNumber(r.error_estimate[i][z - r.min_order])},
                           {"checked", static_cast<bool>(r.checked[i])}});
       }
     for (const auto& m : r.floquet.modes)
-      exps.push_back({{"re", JsonNumber(m.exponent.real())}, {"im", JsonNumber(m.exponent.imag())},
+      exps.push_back({{"re", JsonNumber(m.exponent.real())},
+                      {"im", JsonNumber(m.exponent.imag())},
                       {"frequency_hz", JsonNumber(m.frequency_hz)}});
     json j = {{"scene", l.scene.name},
               {"parameters", ParametersJson(l.parameters)},
@@ -178,11 +196,12 @@ int RunPfrf(PfrfArgs& args) {
   const auto& f = r.frequencies_hz;
   std::cout << "Partial FRFs of " << l.scene.name;
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
-  std::cout << "\n  output " << o.output << (out_name.empty() ? "" : " (" + out_name + ")") << " / input "
-            << o.input << (in_name.empty() ? "" : " (" + in_name + ")") << ", " << sys.states()
-            << " states, T = " << Num(r.period, 10) << " s, fp = " << Num(r.fp_hz, 8) << " Hz\n  "
-            << f.size() << " excitation frequencies " << Num(f.front(), 6) << " … " << Num(f.back(), 6)
-            << " Hz, orders z = " << r.min_order << " … " << r.max_order
+  std::cout << "\n  output " << o.output << (out_name.empty() ? "" : " (" + out_name + ")")
+            << " / input " << o.input << (in_name.empty() ? "" : " (" + in_name + ")") << ", "
+            << sys.states() << " states, T = " << Num(r.period, 10)
+            << " s, fp = " << Num(r.fp_hz, 8) << " Hz\n  " << f.size() << " excitation frequencies "
+            << Num(f.front(), 6) << " … " << Num(f.back(), 6) << " Hz, orders z = " << r.min_order
+            << " … " << r.max_order
             << "  (H_z indexed by the excitation frequency; response at f + z fp)\n\n";
   std::cout << "  route       points  failures   max |Δ| vs primary    setup [ms]    total [ms]\n";
   for (const RouteRun& run : r.routes) {
@@ -190,7 +209,8 @@ int RunPfrf(PfrfArgs& args) {
     for (double d : run.deviation) worst = std::max(worst, d);
     std::cout << "  " << std::left << std::setw(10) << ToString(run.route) << std::right
               << std::setw(8) << run.points.size() << std::setw(10) << run.failures
-              << (&run == &r.routes.front() ? std::string(21, ' ') + "(primary)" : Num(worst, 3, 21))
+              << (&run == &r.routes.front() ? std::string(21, ' ') + "(primary)"
+                                            : Num(worst, 3, 21))
               << Num(run.setup_s * 1e3, 4, 14) << Num(run.elapsed_s * 1e3, 4, 14) << "\n";
   }
   std::cout << "\n  max disagreement between routes " << Num(r.max_disagreement, 3) << " ("
@@ -205,32 +225,36 @@ int RunPfrf(PfrfArgs& args) {
               << (r.modal->reliable ? "reliable" : "UNRELIABLE") << ", built in "
               << Num(r.modal->elapsed_s * 1e3, 3) << " ms";
   std::cout << "\n  Floquet: max Re λ = " << Num(r.floquet.max_real_exponent, 6) << " 1/s ("
-            << (r.floquet.stable ? "stable" : "UNSTABLE") << "), " << Num(r.floquet.elapsed_s * 1e3, 3)
-            << " ms\n";
+            << (r.floquet.stable ? "stable" : "UNSTABLE") << "), "
+            << Num(r.floquet.elapsed_s * 1e3, 3) << " ms\n";
   std::cout << "\n  order z   max |H_z|\n";
   for (int z = r.min_order; z <= r.max_order; ++z)
     std::cout << std::setw(9) << z << Num(r.order_max[z - r.min_order], 4, 12) << "\n";
   if (f.size() <= 12) {
-    std::cout << "\n   f_exc [Hz]    z   f_resp [Hz]          Re H_z          Im H_z           |H_z|   phase [°]     error est.\n";
+    std::cout << "\n   f_exc [Hz]    z   f_resp [Hz]          Re H_z          Im H_z           "
+                 "|H_z|   phase [°]     error est.\n";
     for (size_t i = 0; i < f.size(); ++i)
       for (int z = r.min_order; z <= r.max_order; ++z) {
         const auto h = r.values[i][z - r.min_order];
         std::cout << Num(f[i], 6, 13) << std::setw(5) << z << Num(f[i] + z * r.fp_hz, 6, 14)
                   << Num(h.real(), 8, 16) << Num(h.imag(), 8, 16) << Num(std::abs(h), 6, 16)
-                  << Num(PhaseDeg(h.real(), h.imag()), 5, 12) << Num(r.error_estimate[i][z - r.min_order], 2, 15)
-                  << "\n";
+                  << Num(PhaseDeg(h.real(), h.imag()), 5, 12)
+                  << Num(r.error_estimate[i][z - r.min_order], 2, 15) << "\n";
       }
   } else if (args.csv.empty()) {
     std::cout << "\n  (" << f.size() * (r.max_order - r.min_order + 1)
               << " values: write them with --csv FILE, or --json)\n";
   }
   if (!r.resonances.empty()) {
-    std::cout << "\n  resonances (peaks of |H_z|; mode k and harmonic v of the resonant modal term, "
-                 "line f_k + v fp)\n    z    f_exc [Hz]   f_resp [Hz]         |H_z|   mode  v   line [Hz]   share\n";
+    std::cout
+        << "\n  resonances (peaks of |H_z|; mode k and harmonic v of the resonant modal term, "
+           "line f_k + v fp)\n    z    f_exc [Hz]   f_resp [Hz]         |H_z|   mode  v   line "
+           "[Hz]   share\n";
     for (const Resonance& p : r.resonances)
       std::cout << std::setw(5) << p.order << Num(p.f_exc_hz, 6, 14) << Num(p.f_resp_hz, 6, 14)
-                << Num(p.magnitude, 4, 14) << std::setw(7) << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?")
-                << std::setw(3) << p.harmonic << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
+                << Num(p.magnitude, 4, 14) << std::setw(7)
+                << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?") << std::setw(3) << p.harmonic
+                << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
   }
   std::vector<std::string> diags = r.diagnostics;
   for (const RouteRun& run : r.routes)
@@ -239,7 +263,8 @@ int RunPfrf(PfrfArgs& args) {
     // A note repeated for many frequencies is printed once, with its count.
     std::vector<std::pair<std::string, int>> unique;
     for (const auto& d : diags) {
-      auto it = std::find_if(unique.begin(), unique.end(), [&](const auto& u) { return u.first == d; });
+      auto it =
+          std::find_if(unique.begin(), unique.end(), [&](const auto& u) { return u.first == d; });
       if (it == unique.end()) {
         unique.emplace_back(d, 1);
       } else {
@@ -248,7 +273,8 @@ int RunPfrf(PfrfArgs& args) {
     }
     std::cout << "\n  notes:\n";
     for (const auto& [d, count] : unique)
-      std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "") << "\n";
+      std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "")
+                << "\n";
   }
   std::cout << "\n  total " << Num(r.elapsed_s, 4) << " s\n";
   if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
@@ -261,17 +287,21 @@ Command AddPfrfCommand(CLI::App& app) {
   static PfrfArgs args;
   args = PfrfArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
-      "pfrf", "Partial frequency response functions H_z(ω) by independent routes, with error estimates");
+      "pfrf",
+      "Partial frequency response functions H_z(ω) by independent routes, with error estimates");
   AddSceneArgs(cmd, args.scene);
-  cmd->add_option("--input", args.input, "input channel: index from 0 or name")->capture_default_str();
-  cmd->add_option("--output", args.output, "output channel: index from 0 or name")->capture_default_str();
+  cmd->add_option("--input", args.input, "input channel: index from 0 or name")
+      ->capture_default_str();
+  cmd->add_option("--output", args.output, "output channel: index from 0 or name")
+      ->capture_default_str();
   cmd->add_option("--freq", args.freq, "excitation frequencies F0:F1:DF in Hz (F:F:DF = one)")
       ->required();
   cmd->add_option("--orders", args.orders, "orders z, ZMIN:ZMAX")->capture_default_str();
-  cmd->add_option("--route", args.route,
-                  "auto | modal | htf | shooting | time | all (primary route; auto: modal unless it "
-                  "reports itself unreliable, checked by htf, or by shooting when A(t) jumps; all: "
-                  "modal checked by the other three)")
+  cmd->add_option(
+         "--route", args.route,
+         "auto | modal | htf | shooting | time | all (primary route; auto: modal unless it "
+         "reports itself unreliable, checked by htf, or by shooting when A(t) jumps; all: "
+         "modal checked by the other three)")
       ->capture_default_str();
   cmd->add_option("--check-every", args.check_every,
                   "run the check routes on every k-th frequency (1 = all)")
@@ -284,7 +314,8 @@ Command AddPfrfCommand(CLI::App& app) {
                   "plot the orders with max |H_z| above this fraction of the largest")
       ->capture_default_str();
   cmd->add_option("--csv", args.csv, "write every H_z to CSV");
-  cmd->add_option("--plot", args.plot, "draw |H_z| against the response frequency (FILE.svg or .png)");
+  cmd->add_option("--plot", args.plot,
+                  "draw |H_z| against the response frequency (FILE.svg or .png)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   return {cmd, [] { return RunPfrf(args); }};
 }

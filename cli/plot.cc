@@ -41,7 +41,8 @@ std::string GnuplotTerminal(const std::string& file, int width, int height) {
 
 void RunGnuplot(const std::string& output_file, const std::string& script) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw InputError("cannot draw '" + output_file + "': gnuplot is not installed (apt-get install gnuplot-nox)");
+    throw InputError("cannot draw '" + output_file +
+                     "': gnuplot is not installed (apt-get install gnuplot-nox)");
   char path[] = "/tmp/ltp-plot-XXXXXX";
   const int fd = mkstemp(path);
   if (fd < 0) throw InputError("cannot create a temporary file for gnuplot");
@@ -95,14 +96,16 @@ void PlotFloquet(const FloquetResult& r, const std::string& title, const std::st
     }
     s << "EOD\n"
       << "set title 'Fourier energy of the periodic mode shapes ξ_k(t)'\n"
-      << "set xlabel 'harmonic v  (ξ_k(t) = Σ ξ_{k,v} e^{j v Ωp t})'\nset ylabel 'energy fraction'\n"
+      << "set xlabel 'harmonic v  (ξ_k(t) = Σ ξ_{k,v} e^{j v Ωp t})'\nset ylabel 'energy "
+         "fraction'\n"
       << "set logscale y\nset format y '10^{%L}'\nset yrange [1e-16:2]\nset key below maxrows 3\n"
       << "set xrange [" << -std::min(H, 12) << ":" << std::min(H, 12) << "]\n"
       << "plot ";
     const int shown = std::min(r.states, 10);
     for (int k = 0; k < shown; ++k)
-      s << (k ? ", " : "") << "$HARM using 1:" << k + 2 << " with linespoints pt 7 ps 0.6 title 'mode "
-        << k + 1 << " (" << Num(r.modes[k].frequency_hz, 4) << " Hz)'";
+      s << (k ? ", " : "") << "$HARM using 1:" << k + 2
+        << " with linespoints pt 7 ps 0.6 title 'mode " << k + 1 << " ("
+        << Num(r.modes[k].frequency_hz, 4) << " Hz)'";
     s << "\n";
   }
   s << "unset multiplot\n";

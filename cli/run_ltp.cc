@@ -2,13 +2,14 @@
 // Exit codes: 0 done; 1 the analysis ran and its result is unusable (failed its own checks, no
 // steady state, …: the report is on stdout, one line `ltp: failed: …` on stderr); 2 the input was
 // refused (one line `ltp: error: …` on stderr).
+#include "run_ltp.h"
+
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "run_ltp.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
 
@@ -21,20 +22,15 @@ int RunLtp(int argc, char** argv) {
   UseSingleThreadedBlas();  // ltp runs its own threads (see threads.h)
   app.set_version_flag("--version", std::string("ltp ") + LTP_VERSION);
   app.require_subcommand(1);
-  app.footer("SCENE is a built-in scene (`ltp scenes`), a YAML scene file (examples in scenes/), or OpenFAST .lin files (files, a directory or a quoted glob).");
+  app.footer(
+      "SCENE is a built-in scene (`ltp scenes`), a YAML scene file (examples in scenes/), or "
+      "OpenFAST .lin files (files, a directory or a quoted glob).");
 
   const std::vector<Command> commands = {
-      AddScenesCommand(app),
-      AddInfoCommand(app),
-      AddFloquetCommand(app),
-      AddHillCommand(app),
-      AddPfrfCommand(app),
-      AddSnapshotCommand(app),
-      AddChartCommand(app),
-      AddMbcCommand(app),
-      AddCampbellCommand(app),
-      AddSimulateCommand(app),
-      AddIdentifyCommand(app),
+      AddScenesCommand(app),   AddInfoCommand(app),     AddFloquetCommand(app),
+      AddHillCommand(app),     AddPfrfCommand(app),     AddSnapshotCommand(app),
+      AddChartCommand(app),    AddMbcCommand(app),      AddCampbellCommand(app),
+      AddSimulateCommand(app), AddIdentifyCommand(app),
   };
 
   try {
@@ -55,7 +51,8 @@ int RunLtp(int argc, char** argv) {
         const int code = c.run();
         if (code == 1) {
           std::string reason = FailureReason();
-          if (reason.empty()) reason = "the analysis ran but its result is unusable (report on stdout)";
+          if (reason.empty())
+            reason = "the analysis ran but its result is unusable (report on stdout)";
           for (char& ch : reason)
             if (ch == '\n') ch = ' ';
           if (reason.size() > 400) reason = reason.substr(0, 400) + " …";

@@ -39,14 +39,16 @@ std::vector<double> ExcitationFrequencies(const std::string& text) {
   const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
   if (kind == "sine") return ParseFrequencyRange(rest + ":" + rest + ":1", "--excitation sine:F");
   if (kind == "stepsine") return ParseFrequencyRange(rest, "--excitation stepsine:F0:F1:DF");
-  throw InputError("--excitation must be sine:F or stepsine:F0:F1:DF (Hz), got '" + text +
-                   "' (multisine and noise excitation with broadband identification are not built yet)");
+  throw InputError(
+      "--excitation must be sine:F or stepsine:F0:F1:DF (Hz), got '" + text +
+      "' (multisine and noise excitation with broadband identification are not built yet)");
 }
 
 int RunSimulate(const SimulateArgs& args) {
   const LoadedScene l = LoadSceneArgs(args.scene);
   SimulateOptions o;
-  o.input = ResolveChannel(args.input, l.system.labels().inputs, l.system.inputs(), "--input", "input");
+  o.input =
+      ResolveChannel(args.input, l.system.labels().inputs, l.system.inputs(), "--input", "input");
   o.frequencies_hz = ExcitationFrequencies(args.excitation);
   o.periods = args.periods;
   o.samples_per_period = args.samples_per_period;
@@ -57,25 +59,36 @@ int RunSimulate(const SimulateArgs& args) {
   std::string comment = "ltp simulate " + l.scene.name;
   if (!l.parameters.empty()) comment += " (" + ParameterList(l.parameters) + ")";
   comment += ", step-sine on input " + std::to_string(o.input) + ", amplitude " + Num(o.amplitude) +
-             (std::isfinite(o.noise_snr_db) ? ", output noise " + Num(o.noise_snr_db) + " dB SNR, seed " + std::to_string(o.seed) : "");
+             (std::isfinite(o.noise_snr_db) ? ", output noise " + Num(o.noise_snr_db) +
+                                                  " dB SNR, seed " + std::to_string(o.seed)
+                                            : "");
   WriteTimeDataCsv(args.out, r.data, comment);
   size_t samples = 0;
   for (const TimeRecord& rec : r.data.records) samples += rec.time.size();
   if (args.json) {
     std::vector<double> frequencies;
     for (const TimeRecord& rec : r.data.records) frequencies.push_back(rec.excitation_hz);
-    std::cout << json{{"scene", l.scene.name}, {"parameters", ParametersJson(l.parameters)}, {"input", o.input},
-                      {"period_s", r.data.period}, {"records", r.data.records.size()}, {"samples", samples},
-                      {"excitation_hz", frequencies}, {"settle_time_s", r.settle_time},
-                      {"max_real_exponent", JsonNumber(r.max_real_exponent)}, {"out", args.out},
-                      {"diagnostics", r.diagnostics}}.dump(2)
+    std::cout << json{{"scene", l.scene.name},
+                      {"parameters", ParametersJson(l.parameters)},
+                      {"input", o.input},
+                      {"period_s", r.data.period},
+                      {"records", r.data.records.size()},
+                      {"samples", samples},
+                      {"excitation_hz", frequencies},
+                      {"settle_time_s", r.settle_time},
+                      {"max_real_exponent", JsonNumber(r.max_real_exponent)},
+                      {"out", args.out},
+                      {"diagnostics", r.diagnostics}}
+                     .dump(2)
               << "\n";
     return 0;
   }
-  std::cout << "Simulated step-sine test of " << l.scene.name << ": " << r.data.records.size() << " record"
-            << (r.data.records.size() == 1 ? "" : "s") << " of " << o.periods << " periods ("
-            << o.samples_per_period << " samples per period, T = " << Num(r.data.period, 10) << " s), each after "
-            << Num(r.settle_time, 6) << " s of transient (slowest exponent " << Num(r.max_real_exponent, 4) << " 1/s)\n";
+  std::cout << "Simulated step-sine test of " << l.scene.name << ": " << r.data.records.size()
+            << " record" << (r.data.records.size() == 1 ? "" : "s") << " of " << o.periods
+            << " periods (" << o.samples_per_period
+            << " samples per period, T = " << Num(r.data.period, 10) << " s), each after "
+            << Num(r.settle_time, 6) << " s of transient (slowest exponent "
+            << Num(r.max_real_exponent, 4) << " 1/s)\n";
   for (const std::string& d : r.diagnostics) std::cout << "  note: " << d << "\n";
   std::cout << "  wrote " << args.out << " (" << samples << " rows)\n";
   return 0;
@@ -90,9 +103,11 @@ Command AddSimulateCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--input", args.input, "excited input (index or name)")->capture_default_str();
   cmd->add_option("--excitation", args.excitation, "sine:F or stepsine:F0:F1:DF (Hz)")->required();
-  cmd->add_option("--periods", args.periods, "recorded periods per record (frequencies move to whole cycles)")
+  cmd->add_option("--periods", args.periods,
+                  "recorded periods per record (frequencies move to whole cycles)")
       ->capture_default_str();
-  cmd->add_option("--samples-per-period", args.samples_per_period, "sampling rate")->capture_default_str();
+  cmd->add_option("--samples-per-period", args.samples_per_period, "sampling rate")
+      ->capture_default_str();
   cmd->add_option("--amplitude", args.amplitude, "of the input sine")->capture_default_str();
   cmd->add_option("--noise", args.noise_db, "white output noise at this SNR (dB)");
   cmd->add_option("--seed", args.seed, "noise generator seed")->capture_default_str();

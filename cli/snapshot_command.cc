@@ -31,7 +31,8 @@ struct SnapshotArgs {
   std::optional<double> angle, time;
   std::string input = "0", output = "0";
   std::string freq;
-  std::string orders = std::to_string(SnapshotOptions{}.min_order) + ":" + std::to_string(SnapshotOptions{}.max_order);
+  std::string orders = std::to_string(SnapshotOptions{}.min_order) + ":" +
+                       std::to_string(SnapshotOptions{}.max_order);
   bool compare = false;
   std::string csv, plot;
   bool json = false;
@@ -50,14 +51,15 @@ void WriteCsv(const SnapshotResult& r, bool compare, const std::string& file) {
         << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << "," << 1e-15 * std::abs(h);
     if (compare) {
       const auto g = r.summed[i];
-      csv << "," << g.real() << "," << g.imag() << "," << std::abs(g) << "," << PhaseDeg(g.real(), g.imag())
-          << "," << r.summed_error[i];
+      csv << "," << g.real() << "," << g.imag() << "," << std::abs(g) << ","
+          << PhaseDeg(g.real(), g.imag()) << "," << r.summed_error[i];
     }
     csv << "\n";
   }
 }
 
-void Plot(const SnapshotResult& r, bool compare, const std::string& title, const std::string& file) {
+void Plot(const SnapshotResult& r, bool compare, const std::string& title,
+          const std::string& file) {
   std::ostringstream s;
   s << GnuplotTerminal(file, 1000, 520) << "set output '" << file << "'\n"
     << "set title \"" << title << "\"\nset xlabel 'frequency [Hz]'\nset ylabel '|H|'\n"
@@ -69,7 +71,9 @@ void Plot(const SnapshotResult& r, bool compare, const std::string& title, const
     s << "\n";
   }
   s << "EOD\nplot $D using 1:2 with lines lw 1.5 title 'snapshot FRF (frozen system)'";
-  if (compare) s << ", $D using 1:3 with lines lw 1.5 title 'periodic system: Σ_z H_z(ω − zΩp) (impulse response)'";
+  if (compare)
+    s << ", $D using 1:3 with lines lw 1.5 title 'periodic system: Σ_z H_z(ω − zΩp) (impulse "
+         "response)'";
   s << "\n";
   RunGnuplot(file, s.str());
 }
@@ -84,7 +88,8 @@ int RunSnapshot(SnapshotArgs& args) {
   if (sys.inputs() < 1 || sys.outputs() < 1)
     throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
   if (args.angle && !sys.rotor_speed())
-    throw InputError("scene '" + l.scene.name + "' has no rotor speed: use --time instead of --angle");
+    throw InputError("scene '" + l.scene.name +
+                     "' has no rotor speed: use --time instead of --angle");
   SnapshotOptions o;
   o.frequencies_hz = ParseFrequencyRange(args.freq, "--freq");
   o.time = args.time;
@@ -94,21 +99,26 @@ int RunSnapshot(SnapshotArgs& args) {
   o.compare = args.compare;
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   const SnapshotResult r = ComputeSnapshotFrf(sys, o);
-  const std::string at = r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
-                                     : "t = " + Num(r.time, 8) + " s";
+  const std::string at =
+      r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
+                  : "t = " + Num(r.time, 8) + " s";
   if (!args.csv.empty()) WriteCsv(r, o.compare, args.csv);
-  if (!args.plot.empty()) Plot(r, o.compare, GnuplotEscape(l.scene.name + ": frozen at " + at), args.plot);
+  if (!args.plot.empty())
+    Plot(r, o.compare, GnuplotEscape(l.scene.name + ": frozen at " + at), args.plot);
 
   if (args.json) {
     json eig = json::array(), vals = json::array(), fl = json::array();
     for (const auto& e : r.eigenvalues)
-      eig.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())},
+      eig.push_back({{"re", JsonNumber(e.real())},
+                     {"im", JsonNumber(e.imag())},
                      {"frequency_hz", JsonNumber(e.imag() / (2 * kPi))}});
     for (const auto& e : r.floquet_exponents)
-      fl.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())},
+      fl.push_back({{"re", JsonNumber(e.real())},
+                    {"im", JsonNumber(e.imag())},
                     {"frequency_hz", JsonNumber(e.imag() / (2 * kPi))}});
     for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
-      json v = {{"f_hz", r.frequencies_hz[i]}, {"re", JsonNumber(r.snapshot[i].real())},
+      json v = {{"f_hz", r.frequencies_hz[i]},
+                {"re", JsonNumber(r.snapshot[i].real())},
                 {"im", JsonNumber(r.snapshot[i].imag())}};
       if (o.compare) {
         v["summed_re"] = JsonNumber(r.summed[i].real());
@@ -117,12 +127,19 @@ int RunSnapshot(SnapshotArgs& args) {
       }
       vals.push_back(v);
     }
-    json j = {{"scene", l.scene.name}, {"parameters", ParametersJson(l.parameters)},
-              {"time", r.time}, {"angle_deg", r.angle_deg ? json(*r.angle_deg) : json(nullptr)},
-              {"input", o.input}, {"output", o.output}, {"snapshot_eigenvalues", eig},
-              {"compare", o.compare}, {"floquet_exponents", fl},
+    json j = {{"scene", l.scene.name},
+              {"parameters", ParametersJson(l.parameters)},
+              {"time", r.time},
+              {"angle_deg", r.angle_deg ? json(*r.angle_deg) : json(nullptr)},
+              {"input", o.input},
+              {"output", o.output},
+              {"snapshot_eigenvalues", eig},
+              {"compare", o.compare},
+              {"floquet_exponents", fl},
               {"max_summed_disagreement", JsonNumber(r.max_summed_disagreement)},
-              {"modal_reliable", r.modal_reliable}, {"values", vals}, {"elapsed_s", r.elapsed_s},
+              {"modal_reliable", r.modal_reliable},
+              {"values", vals},
+              {"elapsed_s", r.elapsed_s},
               {"diagnostics", r.diagnostics}};
     std::cout << j.dump(2) << "\n";
     return 0;
@@ -131,31 +148,39 @@ int RunSnapshot(SnapshotArgs& args) {
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
   std::cout << "\n  frozen at " << at << ": H(ω) = C (jωI − A)⁻¹ B + D, output " << o.output
             << " / input " << o.input << ", " << r.frequencies_hz.size() << " frequencies "
-            << Num(r.frequencies_hz.front(), 6) << " … " << Num(r.frequencies_hz.back(), 6) << " Hz\n"
+            << Num(r.frequencies_hz.front(), 6) << " … " << Num(r.frequencies_hz.back(), 6)
+            << " Hz\n"
             << "\n  snapshot eigenvalues (frozen A)      Re [1/s]     freq [Hz]\n";
   for (const auto& e : r.eigenvalues)
-    if (e.imag() >= 0) std::cout << std::string(34, ' ') << Num(e.real(), 6, 12) << Num(e.imag() / (2 * kPi), 6, 14) << "\n";
+    if (e.imag() >= 0)
+      std::cout << std::string(34, ' ') << Num(e.real(), 6, 12) << Num(e.imag() / (2 * kPi), 6, 14)
+                << "\n";
   if (o.compare) {
     std::cout << "\n  Floquet exponents (periodic system)  Re [1/s]     freq [Hz]\n";
     for (const auto& e : r.floquet_exponents)
-      if (e.imag() >= 0) std::cout << std::string(34, ' ') << Num(e.real(), 6, 12) << Num(e.imag() / (2 * kPi), 6, 14) << "\n";
+      if (e.imag() >= 0)
+        std::cout << std::string(34, ' ') << Num(e.real(), 6, 12)
+                  << Num(e.imag() / (2 * kPi), 6, 14) << "\n";
     std::cout << "\n  summed partials Σ_z H_z(ω − zΩp), z = " << o.min_order << " … " << o.max_order
               << " (response of the periodic system to an impulse), modal route "
-              << (r.modal_reliable ? "(reliable)" : "(UNRELIABLE)") << ", htf check: max disagreement "
-              << Num(r.max_summed_disagreement, 3) << " of the largest |H_z| at " << o.check_points
-              << " excitation frequencies\n";
+              << (r.modal_reliable ? "(reliable)" : "(UNRELIABLE)")
+              << ", htf check: max disagreement " << Num(r.max_summed_disagreement, 3)
+              << " of the largest |H_z| at " << o.check_points << " excitation frequencies\n";
   }
   if (r.frequencies_hz.size() <= 20) {
-    std::cout << "\n      f [Hz]        |H_snap|   phase [°]" << (o.compare ? "        |G_sum|   phase [°]" : "") << "\n";
+    std::cout << "\n      f [Hz]        |H_snap|   phase [°]"
+              << (o.compare ? "        |G_sum|   phase [°]" : "") << "\n";
     for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
       std::cout << Num(r.frequencies_hz[i], 6, 12) << Num(std::abs(r.snapshot[i]), 6, 16)
                 << Num(PhaseDeg(r.snapshot[i].real(), r.snapshot[i].imag()), 5, 12);
       if (o.compare)
-        std::cout << Num(std::abs(r.summed[i]), 6, 15) << Num(PhaseDeg(r.summed[i].real(), r.summed[i].imag()), 5, 12);
+        std::cout << Num(std::abs(r.summed[i]), 6, 15)
+                  << Num(PhaseDeg(r.summed[i].real(), r.summed[i].imag()), 5, 12);
       std::cout << "\n";
     }
   } else if (args.csv.empty()) {
-    std::cout << "\n  (" << r.frequencies_hz.size() << " values: write them with --csv FILE, or --json)\n";
+    std::cout << "\n  (" << r.frequencies_hz.size()
+              << " values: write them with --csv FILE, or --json)\n";
   }
   if (!r.diagnostics.empty()) {
     std::cout << "\n  notes:\n";
@@ -170,15 +195,19 @@ int RunSnapshot(SnapshotArgs& args) {
 Command AddSnapshotCommand(CLI::App& app) {
   static SnapshotArgs args;
   args = SnapshotArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
-  auto* cmd = app.add_subcommand(
-      "snapshot", "FRF of the system frozen at one time or rotor angle; --compare overlays the periodic system");
+  auto* cmd = app.add_subcommand("snapshot",
+                                 "FRF of the system frozen at one time or rotor angle; --compare "
+                                 "overlays the periodic system");
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--angle", args.angle, "freeze at this rotor angle (degrees)");
   cmd->add_option("--time", args.time, "freeze at this time (s)");
-  cmd->add_option("--input", args.input, "input channel: index from 0 or name")->capture_default_str();
-  cmd->add_option("--output", args.output, "output channel: index from 0 or name")->capture_default_str();
+  cmd->add_option("--input", args.input, "input channel: index from 0 or name")
+      ->capture_default_str();
+  cmd->add_option("--output", args.output, "output channel: index from 0 or name")
+      ->capture_default_str();
   cmd->add_option("--freq", args.freq, "frequencies F0:F1:DF in Hz (F:F:DF = one)")->required();
-  cmd->add_option("--orders", args.orders, "orders z summed for --compare, ZMIN:ZMAX")->capture_default_str();
+  cmd->add_option("--orders", args.orders, "orders z summed for --compare, ZMIN:ZMAX")
+      ->capture_default_str();
   cmd->add_flag("--compare", args.compare,
                 "also the periodic system's impulse response Σ_z H_z(ω − zΩp) (paper Fig. 6)");
   cmd->add_option("--csv", args.csv, "write the FRF(s) to CSV");

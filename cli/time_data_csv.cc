@@ -41,21 +41,26 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
   out << "# ltp time data: " << comment << "\n# period_s: " << data.period << "\n";
   if (data.rotor_speed) out << "# rotor_speed_rad_s: " << *data.rotor_speed << "\n";
   out << "record,excitation_hz,t";
-  const auto name = [](const std::vector<std::string>& names, Eigen::Index i, const char* fallback) {
+  const auto name = [](const std::vector<std::string>& names, Eigen::Index i,
+                       const char* fallback) {
     if (static_cast<size_t>(i) < names.size()) return names[static_cast<size_t>(i)];
     std::string text = fallback;  // (not fallback + to_string: g++ 12 warns falsely, -Wrestrict)
     return text += std::to_string(i + 1);
   };
   const TimeRecord& first = data.records.front();
-  for (Eigen::Index i = 0; i < first.inputs.cols(); ++i) out << ",in:" << name(data.input_names, i, "u");
-  for (Eigen::Index i = 0; i < first.outputs.cols(); ++i) out << ",out:" << name(data.output_names, i, "y");
+  for (Eigen::Index i = 0; i < first.inputs.cols(); ++i)
+    out << ",in:" << name(data.input_names, i, "u");
+  for (Eigen::Index i = 0; i < first.outputs.cols(); ++i)
+    out << ",out:" << name(data.output_names, i, "y");
   out << "\n";
   for (size_t r = 0; r < data.records.size(); ++r) {
     const TimeRecord& rec = data.records[r];
     for (size_t s = 0; s < rec.time.size(); ++s) {
       out << r + 1 << "," << rec.excitation_hz << "," << rec.time[s];
-      for (Eigen::Index i = 0; i < rec.inputs.cols(); ++i) out << "," << rec.inputs(static_cast<Eigen::Index>(s), i);
-      for (Eigen::Index i = 0; i < rec.outputs.cols(); ++i) out << "," << rec.outputs(static_cast<Eigen::Index>(s), i);
+      for (Eigen::Index i = 0; i < rec.inputs.cols(); ++i)
+        out << "," << rec.inputs(static_cast<Eigen::Index>(s), i);
+      for (Eigen::Index i = 0; i < rec.outputs.cols(); ++i)
+        out << "," << rec.outputs(static_cast<Eigen::Index>(s), i);
       out << "\n";
     }
   }
@@ -79,9 +84,11 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
     rec.outputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(outputs));
     for (size_t s = 0; s < rows.size(); ++s) {
       rec.time.push_back(rows[s][2]);
-      for (size_t i = 0; i < inputs; ++i) rec.inputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + i];
+      for (size_t i = 0; i < inputs; ++i)
+        rec.inputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + i];
       for (size_t i = 0; i < outputs; ++i)
-        rec.outputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + inputs + i];
+        rec.outputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) =
+            rows[s][3 + inputs + i];
     }
     data.records.push_back(std::move(rec));
     rows.clear();
@@ -92,19 +99,24 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     if (line[0] == '#') {
-      for (const auto& [key, field] : {std::pair<std::string, int>{"period_s:", 0}, {"rotor_speed_rad_s:", 1}}) {
+      for (const auto& [key, field] :
+           {std::pair<std::string, int>{"period_s:", 0}, {"rotor_speed_rad_s:", 1}}) {
         const size_t at = line.find(key);
         if (at == std::string::npos) continue;
         const double x = Number(line.substr(at + key.size()), where);
-        if (field == 0) data.period = x;
-        else data.rotor_speed = x;
+        if (field == 0)
+          data.period = x;
+        else
+          data.rotor_speed = x;
       }
       continue;
     }
     const std::vector<std::string> cells = SplitCsv(line);
     if (!header) {
-      if (cells.size() < 5 || cells[0] != "record" || cells[1] != "excitation_hz" || cells[2] != "t")
-        throw InputError(where + ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
+      if (cells.size() < 5 || cells[0] != "record" || cells[1] != "excitation_hz" ||
+          cells[2] != "t")
+        throw InputError(where +
+                         ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
       for (size_t c = 3; c < cells.size(); ++c) {
         if (cells[c].rfind("in:", 0) == 0 && outputs == 0) {
           ++inputs;
@@ -113,10 +125,12 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
           ++outputs;
           data.output_names.push_back(cells[c].substr(4));
         } else {
-          throw InputError(where + ": column '" + cells[c] + "' is not in:NAME or out:NAME (inputs first)");
+          throw InputError(where + ": column '" + cells[c] +
+                           "' is not in:NAME or out:NAME (inputs first)");
         }
       }
-      if (inputs == 0 || outputs == 0) throw InputError(where + ": needs at least one in: and one out: column");
+      if (inputs == 0 || outputs == 0)
+        throw InputError(where + ": needs at least one in: and one out: column");
       header = true;
       continue;
     }
@@ -136,7 +150,8 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
   if (!header) throw InputError(path + ": no header line (record,excitation_hz,t,in:...,out:...)");
   if (period > 0) data.period = period;
   if (!(data.period > 0))
-    throw InputError(path + ": no '# period_s:' line: give the period with --period T or --rotor-speed W");
+    throw InputError(path +
+                     ": no '# period_s:' line: give the period with --period T or --rotor-speed W");
   data.Validate();
   return data;
 }

@@ -72,7 +72,9 @@ bool TooMuchWork(const std::vector<std::string>& args) {
       if (const std::string* v = ValueOf(args, i, "--samples-per-period", scratch))
         if (std::atof(v->c_str()) > 256) return true;
       if (const std::string* v = ValueOf(args, i, "--excitation", scratch))
-        if (StartsWith(*v, "stepsine:") && ltp::ParseFrequencyRange(v->substr(9), "--excitation").size() > 20) return true;
+        if (StartsWith(*v, "stepsine:") &&
+            ltp::ParseFrequencyRange(v->substr(9), "--excitation").size() > 20)
+          return true;
       for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})
         if (const std::string* v = ValueOf(args, i, h, scratch))
           if (std::atof(v->c_str()) > kMaxHarmonics) return true;
@@ -87,7 +89,8 @@ bool TooMuchWork(const std::vector<std::string>& args) {
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   // Outputs (--csv, --json files, chart journals) land in a scratch directory.
-  const auto dir = std::filesystem::temp_directory_path() / ("ltp-fuzz-" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ltp-fuzz-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::filesystem::current_path(dir);
   std::cout.setstate(std::ios::failbit);  // results are not what is tested here

@@ -86,7 +86,8 @@ PeriodicSystem BuildJeffcott(const ParameterMap& p) {
   cm.leftCols(2).setIdentity();
   return PeriodicSystem::FromFourier(pi / omega, std::move(A), FourierMatrix::Constant(b),
                                      FourierMatrix::Constant(cm))
-      .WithLabels({.states = {"x", "y", "x_dot", "y_dot"}, .inputs = {"fx", "fy"}, .outputs = {"x", "y"}})
+      .WithLabels(
+          {.states = {"x", "y", "x_dot", "y_dot"}, .inputs = {"fx", "fy"}, .outputs = {"x", "y"}})
       .WithRotorSpeed(omega);
 }
 

@@ -18,8 +18,8 @@ int ResolveChannel(const std::string& text, const std::vector<std::string>& name
   for (int i = 0; i < count; ++i)
     valid += (i ? ", " : "") + std::to_string(i) +
              (i < static_cast<int>(names.size()) && !names[i].empty() ? " (" + names[i] + ")" : "");
-  throw InputError(option + " '" + text + "' is not one of the system's " + what + "s: " +
-                   (count ? valid : std::string("none")));
+  throw InputError(option + " '" + text + "' is not one of the system's " + what +
+                   "s: " + (count ? valid : std::string("none")));
 }
 
 }  // namespace ltp

@@ -37,7 +37,8 @@ std::vector<int> MatchExponentIndices(const std::vector<std::complex<double>>& v
 }
 
 std::vector<double> MatchExponents(const std::vector<std::complex<double>>& values,
-                                   const std::vector<std::complex<double>>& reference, double omega) {
+                                   const std::vector<std::complex<double>>& reference,
+                                   double omega) {
   const std::vector<int> match = MatchExponentIndices(values, reference, omega);
   std::vector<double> out(values.size(), std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < values.size(); ++i)

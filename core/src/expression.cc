@@ -37,13 +37,15 @@ std::unique_ptr<mu::Parser> MakeParser(const std::string& text, const Constants&
 // An expression as quoted in a message: a 1 MB expression must not become a 1 MB error line.
 std::string Quoted(const std::string& text) {
   constexpr size_t kMax = 120;
-  return text.size() <= kMax ? text
-                             : text.substr(0, kMax) + "… (" + std::to_string(text.size()) + " characters)";
+  return text.size() <= kMax
+             ? text
+             : text.substr(0, kMax) + "… (" + std::to_string(text.size()) + " characters)";
 }
 
 ExpressionError Translate(const mu::ParserError& e, const std::string& text) {
   if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN)
-    return ExpressionError("unknown name '" + e.GetToken() + "' in expression '" + Quoted(text) + "'");
+    return ExpressionError("unknown name '" + e.GetToken() + "' in expression '" + Quoted(text) +
+                           "'");
   return ExpressionError("bad expression '" + Quoted(text) + "': " + e.GetMsg());
 }
 
@@ -75,7 +77,8 @@ bool Check(mu::Parser& parser, const std::string& text, bool allow_t) {
     // GetUsedVar also lists names that are not defined at all: those are the unknown ones.
     for (const auto& [name, pointer] : parser.GetUsedVar()) {
       if (name != "t" || !allow_t)
-        throw ExpressionError("unknown variable '" + name + "' in expression '" + Quoted(text) + "'");
+        throw ExpressionError("unknown variable '" + name + "' in expression '" + Quoted(text) +
+                              "'");
       uses_t = true;
     }
     parser.Eval();

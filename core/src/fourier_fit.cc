@@ -6,10 +6,9 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <unsupported/Eigen/FFT>
 #include <utility>
 #include <vector>
-
-#include <unsupported/Eigen/FFT>
 
 #include "ltp/core/error.h"
 
@@ -124,7 +123,7 @@ struct Analysis {
   double rate = 0;
   // Extrapolated Σ_{w >= S/2} ||M_w||² (one side); infinite when the fit does not converge.
   double beyond = 0;
-  int last_significant = -1;  // largest w with ||c_w|| above round-off
+  int last_significant = -1;    // largest w with ||c_w|| above round-off
   std::vector<double> dropped;  // dropped[H] = norm of all harmonics |w| > H (both sides)
 };
 
@@ -312,11 +311,10 @@ SystemFourier ToFourier(const PeriodicSystem& system, const FourierFitOptions& o
 
 PeriodicSystem ToFourierSystem(const PeriodicSystem& system, const FourierFitOptions& options) {
   SystemFourier fits = ToFourier(system, options);
-  PeriodicSystem out =
-      PeriodicSystem::FromFourier(system.period(), std::move(fits.A.series),
-                                  std::move(fits.B.series), std::move(fits.C.series),
-                                  std::move(fits.D.series))
-          .WithLabels(system.labels());
+  PeriodicSystem out = PeriodicSystem::FromFourier(
+                           system.period(), std::move(fits.A.series), std::move(fits.B.series),
+                           std::move(fits.C.series), std::move(fits.D.series))
+                           .WithLabels(system.labels());
   if (auto speed = system.rotor_speed()) out = out.WithRotorSpeed(*speed);
   return out;
 }

@@ -54,7 +54,8 @@ void FourierMatrix::SetHarmonic(int w, const Eigen::MatrixXcd& m) {
 
 void FourierMatrix::Evaluate(double t, double omega_p, Eigen::Ref<Eigen::MatrixXd> out) const {
   // Real part of Σ M_w e^{jwΩt} = M_0 + Σ_{w>0} 2 Re(M_w e^{jwΩt}) for a Hermitian series; we sum
-  // both halves explicitly so that a slightly non-Hermitian series still evaluates to its real part.
+  // both halves explicitly so that a slightly non-Hermitian series still evaluates to its real
+  // part.
   out = coeffs_[max_harmonic_].real();
   for (int w = 1; w <= max_harmonic_; ++w) {
     const std::complex<double> e = std::polar(1.0, w * omega_p * t);

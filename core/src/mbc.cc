@@ -59,9 +59,18 @@ MatrixXd MbcTransform(int blades, double psi, int dpsi_order) {
     for (int h = 1; h <= cyclics; ++h) {
       const double c = std::cos(h * psi_i), s = std::sin(h * psi_i);
       switch (dpsi_order) {
-        case 0: t(i, 2 * h - 1) = c; t(i, 2 * h) = s; break;
-        case 1: t(i, 2 * h - 1) = -h * s; t(i, 2 * h) = h * c; break;
-        default: t(i, 2 * h - 1) = -h * h * c; t(i, 2 * h) = -h * h * s; break;
+        case 0:
+          t(i, 2 * h - 1) = c;
+          t(i, 2 * h) = s;
+          break;
+        case 1:
+          t(i, 2 * h - 1) = -h * s;
+          t(i, 2 * h) = h * c;
+          break;
+        default:
+          t(i, 2 * h - 1) = -h * h * c;
+          t(i, 2 * h) = -h * h * s;
+          break;
       }
     }
     // Differential (−1)^i with blades numbered from 1: blade 1 gets −1.
@@ -126,9 +135,9 @@ MbcRotorSystem RotorInMultiBladeCoordinates(const RotorParameters& rotor) {
   const double period = 2 * pi / rotor.omega;
   for (double fraction : {0.137, 0.291, 0.5, 0.618, 0.853}) {
     const Transformed at = TransformAt(rotor, fraction * period);
-    s.constancy_defect = std::max({s.constancy_defect, RelativeChange(at.M, at0.M),
-                                   RelativeChange(at.D, at0.D), RelativeChange(at.K, at0.K),
-                                   RelativeChange(at.F, at0.F)});
+    s.constancy_defect =
+        std::max({s.constancy_defect, RelativeChange(at.M, at0.M), RelativeChange(at.D, at0.D),
+                  RelativeChange(at.K, at0.K), RelativeChange(at.F, at0.F)});
   }
 
   const Eigen::PartialPivLU<MatrixXd> mass(s.M);

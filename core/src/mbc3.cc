@@ -88,7 +88,6 @@ void CheckRateGroups(const BladeCoordinates& c, const std::vector<int>& rate_of,
   }
 }
 
-
 // The mode's description: shares of the displacement-state energy summed per coordinate
 // family (a fixed-frame state, a collective, or a cosine/sine pair), largest first; a cyclic
 // pair is named by its whirl direction when the phase between cosine and sine says so.
@@ -154,8 +153,8 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
 std::optional<size_t> BladeDigit(const std::string& description) {
   static const std::vector<std::regex> patterns = [] {
     std::vector<std::regex> p;
-    for (const char* s : {"[Bb]lade \\d", "[Bb]lade [Rr]oot \\d", "BD_\\d", "[Bb]\\d", "[Bb]lade\\d",
-                          "PitchBearing\\d", "\\d"})
+    for (const char* s : {"[Bb]lade \\d", "[Bb]lade [Rr]oot \\d", "BD_\\d", "[Bb]\\d",
+                          "[Bb]lade\\d", "PitchBearing\\d", "\\d"})
       p.emplace_back(s);
     return p;
   }();
@@ -166,7 +165,6 @@ std::optional<size_t> BladeDigit(const std::string& description) {
   }
   return std::nullopt;
 }
-
 
 BladeCoordinates FindBladeCoordinates(const std::vector<LinChannel>& channels) {
   BladeCoordinates c;
@@ -206,7 +204,8 @@ BladeCoordinates FindBladeCoordinates(const std::vector<LinChannel>& channels) {
     for (int b = 1; b <= blades; ++b) {
       const auto it = members.find(b);
       if (it == members.end())
-        throw InputError("rotating-frame channel '" + channels[members.begin()->second].description +
+        throw InputError("rotating-frame channel '" +
+                         channels[members.begin()->second].description +
                          "' has no counterpart on blade " + std::to_string(b) + " (" +
                          std::to_string(blades) + " blades found)");
       group.push_back(it->second);
@@ -258,8 +257,9 @@ std::vector<int> RateOf(const std::vector<LinChannel>& states) {
   return rate_of;
 }
 
-MbcStateTransform MbcStateTransformAt(const BladeCoordinates& states, const std::vector<int>& rate_of,
-                                      double psi, double omega, double omega_dot) {
+MbcStateTransform MbcStateTransformAt(const BladeCoordinates& states,
+                                      const std::vector<int>& rate_of, double psi, double omega,
+                                      double omega_dot) {
   const int n = static_cast<int>(states.group_of.size());
   MbcStateTransform t{MatrixXd::Identity(n, n), MatrixXd::Zero(n, n)};
   if (states.groups.empty()) return t;
@@ -356,9 +356,12 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
   LtiSystem& mean = r.average;
   for (int k = 0; k < K; ++k) {
     const double psi = op.azimuths[k];
-    const double omega = options.speed_from_operating_point ? op.operating_speeds[k] : op.rotor_speeds[k];
-    const double omega_dot = options.speed_from_operating_point ? op.operating_accelerations[k] : 0.0;
-    const MbcStateTransform t = MbcStateTransformAt(r.state_coordinates, rate_of, psi, omega, omega_dot);
+    const double omega =
+        options.speed_from_operating_point ? op.operating_speeds[k] : op.rotor_speeds[k];
+    const double omega_dot =
+        options.speed_from_operating_point ? op.operating_accelerations[k] : 0.0;
+    const MbcStateTransform t =
+        MbcStateTransformAt(r.state_coordinates, rate_of, psi, omega, omega_dot);
     const Eigen::PartialPivLU<MatrixXd> lu(t.T);
     const LtiSystem& s = op.samples[k];
     LtiSystem x;
@@ -467,13 +470,15 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
   out.states = mbc.states;
   out.samples = mbc.transformed;
   const LtiSystem& s0 = mbc.transformed.front();
-  if (s0.B.size() == 0) out.inputs.clear();
+  if (s0.B.size() == 0)
+    out.inputs.clear();
   else
     for (size_t i = 0; i < out.inputs.size(); ++i) {
       out.inputs[i].description = mbc.input_coordinates.descriptions[i];
       out.inputs[i].rotating_frame = false;
     }
-  if (s0.C.size() == 0) out.outputs.clear();
+  if (s0.C.size() == 0)
+    out.outputs.clear();
   else
     for (size_t i = 0; i < out.outputs.size(); ++i) {
       out.outputs[i].description = mbc.output_coordinates.descriptions[i];

@@ -15,8 +15,8 @@ namespace ltp {
 namespace {
 
 struct BladeNumber {
-  int blade = 0;     ///< 0: none
-  std::string key;   ///< the label with the blade number replaced by '#'
+  int blade = 0;    ///< 0: none
+  std::string key;  ///< the label with the blade number replaced by '#'
 };
 
 // The blade number of a label, found as for OpenFAST channels (BladeDigit).
@@ -57,7 +57,8 @@ std::vector<int> DisplacementStates(const SystemLabels& labels, int n) {
   bool any = false;
   for (int i = 0; i < n; ++i) {
     const std::string name = StateName(labels, i);
-    const bool dot = name.size() > 4 && name.ends_with("_dot") && index.count(name.substr(0, name.size() - 4));
+    const bool dot =
+        name.size() > 4 && name.ends_with("_dot") && index.count(name.substr(0, name.size() - 4));
     if (dot || name.find("First time derivative of ") != std::string::npos) {
       rate[static_cast<size_t>(i)] = 1;
       any = true;
@@ -76,7 +77,8 @@ std::vector<double> MultibladeEnergies(const std::vector<std::complex<double>>& 
   std::vector<double> e(static_cast<size_t>(B), 0);
   for (int k = 0; k < B; ++k) {
     std::complex<double> c = 0;
-    for (int b = 0; b < B; ++b) c += v[static_cast<size_t>(b)] * std::polar(1.0, -2 * std::numbers::pi * k * b / B);
+    for (int b = 0; b < B; ++b)
+      c += v[static_cast<size_t>(b)] * std::polar(1.0, -2 * std::numbers::pi * k * b / B);
     e[static_cast<size_t>(k)] = std::norm(c) / B;
   }
   return e;
@@ -144,11 +146,12 @@ ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::Vecto
       const int harmonic = std::min(k, B - k);
       std::string part = harmonic == 0                       ? "collective"
                          : (B % 2 == 0 && 2 * harmonic == B) ? "differential"
-                         : harmonic == 1                       ? "cyclic"
-                                                               : "cyclic " + std::to_string(harmonic);
+                         : harmonic == 1                     ? "cyclic"
+                                                             : "cyclic " + std::to_string(harmonic);
       parts[part] += e[static_cast<size_t>(k)];
     }
-    for (const auto& [part, energy] : parts) d.families.push_back({name + " " + part, energy / total});
+    for (const auto& [part, energy] : parts)
+      d.families.push_back({name + " " + part, energy / total});
   }
   // Largest first; shares equal to 1e-9 (e.g. a circular whirl's two planes) keep state order.
   std::stable_sort(d.families.begin(), d.families.end(), [](const auto& a, const auto& b) {
@@ -157,16 +160,19 @@ ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::Vecto
   std::ostringstream text;
   for (size_t k = 0; k < d.families.size() && static_cast<int>(k) < options.max_families; ++k) {
     if (k > 0 && d.families[k].share < options.min_share) break;
-    text << (k ? ", " : "") << d.families[k].name << " " << std::lround(100 * d.families[k].share) << "%";
+    text << (k ? ", " : "") << d.families[k].name << " " << std::lround(100 * d.families[k].share)
+         << "%";
   }
   d.text = text.str();
   return d;
 }
 
-std::vector<std::string> DescribeModeShapes(const SystemLabels& labels, const Eigen::MatrixXcd& shapes,
+std::vector<std::string> DescribeModeShapes(const SystemLabels& labels,
+                                            const Eigen::MatrixXcd& shapes,
                                             const ModeDescriptionOptions& options) {
   std::vector<std::string> out(static_cast<size_t>(shapes.cols()));
-  if (!labels.states.empty() && static_cast<Eigen::Index>(labels.states.size()) != shapes.rows()) return out;
+  if (!labels.states.empty() && static_cast<Eigen::Index>(labels.states.size()) != shapes.rows())
+    return out;
   for (Eigen::Index k = 0; k < shapes.cols(); ++k)
     out[static_cast<size_t>(k)] = DescribeModeShape(labels, shapes.col(k), options).text;
   return out;

@@ -42,9 +42,7 @@ bool StartsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
 }
 
-std::string Shorten(const std::string& s) {
-  return s.size() <= 40 ? s : s.substr(0, 37) + "...";
-}
+std::string Shorten(const std::string& s) { return s.size() <= 40 ? s : s.substr(0, 37) + "..."; }
 
 struct Token {
   std::string text;
@@ -131,28 +129,40 @@ class Parser {
                       ":', got '" + Shorten(value) + "'");
         return static_cast<int>(v);
       };
-      if (key == "simulation time") f.simulation_time = number();
-      else if (key == "rotor speed") f.rotor_speed = number();
-      else if (key == "azimuth") f.azimuth = number();
-      else if (key == "wind speed") f.wind_speed = number();
+      if (key == "simulation time")
+        f.simulation_time = number();
+      else if (key == "rotor speed")
+        f.rotor_speed = number();
+      else if (key == "azimuth")
+        f.azimuth = number();
+      else if (key == "wind speed")
+        f.wind_speed = number();
       else if (key == "number of continuous states") {
         f.continuous_states = count();
         have_states_count = true;
-      } else if (key == "number of discrete states") f.discrete_states = count();
-      else if (key == "number of constraint states") f.constraint_states = count();
-      else if (key == "number of inputs") f.inputs = count();
-      else if (key == "number of outputs") f.outputs = count();
+      } else if (key == "number of discrete states")
+        f.discrete_states = count();
+      else if (key == "number of constraint states")
+        f.constraint_states = count();
+      else if (key == "number of inputs")
+        f.inputs = count();
+      else if (key == "number of outputs")
+        f.outputs = count();
       else if (key == "jacobians included in this file?") {
         const std::string v = Lower(value);
-        if (StartsWith(v, "yes") || v == "t" || v == "true") f.jacobians_included = true;
-        else if (StartsWith(v, "no") || v == "f" || v == "false") f.jacobians_included = false;
-        else Fail(i, "expected Yes or No after 'Jacobians included in this file?', got '" +
-                         Shorten(value) + "'");
+        if (StartsWith(v, "yes") || v == "t" || v == "true")
+          f.jacobians_included = true;
+        else if (StartsWith(v, "no") || v == "f" || v == "false")
+          f.jacobians_included = false;
+        else
+          Fail(i, "expected Yes or No after 'Jacobians included in this file?', got '" +
+                      Shorten(value) + "'");
       }
     }
     if (!have_states_count)
-      Fail(0, "expected 'Number of continuous states:' in the header (is this an OpenFAST .lin "
-              "file?)");
+      Fail(0,
+           "expected 'Number of continuous states:' in the header (is this an OpenFAST .lin "
+           "file?)");
 
     bool have_states = false;
     std::map<std::string, size_t> seen_matrices;
@@ -275,8 +285,8 @@ class Parser {
       // Operating point: one value, or several separated by commas (orientations).
       while (true) {
         if (k >= t.size())
-          Fail(i, "expected the operating point in row " + std::to_string(r + 1) + " of '" +
-                      title + "'");
+          Fail(i, "expected the operating point in row " + std::to_string(r + 1) + " of '" + title +
+                      "'");
         std::string text = t[k].text;
         const bool more = !text.empty() && text.back() == ',';
         if (more) text.pop_back();
@@ -294,10 +304,13 @@ class Parser {
       c.operating_point = c.operating_point_values.front();
       if (has_rotating) {
         const std::string flag = k < t.size() ? t[k].text : "";
-        if (flag == "T" || flag == "True" || flag == "t") c.rotating_frame = true;
-        else if (flag == "F" || flag == "False" || flag == "f") c.rotating_frame = false;
-        else Fail(i, "expected T or F in the 'Rotating Frame?' column of row " +
-                         std::to_string(r + 1) + ", got '" + Shorten(flag) + "'");
+        if (flag == "T" || flag == "True" || flag == "t")
+          c.rotating_frame = true;
+        else if (flag == "F" || flag == "False" || flag == "f")
+          c.rotating_frame = false;
+        else
+          Fail(i, "expected T or F in the 'Rotating Frame?' column of row " +
+                      std::to_string(r + 1) + ", got '" + Shorten(flag) + "'");
         ++k;
       }
       if (has_order) {
@@ -321,8 +334,9 @@ class Parser {
     // Sizes the file cannot hold are refused before anything is allocated (a header can claim
     // 99 999 999² entries).
     if (rows < 0 || cols < 0 || static_cast<size_t>(rows) > lines_.size() - at - 1)
-      Fail(at, "matrix " + name + " declares " + std::to_string(rows) + " rows but the file has only " +
-                   std::to_string(lines_.size() - at - 1) + " lines after its header");
+      Fail(at, "matrix " + name + " declares " + std::to_string(rows) +
+                   " rows but the file has only " + std::to_string(lines_.size() - at - 1) +
+                   " lines after its header");
     m->resize(rows, cols);
     size_t i = at + 1;
     for (int r = 0; r < rows; ++r, ++i) {
@@ -355,8 +369,8 @@ class Parser {
       const std::vector<Token> extra = Tokenize(lines_[i]);
       double v = 0;
       if (static_cast<int>(extra.size()) == cols && cols > 0 && ParseNumber(extra[0].text, &v))
-        Fail(i, "matrix " + name + " has more rows than its header declares (" + std::to_string(rows) +
-                    " x " + std::to_string(cols) + ")");
+        Fail(i, "matrix " + name + " has more rows than its header declares (" +
+                    std::to_string(rows) + " x " + std::to_string(cols) + ")");
     }
     return i - 1;
   }
@@ -412,7 +426,8 @@ std::optional<std::vector<int>> MatchChannels(const std::vector<LinChannel>& ref
                                               const std::vector<LinChannel>& other,
                                               std::string* missing) {
   std::map<std::string, std::vector<int>> where;
-  for (size_t i = 0; i < other.size(); ++i) where[other[i].description].push_back(static_cast<int>(i));
+  for (size_t i = 0; i < other.size(); ++i)
+    where[other[i].description].push_back(static_cast<int>(i));
   std::map<std::string, size_t> used;
   std::vector<int> index;
   for (const LinChannel& c : ref) {
@@ -492,7 +507,8 @@ std::string FormatLinFile(const LinFile& f) {
   if (!f.rotor_speed || !f.azimuth)
     throw InputError("FormatLinFile: rotor_speed and azimuth must be set");
   const int n = f.continuous_states;
-  if (static_cast<int>(f.states.size()) != n || (f.A.size() && (f.A.rows() != n || f.A.cols() != n)))
+  if (static_cast<int>(f.states.size()) != n ||
+      (f.A.size() && (f.A.rows() != n || f.A.cols() != n)))
     throw InputError("FormatLinFile: the state table and A must have continuous_states rows");
   if (static_cast<int>(f.input_channels.size()) != f.inputs ||
       static_cast<int>(f.output_channels.size()) != f.outputs)
@@ -586,7 +602,8 @@ std::vector<std::string> ExpandLinPaths(const std::vector<std::string>& argument
       std::vector<std::string> found;
       if (status == 0)
         for (size_t i = 0; i < g.gl_pathc; ++i)
-          if (HasLinExtension(g.gl_pathv[i]) && std::filesystem::is_regular_file(g.gl_pathv[i], error))
+          if (HasLinExtension(g.gl_pathv[i]) &&
+              std::filesystem::is_regular_file(g.gl_pathv[i], error))
             found.push_back(g.gl_pathv[i]);
       globfree(&g);
       if (found.empty()) throw InputError("no .lin file matches '" + arg + "'");
@@ -594,7 +611,8 @@ std::vector<std::string> ExpandLinPaths(const std::vector<std::string>& argument
     } else {
       if (!std::filesystem::exists(arg, error)) throw InputError("no such file: '" + arg + "'");
       if (!HasLinExtension(arg))
-        throw InputError("'" + arg + "' is not an OpenFAST .lin file (expected the .lin "
+        throw InputError("'" + arg +
+                         "' is not an OpenFAST .lin file (expected the .lin "
                          "extension; scenes are given one at a time)");
       files.push_back(arg);
     }
@@ -623,7 +641,8 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
       throw InputError(f.path + ": no 'Rotor Speed:' in the header: cannot tell the period");
     if (!f.azimuth) throw InputError(f.path + ": no 'Azimuth:' in the header");
     if (f.continuous_states == 0 || f.A.size() == 0)
-      throw InputError(f.path + ": holds no state matrix A (" + std::to_string(f.continuous_states) +
+      throw InputError(f.path + ": holds no state matrix A (" +
+                       std::to_string(f.continuous_states) +
                        " continuous states): nothing to analyse");
   }
   std::stable_sort(files.begin(), files.end(), [](const LinFile& a, const LinFile& b) {
@@ -679,8 +698,8 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
       }
       const auto m = MatchChannels(a, b, &missing);
       if (!m)
-        throw InputError(f.path + ": has no " + what + " '" + missing + "' (found in " +
-                         ref.path + "): the files are not one model");
+        throw InputError(f.path + ": has no " + what + " '" + missing + "' (found in " + ref.path +
+                         "): the files are not one model");
       return *m;
     };
     const std::vector<int> u = io(ref.input_channels, f.input_channels, f.inputs, "input");
@@ -765,15 +784,15 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
       lo = std::min(lo, d);
       hi = std::max(hi, d);
     }
-    op.diagnostics.push_back("the " + std::to_string(K) + " azimuths are unevenly spaced: " +
-                             Degrees(lo) + "° to " + Degrees(hi) + "° apart (even: " +
-                             Degrees(2 * pi / K) + "°)");
+    op.diagnostics.push_back("the " + std::to_string(K) +
+                             " azimuths are unevenly spaced: " + Degrees(lo) + "° to " +
+                             Degrees(hi) + "° apart (even: " + Degrees(2 * pi / K) + "°)");
   }
   double spread = 0;
   for (double w : op.rotor_speeds) spread = std::max(spread, std::abs(w - op.rotor_speed));
   if (spread > 1e-12 * std::abs(op.rotor_speed))  // not the rounding of their mean
-    op.diagnostics.push_back("rotor speeds differ by up to " +
-                             FormatNumber(spread, "%.3g") + " rad/s between files; the period "
+    op.diagnostics.push_back("rotor speeds differ by up to " + FormatNumber(spread, "%.3g") +
+                             " rad/s between files; the period "
                              "uses their mean");
   return op;
 }
@@ -832,7 +851,8 @@ PeriodicSystem BuildAzimuthSampledSystem(double rotor_speed, const std::vector<d
   FourierMatrix b = s0.B.size() ? series(&LtiSystem::B) : FourierMatrix();
   FourierMatrix c = s0.C.size() ? series(&LtiSystem::C) : FourierMatrix();
   FourierMatrix d = s0.D.size() ? series(&LtiSystem::D) : FourierMatrix();
-  return PeriodicSystem::FromFourier(period, std::move(a), std::move(b), std::move(c), std::move(d));
+  return PeriodicSystem::FromFourier(period, std::move(a), std::move(b), std::move(c),
+                                     std::move(d));
 }
 
 PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation interpolation) {
@@ -864,8 +884,9 @@ std::vector<std::string> LinCaveats(const LinOperatingPoint& op) {
   const int K = op.size();
   const double hz = op.rotor_speed / (2 * pi);
   if (K == 1) {
-    notes.push_back("one azimuth: the matrices are held constant over the whole revolution, so "
-                    "no periodic content is resolved at all");
+    notes.push_back(
+        "one azimuth: the matrices are held constant over the whole revolution, so "
+        "no periodic content is resolved at all");
   } else {
     const int H = (K - 1) / 2;
     std::string harmonics = "0";

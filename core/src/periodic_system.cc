@@ -19,8 +19,8 @@ struct PeriodicSystem::Impl {
   // evaluation, no complex arithmetic, no expression-template overhead for small n.
   std::vector<double> a_series;
   int a_harmonics = 0;
-  Functions fn;                  // function form
-  std::vector<double> times;     // sampled form
+  Functions fn;               // function form
+  std::vector<double> times;  // sampled form
   std::vector<LtiSystem> samples;
   std::vector<double> breakpoints;
   SystemLabels labels;
@@ -45,7 +45,8 @@ void CheckPeriod(double period) {
   if (!std::isfinite(period) || period <= 0 || !std::isnormal(period) ||
       !std::isfinite(2 * std::numbers::pi / period)) {
     std::ostringstream s;
-    s << "period = " << period << " s: must be a finite, positive, normal number (Ωp = 2π/T must be "
+    s << "period = " << period
+      << " s: must be a finite, positive, normal number (Ωp = 2π/T must be "
       << "finite too)";
     throw InputError(s.str());
   }
@@ -194,33 +195,51 @@ void PeriodicSystem::EvalA(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
       }
       break;
     }
-    case Form::kFunction: impl_->fn.A(t, out); break;
-    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].A; break;
+    case Form::kFunction:
+      impl_->fn.A(t, out);
+      break;
+    case Form::kPiecewiseConstant:
+      out = impl_->samples[impl_->SampleIndex(t)].A;
+      break;
   }
 }
 
 void PeriodicSystem::EvalB(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->m == 0) return;
   switch (impl_->form) {
-    case Form::kFourier: impl_->fb.Evaluate(t, omega(), out); break;
-    case Form::kFunction: impl_->fn.B(t, out); break;
-    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].B; break;
+    case Form::kFourier:
+      impl_->fb.Evaluate(t, omega(), out);
+      break;
+    case Form::kFunction:
+      impl_->fn.B(t, out);
+      break;
+    case Form::kPiecewiseConstant:
+      out = impl_->samples[impl_->SampleIndex(t)].B;
+      break;
   }
 }
 
 void PeriodicSystem::EvalC(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->p == 0) return;
   switch (impl_->form) {
-    case Form::kFourier: impl_->fc.Evaluate(t, omega(), out); break;
-    case Form::kFunction: impl_->fn.C(t, out); break;
-    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].C; break;
+    case Form::kFourier:
+      impl_->fc.Evaluate(t, omega(), out);
+      break;
+    case Form::kFunction:
+      impl_->fn.C(t, out);
+      break;
+    case Form::kPiecewiseConstant:
+      out = impl_->samples[impl_->SampleIndex(t)].C;
+      break;
   }
 }
 
 void PeriodicSystem::EvalD(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->p == 0 || impl_->m == 0) return;
   switch (impl_->form) {
-    case Form::kFourier: impl_->fd.Evaluate(t, omega(), out); break;
+    case Form::kFourier:
+      impl_->fd.Evaluate(t, omega(), out);
+      break;
     case Form::kFunction:
       if (impl_->fn.D) {
         impl_->fn.D(t, out);
@@ -228,7 +247,9 @@ void PeriodicSystem::EvalD(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
         out.setZero();
       }
       break;
-    case Form::kPiecewiseConstant: out = impl_->samples[impl_->SampleIndex(t)].D; break;
+    case Form::kPiecewiseConstant:
+      out = impl_->samples[impl_->SampleIndex(t)].D;
+      break;
   }
 }
 
@@ -301,7 +322,8 @@ PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const {
   check(labels.outputs, impl_->p, "output");
   if (labels.blades < 0) throw InputError("blade count " + std::to_string(labels.blades) + " < 0");
   for (int i : labels.blade_states)
-    if (i < 0 || i >= impl_->n) throw InputError("blade state index " + std::to_string(i) + " out of range");
+    if (i < 0 || i >= impl_->n)
+      throw InputError("blade state index " + std::to_string(i) + " out of range");
   auto impl = std::make_shared<Impl>(*impl_);
   impl->labels = std::move(labels);
   return PeriodicSystem(std::move(impl));

@@ -81,7 +81,8 @@ SystemLabels RotorLabels(int blades) {
   labels.inputs = {"fx", "fy"};
   labels.outputs = {"x", "y"};
   labels.blades = blades;
-  for (int b = 0; b < blades; ++b) labels.blade_states.push_back(b);  // zeta_b (rates are left out anyway)
+  for (int b = 0; b < blades; ++b)
+    labels.blade_states.push_back(b);  // zeta_b (rates are left out anyway)
   return labels;
 }
 
@@ -97,9 +98,9 @@ void RotorParameters::Validate() const {
   if (!(omega > 0) || !std::isfinite(omega)) Reject("Omega", omega, "must be > 0");
   if (!(inertia > 0)) Reject("I_b", inertia, "must be > 0");
   const std::pair<const char*, double> non_negative[] = {
-      {"e", hinge_offset},    {"S_b", first_moment}, {"K_zeta", lag_stiffness},
-      {"C_zeta", lag_damping}, {"kx", stiffness_x},  {"ky", stiffness_y},
-      {"cx", damping_x},      {"cy", damping_y},     {"mistune_k", mistune_k},
+      {"e", hinge_offset},     {"S_b", first_moment}, {"K_zeta", lag_stiffness},
+      {"C_zeta", lag_damping}, {"kx", stiffness_x},   {"ky", stiffness_y},
+      {"cx", damping_x},       {"cy", damping_y},     {"mistune_k", mistune_k},
       {"mistune_c", mistune_c}};
   for (const auto& [name, value] : non_negative)
     if (!(value >= 0) || !std::isfinite(value)) Reject(name, value, "must be finite and >= 0");

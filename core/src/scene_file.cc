@@ -277,8 +277,8 @@ void ReadSampled(const Reader& reader, const YAML::Node& root, SceneModel& model
       const int want_cols = cols >= 0 ? cols : Cols(matrices[0]);
       if (Rows(matrices[k]) != want_rows || Cols(matrices[k]) != want_cols)
         reader.Fail(one_matrix ? node : node[k], entry,
-                    "is " + Size(matrices[k]) + " but must be " + std::to_string(want_rows) +
-                        "x" + std::to_string(want_cols));
+                    "is " + Size(matrices[k]) + " but must be " + std::to_string(want_rows) + "x" +
+                        std::to_string(want_cols));
     }
     model.sample_matrices[key] = std::move(matrices);
   };
@@ -486,7 +486,11 @@ size_t InvalidUtf8At(const std::string& text) {
   const size_t n = text.size();
   for (size_t i = 0; i < n;) {
     const unsigned char c = b[i];
-    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    const int extra = c < 0x80           ? 0
+                      : (c >> 5) == 0x6  ? 1
+                      : (c >> 4) == 0xE  ? 2
+                      : (c >> 3) == 0x1E ? 3
+                                         : -1;
     if (extra < 0 || (extra == 1 && c < 0xC2) || i + extra >= n + (extra == 0 ? 1 : 0)) return i;
     for (int k = 1; k <= extra; ++k)
       if (i + k >= n || (b[i + k] & 0xC0) != 0x80) return i;
@@ -519,7 +523,8 @@ void CheckBounded(const PeriodicSystem& system, const std::string& where) {
       worst = s;
     }
   }
-  double lo = std::max(0.0, (worst - 0.5) * T / kSamples), hi = std::min(T, (worst + 1.5) * T / kSamples);
+  double lo = std::max(0.0, (worst - 0.5) * T / kSamples),
+         hi = std::min(T, (worst + 1.5) * T / kSamples);
   double peak = worst_norm, at = (worst + 0.5) * T / kSamples;
   while (std::isfinite(peak) && hi - lo > 1e-12 * T) {
     const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
@@ -569,11 +574,10 @@ Scene ParseSceneYaml(const std::string& text, const std::string& source) {
     throw SceneError(reader.Where(root, "") +
                      ": a scene file must be a mapping with period (or omega) and a "
                      "state_space, second_order or sampled block");
-  reader.CheckKeys(
-      root, "",
-      {"name", "description", "period", "omega", "parameters", "parameter_descriptions",
-       "breakpoints", "rotor_speed", "inputs", "outputs", "states", "state_space", "second_order",
-       "sampled"});
+  reader.CheckKeys(root, "",
+                   {"name", "description", "period", "omega", "parameters",
+                    "parameter_descriptions", "breakpoints", "rotor_speed", "inputs", "outputs",
+                    "states", "state_space", "second_order", "sampled"});
 
   Scene scene;
   scene.source = source;

@@ -99,8 +99,8 @@ using std::numbers::pi;
 
 constexpr int kCantileverNodeDofs = 5;  // v, v', w, w', φ
 constexpr int kBladeNodeDofs = 4;       // f, f', g, g'
-constexpr int kAngleSamples = 8;        // ≥ 2·2 + 1 for harmonics up to 2; 8 avoids aliasing to 3
-constexpr double kCutoffFactor = 2.0;   // keep body modes up to kCutoffFactor · fmax
+constexpr int kAngleSamples = 8;       // ≥ 2·2 + 1 for harmonics up to 2; 8 avoids aliasing to 3
+constexpr double kCutoffFactor = 2.0;  // keep body modes up to kCutoffFactor · fmax
 // Mesh limit: the unreduced reference model of the mode table stays below ~1300 DOFs.
 constexpr int kMaxElements = 100;
 
@@ -142,8 +142,7 @@ ModeSet Modes(const MatrixXd& k, const MatrixXd& m, double cutoff_hz) {
   if (solver.info() != Eigen::Success) throw InputError("tower-rotor: body eigenproblem failed");
   const VectorXd lambda = solver.eigenvalues();
   int keep = 0;
-  while (keep < lambda.size() &&
-         std::sqrt(std::max(lambda(keep), 0.0)) / (2 * pi) <= cutoff_hz) {
+  while (keep < lambda.size() && std::sqrt(std::max(lambda(keep), 0.0)) / (2 * pi) <= cutoff_hz) {
     ++keep;
   }
   keep = std::max(keep, 1);
@@ -315,10 +314,9 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
         rho_ab * tip_radius * tip_radius / 2, rho_ab / 2, s0, lb);
     for (int plane = 0; plane < 2; ++plane) {  // 0: flap f; 1: lag g
       const int o = 2 * plane;
-      const std::array<int, 4> dofs = {bnode_dof(e, o), bnode_dof(e, o + 1),
-                                       bnode_dof(e + 1, o), bnode_dof(e + 1, o + 1)};
-      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_flap : ei_lag, lb), dofs,
-                           kb);
+      const std::array<int, 4> dofs = {bnode_dof(e, o), bnode_dof(e, o + 1), bnode_dof(e + 1, o),
+                                       bnode_dof(e + 1, o + 1)};
+      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_flap : ei_lag, lb), dofs, kb);
       internal::Scatter<4>(internal::BendingMass(rho_ab, lb), dofs, mb);
       internal::Scatter<4>(geometric, dofs, kg);
     }
@@ -365,8 +363,8 @@ TowerRotorMatrices Assemble(const Structure& st, double psi, double omega, doubl
     const double m = point.mass;
     if (point.blade >= 0) {
       const int col = nc + point.blade * nb;
-      const Vector3d lag_dir(point.blade == 0 ? 1.0 : -1.0, 0, 0);  // b_k
-      const Vector3d flap_dir(0, 1, 0);                              // e_y
+      const Vector3d lag_dir(point.blade == 0 ? 1.0 : -1.0, 0, 0);         // b_k
+      const Vector3d flap_dir(0, 1, 0);                                    // e_y
       const MatrixXd local = flap_dir * point.flap + lag_dir * point.lag;  // 3 × nb
       g.middleCols(col, nb) = r * local;
       gd.middleCols(col, nb) = omega * (r1 * local);
@@ -381,8 +379,8 @@ TowerRotorMatrices Assemble(const Structure& st, double psi, double omega, doubl
     out.K.noalias() += m * g.transpose() * gdd;
     // S_θθ = Σ m [sym(r̈0 ρ'ᵀ) − (r̈0·ρ') I] (second-order tilt kinematics).
     const Matrix3d outer = acc * rho_p.transpose();
-    const Matrix3d w = m * (0.5 * (outer + outer.transpose()) -
-                            acc.dot(rho_p) * Matrix3d::Identity());
+    const Matrix3d w =
+        m * (0.5 * (outer + outer.transpose()) - acc.dot(rho_p) * Matrix3d::Identity());
     out.K.topLeftCorner(nc, nc) += st.tip_theta.transpose() * w * st.tip_theta;
   }
   // The cantilever's own mass and the bodies' elastic stiffness, damping, geometric stiffness.
@@ -406,8 +404,7 @@ void ToFourier(const std::vector<MatrixXd>& samples, FourierMatrix& series) {
     Eigen::MatrixXcd c = Eigen::MatrixXcd::Zero(n, n);
     for (int a = 0; a < kAngleSamples; ++a) {
       const double psi = 2 * pi * a / kAngleSamples;
-      c += samples[a].cast<std::complex<double>>() *
-           std::polar(1.0 / kAngleSamples, -w * psi);
+      c += samples[a].cast<std::complex<double>>() * std::polar(1.0 / kAngleSamples, -w * psi);
     }
     if (w == 0) c = c.real().cast<std::complex<double>>();
     series.SetHarmonic(w, c);
@@ -528,8 +525,8 @@ std::string Describe(const Structure& st, const VectorXd& x) {
     blades[base + 1] += 0.5 * w2 * anti * anti;
   }
   const std::vector<std::pair<double, std::string>> parts = {
-      {family[1], "cantilever bending z"}, {family[0], "cantilever bending y"},
-      {family[2], "cantilever torsion"},   {blades[0], "blade flap in phase"},
+      {family[1], "cantilever bending z"},  {family[0], "cantilever bending y"},
+      {family[2], "cantilever torsion"},    {blades[0], "blade flap in phase"},
       {blades[1], "blade flap anti-phase"}, {blades[2], "blade lag in phase"},
       {blades[3], "blade lag anti-phase"}};
   double total = 0;
@@ -542,8 +539,7 @@ std::string Describe(const Structure& st, const VectorXd& x) {
   for (const auto& [energy, name] : sorted) {
     const double share = total > 0 ? energy / total : 0;
     if (share < 0.1 && !first) break;
-    text << (first ? "" : ", ") << name << " " << static_cast<int>(std::lround(100 * share))
-         << "%";
+    text << (first ? "" : ", ") << name << " " << static_cast<int>(std::lround(100 * share)) << "%";
     first = false;
   }
   return text.str();
@@ -604,7 +600,8 @@ PeriodicSystem BuildSystem(const ParameterMap& values) {
   labels.outputs = {"z_tip", "y_tip"};
   labels.blades = 2;
   for (size_t i = 0; i < model->dof_labels.size(); ++i)
-    if (model->dof_labels[i].starts_with("blade")) labels.blade_states.push_back(static_cast<int>(i));
+    if (model->dof_labels[i].starts_with("blade"))
+      labels.blade_states.push_back(static_cast<int>(i));
   PeriodicSystem system = FromSecondOrder(so).WithLabels(std::move(labels));
   return omega > 0 ? system.WithRotorSpeed(omega) : system;
 }
@@ -666,7 +663,8 @@ TowerRotorModel BuildTowerRotorModel(const TowerRotorParams& params) {
   model.F.col(1).head(st.nc) = st.tip_u.row(1).transpose();
   model.Cd = model.F.transpose();
   std::array<int, 3> family_counts = {0, 0, 0};
-  for (int i = 0; i < st.nc; ++i) model.dof_labels.push_back(CantileverModeLabel(st, i, family_counts));
+  for (int i = 0; i < st.nc; ++i)
+    model.dof_labels.push_back(CantileverModeLabel(st, i, family_counts));
   for (int k = 0; k < 2; ++k) {
     for (int j = 0; j < st.nb; ++j)
       model.dof_labels.push_back("blade" + std::to_string(k + 1) + "_" + st.blade_kinds[j]);
@@ -745,8 +743,7 @@ std::vector<double> TowerRotorBeamFrequencies(double stiffness, double inertia, 
 
 std::vector<double> TowerRotorRotatingBladeFlapFrequencies(double ei, double rho_a,
                                                            double root_radius, double length,
-                                                           double omega, int elements,
-                                                           int count) {
+                                                           double omega, int elements, int count) {
   const int n = 2 * elements;
   const double le = length / elements, tip = root_radius + length;
   MatrixXd k = MatrixXd::Zero(n, n), m = MatrixXd::Zero(n, n);
@@ -755,9 +752,8 @@ std::vector<double> TowerRotorRotatingBladeFlapFrequencies(double ei, double rho
     const std::array<int, 4> dofs = {dof(e, 0), dof(e, 1), dof(e + 1, 0), dof(e + 1, 1)};
     const double w2 = omega * omega;
     internal::Scatter<4>(internal::BendingStiffness(ei, le), dofs, k);
-    internal::Scatter<4>(internal::BendingGeometricStiffness(w2 * rho_a * tip * tip / 2,
-                                                             w2 * rho_a / 2,
-                                                             root_radius + e * le, le),
+    internal::Scatter<4>(internal::BendingGeometricStiffness(
+                             w2 * rho_a * tip * tip / 2, w2 * rho_a / 2, root_radius + e * le, le),
                          dofs, k);
     internal::Scatter<4>(internal::BendingMass(rho_a, le), dofs, m);
   }
@@ -783,8 +779,8 @@ Scene TowerRotorScene() {
     if (spec.field) {
       value = defaults.*spec.field;
     } else {
-      value = std::string(spec.name) == "n_c" ? defaults.cantilever_elements
-                                              : defaults.blade_elements;
+      value =
+          std::string(spec.name) == "n_c" ? defaults.cantilever_elements : defaults.blade_elements;
     }
     scene.parameters.push_back({spec.name, value, spec.description});
   }

@@ -28,18 +28,18 @@ HermiteShape Hermite(double xi, double l) {
 
 Eigen::Matrix4d BendingStiffness(double ei, double l) {
   Eigen::Matrix4d k;
-  k << 12, 6 * l, -12, 6 * l,                 //
-      6 * l, 4 * l * l, -6 * l, 2 * l * l,    //
-      -12, -6 * l, 12, -6 * l,                //
+  k << 12, 6 * l, -12, 6 * l,               //
+      6 * l, 4 * l * l, -6 * l, 2 * l * l,  //
+      -12, -6 * l, 12, -6 * l,              //
       6 * l, 2 * l * l, -6 * l, 4 * l * l;
   return k * (ei / (l * l * l));
 }
 
 Eigen::Matrix4d BendingMass(double rho_a, double l) {
   Eigen::Matrix4d m;
-  m << 156, 22 * l, 54, -13 * l,                //
-      22 * l, 4 * l * l, 13 * l, -3 * l * l,    //
-      54, 13 * l, 156, -22 * l,                 //
+  m << 156, 22 * l, 54, -13 * l,              //
+      22 * l, 4 * l * l, 13 * l, -3 * l * l,  //
+      54, 13 * l, 156, -22 * l,               //
       -13 * l, -3 * l * l, -22 * l, 4 * l * l;
   return m * (rho_a * l / 420);
 }

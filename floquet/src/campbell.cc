@@ -26,9 +26,11 @@ double ExponentPeriod(const SweepPoint& point) {
 
 // Modes a and b are a conjugate pair mod jΩp, with conjugate shapes where shapes are known.
 bool ConjugatePair(const SweepPoint& point, int a, int b) {
-  const cd la = point.modes[static_cast<size_t>(a)].exponent, lb = point.modes[static_cast<size_t>(b)].exponent;
+  const cd la = point.modes[static_cast<size_t>(a)].exponent,
+           lb = point.modes[static_cast<size_t>(b)].exponent;
   const double wp = ExponentPeriod(point);
-  const double tol = 1e-6 * std::max({std::abs(la), std::abs(lb), std::isfinite(wp) ? wp : 0.0, 1e-300});
+  const double tol =
+      1e-6 * std::max({std::abs(la), std::abs(lb), std::isfinite(wp) ? wp : 0.0, 1e-300});
   if (ExponentDistance(std::conj(la), lb, wp) > tol) return false;
   if (point.shapes.cols() == static_cast<Eigen::Index>(point.modes.size()))
     return Mac(point.shapes.col(a).conjugate(), point.shapes.col(b)) > 0.9;
@@ -44,7 +46,8 @@ bool SelfConjugate(const SweepPoint& point, int a) {
 }
 
 // Labels kept as lines: one of each conjugate pair at the first successful point.
-std::vector<int> PhysicalLabels(const std::vector<SweepPoint>& points, const ModeTracking& tracking) {
+std::vector<int> PhysicalLabels(const std::vector<SweepPoint>& points,
+                                const ModeTracking& tracking) {
   for (size_t p = 0; p < points.size(); ++p) {
     if (!points[p].ok || points[p].modes.empty()) continue;
     const std::vector<int>& at = tracking.labels[p];
@@ -56,7 +59,8 @@ std::vector<int> PhysicalLabels(const std::vector<SweepPoint>& points, const Mod
       kept.push_back(k);
       if (SelfConjugate(points[p], at[static_cast<size_t>(k)])) continue;
       for (int j = k + 1; j < n; ++j)
-        if (!dropped[static_cast<size_t>(j)] && ConjugatePair(points[p], at[static_cast<size_t>(k)], at[static_cast<size_t>(j)])) {
+        if (!dropped[static_cast<size_t>(j)] &&
+            ConjugatePair(points[p], at[static_cast<size_t>(k)], at[static_cast<size_t>(j)])) {
           dropped[static_cast<size_t>(j)] = 1;
           break;
         }
@@ -76,8 +80,9 @@ std::string Describe(const SweepPoint& point, int mode, const SystemLabels& labe
   }
 }
 
-CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking& tracking, int label,
-                       const SystemLabels& labels, const ModeDescriptionOptions& options) {
+CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking& tracking,
+                       int label, const SystemLabels& labels,
+                       const ModeDescriptionOptions& options) {
   CampbellLine line;
   line.label = label;
   const size_t P = points.size();
@@ -87,7 +92,8 @@ CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking
   long first = -1, last = -1;
   for (size_t p = 0; p < P; ++p) {
     const auto& at = tracking.labels[p];
-    if (!points[p].ok || label >= static_cast<int>(at.size()) || at[static_cast<size_t>(label)] < 0) continue;
+    if (!points[p].ok || label >= static_cast<int>(at.size()) || at[static_cast<size_t>(label)] < 0)
+      continue;
     const FloquetMode& m = points[p].modes[static_cast<size_t>(at[static_cast<size_t>(label)])];
     // |f|: where a tracked branch passes below zero, its conjugate (same motion, same damping)
     // is the one at +|f|, and the line stays on the chart.
@@ -97,15 +103,21 @@ CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking
     line.frequency_hz[p] = f;
     line.real_part[p] = re;
     line.damping_ratio[p] = magnitude > 0 ? -re / magnitude : 0;
-    if (first < 0) first = static_cast<long>(p);
-    else if (last != static_cast<long>(p) - 1 && line.lost_after < 0) line.lost_after = last;
+    if (first < 0)
+      first = static_cast<long>(p);
+    else if (last != static_cast<long>(p) - 1 && line.lost_after < 0)
+      line.lost_after = last;
     last = static_cast<long>(p);
   }
   if (last >= 0 && last < static_cast<long>(P) - 1 && line.lost_after < 0) line.lost_after = last;
   if (first >= 0) {
-    const auto mode_at = [&](long p) { return tracking.labels[static_cast<size_t>(p)][static_cast<size_t>(label)]; };
-    line.description = Describe(points[static_cast<size_t>(first)], mode_at(first), labels, options);
-    line.description_end = Describe(points[static_cast<size_t>(last)], mode_at(last), labels, options);
+    const auto mode_at = [&](long p) {
+      return tracking.labels[static_cast<size_t>(p)][static_cast<size_t>(label)];
+    };
+    line.description =
+        Describe(points[static_cast<size_t>(first)], mode_at(first), labels, options);
+    line.description_end =
+        Describe(points[static_cast<size_t>(last)], mode_at(last), labels, options);
   }
   return line;
 }
@@ -135,10 +147,12 @@ double QuadraticRoot(const double x[3], const double g[3], double lo, double hi)
 
 // The crossing of line `line_index` with nΩ/2π at the fraction s of the way from point p to
 // p + 1 (values interpolated linearly there).
-CampbellCrossing MakeCrossing(const CampbellDiagram& d, size_t line_index, int n, size_t p, double s,
-                              double parameter_error) {
+CampbellCrossing MakeCrossing(const CampbellDiagram& d, size_t line_index, int n, size_t p,
+                              double s, double parameter_error) {
   const CampbellLine& line = d.lines[line_index];
-  const auto at = [&](const std::vector<double>& v) { return s == 0 ? v[p] : v[p] + s * (v[p + 1] - v[p]); };
+  const auto at = [&](const std::vector<double>& v) {
+    return s == 0 ? v[p] : v[p] + s * (v[p + 1] - v[p]);
+  };
   CampbellCrossing c;
   c.line = line_index;
   c.per_rev = n;
@@ -163,7 +177,8 @@ void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<Camp
   for (int n : d.per_rev) {
     const auto g = [&](size_t p) { return line.frequency_hz[p] - n * d.rotor_speed[p] / kTwoPi; };
     const auto locked = [&](size_t p) {
-      return std::abs(g(p)) <= 1e-8 * (std::abs(line.frequency_hz[p]) + std::abs(n * d.rotor_speed[p] / kTwoPi));
+      return std::abs(g(p)) <=
+             1e-8 * (std::abs(line.frequency_hz[p]) + std::abs(n * d.rotor_speed[p] / kTwoPi));
     };
     const auto tracked = [&](size_t p) {
       return p < P && std::isfinite(line.frequency_hz[p]) && std::isfinite(d.rotor_speed[p]);
@@ -177,9 +192,12 @@ void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<Camp
       size_t q = p;
       while (tracked(q + 1) && locked(q + 1)) ++q;
       if (q > p) {
-        notes.push_back("mode " + std::to_string(line_index + 1) + " is locked to " + std::to_string(n) + "P for " +
-                        MessageNumber(x[p]) + " … " + MessageNumber(x[q]) + " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
-      } else if (p > 0 && p + 1 < P && valid(p - 1) && valid(p + 1) && (g(p - 1) < 0) != (g(p + 1) < 0)) {
+        notes.push_back("mode " + std::to_string(line_index + 1) + " is locked to " +
+                        std::to_string(n) + "P for " + MessageNumber(x[p]) + " … " +
+                        MessageNumber(x[q]) +
+                        " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
+      } else if (p > 0 && p + 1 < P && valid(p - 1) && valid(p + 1) &&
+                 (g(p - 1) < 0) != (g(p + 1) < 0)) {
         // A crossing on a grid point: its error is the residual over the slope.
         const double slope = (g(p + 1) - g(p - 1)) / (x[p + 1] - x[p - 1]);
         out.push_back(MakeCrossing(d, line_index, n, p, 0, std::abs(g(p) / slope)));
@@ -222,13 +240,14 @@ std::vector<int> PerRevLines(const CampbellDiagram& d, int max_per_rev) {
     for (double f : line.frequency_hz)
       if (std::isfinite(f)) top_frequency = std::max(top_frequency, f);
   if (speeds.empty()) return {};
-  std::nth_element(speeds.begin(), speeds.begin() + static_cast<long>(speeds.size() / 2), speeds.end());
+  std::nth_element(speeds.begin(), speeds.begin() + static_cast<long>(speeds.size() / 2),
+                   speeds.end());
   const double median = speeds[speeds.size() / 2];
   if (!(median > 0)) return {};
   int count = max_per_rev;
   if (count == 0)
-    count = std::clamp(static_cast<int>(std::ceil(top_frequency / (median / kTwoPi))), std::max(d.blades, 1),
-                       std::max(3 * d.blades, 6));
+    count = std::clamp(static_cast<int>(std::ceil(top_frequency / (median / kTwoPi))),
+                       std::max(d.blades, 1), std::max(3 * d.blades, 6));
   std::vector<int> n(static_cast<size_t>(count));
   for (int k = 0; k < count; ++k) n[static_cast<size_t>(k)] = k + 1;
   return n;
@@ -246,8 +265,10 @@ std::vector<std::pair<double, double>> WeaklyDamped(const std::vector<SweepPoint
     if (points[p].verdict != StabilityVerdict::kStable) continue;
     const double scale = points[p].period > 0 ? kTwoPi / points[p].period : 0;
     for (const CampbellLine& line : d.lines) {
-      const bool rigid = std::hypot(line.real_part[p], kTwoPi * line.frequency_hz[p]) <= 1e-9 * scale;
-      if (std::isfinite(line.damping_ratio[p]) && !rigid && line.damping_ratio[p] < threshold) weak[p] = 1;
+      const bool rigid =
+          std::hypot(line.real_part[p], kTwoPi * line.frequency_hz[p]) <= 1e-9 * scale;
+      if (std::isfinite(line.damping_ratio[p]) && !rigid && line.damping_ratio[p] < threshold)
+        weak[p] = 1;
     }
   }
   const auto& x = d.parameter;
@@ -283,8 +304,8 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
                                     const CampbellOptions& options) {
   options.Validate();
   if (tracking.labels.size() != points.size())
-    throw InputError("mode tracking covers " + std::to_string(tracking.labels.size()) + " points of " +
-                     std::to_string(points.size()));
+    throw InputError("mode tracking covers " + std::to_string(tracking.labels.size()) +
+                     " points of " + std::to_string(points.size()));
   CampbellDiagram d;
   d.blades = labels.blades;
   for (const SweepPoint& p : points) {
@@ -306,8 +327,8 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
           why = "the point failed: " + points[p].failure;
           break;
         }
-      d.diagnostics.push_back(name + " (" + line.description + ") is lost after " + MessageNumber(d.parameter[at]) +
-                              ": " + why);
+      d.diagnostics.push_back(name + " (" + line.description + ") is lost after " +
+                              MessageNumber(d.parameter[at]) + ": " + why);
     }
   }
   d.per_rev = PerRevLines(d, options.max_per_rev);
@@ -321,8 +342,9 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     for (size_t k = 0; k < tracking.ambiguous.size() && k < 5; ++k)
       where += (k ? ", " : "") + MessageNumber(d.parameter[tracking.ambiguous[k]]);
     if (tracking.ambiguous.size() > 5) where += ", …";
-    d.diagnostics.push_back("mode tracking is ambiguous at " + std::to_string(tracking.ambiguous.size()) +
-                            " points (" + where + "; MAC below 0.5 or a runner-up within 10 %): lines may swap there");
+    d.diagnostics.push_back("mode tracking is ambiguous at " +
+                            std::to_string(tracking.ambiguous.size()) + " points (" + where +
+                            "; MAC below 0.5 or a runner-up within 10 %): lines may swap there");
   }
   return d;
 }

@@ -15,7 +15,8 @@ void ChartOptions::Validate() const {
   };
   if (!(tol > 0 && tol < 1)) fail("tol", tol, "0 < tol < 1");
   if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
-  if (!(refine_tol > 0 && refine_tol < 1e-2)) fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
+  if (!(refine_tol > 0 && refine_tol < 1e-2))
+    fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
   campbell.Validate();
 }
 

@@ -1,4 +1,3 @@
-#include "ltp/floquet/threads.h"
 #include "ltp/floquet/floquet.h"
 
 #include <omp.h>
@@ -13,10 +12,11 @@
 #include <unsupported/Eigen/FFT>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mode_description.h"
 #include "ltp/core/exponent_match.h"
+#include "ltp/core/mode_description.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/periodic_eigen.h"
+#include "ltp/floquet/threads.h"
 #include "segment_grid.h"
 
 namespace ltp {
@@ -39,8 +39,10 @@ int NextPowerOfTwo(int x) {
 // cover the largest frozen frequency: 256 samples (and segments) for tower-rotor instead of 64.
 int AutoModeSamples(const PeriodicSystem& system) {
   int harmonics = 8;
-  if (const FourierMatrix* fa = system.fourier_A()) harmonics = fa->max_harmonic();
-  else if (!system.breakpoints().empty()) harmonics = 16;
+  if (const FourierMatrix* fa = system.fourier_A())
+    harmonics = fa->max_harmonic();
+  else if (!system.breakpoints().empty())
+    harmonics = 16;
   const double wanted = 4.0 * (harmonics + 2);
   return std::clamp(NextPowerOfTwo(static_cast<int>(std::ceil(wanted))), 32, 1024);
 }
@@ -111,10 +113,14 @@ std::string_view ToString(MultiplierMethod method) {
 
 std::string_view ToString(StabilityVerdict verdict) {
   switch (verdict) {
-    case StabilityVerdict::kStable: return "stable";
-    case StabilityVerdict::kMarginal: return "marginal";
-    case StabilityVerdict::kUnstable: return "unstable";
-    case StabilityVerdict::kFailed: return "failed";
+    case StabilityVerdict::kStable:
+      return "stable";
+    case StabilityVerdict::kMarginal:
+      return "marginal";
+    case StabilityVerdict::kUnstable:
+      return "unstable";
+    case StabilityVerdict::kFailed:
+      return "failed";
   }
   return "failed";
 }
@@ -223,8 +229,8 @@ Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
 std::string FloquetResult::BriefReport() const {
   std::ostringstream s;
   s << (ok ? "" : "FAILED: ") << "K = " << segments << ", max Re λ = " << max_real_exponent
-    << " 1/s (" << (stable ? "stable" : "unstable") << "), error ≈ " << error_estimate
-    << ", " << elapsed_s << " s";
+    << " 1/s (" << (stable ? "stable" : "unstable") << "), error ≈ " << error_estimate << ", "
+    << elapsed_s << " s";
   return s.str();
 }
 
@@ -242,9 +248,11 @@ void CheckPeriodScale(const PeriodicSystem& system, double limit) {
   const double scale = system.period() * largest;
   if (!(scale <= limit)) {
     std::ostringstream s;
-    s << "T · max ‖A(t)‖ = " << scale << " (T = " << system.period() << " s): following the solutions "
+    s << "T · max ‖A(t)‖ = " << scale << " (T = " << system.period()
+      << " s): following the solutions "
       << "over one period would take at least that many steps, beyond the limit "
-      << "FloquetOptions::max_period_scale = " << limit << " (coefficients or period out of scale?)";
+      << "FloquetOptions::max_period_scale = " << limit
+      << " (coefficients or period out of scale?)";
     throw InputError(s.str());
   }
 }
@@ -270,13 +278,13 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   const int threads = ThreadsFor(options.threads);
 
   // 1. Segment factors on a grid refined where factors grow or decay too fast.
-  const int samples = options.compute_modes
-                          ? (options.mode_samples > 0 ? options.mode_samples
-                                                      : AutoModeSamples(system))
-                          : 1;
+  const int samples = options.compute_modes ? (options.mode_samples > 0 ? options.mode_samples
+                                                                        : AutoModeSamples(system))
+                                            : 1;
   internal::SegmentGridOptions grid_options;
   grid_options.integrator = options.integrator;
-  grid_options.uniform_segments = options.segments > 0 ? options.segments : ModeSegments(samples, n);
+  grid_options.uniform_segments =
+      options.segments > 0 ? options.segments : ModeSegments(samples, n);
   grid_options.refine = options.segments == 0;
   grid_options.max_factor_condition = options.max_factor_condition;
   grid_options.max_segments = options.max_segments;
@@ -290,15 +298,17 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     // multipliers (stiff.yaml: K = 1 overflows, K = 4 is off by 327 1/s).
     std::ostringstream s;
     s << "segments auto → K = " << grid.times.size() - 1
-      << (options.estimate_error ? " (halved again in the refined run that gives the numbers)" : "") << ": ";
+      << (options.estimate_error ? " (halved again in the refined run that gives the numbers)" : "")
+      << ": ";
     if (static_cast<int>(grid.times.size()) - 1 == grid.initial_segments)
       s << "the " << grid.initial_segments
         << (grid.initial_segments == 1 ? " segment" : " uniform segments")
-        << " already keep every factor's condition below "
-        << options.max_factor_condition << " (worst " << std::setprecision(3) << grid.worst_condition << ")";
+        << " already keep every factor's condition below " << options.max_factor_condition
+        << " (worst " << std::setprecision(3) << grid.worst_condition << ")";
     else
-      s << "refined from " << grid.initial_segments << " where factors grew or decayed beyond condition "
-        << options.max_factor_condition << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
+      s << "refined from " << grid.initial_segments
+        << " where factors grew or decayed beyond condition " << options.max_factor_condition
+        << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
     r.diagnostics.push_back(s.str());
   }
   if (!grid.ok) {
@@ -347,8 +357,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
       grid = std::move(reference);
       eig = std::move(ref_eig);
     } else {
-      r.diagnostics.push_back("error estimate: the refined reference run failed; results are "
-                              "from the first run and their error is unknown");
+      r.diagnostics.push_back(
+          "error estimate: the refined reference run failed; results are "
+          "from the first run and their error is unknown");
       integration_error = std::numeric_limits<double>::infinity();
     }
   }
@@ -387,9 +398,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
       // A grid that does not contain the uniform samples (a user-chosen K, or fewer segments
       // for a large system, see ModeSegments): propagate from the last grid point before each
       // sample, ξ(t_s) = Φ(t_s, t_i) ξ(t_i) e^{-λ(t_s − t_i)}.
-      r.diagnostics.push_back("mode samples propagated within segments (K = " +
-                              std::to_string(grid.factors.size()) + " segments for " +
-                              std::to_string(samples) + " samples)");
+      r.diagnostics.push_back(
+          "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
+          " segments for " + std::to_string(samples) + " samples)");
       for (int s = 0; s < samples; ++s) {
         const double ts = T * s / samples;
         auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
@@ -400,14 +411,15 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
             StateTransition(system, grid.times[i], std::max(ts, grid.times[i]), options.integrator);
         r.rhs_evals += tr.rhs_evals;
         for (int k = 0; k < n; ++k)
-          xi[s].col(k) = tr.phi.cast<cd>() * vecs[k].v[i] *
-                         std::exp(-log_rho[k] / T * (ts - grid.times[i]));
+          xi[s].col(k) =
+              tr.phi.cast<cd>() * vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
       }
     }
     // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
     const std::vector<int> prior = PriorBranches(system, log_rho, xi[0]);
     for (int s = 0; s < samples; ++s)
-      for (int k = 0; k < n; ++k) xi[s].col(k) *= std::polar(1.0, -prior[k] * omega * r.sample_times[s]);
+      for (int k = 0; k < n; ++k)
+        xi[s].col(k) *= std::polar(1.0, -prior[k] * omega * r.sample_times[s]);
     // Fourier coefficients of every entry (FFT), then the branch centred on harmonic 0.
     Eigen::FFT<double> fft;
     const int H = samples / 2 - 1;  // the Nyquist bin is dropped (ambiguous sign)
@@ -417,7 +429,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
       for (int k = 0; k < n; ++k) {
         for (int s = 0; s < samples; ++s) in[s] = xi[s](i, k);
         fft.fwd(out, in);  // out[j] = Σ_s in[s] e^{-2πj js/S}
-        for (int v = -H; v <= H; ++v) coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
+        for (int v = -H; v <= H; ++v)
+          coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
       }
     double worst_tail = 0;
     std::vector<int> failed_modes;
@@ -457,7 +470,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
       mode.branch_margin = std::max(0.0, 0.5 - std::abs(centroid - m));
       mode.eigvec_residual = vecs[k].residual;
       // Shift to the chosen branch: ξ^(m)(t) = ξ(t) e^{-j m Ωp t}, coefficients c_{v+m}.
-      for (int s = 0; s < samples; ++s) xi[s].col(k) *= std::polar(1.0, -m * omega * r.sample_times[s]);
+      for (int s = 0; s < samples; ++s)
+        xi[s].col(k) *= std::polar(1.0, -m * omega * r.sample_times[s]);
       std::vector<Eigen::VectorXcd> shifted(2 * H + 1, Eigen::VectorXcd::Zero(n));
       for (int v = -H; v <= H; ++v)
         if (std::abs(v + m) <= H) shifted[v + H] = coef[v + m + H].col(k);
@@ -479,7 +493,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     // not be computed are left out.
     std::vector<int> good;
     for (int k = 0; k < n; ++k)
-      if (std::find(failed_modes.begin(), failed_modes.end(), k) == failed_modes.end()) good.push_back(k);
+      if (std::find(failed_modes.begin(), failed_modes.end(), k) == failed_modes.end())
+        good.push_back(k);
     r.mode_condition = std::numeric_limits<double>::infinity();
     Eigen::MatrixXcd best_xi;
     for (int s = 0; s < samples; s += std::max(1, samples / 16)) {
@@ -515,10 +530,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
       r.diagnostics.push_back(s.str());
     }
     if (good.empty()) {
-      r.diagnostics.push_back("no periodic mode shape could be computed (the solutions grow and "
-                              "decay over hundreds of decades within a period): exponents and "
-                              "multipliers are unaffected; mode shapes, left modes and branches "
-                              "are not available");
+      r.diagnostics.push_back(
+          "no periodic mode shape could be computed (the solutions grow and "
+          "decay over hundreds of decades within a period): exponents and "
+          "multipliers are unaffected; mode shapes, left modes and branches "
+          "are not available");
     } else if (!(r.mode_condition < 1e8)) {
       std::ostringstream s;
       s << "mode matrix is ill-conditioned (cond = " << r.mode_condition
@@ -538,9 +554,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     for (int k = 0; k < n; ++k)
       if (r.modes[k].branch_margin < 0.05 && std::isfinite(r.modes[k].eigvec_residual)) {
         std::ostringstream s;
-        const bool negative_real = std::abs(std::abs(r.modes[k].log_multiplier.imag()) - kPi) < 1e-6;
+        const bool negative_real =
+            std::abs(std::abs(r.modes[k].log_multiplier.imag()) - kPi) < 1e-6;
         if (negative_real) {
-          s << "mode " << k + 1 << ": negative real multiplier, so the exponent sits on the strip "
+          s << "mode " << k + 1
+            << ": negative real multiplier, so the exponent sits on the strip "
                "edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the same solution; the "
                "non-negative one is reported";
         } else {
@@ -584,7 +602,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.modes[best].rigid_body = true;
     std::ostringstream s;
     s << "mode " << best + 1 << " is the rigid rotation of state " << state + 1
-      << (state < static_cast<int>(system.labels().states.size()) ? " (" + system.labels().states[state] + ")" : "")
+      << (state < static_cast<int>(system.labels().states.size())
+              ? " (" + system.labels().states[state] + ")"
+              : "")
       << ": exponent " << r.modes[best].exponent.real()
       << " 1/s, exactly 0 for the exact periodic system; its distance from 0 is the model's "
          "error (e.g. azimuth sampling); left out of max Re λ and the stability verdict";
@@ -602,7 +622,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     sum_log_abs += l.real();
   }
   const double trace_integral = IntegralOfTrace(system);
-  r.liouville_residual = std::abs(sum_log_abs - trace_integral) / std::max(1.0, std::abs(trace_integral));
+  r.liouville_residual =
+      std::abs(sum_log_abs - trace_integral) / std::max(1.0, std::abs(trace_integral));
   // Round-off floor: every factor carries a backward error of a few eps, K + n of them
   // accumulate; an eigenvalue moves by κ_k times that, or by its square root when the
   // eigenvalue is defective (κ = ∞).
@@ -617,15 +638,18 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   // settings: one segment with single-shot multipliers loses every |ρ| below eps·max|ρ| — and
   // the result is not ok. Without an estimate only a gross failure can be told from the
   // integration's own error: the allowance is then 1e4 × the tolerance (at least 1e-6), relative.
-  const double gross = std::max(1e-6, 1e4 * options.integrator.rel_tol) * std::max(1.0, std::abs(trace_integral));
+  const double gross =
+      std::max(1e-6, 1e4 * options.integrator.rel_tol) * std::max(1.0, std::abs(trace_integral));
   const double liouville_allowance =
-      options.estimate_error ? std::max(n * T * r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
-                             : gross;
+      options.estimate_error
+          ? std::max(n * T * r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
+          : gross;
   r.ok = std::abs(sum_log_abs - trace_integral) <= liouville_allowance;
   if (!r.ok) {
     std::ostringstream s;
-    s << "Liouville check failed: Σ log|ρ| = " << sum_log_abs << " but ∫ tr A dt = " << trace_integral
-      << ", beyond what the error estimate allows (" << liouville_allowance
+    s << "Liouville check failed: Σ log|ρ| = " << sum_log_abs
+      << " but ∫ tr A dt = " << trace_integral << ", beyond what the error estimate allows ("
+      << liouville_allowance
       << "): some exponents are wrong (too few segments, single-shot multipliers or too loose a "
          "tolerance for this system; the automatic settings avoid this)";
     r.diagnostics.push_back(s.str());
@@ -633,8 +657,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate >= 0)
-    r.diagnostics.push_back("stability undecided (marginal): |max Re λ| is within the error "
-                            "estimate (a conservative system, or one on a stability boundary)");
+    r.diagnostics.push_back(
+        "stability undecided (marginal): |max Re λ| is within the error "
+        "estimate (a conservative system, or one on a stability boundary)");
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

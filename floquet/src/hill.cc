@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "hill_internal.h"
-#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
 
 namespace ltp {
@@ -32,8 +32,7 @@ std::vector<double> EigenvalueConditions(Eigen::MatrixXcd xi0, const std::vector
     return kappa;
   }
   const Eigen::MatrixXcd inverse = lu.inverse();
-  for (size_t j = 0; j < order.size(); ++j)
-    kappa[j] = std::max(1.0, inverse.row(order[j]).norm());
+  for (size_t j = 0; j < order.size(); ++j) kappa[j] = std::max(1.0, inverse.row(order[j]).norm());
   return kappa;
 }
 
@@ -49,7 +48,8 @@ constexpr double kPi = std::numbers::pi;
 double FrozenEigenvalueSpread(const FourierMatrix& A, double omega) {
   const int n = A.rows();
   if (n == 0) return 0;
-  const Eigen::VectorXcd mean = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(A[0], false).eigenvalues();
+  const Eigen::VectorXcd mean =
+      Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(A[0], false).eigenvalues();
   double spread = 0;
   for (int s = 0; s < 16; ++s) {
     const double t = (s + 0.5) / 16 * 2 * kPi / omega;
@@ -107,7 +107,8 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   }
   Eigenpairs pairs = Solve(A, omega, N, o, shifts, r.solver, r.diagnostics);
   hill_internal::Selection sel;
-  if (pairs.ok) sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
+  if (pairs.ok)
+    sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
   if (o.solver == HillSolver::kStructured && o.structured_fallback &&
       static_cast<int>(sel.chosen.size()) < n) {
     const double bytes = std::pow((2.0 * N + 1) * n, 2) * sizeof(cd);
@@ -165,7 +166,8 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   const std::vector<double> kappa = EigenvalueConditions(xi0, order);
   r.ok = static_cast<int>(r.modes.size()) == n;
   r.max_real_exponent = n > 0 ? -std::numeric_limits<double>::infinity() : 0;
-  for (const FloquetMode& m : r.modes) r.max_real_exponent = std::max(r.max_real_exponent, m.exponent.real());
+  for (const FloquetMode& m : r.modes)
+    r.max_real_exponent = std::max(r.max_real_exponent, m.exponent.real());
 
   double worst_tail = 0;
   for (const HillModeInfo& i : r.info) worst_tail = std::max(worst_tail, i.tail_weight);
@@ -207,9 +209,10 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
         for (auto& i : r.info) i.truncation_change *= factor;
       }
       // Pre-asymptotic (eigenvectors at the truncation edge, and a change above 1e-6 of the
-      // largest exponent or a large edge weight): one more solve at N + 2Δ gives the ratio q of successive changes.
-      // Geometric convergence then bounds the error by change/(1 − q); no shrinking (q ≥ 0.9)
-      // means no bound at all. (At N = 1 on tower-rotor the change was 0.47 of the error.)
+      // largest exponent or a large edge weight): one more solve at N + 2Δ gives the ratio q of
+      // successive changes. Geometric convergence then bounds the error by change/(1 − q); no
+      // shrinking (q ≥ 0.9) means no bound at all. (At N = 1 on tower-rotor the change was 0.47 of
+      // the error.)
       double tail = 0, scale = 1;
       for (const HillModeInfo& i : r.info) tail = std::max(tail, i.tail_weight);
       for (const FloquetMode& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
@@ -225,7 +228,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
         double next = 0;
         for (double x : MatchExponents(b, c, omega)) next = std::max(next, x);
         const double q = r.truncation_estimate > 0 ? next / r.truncation_estimate : 0;
-        r.truncation_estimate = q < 0.5 ? 2 * r.truncation_estimate
+        r.truncation_estimate = q < 0.5   ? 2 * r.truncation_estimate
                                 : q < 0.9 ? r.truncation_estimate / (1 - q)
                                           : std::numeric_limits<double>::infinity();
         if (q >= 0.9)
@@ -234,7 +237,8 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       }
     } catch (const ResourceError&) {
       r.delta_harmonics = 0;
-      r.diagnostics.push_back("N + Δ estimate skipped: the larger truncation does not fit in memory");
+      r.diagnostics.push_back(
+          "N + Δ estimate skipped: the larger truncation does not fit in memory");
     }
   }
 
@@ -260,8 +264,8 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   if (o.koopman_check && r.ok && r.matrix_size <= o.koopman_max_size) {
     const Eigen::MatrixXcd phi = KoopmanHillTransition(A, omega, N, T);
     // The bound holds in exact arithmetic; the computed expm adds round-off ~ eps ||H T|| ||Φ||.
-    r.apriori_phi_bound += 16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) *
-                           std::max(1.0, phi.norm());
+    r.apriori_phi_bound +=
+        16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) * std::max(1.0, phi.norm());
     Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(phi);
     std::vector<cd> kh;
     for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) {
@@ -279,19 +283,22 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     for (Eigen::Index k = 0; k < V.cols(); ++k) V.col(k).normalize();
     const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(V);
     const auto& s = svd.singularValues();
-    const double kappa = s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
+    const double kappa =
+        s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
     double worst = 0;
     for (const FloquetMode& m : r.modes) {
       const double delta = kappa * r.apriori_phi_bound / std::exp(m.exponent.real() * T);
-      worst = std::max(worst, delta < 1 ? -std::log1p(-delta) / T : std::numeric_limits<double>::infinity());
+      worst = std::max(
+          worst, delta < 1 ? -std::log1p(-delta) / T : std::numeric_limits<double>::infinity());
     }
     kh_own = worst;
     // Plus the round-off floor of the eigenvalue solve (backward error ~ eps ||H_N||).
-    r.apriori_bound = worst + r.koopman_discrepancy +
-                      4 * std::numeric_limits<double>::epsilon() * norm_h;
+    r.apriori_bound =
+        worst + r.koopman_discrepancy + 4 * std::numeric_limits<double>::epsilon() * norm_h;
   } else if (o.koopman_check && r.ok) {
-    r.diagnostics.push_back("Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
-                            std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
+    r.diagnostics.push_back(
+        "Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
+        std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
   }
   // The error estimate: the N vs N+Δ change (no convergence evidence without it: the
   // Koopman–Hill gap then stands in).
@@ -302,8 +309,9 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   // a-priori bound, though, it means the selection picked a wrong eigenvalue.
   if (r.koopman_discrepancy > kh_own + std::max(0.0, r.truncation_estimate)) {
     estimate = std::max(estimate, r.koopman_discrepancy);
-    r.diagnostics.push_back("Koopman–Hill disagrees with the selected exponents beyond its own "
-                            "truncation bound: the selection may have picked a wrong eigenvalue");
+    r.diagnostics.push_back(
+        "Koopman–Hill disagrees with the selected exponents beyond its own "
+        "truncation bound: the selection may have picked a wrong eigenvalue");
   }
   // Liouville: Σ Re λ_k = (1/T) ∫ tr A = Re tr A_0 for the true exponents, whatever the
   // truncation. A selection that picked spurious eigenvalues (or missed a mode, as on stiff
@@ -346,15 +354,19 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   for (size_t k = 0; k < r.info.size(); ++k) {
     const double backward = 4 * r.info[k].residual * norm_h;
     const double kappa_k = k < kappa.size() ? kappa[k] : 1.0;
-    floor = std::max(floor, std::min(kappa_k * backward, 2 * std::sqrt(backward * norm_h)) +
-                                2 * std::numeric_limits<double>::epsilon() * std::abs(r.modes[k].exponent));
+    floor = std::max(
+        floor, std::min(kappa_k * backward, 2 * std::sqrt(backward * norm_h)) +
+                   2 * std::numeric_limits<double>::epsilon() * std::abs(r.modes[k].exponent));
   }
-  r.error_estimate = r.modes.empty() ? -1 : estimate >= 0 ? estimate + floor : std::numeric_limits<double>::infinity();
+  r.error_estimate = r.modes.empty() ? -1
+                     : estimate >= 0 ? estimate + floor
+                                     : std::numeric_limits<double>::infinity();
   // The verdict needs max Re λ beyond the error estimate (as the monodromy route reports it).
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal)
-    r.diagnostics.push_back("stability undecided (marginal): |max Re λ| is within the error estimate");
+    r.diagnostics.push_back(
+        "stability undecided (marginal): |max Re λ| is within the error estimate");
   r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -364,12 +376,13 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
 // truncation error. The same analysis on a fit with half the samples changes the exponents by
 // at least the error of the full fit (the aliasing error falls at least like 1/S); that change
 // is added to the estimate (docs/hill-method.md).
-void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options, const FourierFit& fit,
-                      HillResult& r) {
+void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options,
+                      const FourierFit& fit, HillResult& r) {
   FourierFitOptions coarse_options = options.fourier;
   coarse_options.max_samples = fit.samples / 2;
   auto f = [&system](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalA(t, out); };
-  const FourierFit coarse = FitFourier(f, system.states(), system.states(), system.period(), coarse_options);
+  const FourierFit coarse =
+      FitFourier(f, system.states(), system.states(), system.period(), coarse_options);
   HillOptions o = options;
   o.delta_harmonics = -1;
   o.koopman_check = false;
@@ -402,9 +415,12 @@ void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options, 
 
 std::string_view ToString(HillSolver solver) {
   switch (solver) {
-    case HillSolver::kDense: return "dense";
-    case HillSolver::kStructured: return "structured";
-    case HillSolver::kAuto: return "auto";
+    case HillSolver::kDense:
+      return "dense";
+    case HillSolver::kStructured:
+      return "structured";
+    case HillSolver::kAuto:
+      return "auto";
   }
   return "?";
 }
@@ -418,9 +434,12 @@ std::optional<HillSolver> ParseHillSolver(std::string_view name) {
 
 std::string_view ToString(HillSelectionRule rule) {
   switch (rule) {
-    case HillSelectionRule::kCentroid: return "centroid";
-    case HillSelectionRule::kCentralWeight: return "central-weight";
-    case HillSelectionRule::kStrip: return "strip";
+    case HillSelectionRule::kCentroid:
+      return "centroid";
+    case HillSelectionRule::kCentralWeight:
+      return "central-weight";
+    case HillSelectionRule::kStrip:
+      return "strip";
   }
   return "?";
 }
@@ -441,7 +460,8 @@ void HillOptions::Validate() const {
   if (harmonics < 0) fail("harmonics", harmonics, "harmonics >= 0");
   if (!(ambiguity_threshold >= 0 && ambiguity_threshold < 1))
     fail("ambiguity_threshold", ambiguity_threshold, "0 <= ambiguity_threshold < 1");
-  if (delta_harmonics < -1) fail("delta_harmonics", delta_harmonics, ">= -1 (0 = automatic, -1 = off)");
+  if (delta_harmonics < -1)
+    fail("delta_harmonics", delta_harmonics, ">= -1 (0 = automatic, -1 = off)");
   if (koopman_max_size < 0) fail("koopman_max_size", koopman_max_size, "koopman_max_size >= 0");
   if (!(max_dense_bytes > 0) || !std::isfinite(max_dense_bytes))
     fail("max_dense_bytes", max_dense_bytes, "finite and > 0");
@@ -504,10 +524,11 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
 
 std::string HillResult::BriefReport() const {
   std::ostringstream s;
-  s << "Hill N = " << harmonics << " (" << solver << ", size " << matrix_size << "): max Re λ = "
-    << max_real_exponent << " (" << (stable ? "stable" : "unstable") << "), N vs N+"
-    << delta_harmonics << ": " << truncation_estimate << ", a-priori bound: " << apriori_bound
-    << ", Koopman–Hill gap: " << koopman_discrepancy << ", " << elapsed_s * 1e3 << " ms";
+  s << "Hill N = " << harmonics << " (" << solver << ", size " << matrix_size
+    << "): max Re λ = " << max_real_exponent << " (" << (stable ? "stable" : "unstable")
+    << "), N vs N+" << delta_harmonics << ": " << truncation_estimate
+    << ", a-priori bound: " << apriori_bound << ", Koopman–Hill gap: " << koopman_discrepancy
+    << ", " << elapsed_s * 1e3 << " ms";
   return s.str();
 }
 

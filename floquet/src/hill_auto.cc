@@ -16,7 +16,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   auto finish = [&](HillResult r, bool met, const std::string& why) {
     r.tolerance_met = met;
     r.diagnostics.push_back(why);
-    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    r.elapsed_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     return r;
   };
   options.harmonics = std::clamp(options.harmonics, 1, std::max(1, max_harmonics));
@@ -35,8 +36,9 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
       r = AnalyzeHill(system, options);
     } catch (const ResourceError& e) {
       if (best.modes.empty()) throw;
-      return finish(std::move(best), false,
-                    std::string("automatic truncation stopped short of the tolerance: ") + e.what());
+      return finish(
+          std::move(best), false,
+          std::string("automatic truncation stopped short of the tolerance: ") + e.what());
     }
     double scale = 1;
     for (const auto& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
@@ -53,10 +55,12 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     }
     // Once the truncation error is below the error of the fitted coefficients of A, raising N
     // cannot help.
-    if (best.ok && best.fourier_fit_error > goal && change >= 0 && change <= best.fourier_fit_error) {
+    if (best.ok && best.fourier_fit_error > goal && change >= 0 &&
+        change <= best.fourier_fit_error) {
       s << "automatic truncation stopped at N = " << best.harmonics << ": the Fourier fit of A(t) "
-        << "limits every exponent to about " << best.fourier_fit_error << " 1/s, above the tolerance "
-        << goal << ", and the N vs N+Δ change " << change << " 1/s is already below that (A(t) is "
+        << "limits every exponent to about " << best.fourier_fit_error
+        << " 1/s, above the tolerance " << goal << ", and the N vs N+Δ change " << change
+        << " 1/s is already below that (A(t) is "
         << "discontinuous; the monodromy route has no such limit)";
       return finish(std::move(best), false, s.str());
     }
@@ -73,8 +77,10 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     }
     // Slow (algebraic) convergence: at the rate seen between the last two truncations, would
     // the tolerance be met below max_harmonics? If not, stop now rather than spend minutes.
-    if (best.ok && previous_change > 0 && change > 0 && std::isfinite(change) && change < previous_change) {
-      const double rate = std::log(previous_change / change) / std::log(double(best.harmonics) / previous_n);
+    if (best.ok && previous_change > 0 && change > 0 && std::isfinite(change) &&
+        change < previous_change) {
+      const double rate =
+          std::log(previous_change / change) / std::log(double(best.harmonics) / previous_n);
       const double needed = best.harmonics * std::pow(change / goal, 1 / rate);
       if (rate > 0 && needed > 2.0 * max_harmonics) {
         s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
@@ -96,7 +102,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
 
 double HillAutoTolerance(double rel_tol) { return std::max(rel_tol, 1e-12); }
 
-HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options, double rel_tol) {
+HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options,
+                                  double rel_tol) {
   options.harmonics = kHillAutoStartHarmonics;
   return AnalyzeHillAuto(system, options, HillAutoTolerance(rel_tol));
 }

@@ -68,7 +68,7 @@ struct Selection {
   std::vector<int> chosen;         ///< indices into the eigenpairs, one per physical exponent
   std::vector<HillModeInfo> info;  ///< parallel to chosen
   std::vector<std::string> diagnostics;
-  int passed = 0;                  ///< how many chosen met the rule's pass condition
+  int passed = 0;  ///< how many chosen met the rule's pass condition
 };
 
 Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double omega,

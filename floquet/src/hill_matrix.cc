@@ -82,7 +82,9 @@ bool BandedShiftInvert::Factor(cd shift) {
   const int N = harmonics_, n = n_, h = BlockBandwidth(a_, N), ku = kl_;
   ab_.assign(static_cast<size_t>(ldab_) * size_, cd(0));
   ipiv_.assign(size_, 0);
-  auto at = [&](int i, int j) -> cd& { return ab_[kl_ + ku + i - j + static_cast<size_t>(j) * ldab_]; };
+  auto at = [&](int i, int j) -> cd& {
+    return ab_[kl_ + ku + i - j + static_cast<size_t>(j) * ldab_];
+  };
   for (int v = -N; v <= N; ++v)
     for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u) {
       const Eigen::MatrixXcd& b = a_[v - u];
@@ -91,8 +93,8 @@ bool BandedShiftInvert::Factor(cd shift) {
     }
   for (int v = -N; v <= N; ++v)
     for (int r = 0; r < n; ++r) at((v + N) * n + r, (v + N) * n + r) -= cd(0, v * omega_) + shift;
-  const lapack_int info = LAPACKE_zgbtrf(LAPACK_COL_MAJOR, size_, size_, kl_, ku, ab_.data(),
-                                         ldab_, ipiv_.data());
+  const lapack_int info =
+      LAPACKE_zgbtrf(LAPACK_COL_MAJOR, size_, size_, kl_, ku, ab_.data(), ldab_, ipiv_.data());
   return info == 0;
 }
 
@@ -112,7 +114,8 @@ Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics,
   for (int v = -N; v <= N; ++v) {
     for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u)
       H.block((v + N) * n, (u + N) * n, n, n) = A[v - u];
-    H.block((v + N) * n, (v + N) * n, n, n).diagonal().array() -= std::complex<double>(0, v * omega);
+    H.block((v + N) * n, (v + N) * n, n, n).diagonal().array() -=
+        std::complex<double>(0, v * omega);
   }
   return H;
 }

@@ -79,7 +79,8 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
   const double family_tol = 1e-6 * scale;
   auto same_family = [&](int i, int j) {
     const cd d = cands[i].value - cands[j].value;
-    return std::abs(d.real()) <= family_tol && std::abs(std::remainder(d.imag(), omega)) <= family_tol;
+    return std::abs(d.real()) <= family_tol &&
+           std::abs(std::remainder(d.imag(), omega)) <= family_tol;
   };
 
   std::vector<int> order(count);
@@ -109,9 +110,9 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
   // Greedy: best score first; a family accepts further members only at the same eigenvalue
   // (a genuine multiple exponent), every other member is a runner-up.
   Selection sel;
-  std::vector<int> family_of(count, -1);       // index into `families`
-  std::vector<std::vector<int>> families;      // chosen members
-  std::vector<double> runner_up;               // best runner-up score per family
+  std::vector<int> family_of(count, -1);   // index into `families`
+  std::vector<std::vector<int>> families;  // chosen members
+  std::vector<double> runner_up;           // best runner-up score per family
   for (int i : order) {
     int f = -1;
     for (size_t g = 0; g < families.size() && f < 0; ++g)
@@ -175,7 +176,8 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
       std::ostringstream s;
       const cd v = cands[sel.chosen[k]].value;
       s << "exponent with Re λ = " << v.real() << ": its eigenvector is centred between two "
-        << "harmonic blocks (margin " << sel.info[k].selection_margin << " < " << ambiguity_threshold
+        << "harmonic blocks (margin " << sel.info[k].selection_margin << " < "
+        << ambiguity_threshold
         << "), a tie between λ and λ ± jΩp, which are the same exponent modulo jΩp (a negative "
            "real multiplier puts it on the strip edge Im λ = ±Ωp/2); the one with the larger "
            "Im λ is reported";

@@ -12,15 +12,15 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <set>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include "hill_internal.h"
-#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/floquet/method_choice.h"
 
 namespace ltp {
 namespace {
@@ -59,7 +59,8 @@ Envelope BestEnvelope(const std::vector<double>& norms, double b_max, int N, dou
   }
   best.b = best_b;
   for (size_t w = 0; w < norms.size(); ++w)
-    if (norms[w] > 0) best.a = std::max(best.a, norms[w] * std::exp(best_b * static_cast<double>(w)));
+    if (norms[w] > 0)
+      best.a = std::max(best.a, norms[w] * std::exp(best_b * static_cast<double>(w)));
   return best;
 }
 
@@ -147,12 +148,12 @@ std::string ClassifyGivenCoefficients(const std::vector<double>& norms, double* 
 
 }  // namespace
 
-HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmonics, double period) {
+HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmonics,
+                       double period) {
   HillDecay d;
   d.harmonics = A.max_harmonic();
   d.norms.resize(A.max_harmonic() + 1);
-  for (int w = 0; w <= A.max_harmonic(); ++w)
-    d.norms[w] = std::max(A[w].norm(), A[-w].norm());
+  for (int w = 0; w <= A.max_harmonic(); ++w) d.norms[w] = std::max(A[w].norm(), A[-w].norm());
   if (fit) {
     d.kind = fit->decay;
     d.rate = fit->decay_rate;
@@ -194,12 +195,14 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   const HillSolver largest_solver =
       options.solver == HillSolver::kAuto
           ? ChooseHillSolver(MeasureSystemTraits(system), largest,
-                             system.fourier_A() ? system.fourier_A()->max_harmonic() : largest).solver
+                             system.fourier_A() ? system.fourier_A()->max_harmonic() : largest)
+                .solver
           : options.solver;
   if (largest_solver == HillSolver::kDense)
     hill_internal::CheckDenseMemory(system.states(), largest, options.max_dense_bytes);
   else if (const FourierMatrix* fa = system.fourier_A())
-    hill_internal::CheckBandMemory(system.states(), hill_internal::BlockBandwidth(*fa, largest), largest);
+    hill_internal::CheckBandMemory(system.states(), hill_internal::BlockBandwidth(*fa, largest),
+                                   largest);
   HillStudy study;
   for (const FloquetMode& m : reference.modes) study.reference.push_back(m.exponent);
   const bool have_ref = !study.reference.empty();
@@ -307,8 +310,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   return study;
 }
 
-HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics, const HillOptions& options,
-                          bool reference) {
+HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
+                          const HillOptions& options, bool reference) {
   if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
   FloquetResult monodromy;
   if (reference) {

@@ -179,7 +179,8 @@ namespace internal {
 namespace {
 // Points of [t0, t1] this close are one point: a piece shorter would only carry round-off.
 double MergeDistance(double t0, double t1, double period) {
-  return 64 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t1), period});
+  return 64 * std::numeric_limits<double>::epsilon() *
+         std::max({std::abs(t0), std::abs(t1), period});
 }
 }  // namespace
 
@@ -202,7 +203,8 @@ std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, doubl
   return points;
 }
 
-std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vector<double>& times) {
+std::vector<Piece> TransitionPieces(const PeriodicSystem& system,
+                                    const std::vector<double>& times) {
   std::vector<Piece> pieces;
   const double period = system.period();
   for (size_t i = 0; i + 1 < times.size(); ++i) {
@@ -264,7 +266,8 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
     case IntegratorType::kRkf78:
     case IntegratorType::kBulirschStoer:
       result = std::move(
-          internal::OdeintTransitions(system, internal::TransitionPieces(system, {t0, t1}), options).back());
+          internal::OdeintTransitions(system, internal::TransitionPieces(system, {t0, t1}), options)
+              .back());
       break;
     case IntegratorType::kCvodeBdf:
     case IntegratorType::kCvodeAdams:

@@ -4,9 +4,9 @@
 // odeint default-constructs fixed-size Eigen states (uninitialised by design) and copies them
 // before the first write; GCC cannot see that and warns inside the library headers.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <array>
 #include <boost/numeric/odeint.hpp>
 #include <boost/numeric/odeint/external/eigen/eigen.hpp>
-#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -67,8 +67,10 @@ class MatrixRhs {
       }
       // Fourier form: A(t) from the real series with fixed-size arithmetic, inline (the
       // general EvalA costs as much as the sincos for n = 2).
-      if (series_) EvalSeries(tw);
-      else system_.EvalA(tw, a_);
+      if (series_)
+        EvalSeries(tw);
+      else
+        system_.EvalA(tw, a_);
       if (cache_stages_) {
         cache_[next_slot_] = {tw, a_};
         next_slot_ = (next_slot_ + 1) % kCacheSlots;
@@ -83,7 +85,8 @@ class MatrixRhs {
   void CacheStages(bool on) { cache_stages_ = on; }
 
   void EvalSeries(double t) {
-    using Block = Eigen::Map<const Eigen::Matrix<double, N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>;
+    using Block = Eigen::Map<
+        const Eigen::Matrix<double, N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>;
     constexpr int nn = N == Eigen::Dynamic ? 1 : N * N;
     a_ = Block(series_);
     if (harmonics_ == 0) return;
@@ -108,7 +111,8 @@ class MatrixRhs {
   void BasePhasor(double t, double& c1, double& s1) {
     const double omega = omega_;
     const double d = t - last_t_;
-    if (turns_ < 32 && std::abs(d - turn_d_) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t)) {
+    if (turns_ < 32 &&
+        std::abs(d - turn_d_) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t)) {
       c1 = last_c_ * turn_c_ - last_s_ * turn_s_;
       s1 = last_s_ * turn_c_ + last_c_ * turn_s_;
       ++turns_;
@@ -184,7 +188,8 @@ bool BelowOverflow(const State& x) {
 // into many factors costs little more than integrating it in one go.
 template <class State, int N, class Controlled>
 std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicSystem& system,
-                                  const std::vector<Piece>& pieces, const IntegratorOptions& options) {
+                                  const std::vector<Piece>& pieces,
+                                  const IntegratorOptions& options) {
   const int n = system.states();
   std::vector<TransitionResult> results;
   TransitionResult result;
@@ -278,8 +283,8 @@ template <class State, int N>
 std::vector<TransitionResult> RunOdeint(const PeriodicSystem& system,
                                         const std::vector<Piece>& points,
                                         const IntegratorOptions& options) {
-  using Algebra = std::conditional_t<N == Eigen::Dynamic, odeint::range_algebra,
-                                     odeint::vector_space_algebra>;
+  using Algebra =
+      std::conditional_t<N == Eigen::Dynamic, odeint::range_algebra, odeint::vector_space_algebra>;
   if (options.type == IntegratorType::kBulirschStoer) {
     return Run<State, N>(odeint::bulirsch_stoer<State, double, State, double, Algebra>(
                              options.abs_tol, options.rel_tol),
@@ -287,8 +292,9 @@ std::vector<TransitionResult> RunOdeint(const PeriodicSystem& system,
   }
   if (options.type == IntegratorType::kRkf78) {
     return Run<State, N>(
-        odeint::make_controlled(options.abs_tol, options.rel_tol,
-                                odeint::runge_kutta_fehlberg78<State, double, State, double, Algebra>()),
+        odeint::make_controlled(
+            options.abs_tol, options.rel_tol,
+            odeint::runge_kutta_fehlberg78<State, double, State, double, Algebra>()),
         7, system, points, options);
   }
   return Run<State, N>(
@@ -303,10 +309,14 @@ std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
                                                 const std::vector<Piece>& pieces,
                                                 const IntegratorOptions& options) {
   switch (system.states()) {
-    case 2: return RunOdeint<FixedState<2>, 2>(system, pieces, options);
-    case 3: return RunOdeint<FixedState<3>, 3>(system, pieces, options);
-    case 4: return RunOdeint<FixedState<4>, 4>(system, pieces, options);
-    default: return RunOdeint<DynamicState, Eigen::Dynamic>(system, pieces, options);
+    case 2:
+      return RunOdeint<FixedState<2>, 2>(system, pieces, options);
+    case 3:
+      return RunOdeint<FixedState<3>, 3>(system, pieces, options);
+    case 4:
+      return RunOdeint<FixedState<4>, 4>(system, pieces, options);
+    default:
+      return RunOdeint<DynamicState, Eigen::Dynamic>(system, pieces, options);
   }
 }
 

@@ -13,7 +13,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string Name(const LinOperatingPoint& op) { return op.files.empty() ? std::string("?") : op.files.front(); }
+std::string Name(const LinOperatingPoint& op) {
+  return op.files.empty() ? std::string("?") : op.files.front();
+}
 
 LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOptions& options) {
   LinCampbellPoint p;
@@ -23,7 +25,8 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
   if (options.axis == OperatingPointAxis::kRotorSpeed) {
     p.parameter = op.rotor_speed * 30 / kPi;
   } else {
-    if (!op.wind_speed) throw InputError(Name(op) + ": no wind speed in the header; order the points by rotor speed");
+    if (!op.wind_speed)
+      throw InputError(Name(op) + ": no wind speed in the header; order the points by rotor speed");
     p.parameter = *op.wind_speed;
   }
   p.mbc = Mbc3(op, options.mbc);
@@ -33,7 +36,8 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
                       ": too few to average the periodic part (OpenFAST recommends 36 for MBC3)");
   if (p.mbc.rigid_body_modes)
     p.notes.push_back(std::to_string(p.mbc.rigid_body_modes) + " rigid-body mode" +
-                      (p.mbc.rigid_body_modes == 1 ? "" : "s") + " (the rotor's free rotation) left out");
+                      (p.mbc.rigid_body_modes == 1 ? "" : "s") +
+                      " (the rotor's free rotation) left out");
   for (const std::string& d : op.diagnostics) p.notes.push_back(d);
   for (const std::string& d : p.mbc.diagnostics) p.notes.push_back(d);
   return p;
@@ -51,7 +55,8 @@ SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index, std::vector<int
   std::vector<int> kept;
   for (size_t k = 0; k < p.mbc.modes.size(); ++k)
     if (!p.mbc.modes[k].rigid_body) kept.push_back(static_cast<int>(k));
-  const Eigen::Index n = kept.empty() ? 0 : p.mbc.modes[static_cast<size_t>(kept[0])].eigenvector.size();
+  const Eigen::Index n =
+      kept.empty() ? 0 : p.mbc.modes[static_cast<size_t>(kept[0])].eigenvector.size();
   s.shapes.resize(n, static_cast<Eigen::Index>(kept.size()));
   for (size_t j = 0; j < kept.size(); ++j) {
     const MbcMode& m = p.mbc.modes[static_cast<size_t>(kept[j])];
@@ -78,7 +83,8 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   options.Validate();
   if (points.empty()) throw InputError("a Campbell diagram needs at least one operating point");
   LinCampbellResult r;
-  r.axis_label = options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]";
+  r.axis_label =
+      options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]";
   for (const LinOperatingPoint& op : points) r.points.push_back(AnalysePoint(op, options));
   std::stable_sort(r.points.begin(), r.points.end(),
                    [](const auto& a, const auto& b) { return a.parameter < b.parameter; });
@@ -86,8 +92,9 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   for (size_t i = 0; i < r.points.size(); ++i) {
     const auto& p = r.points[i];
     if (i > 0 && p.parameter == r.points[i - 1].parameter)
-      throw InputError(p.files.front() + " and " + r.points[i - 1].files.front() + " are at the same " +
-                       r.axis_label + " " + MessageNumber(p.parameter) + ": one set of files per operating point");
+      throw InputError(p.files.front() + " and " + r.points[i - 1].files.front() +
+                       " are at the same " + r.axis_label + " " + MessageNumber(p.parameter) +
+                       ": one set of files per operating point");
     bool same = p.mbc.states.size() == reference.mbc.states.size();
     for (size_t k = 0; same && k < p.mbc.states.size(); ++k)
       same = p.mbc.states[k].description == reference.mbc.states[k].description;
@@ -96,7 +103,8 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
                        ": modes can only be tracked across operating points of one model");
   }
   std::vector<std::vector<int>> index_of(r.points.size());
-  for (size_t i = 0; i < r.points.size(); ++i) r.sweep.push_back(AsSweepPoint(r.points[i], i, index_of[i]));
+  for (size_t i = 0; i < r.points.size(); ++i)
+    r.sweep.push_back(AsSweepPoint(r.points[i], i, index_of[i]));
   r.tracking = TrackModes(r.sweep);
   SystemLabels labels;
   for (const LinChannel& c : reference.mbc.states) labels.states.push_back(c.description);
@@ -108,7 +116,8 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
     std::vector<std::string> names;
     for (size_t p = 0; p < r.sweep.size(); ++p) {
       const auto& at = r.tracking.labels[p];
-      if (line.label >= static_cast<int>(at.size()) || at[static_cast<size_t>(line.label)] < 0) continue;
+      if (line.label >= static_cast<int>(at.size()) || at[static_cast<size_t>(line.label)] < 0)
+        continue;
       const int mode = index_of[p][static_cast<size_t>(at[static_cast<size_t>(line.label)])];
       names.push_back(r.points[p].mbc.modes[static_cast<size_t>(mode)].description);
     }

@@ -80,8 +80,9 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
   IntegratorChoice c;
   if (t.constant_pieces) {
     c.type = IntegratorType::kExpm;
-    c.reason = "A(t) is constant between its breakpoints, so a product of matrix exponentials is "
-               "exact (study: Meissner at round-off with any step count)";
+    c.reason =
+        "A(t) is constant between its breakpoints, so a product of matrix exponentials is "
+        "exact (study: Meissner at round-off with any step count)";
   } else if (t.stiffness > kStiffnessLimit) {
     c.type = IntegratorType::kMagnus6;
     c.reason = "stiff: T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
@@ -112,8 +113,9 @@ IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOpti
 
 HillSolverChoice ChooseHillSolver(const SystemTraits& t, int harmonics, int coefficient_harmonics) {
   HillSolverChoice c;
-  const double m = (2.0 * harmonics + 1) * t.states;                          // Hill matrix size
-  const double band = std::min(m, (std::min(coefficient_harmonics, 2 * harmonics) + 1.0) * t.states);
+  const double m = (2.0 * harmonics + 1) * t.states;  // Hill matrix size
+  const double band =
+      std::min(m, (std::min(coefficient_harmonics, 2 * harmonics) + 1.0) * t.states);
   // Cost model: dense zgeev ~ m³; structured ~ n shifts × banded LU m·band², so
   // structured / dense ≈ kStructuredCost · n (band/m)². kStructuredCost = 0.5 fits the study's
   // crossovers (tower-rotor n = 22 near N = 24, the 40-state chain near N = 5, rotor below
@@ -122,19 +124,22 @@ HillSolverChoice ChooseHillSolver(const SystemTraits& t, int harmonics, int coef
   std::ostringstream s;
   if (t.hill_stiffness > 10) {
     c.solver = HillSolver::kStructured;
-    s << "exponents far from their jΩp copies (max|Re eig A_0| = " << MessageNumber(t.hill_stiffness, 3)
+    s << "exponents far from their jΩp copies (max|Re eig A_0| = "
+      << MessageNumber(t.hill_stiffness, 3)
       << " Ωp > 10 Ωp): shift-invert around A_0's eigenvalues (study: the dense selection missed "
          "stiff.yaml's +150 exponent at every N)";
   } else if (m >= kStructuredMinSize && ratio <= 1) {
     c.solver = HillSolver::kStructured;
     s << "matrix " << m << " rows, band " << band << ": n shift-invert banded solves cost about "
-      << MessageNumber(ratio, 3) << "× one dense eigensolve (model fitted to the study's crossovers)";
+      << MessageNumber(ratio, 3)
+      << "× one dense eigensolve (model fitted to the study's crossovers)";
   } else {
     c.solver = HillSolver::kDense;
-    s << "matrix " << m << " rows, band " << band << ": " 
-      << (m < kStructuredMinSize ? "small enough that one dense eigensolve is cheapest"
-                                 : "n shift-invert banded solves would cost about " + MessageNumber(ratio, 3) +
-                                       "× one dense eigensolve (model fitted to the study's crossovers)");
+    s << "matrix " << m << " rows, band " << band << ": "
+      << (m < kStructuredMinSize
+              ? "small enough that one dense eigensolve is cheapest"
+              : "n shift-invert banded solves would cost about " + MessageNumber(ratio, 3) +
+                    "× one dense eigensolve (model fitted to the study's crossovers)");
   }
   c.reason = s.str();
   return c;

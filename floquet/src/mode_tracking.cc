@@ -72,7 +72,8 @@ ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
       }
     }
     // Greedy assignment, best pairs first.
-    std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+    std::sort(pairs.begin(), pairs.end(),
+              [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
     std::vector<int> label_of(n, -1), taken(n, 0);
     t.labels[p].assign(n, -1);
     int assigned = 0;
@@ -102,7 +103,8 @@ ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
     const auto& labels = t.labels[p];
     t.frequency_hz[p].assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
     if (!points[p].ok || labels.empty()) continue;
-    if (last.size() != labels.size()) last.assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
+    if (last.size() != labels.size())
+      last.assign(labels.size(), std::numeric_limits<double>::quiet_NaN());
     const double fp = points[p].period > 0 ? 1.0 / points[p].period : 0;  // 0: time-invariant
     for (size_t k = 0; k < labels.size(); ++k) {
       if (labels[k] < 0) continue;

@@ -31,16 +31,14 @@
 // arguments appended as hidden size_t arguments. Argument lists checked against the SLICOT 5.0
 // sources of MB03VD.f and MB03BD.f.
 extern "C" {
-void mb03vd_(const int* n, const int* p, const int* ilo, const int* ihi, double* a,
-             const int* lda1, const int* lda2, double* tau, const int* ldtau, double* dwork,
-             int* info);
-void mb03bd_(const char* job, const char* defl, const char* compq, const int* qind,
-             const int* k, const int* n, const int* h, const int* ilo, const int* ihi,
-             const int* s, double* a, const int* lda1, const int* lda2, double* q,
-             const int* ldq1, const int* ldq2, double* alphar, double* alphai, double* beta,
-             int* scal, int* iwork, const int* liwork, double* dwork, const int* ldwork,
-             int* iwarn, int* info, std::size_t job_len, std::size_t defl_len,
-             std::size_t compq_len);
+void mb03vd_(const int* n, const int* p, const int* ilo, const int* ihi, double* a, const int* lda1,
+             const int* lda2, double* tau, const int* ldtau, double* dwork, int* info);
+void mb03bd_(const char* job, const char* defl, const char* compq, const int* qind, const int* k,
+             const int* n, const int* h, const int* ilo, const int* ihi, const int* s, double* a,
+             const int* lda1, const int* lda2, double* q, const int* ldq1, const int* ldq2,
+             double* alphar, double* alphai, double* beta, int* scal, int* iwork, const int* liwork,
+             double* dwork, const int* ldwork, int* iwarn, int* info, std::size_t job_len,
+             std::size_t defl_len, std::size_t compq_len);
 }
 
 namespace ltp {
@@ -89,8 +87,7 @@ std::string CheckFactors(const std::vector<Eigen::MatrixXd>& factors) {
     const Eigen::MatrixXd& f = factors[i];
     if (f.rows() != n || f.cols() != n) {
       return "factor " + std::to_string(i) + " is " + std::to_string(f.rows()) + "x" +
-             std::to_string(f.cols()) + ", expected " + std::to_string(n) + "x" +
-             std::to_string(n);
+             std::to_string(f.cols()) + ", expected " + std::to_string(n) + "x" + std::to_string(n);
     }
     if (!f.allFinite()) return "factor " + std::to_string(i) + " has non-finite entries";
   }
@@ -125,8 +122,7 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
   std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
   std::vector<double> dwork_vd(n);
   int info = 0;
-  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork_vd.data(),
-          &info);
+  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork_vd.data(), &info);
   if (info != 0) {
     result.message = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
     return result;
@@ -155,10 +151,9 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
   std::vector<double> dwork(ldwork);
   int iwarn = 0;
   info = 0;
-  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(),
-          a.data(), &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(),
-          beta.data(), scal.data(), iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn,
-          &info, 1, 1, 1);
+  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
+          &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(), beta.data(), scal.data(),
+          iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn, &info, 1, 1, 1);
   if (info != 0) {
     result.message = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
                      (info > 0 ? " (iteration did not converge)" : "");
@@ -176,10 +171,9 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
     } else if (modulus == 0.0) {
       result.log_values.emplace_back(-kInf, 0.0);
     } else {
-      const double log_abs =
-          std::log(modulus) - std::log(std::abs(beta[i])) + scal[i] * log_base;
-      result.log_values.emplace_back(log_abs, PrincipalArg(alphar[i] * beta[i],
-                                                           alphai[i] * beta[i]));
+      const double log_abs = std::log(modulus) - std::log(std::abs(beta[i])) + scal[i] * log_base;
+      result.log_values.emplace_back(log_abs,
+                                     PrincipalArg(alphar[i] * beta[i], alphai[i] * beta[i]));
     }
   }
   SortDescending(result.log_values);
@@ -376,8 +370,8 @@ PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
   Eigen::Index pivot = 0;
   stacked.segment(largest * n, n).cwiseAbs().maxCoeff(&pivot);
   const Complex anchor = stacked(largest * n + pivot);
-  const Complex scale = largest_norm > 0 ? std::conj(anchor) / (std::abs(anchor) * largest_norm)
-                                         : Complex(0.0);
+  const Complex scale =
+      largest_norm > 0 ? std::conj(anchor) / (std::abs(anchor) * largest_norm) : Complex(0.0);
   out.v.reserve(k);
   for (int i = 0; i < k; ++i) out.v.push_back(stacked.segment(i * n, n) * scale);
   for (int i = 0; i < k; ++i) {

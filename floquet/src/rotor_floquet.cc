@@ -16,8 +16,8 @@ namespace ltp {
 using Eigen::MatrixXd;
 using cd = std::complex<double>;
 
-SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors,
-                                  const MatrixXd& shift, const IntegratorOptions& options) {
+SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors, const MatrixXd& shift,
+                                  const IntegratorOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const int n = system.states();
   if (sectors < 1) throw InputError("CyclicFloquet: the number of sectors must be >= 1");
@@ -43,8 +43,8 @@ SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors,
   }
   if (!(r.symmetry_defect <= 1e-9)) {
     std::ostringstream message;
-    message << "CyclicFloquet: the system is not symmetric under the given shift over T/"
-            << sectors << " (relative defect " << r.symmetry_defect << ")";
+    message << "CyclicFloquet: the system is not symmetric under the given shift over T/" << sectors
+            << " (relative defect " << r.symmetry_defect << ")";
     throw InputError(message.str());
   }
 

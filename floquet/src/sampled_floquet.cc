@@ -43,7 +43,8 @@ int RigidExponent(const FloquetResult& r, const LinOperatingPoint& op, double om
         if (rate_of[i] < 0 && (lead < 0 || std::abs(xi[i]) > std::abs(xi[lead]))) lead = i;
       if (lead != *op.azimuth_state) continue;
     }
-    if (best < 0 || std::abs(l.real()) < std::abs(r.modes[best].exponent.real())) best = static_cast<int>(k);
+    if (best < 0 || std::abs(l.real()) < std::abs(r.modes[best].exponent.real()))
+      best = static_cast<int>(k);
   }
   return best;
 }
@@ -59,8 +60,9 @@ std::string Format(const char* format, double v) {
 SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mbc3Result& mbc,
                                            const SampledFloquetOptions& options) {
   if (!(op.rotor_speed > 0))
-    throw InputError("rotor speed 0: a parked rotor is time-invariant, so there is no period and "
-                     "no Floquet analysis (the MBC eigen-analysis still applies)");
+    throw InputError(
+        "rotor speed 0: a parked rotor is time-invariant, so there is no period and "
+        "no Floquet analysis (the MBC eigen-analysis still applies)");
   SampledFloquetResult r;
   const bool use_mbc = mbc.applicable && options.multiblade_coordinates;
   const LinOperatingPoint used = use_mbc ? InMultiBladeCoordinates(op, mbc) : op;
@@ -71,8 +73,10 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
 
   FloquetOptions hold_options = options.floquet;
   hold_options.integrator.type = IntegratorType::kExpm;  // exact for the held samples
-  r.hold = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
-  r.trig = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), options.floquet);
+  r.hold =
+      AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
+  r.trig =
+      AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), options.floquet);
   r.ok = r.hold.ok && r.trig.ok;
   r.notes = LinCaveats(used);
   if (!r.ok) {
@@ -130,10 +134,11 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
     if (with_mbc) r.max_to_reference = std::max(r.max_to_reference, m.to_reference);
     r.modes.push_back(m);
   }
-  std::stable_sort(r.modes.begin(), r.modes.end(), [](const SampledFloquetMode& a, const SampledFloquetMode& b) {
-    if (a.mbc_mode >= 0 && b.mbc_mode >= 0) return a.mbc_mode < b.mbc_mode;
-    return std::abs(a.hold) < std::abs(b.hold);
-  });
+  std::stable_sort(r.modes.begin(), r.modes.end(),
+                   [](const SampledFloquetMode& a, const SampledFloquetMode& b) {
+                     if (a.mbc_mode >= 0 && b.mbc_mode >= 0) return a.mbc_mode < b.mbc_mode;
+                     return std::abs(a.hold) < std::abs(b.hold);
+                   });
   r.stable = r.max_real_hold < 0 && r.max_real_trig < 0;
 
   r.notes.push_back("each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +
@@ -150,7 +155,8 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
                         " (trig) 1/s instead of 0 — the sampling error on the rigid rotation; "
                         "excluded from max Re λ");
   if (with_mbc)
-    r.notes.push_back("distance to the MBC eigenvalues up to " + Format("%.3g", r.max_to_reference) +
+    r.notes.push_back("distance to the MBC eigenvalues up to " +
+                      Format("%.3g", r.max_to_reference) +
                       " 1/s: the periodicity that azimuth averaging discards, plus sampling error");
   return r;
 }

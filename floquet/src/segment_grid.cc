@@ -1,11 +1,11 @@
 #include "segment_grid.h"
 
+#include <lapacke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
-
-#include <lapacke.h>
 
 namespace ltp::internal {
 
@@ -41,7 +41,8 @@ struct Piece {
 void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
                const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
   std::vector<std::pair<size_t, size_t>> jobs;  // [first, last) ranges of todo
-  const size_t target = std::max<size_t>(1, todo.size() / (2 * static_cast<size_t>(std::max(threads, 1))));
+  const size_t target =
+      std::max<size_t>(1, todo.size() / (2 * static_cast<size_t>(std::max(threads, 1))));
   for (size_t j = 0; j < todo.size();) {
     size_t k = j + 1;
     while (k < todo.size() && k - j < target && todo[k] == todo[k - 1] + 1 &&
@@ -122,7 +123,9 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
       for (int q = 0; q < parts; ++q) {
         next_todo.push_back(next.size());
         next.push_back({p.t0 + (p.t1 - p.t0) * q / parts,
-                        q + 1 == parts ? p.t1 : p.t0 + (p.t1 - p.t0) * (q + 1) / parts, {}, 1});
+                        q + 1 == parts ? p.t1 : p.t0 + (p.t1 - p.t0) * (q + 1) / parts,
+                        {},
+                        1});
       }
     }
     pieces = std::move(next);
@@ -154,8 +157,9 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
     grid.factors.push_back(p.tr.phi);
   }
   grid.times.push_back(pieces.empty() ? T : pieces.back().t1);
-  grid.initial_segments = options.fixed_times.empty() ? std::max(1, options.uniform_segments)
-                                                      : static_cast<int>(options.fixed_times.size()) - 1;
+  grid.initial_segments = options.fixed_times.empty()
+                              ? std::max(1, options.uniform_segments)
+                              : static_cast<int>(options.fixed_times.size()) - 1;
   grid.worst_condition = worst;
   return grid;
 }

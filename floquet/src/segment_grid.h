@@ -13,8 +13,8 @@ namespace ltp::internal {
 
 struct SegmentGridOptions {
   IntegratorOptions integrator;
-  int uniform_segments = 1;           ///< starting grid: t_i = i T / uniform_segments
-  std::vector<double> fixed_times;    ///< if non-empty: use exactly this grid (no refinement)
+  int uniform_segments = 1;         ///< starting grid: t_i = i T / uniform_segments
+  std::vector<double> fixed_times;  ///< if non-empty: use exactly this grid (no refinement)
   bool refine = true;
   double max_factor_condition = 1e3;
   int max_segments = 20000;
@@ -23,11 +23,11 @@ struct SegmentGridOptions {
 
 struct SegmentGrid {
   bool ok = false;
-  std::vector<double> times;              ///< K + 1 points, 0 … T
-  std::vector<Eigen::MatrixXd> factors;   ///< K factors
+  std::vector<double> times;             ///< K + 1 points, 0 … T
+  std::vector<Eigen::MatrixXd> factors;  ///< K factors
   long rhs_evals = 0;
-  int initial_segments = 0;        ///< the uniform grid it started from
-  double worst_condition = 1;      ///< max over the factors of σmax/σmin
+  int initial_segments = 0;    ///< the uniform grid it started from
+  double worst_condition = 1;  ///< max over the factors of σmax/σmin
   std::vector<std::string> diagnostics;
 };
 

@@ -1,4 +1,3 @@
-#include "ltp/floquet/threads.h"
 #include "ltp/floquet/stability_boundary.h"
 
 #include <omp.h>
@@ -7,6 +6,8 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
+
+#include "ltp/floquet/threads.h"
 
 namespace ltp {
 
@@ -17,8 +18,10 @@ double Objective(const Scene& scene, ParameterMap params, const SweepOptions& sw
                  const BoundaryOptions& options) {
   SweepOptions tight = sweep;
   tight.modes = false;
-  tight.floquet.integrator.rel_tol = std::min(sweep.floquet.integrator.rel_tol, options.rel_tol_integrator);
-  tight.floquet.integrator.abs_tol = std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
+  tight.floquet.integrator.rel_tol =
+      std::min(sweep.floquet.integrator.rel_tol, options.rel_tol_integrator);
+  tight.floquet.integrator.abs_tol =
+      std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
   tight.hill_tol = std::min(sweep.hill_tol, options.rel_tol_integrator * 10);
   SweepGrid none;  // no swept axes: the point is `params` itself
   const SweepPoint point = AnalyzeSweepPoint(scene, params, none, 0, tight, false);
@@ -59,8 +62,9 @@ BoundaryEstimate Refine(const Scene& scene, const ParameterMap& base, const std:
     return e;
   }
   if ((ga < 0) == (gb < 0)) {
-    e.note = "not refined: at the refinement tolerance both bracket ends are on the same side "
-             "(the boundary lies within the marginal band or the bracket holds two crossings)";
+    e.note =
+        "not refined: at the refinement tolerance both bracket ends are on the same side "
+        "(the boundary lies within the marginal band or the bracket holds two crossings)";
     return e;
   }
   const double scale = std::max(std::max(std::abs(a), std::abs(b)), 1e-3 * span);
@@ -100,7 +104,8 @@ std::vector<size_t> SpreadLines(size_t count, int max_lines) {
     return lines;
   }
   for (int i = 0; i < max_lines; ++i) {
-    const size_t line = static_cast<size_t>(std::llround(double(i) * double(count - 1) / (max_lines - 1)));
+    const size_t line =
+        static_cast<size_t>(std::llround(double(i) * double(count - 1) / (max_lines - 1)));
     if (lines.empty() || lines.back() != line) lines.push_back(line);
   }
   return lines;
@@ -121,7 +126,7 @@ std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const 
   struct Job {
     size_t interval;
     bool hi;
-    double a, b;  // stable side, unstable side
+    double a, b;   // stable side, unstable side
     double a_far;  // next grid point beyond a on the stable side, or NaN
   };
   const double none = std::numeric_limits<double>::quiet_NaN();
@@ -167,7 +172,8 @@ std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const 
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long k = 0; k < (options.refine ? static_cast<long>(jobs.size()) : 0L); ++k) {
     const Job& job = jobs[static_cast<size_t>(k)];
-    results[static_cast<size_t>(k)] = Refine(scene, base, name, job.a, job.b, job.a_far, span, sweep, options);
+    results[static_cast<size_t>(k)] =
+        Refine(scene, base, name, job.a, job.b, job.a_far, span, sweep, options);
   }
   for (size_t k = 0; k < jobs.size(); ++k)
     (jobs[k].hi ? intervals[jobs[k].interval].hi : intervals[jobs[k].interval].lo) = results[k];
@@ -213,9 +219,9 @@ std::vector<BoundaryPoint> RefineBoundaryPoints(const Scene& scene, const Parame
     const int other = 1 - job.point.axis;
     params[grid.axes[other].name] = job.point.values[other];
     const auto& v = grid.values[job.point.axis];
-    job.point.estimate = Refine(scene, params, grid.axes[job.point.axis].name, job.a, job.b,
-                                std::numeric_limits<double>::quiet_NaN(), v.back() - v.front(),
-                                sweep, options);
+    job.point.estimate =
+        Refine(scene, params, grid.axes[job.point.axis].name, job.a, job.b,
+               std::numeric_limits<double>::quiet_NaN(), v.back() - v.front(), sweep, options);
     job.point.values[job.point.axis] = job.point.estimate.value;
   }
   for (auto& job : jobs) out.push_back(std::move(job.point));

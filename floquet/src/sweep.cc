@@ -1,17 +1,17 @@
-#include "ltp/floquet/threads.h"
 #include "ltp/floquet/sweep.h"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <numbers>
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/floquet/threads.h"
 
 namespace ltp {
 
@@ -34,7 +34,8 @@ bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& opt
                            SweepPoint& point) {
   const int n = system.states();
   if (n == 0) return false;
-  const TransitionResult phi = StateTransition(system, 0, system.period(), options.floquet.integrator);
+  const TransitionResult phi =
+      StateTransition(system, 0, system.period(), options.floquet.integrator);
   if (!phi.ok || !phi.phi.allFinite()) return false;
   const Eigen::VectorXcd rho = phi.phi.eigenvalues();
   const double T = system.period();
@@ -50,15 +51,16 @@ bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& opt
   point.modes = std::move(sorted);
   point.period = T;
   point.max_real_exponent = -std::numeric_limits<double>::infinity();
-  for (const auto& m : point.modes) point.max_real_exponent = std::max(point.max_real_exponent, m.exponent.real());
+  for (const auto& m : point.modes)
+    point.max_real_exponent = std::max(point.max_real_exponent, m.exponent.real());
   point.max_log_multiplier = point.max_real_exponent * T;
   point.ok = true;
   return true;
 }
 
 // Monodromy route for one point.
-void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& options,
-                        bool check_error, SweepPoint& point) {
+void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& options, bool check_error,
+                        SweepPoint& point) {
   // Rigid-body states need the full analysis, which flags their mode.
   if (!options.modes && !check_error && options.floquet.segments == 0 &&
       system.labels().rigid_body_states.empty() && LargestMultiplierOnly(system, options, point))
@@ -136,7 +138,8 @@ std::vector<double> SweepAxis::Values() const {
 
 SweepAxis SweepAxis::Parse(const std::string& spec) {
   const auto fail = [&](const std::string& why) {
-    throw InputError("sweep '" + spec + "': " + why + " (expected NAME=START:STOP:STEP, e.g. a=-2:10:0.03)");
+    throw InputError("sweep '" + spec + "': " + why +
+                     " (expected NAME=START:STOP:STEP, e.g. a=-2:10:0.03)");
   };
   const auto equals = spec.find('=');
   if (equals == std::string::npos) fail("no '='");
@@ -148,7 +151,8 @@ SweepAxis SweepAxis::Parse(const std::string& spec) {
   size_t from = 0;
   while (true) {
     const auto colon = rest.find(':', from);
-    parts.push_back(Trim(rest.substr(from, colon == std::string::npos ? std::string::npos : colon - from)));
+    parts.push_back(
+        Trim(rest.substr(from, colon == std::string::npos ? std::string::npos : colon - from)));
     if (colon == std::string::npos) break;
     from = colon + 1;
   }
@@ -184,7 +188,8 @@ void SweepOptions::Validate() const {
   if (!(hill_tol > 0)) fail("hill_tol", hill_tol, "> 0");
   if (hill_max_harmonics < 1) fail("hill_max_harmonics", hill_max_harmonics, ">= 1");
   if (check_every < 0) fail("check_every", check_every, ">= 0");
-  if (!(marginal_log_multiplier >= 0)) fail("marginal_log_multiplier", marginal_log_multiplier, ">= 0");
+  if (!(marginal_log_multiplier >= 0))
+    fail("marginal_log_multiplier", marginal_log_multiplier, ">= 0");
   if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
 }
 
@@ -267,8 +272,9 @@ SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const
   }
   // In log|ρ| units: the marginal band is the error estimate over a period, at least
   // marginal_log_multiplier (points without their own check).
-  const double band = std::max(options.marginal_log_multiplier,
-                               point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
+  const double band =
+      std::max(options.marginal_log_multiplier,
+               point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
   point.verdict = ClassifyStability(point.ok, point.max_log_multiplier, band);
   if (!point.ok) point.modes.clear();
   point.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -291,7 +297,8 @@ size_t RunSweep(const Scene& scene, const ParameterMap& base, const SweepGrid& g
   for (long i = 0; i < count; ++i) {
     if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load()) continue;
     const size_t index = indices[static_cast<size_t>(i)];
-    const bool check = options.check_every > 0 && index % static_cast<size_t>(options.check_every) == 0;
+    const bool check =
+        options.check_every > 0 && index % static_cast<size_t>(options.check_every) == 0;
     SweepPoint point = AnalyzeSweepPoint(scene, base, grid, index, options, check);
     if (!stop.load()) {
       try {

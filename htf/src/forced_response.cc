@@ -32,8 +32,13 @@ using State = std::vector<double>;
 class ForcedRhs {
  public:
   ForcedRhs(const PeriodicSystem& system, double omega, long* evals)
-      : system_(system), n_(system.states()), m_(system.inputs()), omega_(omega),
-        a_(n_, n_), b_(n_, m_), evals_(evals) {}
+      : system_(system),
+        n_(system.states()),
+        m_(system.inputs()),
+        omega_(omega),
+        a_(n_, n_),
+        b_(n_, m_),
+        evals_(evals) {}
   ForcedRhs(const ForcedRhs&) = delete;
   ForcedRhs& operator=(const ForcedRhs&) = delete;
 
@@ -77,7 +82,8 @@ void ShootingOptions::Validate() const {
   if (!(rel_tol > 0) || !(abs_tol > 0)) fail("rel_tol and abs_tol must be positive");
   if (samples != 0 && (!IsPowerOfTwo(samples) || samples < 8))
     fail("samples must be 0 or a power of two >= 8");
-  if (!IsPowerOfTwo(max_samples) || max_samples < 8) fail("max_samples must be a power of two >= 8");
+  if (!IsPowerOfTwo(max_samples) || max_samples < 8)
+    fail("max_samples must be a power of two >= 8");
   if (!(sample_tol > 0)) fail("sample_tol must be positive");
   if (max_steps < 1) fail("max_steps must be >= 1");
   if (!(settle_tol > 0 && settle_tol < 1)) fail("settle_tol must be in (0, 1)");
@@ -88,10 +94,14 @@ void ShootingOptions::Validate() const {
 
 ForcedResponseSolver::ForcedResponseSolver(const PeriodicSystem& system,
                                            const ShootingOptions& options)
-    : system_(system), options_(options), n_(system.states()), m_(system.inputs()),
+    : system_(system),
+      options_(options),
+      n_(system.states()),
+      m_(system.inputs()),
       p_(system.outputs()) {
   options.Validate();
-  options_.integrator = ResolveIntegrator(system, options.integrator);  // kAuto: once, not per sample
+  options_.integrator =
+      ResolveIntegrator(system, options.integrator);  // kAuto: once, not per sample
   if (m_ < 1 || p_ < 1)
     throw InputError("partial FRFs need at least one input and one output; the system has " +
                      std::to_string(m_) + " inputs and " + std::to_string(p_) + " outputs");
@@ -107,7 +117,8 @@ ForcedResponseSolver::ForcedResponseSolver(const PeriodicSystem& system,
 double ForcedResponseSolver::SettlingTime(const FloquetResult& floquet, double settle_tol) {
   const double re = floquet.max_real_exponent;
   if (!(re < 0)) return std::numeric_limits<double>::infinity();
-  const double cond = std::max(1.0, std::isfinite(floquet.mode_condition) ? floquet.mode_condition : 1.0);
+  const double cond =
+      std::max(1.0, std::isfinite(floquet.mode_condition) ? floquet.mode_condition : 1.0);
   return std::log(cond / settle_tol) / -re;
 }
 
@@ -126,8 +137,9 @@ void ForcedResponseSolver::PrepareTransitions() {
   pieces_ = std::move(unique);
   jump_pieces_ = {0.0};
   for (double t : pieces_)
-    if (t > 0 && t < T && std::any_of(system_.breakpoints().begin(), system_.breakpoints().end(),
-                                      [&](double b) { return std::abs(b - t) <= 1e-13 * T; }))
+    if (t > 0 && t < T &&
+        std::any_of(system_.breakpoints().begin(), system_.breakpoints().end(),
+                    [&](double b) { return std::abs(b - t) <= 1e-13 * T; }))
       jump_pieces_.push_back(t);
   jump_pieces_.push_back(T);
   phi_.clear();
@@ -230,8 +242,9 @@ PartialFrfs ForcedResponseSolver::Project(const std::vector<Eigen::MatrixXcd>& y
 
 PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_order, bool* ok) {
   const double T = system_.period();
-  const PartialFrfs failed(max_order - min_order + 1,
-                           Eigen::MatrixXcd::Constant(p_, m_, cd(std::numeric_limits<double>::quiet_NaN(), 0)));
+  const PartialFrfs failed(
+      max_order - min_order + 1,
+      Eigen::MatrixXcd::Constant(p_, m_, cd(std::numeric_limits<double>::quiet_NaN(), 0)));
   if (ok) *ok = false;
   for (;;) {
     if (pieces_.empty()) PrepareTransitions();
@@ -240,7 +253,8 @@ PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_
       // Φ(t_s, 0) on the samples, independent of ω (the y-frame transition is Φ e^{−jωt}).
       phi_.assign(S + 1, Eigen::MatrixXd::Identity(n_, n_));
       for (int s = 0; s < S; ++s) {
-        TransitionResult tr = StateTransition(system_, T * s / S, T * (s + 1) / S, options_.integrator);
+        TransitionResult tr =
+            StateTransition(system_, T * s / S, T * (s + 1) / S, options_.integrator);
         rhs_evals_ += tr.rhs_evals;
         if (!tr.ok) {
           diagnostics_.push_back("shooting: state transition failed: " + tr.message);
@@ -251,9 +265,10 @@ PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_
       }
     }
     std::vector<Eigen::MatrixXcd> yp;
-    if (!Integrate(omega, Eigen::MatrixXcd::Zero(n_, m_), 0, 1, &yp, nullptr, nullptr)) return failed;
-    const Eigen::MatrixXcd M = Eigen::MatrixXcd::Identity(n_, n_) -
-                               phi_[S].cast<cd>() * std::polar(1.0, -omega * T);
+    if (!Integrate(omega, Eigen::MatrixXcd::Zero(n_, m_), 0, 1, &yp, nullptr, nullptr))
+      return failed;
+    const Eigen::MatrixXcd M =
+        Eigen::MatrixXcd::Identity(n_, n_) - phi_[S].cast<cd>() * std::polar(1.0, -omega * T);
     Eigen::PartialPivLU<Eigen::MatrixXcd> lu(M);
     if (!(lu.rcond() > 1e-14)) {
       diagnostics_.push_back("shooting: I − Φ e^{−jωT} is singular (excitation on a Floquet line)");
@@ -280,8 +295,9 @@ PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_
 PartialFrfs ForcedResponseSolver::TimeSimulation(double omega, int min_order, int max_order,
                                                  double settle_time, bool* ok) {
   const double T = system_.period();
-  const PartialFrfs failed(max_order - min_order + 1,
-                           Eigen::MatrixXcd::Constant(p_, m_, cd(std::numeric_limits<double>::quiet_NaN(), 0)));
+  const PartialFrfs failed(
+      max_order - min_order + 1,
+      Eigen::MatrixXcd::Constant(p_, m_, cd(std::numeric_limits<double>::quiet_NaN(), 0)));
   if (ok) *ok = false;
   if (!(settle_time >= 0) || settle_time / T > options_.max_settle_periods) {
     std::ostringstream s;
@@ -292,8 +308,8 @@ PartialFrfs ForcedResponseSolver::TimeSimulation(double omega, int min_order, in
   }
   const int settle_periods = static_cast<int>(std::ceil(settle_time / T));
   std::vector<Eigen::MatrixXcd> avg;
-  if (!Integrate(omega, Eigen::MatrixXcd::Zero(n_, m_), 0,
-                 settle_periods + options_.record_periods, nullptr, nullptr, &avg))
+  if (!Integrate(omega, Eigen::MatrixXcd::Zero(n_, m_), 0, settle_periods + options_.record_periods,
+                 nullptr, nullptr, &avg))
     return failed;
   double tail = 0;
   PartialFrfs h = Project(avg, omega, min_order, max_order, &tail);

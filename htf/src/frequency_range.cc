@@ -49,7 +49,8 @@ int ParseInt(const std::string& s, const std::string& what) {
 std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option) {
   const auto parts = Split(text, ':');
   if (parts.size() != 3) throw InputError(option + " must be F0:F1:DF in Hz, got '" + text + "'");
-  const double f0 = ParseNumber(parts[0], option + " F0"), f1 = ParseNumber(parts[1], option + " F1");
+  const double f0 = ParseNumber(parts[0], option + " F0"),
+               f1 = ParseNumber(parts[1], option + " F1");
   const double df = ParseNumber(parts[2], option + " DF");
   if (f1 < f0) throw InputError(option + ": F1 must be >= F0, got '" + text + "'");
   if (f1 == f0) return {f0};

@@ -36,7 +36,10 @@ void HtfOptions::Validate() const {
 }
 
 HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
-    : n_(system.states()), m_(system.inputs()), p_(system.outputs()), omega_p_(system.omega()),
+    : n_(system.states()),
+      m_(system.inputs()),
+      p_(system.outputs()),
+      omega_p_(system.omega()),
       options_(options) {
   options.Validate();
   if (m_ < 1 || p_ < 1)
@@ -48,8 +51,8 @@ HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
   if (!fourier_.A.converged || !fourier_.B.converged || !fourier_.C.converged ||
       !fourier_.D.converged) {
     std::ostringstream s;
-    s << "htf: Fourier fit of the coefficients not converged (tail " << fourier_tail_
-      << ", decay " << fourier_.A.decay << "): the truncated HTF carries that error";
+    s << "htf: Fourier fit of the coefficients not converged (tail " << fourier_tail_ << ", decay "
+      << fourier_.A.decay << "): the truncated HTF carries that error";
     diagnostics_.push_back(s.str());
   }
   harmonics_ = options.harmonics > 0 ? options.harmonics : 8;
@@ -103,7 +106,9 @@ PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int 
   const int kl = std::min((ha + 1) * n - 1, size - 1), ku = kl;
   const int ldab = 2 * kl + ku + 1;
   std::vector<cd> ab(static_cast<size_t>(ldab) * size, cd(0));
-  auto at = [&](int i, int j) -> cd& { return ab[static_cast<size_t>(kl + ku + i - j) + static_cast<size_t>(j) * ldab]; };
+  auto at = [&](int i, int j) -> cd& {
+    return ab[static_cast<size_t>(kl + ku + i - j) + static_cast<size_t>(j) * ldab];
+  };
   const FourierMatrix& A = fourier_.A.series;
   for (int v = -N; v <= N; ++v)
     for (int u = std::max(-N, v - ha); u <= std::min(N, v + ha); ++u) {
@@ -123,17 +128,17 @@ PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int 
   std::vector<lapack_int> ipiv(size);
   // The _work drivers: the plain ones first scan the whole band for NaN (5 % of a tower-rotor
   // sweep); the entries here are finite by construction (a validated system, finite ω).
-  lapack_int info = LAPACKE_zgbtrf_work(LAPACK_COL_MAJOR, size, size, kl, ku,
-                                   reinterpret_cast<lapack_complex_double*>(ab.data()), ldab,
-                                   ipiv.data());
+  lapack_int info =
+      LAPACKE_zgbtrf_work(LAPACK_COL_MAJOR, size, size, kl, ku,
+                          reinterpret_cast<lapack_complex_double*>(ab.data()), ldab, ipiv.data());
   PartialFrfs h(max_order - min_order + 1, Eigen::MatrixXcd::Zero(p_, m_));
   if (info != 0) {
     for (auto& x : h) x.setConstant(cd(std::numeric_limits<double>::quiet_NaN(), 0));
     return h;
   }
   LAPACKE_zgbtrs_work(LAPACK_COL_MAJOR, 'N', size, kl, ku, m_,
-                 reinterpret_cast<const lapack_complex_double*>(ab.data()), ldab, ipiv.data(),
-                 reinterpret_cast<lapack_complex_double*>(rhs.data()), size);
+                      reinterpret_cast<const lapack_complex_double*>(ab.data()), ldab, ipiv.data(),
+                      reinterpret_cast<lapack_complex_double*>(rhs.data()), size);
   Eigen::Map<const Eigen::MatrixXcd> X(rhs.data(), size, m_);
   const FourierMatrix& C = fourier_.C.series;
   const FourierMatrix& D = fourier_.D.series;

@@ -7,14 +7,14 @@
 // decayed (tail check). Any branch λ_k + jmΩp with ξ_k e^{−jmΩp t} gives the same H_z.
 #include <algorithm>
 #include <chrono>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
 #include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
 
 namespace ltp {
@@ -56,7 +56,8 @@ std::vector<TransitionResult> FineGridTransitions(const PeriodicSystem& system, 
   const double T = system.period();
   const int pieces = std::max(1, std::min(ThreadsFor(0), count / 64));
   std::vector<std::vector<TransitionResult>> parts(static_cast<size_t>(pieces));
-  std::vector<std::exception_ptr> errors(static_cast<size_t>(pieces));  // no exception leaves OpenMP
+  std::vector<std::exception_ptr> errors(
+      static_cast<size_t>(pieces));  // no exception leaves OpenMP
 #pragma omp parallel for num_threads(pieces) schedule(static, 1)
   for (int k = 0; k < pieces; ++k) {
     const int first = count * k / pieces, last = count * (k + 1) / pieces;
@@ -74,7 +75,8 @@ std::vector<TransitionResult> FineGridTransitions(const PeriodicSystem& system, 
   for (int k = 0; k < pieces; ++k) {
     const int expected = count * (k + 1) / pieces - count * k / pieces;
     for (TransitionResult& r : parts[static_cast<size_t>(k)]) all.push_back(std::move(r));
-    if (static_cast<int>(parts[static_cast<size_t>(k)].size()) != expected) break;  // failed: stop here
+    if (static_cast<int>(parts[static_cast<size_t>(k)].size()) != expected)
+      break;  // failed: stop here
   }
   return all;
 }
@@ -83,11 +85,16 @@ std::vector<TransitionResult> FineGridTransitions(const PeriodicSystem& system, 
 
 std::string_view ToString(PfrfRoute route) {
   switch (route) {
-    case PfrfRoute::kModal: return "modal";
-    case PfrfRoute::kHtf: return "htf";
-    case PfrfRoute::kShooting: return "shooting";
-    case PfrfRoute::kTime: return "time";
-    case PfrfRoute::kAuto: return "auto";
+    case PfrfRoute::kModal:
+      return "modal";
+    case PfrfRoute::kHtf:
+      return "htf";
+    case PfrfRoute::kShooting:
+      return "shooting";
+    case PfrfRoute::kTime:
+      return "time";
+    case PfrfRoute::kAuto:
+      return "auto";
   }
   return "?";
 }
@@ -115,7 +122,8 @@ bool SelectPfrfRoutes(std::string_view name, PfrfOptions* options) {
 void ModalOptions::Validate() const {
   auto fail = [](const std::string& what) { throw InputError("modal options: " + what); };
   if (!(tail_tol > 0) || !std::isfinite(tail_tol)) fail("tail_tol must be a positive number");
-  if (!IsPowerOfTwo(max_samples) || max_samples < 4) fail("max_samples must be a power of two >= 4");
+  if (!IsPowerOfTwo(max_samples) || max_samples < 4)
+    fail("max_samples must be a power of two >= 4");
   if (!(max_condition >= 1)) fail("max_condition must be >= 1");
   if (!(max_tail >= tail_tol)) fail("max_tail must be >= tail_tol");
   integrator.Validate();
@@ -196,7 +204,8 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
     std::vector<Eigen::MatrixXcd> finer(2 * S);
     // One pass over the fine grid per core (the step size carries across the samples); the
     // factors over [t_s, t_s + h] are every other one.
-    const std::vector<TransitionResult> steps = FineGridTransitions(system, 2 * S, options.integrator);
+    const std::vector<TransitionResult> steps =
+        FineGridTransitions(system, 2 * S, options.integrator);
     bool ok = static_cast<int>(steps.size()) == 2 * S;
     for (const TransitionResult& tr : steps) {
       r.rhs_evals += tr.rhs_evals;
@@ -207,8 +216,8 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
       finer[2 * s + 1] = steps[2 * s].phi.cast<cd>() * xi[s] * decay.asDiagonal();
     }
     if (!ok) {
-      r.diagnostics.push_back("modal: propagating mode samples failed; kept " +
-                              std::to_string(S) + " samples");
+      r.diagnostics.push_back("modal: propagating mode samples failed; kept " + std::to_string(S) +
+                              " samples");
       break;
     }
     xi = std::move(finer);
@@ -251,7 +260,9 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
   if (r.tail > options.tail_tol) {
     s << "modal: Fourier series of CΞ and Ξ⁻¹B not resolved with " << r.samples
       << " samples (upper-half amplitude " << r.tail << " > " << options.tail_tol << ")"
-      << (r.noise_floor ? ", the noise level of the integrated mode samples (harmonics below it dropped)" : "")
+      << (r.noise_floor
+              ? ", the noise level of the integrated mode samples (harmonics below it dropped)"
+              : "")
       << (r.tail > options.max_tail ? ": UNRELIABLE" : "");
     r.diagnostics.push_back(s.str());
     s.str("");

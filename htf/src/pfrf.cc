@@ -1,6 +1,8 @@
 // The partial-FRF sweep: a primary route on every frequency, check routes on a subset, the
 // spread between them (plus the HTF truncation check) as the error estimate of every point,
 // and the resonance list.
+#include "ltp/htf/pfrf.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,7 +13,6 @@
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
-#include "ltp/htf/pfrf.h"
 #include "ltp/floquet/threads.h"
 
 namespace ltp {
@@ -63,14 +64,16 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
     r.modal = BuildModalModel(system, r.floquet, o.modal);
     if (r.modal->reliable) {
       c.primary = PfrfRoute::kModal;
-      why = "the Floquet decomposition is needed anyway and its mode shapes are resolved: "
-            "cheapest per frequency; kept only if the check agrees";
+      why =
+          "the Floquet decomposition is needed anyway and its mode shapes are resolved: "
+          "cheapest per frequency; kept only if the check agrees";
     } else {
       c.primary = fallback;
       why = std::string("the modal model reports itself unreliable, and ") + shape;
     }
   }
-  const bool auto_checks = std::find(o.checks.begin(), o.checks.end(), PfrfRoute::kAuto) != o.checks.end();
+  const bool auto_checks =
+      std::find(o.checks.begin(), o.checks.end(), PfrfRoute::kAuto) != o.checks.end();
   for (PfrfRoute k : o.checks)
     if (k != PfrfRoute::kAuto && k != c.primary) c.checks.push_back(k);
   if (auto_checks) {
@@ -83,7 +86,8 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
   }
   std::string checks;
   for (PfrfRoute k : c.checks) checks += (checks.empty() ? "" : ", ") + std::string(ToString(k));
-  c.reason = std::string(ToString(c.primary)) + (checks.empty() ? "" : " checked by " + checks) + ": " + why;
+  c.reason = std::string(ToString(c.primary)) + (checks.empty() ? "" : " checked by " + checks) +
+             ": " + why;
   return c;
 }
 }  // namespace
@@ -201,7 +205,8 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         eval = [&, solver](size_t q, bool* ok) {
           const double w = omega_of(points[q]);
           const std::vector<cd> h = channel(solver->Evaluate(w, zmin, zmax));
-          const std::vector<cd> h2 = channel(solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta()));
+          const std::vector<cd> h2 =
+              channel(solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta()));
           double change = 0;
           for (size_t z = 0; z < h.size(); ++z) change = std::max(change, std::abs(h[z] - h2[z]));
           truncation[q] = change;
@@ -220,12 +225,14 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
             return channel(solver->Shooting(omega_of(points[q]), zmin, zmax, ok));
           };
         } else {
-          r.settle_time = r.floquet.ok ? ForcedResponseSolver::SettlingTime(r.floquet, options.shooting.settle_tol)
+          r.settle_time = r.floquet.ok ? ForcedResponseSolver::SettlingTime(
+                                             r.floquet, options.shooting.settle_tol)
                                        : std::numeric_limits<double>::infinity();
           std::ostringstream s;
-          s << "time: settling time " << r.settle_time << " s = ln(cond Ξ / " << options.shooting.settle_tol
-            << ") / |max Re λ| (slowest Floquet exponent " << r.floquet.max_real_exponent
-            << " 1/s), then " << options.shooting.record_periods << " periods projected";
+          s << "time: settling time " << r.settle_time << " s = ln(cond Ξ / "
+            << options.shooting.settle_tol << ") / |max Re λ| (slowest Floquet exponent "
+            << r.floquet.max_real_exponent << " 1/s), then " << options.shooting.record_periods
+            << " periods projected";
           run.diagnostics.push_back(s.str());
           const double settle = r.settle_time;
           eval = [&, solver, settle](size_t q, bool* ok) {
@@ -258,7 +265,8 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       r.htf_truncation_change = worst;
       std::ostringstream s;
       s << "htf: truncation N = " << htf->harmonics() << " (A has " << htf->coefficient_harmonics()
-        << " harmonics; banded solve), check against N + " << htf->delta() << ": max change " << worst;
+        << " harmonics; banded solve), check against N + " << htf->delta() << ": max change "
+        << worst;
       run.diagnostics.push_back(s.str());
     }
     if ((route == PfrfRoute::kShooting || route == PfrfRoute::kTime) && forced) {
@@ -266,7 +274,9 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       s << ToString(route) << ": " << forced->samples() << " samples per period, RKF78 rel tol "
         << options.shooting.rel_tol << "; response spectrum upper-half amplitude "
         << forced->sample_tail()
-        << (forced->sample_tail() > options.shooting.sample_tol ? " (NOT resolved: raise max_samples)" : "");
+        << (forced->sample_tail() > options.shooting.sample_tol
+                ? " (NOT resolved: raise max_samples)"
+                : "");
       run.diagnostics.push_back(s.str());
       for (const auto& d : forced->diagnostics())
         if (d.rfind(std::string(ToString(route)), 0) == 0 || d.rfind("forced", 0) == 0)
@@ -289,7 +299,8 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         const int i = run.points[q];
         double worst = 0, hmax = 0;
         for (int z = 0; z < Z; ++z)
-          if (std::isfinite(std::abs(run.values[q][z]))) hmax = std::max(hmax, std::abs(run.values[q][z]));
+          if (std::isfinite(std::abs(run.values[q][z])))
+            hmax = std::max(hmax, std::abs(run.values[q][z]));
         double own = 0;
         if (route == PfrfRoute::kModal)
           own = std::max(options.floquet.integrator.rel_tol, r.modal ? r.modal->tail : 0.0) * hmax;
@@ -353,11 +364,12 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         const cd lam = r.floquet.modes[k].exponent;
         const double d = std::hypot(lam.real(), std::remainder(omega_of(i) - lam.imag(), wp));
         if (d > dl) continue;
-        for (int z = 0; z < Z; ++z) r.error_estimate[i][z] = std::numeric_limits<double>::infinity();
+        for (int z = 0; z < Z; ++z)
+          r.error_estimate[i][z] = std::numeric_limits<double>::infinity();
         std::ostringstream msg;
-        msg << "resonance: the excitation at " << options.frequencies_hz[i] << " Hz is within "
-            << d << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error "
-            << dl << " 1/s): H_z is unbounded there and the values are not meaningful";
+        msg << "resonance: the excitation at " << options.frequencies_hz[i] << " Hz is within " << d
+            << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error " << dl
+            << " 1/s): H_z is unbounded there and the values are not meaningful";
         r.diagnostics.push_back(msg.str());
         break;
       }
@@ -367,22 +379,25 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
     // The modal tail bounds what the primary's Fourier truncation can add anywhere.
     for (int i = 0; i < F; ++i)
       for (int z = 0; z < Z; ++z)
-        r.error_estimate[i][z] = std::max(r.error_estimate[i][z], r.modal->tail * std::abs(r.values[i][z]));
+        r.error_estimate[i][z] =
+            std::max(r.error_estimate[i][z], r.modal->tail * std::abs(r.values[i][z]));
   }
   r.max_relative_disagreement = global_max > 0 ? r.max_disagreement / global_max : 0;
 
   r.ok = r.routes.front().failures == 0;
   if (!r.ok)
-    r.diagnostics.push_back("primary route " + std::string(ToString(primary_route)) + " failed at " +
-                            std::to_string(r.routes.front().failures) + " frequencies");
+    r.diagnostics.push_back("primary route " + std::string(ToString(primary_route)) +
+                            " failed at " + std::to_string(r.routes.front().failures) +
+                            " frequencies");
   if (r.modal && !r.modal->reliable && primary_route == PfrfRoute::kModal)
-    r.diagnostics.push_back("the modal route reports itself unreliable (see its diagnostics); "
-                            "compare with --route htf or shooting");
+    r.diagnostics.push_back(
+        "the modal route reports itself unreliable (see its diagnostics); "
+        "compare with --route htf or shooting");
   if (r.floquet.ok && !r.floquet.stable)
-    r.diagnostics.push_back("the system is unstable (max Re λ = " +
-                            std::to_string(r.floquet.max_real_exponent) +
-                            " 1/s): H_z describes the formal periodic solution, which is not "
-                            "reached from rest");
+    r.diagnostics.push_back(
+        "the system is unstable (max Re λ = " + std::to_string(r.floquet.max_real_exponent) +
+        " 1/s): H_z describes the formal periodic solution, which is not "
+        "reached from rest");
   r.resonances = FindResonances(r, r.modal ? &*r.modal : nullptr, options.peak_threshold,
                                 options.max_peaks_per_order);
   if (options.primary == PfrfRoute::kAuto && primary_route == PfrfRoute::kModal && any_checks) {
@@ -408,7 +423,8 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
         << "), so it is UNRELIABLE here";
       r.modal->reliable = false;  // the failed check is the model's verdict, not a footnote
       r.modal->diagnostics.push_back("modal: UNRELIABLE — " + s.str());
-      PfrfResult fallback = SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
+      PfrfResult fallback =
+          SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
       fallback.route_choice = s.str();
       fallback.modal_cross_check_failed = true;
       fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
@@ -430,8 +446,8 @@ PfrfResult ComputePartialFrf(const PeriodicSystem& system, const PfrfOptions& op
                      std::to_string(system.inputs()) + " inputs and " +
                      std::to_string(system.outputs()) + " outputs");
   if (options.input >= system.inputs())
-    throw InputError("pfrf: input " + std::to_string(options.input) + " out of range (the system has " +
-                     std::to_string(system.inputs()) + ")");
+    throw InputError("pfrf: input " + std::to_string(options.input) +
+                     " out of range (the system has " + std::to_string(system.inputs()) + ")");
   if (options.output >= system.outputs())
     throw InputError("pfrf: output " + std::to_string(options.output) +
                      " out of range (the system has " + std::to_string(system.outputs()) + ")");
@@ -495,7 +511,8 @@ std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel
             }
           }
         p.share = sum > 0 ? best_term / sum : 0;
-        if (p.mode >= 0) p.mode_line_hz = modal->exponents[p.mode].imag() / kTwoPi + p.harmonic * fp;
+        if (p.mode >= 0)
+          p.mode_line_hz = modal->exponents[p.mode].imag() / kTwoPi + p.harmonic * fp;
       } else if (!result.floquet.modes.empty()) {
         double best = std::numeric_limits<double>::infinity();
         for (size_t k = 0; k < result.floquet.modes.size(); ++k)

@@ -53,15 +53,16 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
   if (system.inputs() < 1 || system.outputs() < 1)
     throw InputError("FRFs need at least one input and one output");
   if (options.input >= system.inputs())
-    throw InputError("snapshot: input " + std::to_string(options.input) + " out of range (the system has " +
-                     std::to_string(system.inputs()) + ")");
+    throw InputError("snapshot: input " + std::to_string(options.input) +
+                     " out of range (the system has " + std::to_string(system.inputs()) + ")");
   if (options.output >= system.outputs())
     throw InputError("snapshot: output " + std::to_string(options.output) +
                      " out of range (the system has " + std::to_string(system.outputs()) + ")");
   SnapshotResult r;
   r.frequencies_hz = options.frequencies_hz;
   if (options.angle_deg) {
-    const double rad = std::fmod(*options.angle_deg, 360.0) * std::numbers::pi / 180;  // 1e308° stays finite
+    const double rad =
+        std::fmod(*options.angle_deg, 360.0) * std::numbers::pi / 180;  // 1e308° stays finite
     r.frozen = system.SnapshotAtAngle(rad);  // throws InputError without a rotor speed
     r.angle_deg = options.angle_deg;
     r.time = std::fmod(rad, 2 * std::numbers::pi) / *system.rotor_speed();
@@ -70,13 +71,16 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
     r.frozen = system.Snapshot(r.time);
   }
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(r.frozen.A.cast<cd>(), false);
-  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) r.eigenvalues.push_back(es.eigenvalues()(k));
+  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k)
+    r.eigenvalues.push_back(es.eigenvalues()(k));
   std::sort(r.eigenvalues.begin(), r.eigenvalues.end(), [](cd a, cd b) {
-    return std::abs(a.imag()) != std::abs(b.imag()) ? std::abs(a.imag()) < std::abs(b.imag()) : a.imag() > b.imag();
+    return std::abs(a.imag()) != std::abs(b.imag()) ? std::abs(a.imag()) < std::abs(b.imag())
+                                                    : a.imag() > b.imag();
   });
   const int F = static_cast<int>(options.frequencies_hz.size());
   for (int i = 0; i < F; ++i)
-    r.snapshot.push_back(FrozenFrf(r.frozen, kTwoPi * options.frequencies_hz[i])(options.output, options.input));
+    r.snapshot.push_back(
+        FrozenFrf(r.frozen, kTwoPi * options.frequencies_hz[i])(options.output, options.input));
 
   if (options.compare) {
     const int zmin = options.min_order, zmax = options.max_order;
@@ -119,11 +123,13 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
         for (int z = zmin; z <= zmax; ++z) {
           const cd reference = h[z - zmin](options.output, options.input);
           largest = std::max(largest, std::abs(reference));
-          diff = std::max(diff, std::abs(reference - model.Evaluate(w, z, options.output, options.input)));
+          diff = std::max(
+              diff, std::abs(reference - model.Evaluate(w, z, options.output, options.input)));
         }
         if (largest > 0) disagreement[q] = diff / largest;
       }
-      for (double d : disagreement) r.max_summed_disagreement = std::max(r.max_summed_disagreement, d);
+      for (double d : disagreement)
+        r.max_summed_disagreement = std::max(r.max_summed_disagreement, d);
       r.summed_error.resize(F);
       for (int i = 0; i < F; ++i) r.summed_error[i] = r.max_summed_disagreement * magnitude_sum[i];
       std::ostringstream s;

@@ -16,9 +16,11 @@ void TimeData::Validate() const {
     const Eigen::Index n = static_cast<Eigen::Index>(rec.time.size());
     if (n < 2) throw InputError(where + ": fewer than 2 samples");
     if (rec.inputs.rows() != n || rec.outputs.rows() != n)
-      throw InputError(where + ": " + std::to_string(n) + " times but " + std::to_string(rec.inputs.rows()) +
-                       " input and " + std::to_string(rec.outputs.rows()) + " output samples");
-    if (r > 0 && (rec.inputs.cols() != records[0].inputs.cols() || rec.outputs.cols() != records[0].outputs.cols()))
+      throw InputError(where + ": " + std::to_string(n) + " times but " +
+                       std::to_string(rec.inputs.rows()) + " input and " +
+                       std::to_string(rec.outputs.rows()) + " output samples");
+    if (r > 0 && (rec.inputs.cols() != records[0].inputs.cols() ||
+                  rec.outputs.cols() != records[0].outputs.cols()))
       throw InputError(where + ": other channels than record 1");
     if (!rec.inputs.allFinite() || !rec.outputs.allFinite())
       throw InputError(where + ": holds a value that is not finite (NaN or inf)");
@@ -27,8 +29,9 @@ void TimeData::Validate() const {
     for (Eigen::Index i = 1; i < n; ++i) {
       const double step = rec.time[static_cast<size_t>(i)] - rec.time[static_cast<size_t>(i - 1)];
       if (!(std::abs(step - dt) <= 1e-6 * dt))
-        throw InputError(where + ": unequal sampling at sample " + std::to_string(i + 1) + " (step " +
-                         std::to_string(step) + " s, mean " + std::to_string(dt) + " s): a gap or a jitter");
+        throw InputError(where + ": unequal sampling at sample " + std::to_string(i + 1) +
+                         " (step " + std::to_string(step) + " s, mean " + std::to_string(dt) +
+                         " s): a gap or a jitter");
     }
   }
 }

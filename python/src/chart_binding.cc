@@ -39,7 +39,8 @@ SweepAxis AxisFrom(const py::object& spec) {
   if (py::isinstance<py::sequence>(spec) && py::len(spec) == 4) {
     const auto s = spec.cast<py::sequence>();
     try {
-      return {s[0].cast<std::string>(), s[1].cast<double>(), s[2].cast<double>(), s[3].cast<double>()};
+      return {s[0].cast<std::string>(), s[1].cast<double>(), s[2].cast<double>(),
+              s[3].cast<double>()};
     } catch (const py::cast_error&) {
     }
   }
@@ -48,22 +49,25 @@ SweepAxis AxisFrom(const py::object& spec) {
 }
 
 py::dict BoundaryDict(const BoundaryEstimate& e) {
-  return py::dict(py::arg("value") = e.value, py::arg("refined") = e.refined, py::arg("bracket") = e.bracket,
-                  py::arg("at_sweep_edge") = e.at_sweep_edge, py::arg("evaluations") = e.evaluations,
-                  py::arg("note") = e.note);
+  return py::dict(py::arg("value") = e.value, py::arg("refined") = e.refined,
+                  py::arg("bracket") = e.bracket, py::arg("at_sweep_edge") = e.at_sweep_edge,
+                  py::arg("evaluations") = e.evaluations, py::arg("note") = e.note);
 }
 
 template <class Field>
 auto PointArray(Field field) {
   return [field](const ChartResult& c) {
     py::array_t<double> a(static_cast<py::ssize_t>(c.points.size()));
-    for (size_t i = 0; i < c.points.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = field(c.points[i]);
+    for (size_t i = 0; i < c.points.size(); ++i)
+      a.mutable_at(static_cast<py::ssize_t>(i)) = field(c.points[i]);
     return a;
   };
 }
 
-ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes, const ChartOptions& chart) {
-  if (!system.scene) throw InputError("chart sweeps a scene's parameters: give a system made by ltp.scene(...)");
+ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes,
+                  const ChartOptions& chart) {
+  if (!system.scene)
+    throw InputError("chart sweeps a scene's parameters: give a system made by ltp.scene(...)");
   const Scene& scene = *system.scene;
   ChartResult r;
   r.scene = scene.name;
@@ -89,11 +93,14 @@ ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes, cons
   if (!map) {
     r.tracking = TrackModes(r.points);
     r.campbell = MakeCampbellDiagram(r.points, r.tracking, system.system.labels(), chart.campbell);
-    r.intervals = RefineUnstableIntervals(scene, system.parameters, r.grid, r.points, r.options, boundary);
+    r.intervals =
+        RefineUnstableIntervals(scene, system.parameters, r.grid, r.points, r.options, boundary);
   } else if (chart.refine) {
-    r.boundary = RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
+    r.boundary =
+        RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
   }
-  r.refine_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
+  r.refine_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
   return r;
 }
 
@@ -110,158 +117,247 @@ against values[0], with the per-rev lines n*rotor_speeds/2pi for n in per_rev; `
 lists where they meet. tracked_exponents/tracked_frequencies_hz keep every exponent (both
 members of each conjugate pair).)doc")
       .def_readonly("scene", &ChartResult::scene, "the scene's name")
-      .def_readonly("parameters", &ChartResult::parameters, "the scene's parameters besides the swept ones")
+      .def_readonly("parameters", &ChartResult::parameters,
+                    "the scene's parameters besides the swept ones")
       .def_readonly("method", &ChartResult::method, "'monodromy' or 'hill'")
       .def_readonly("integrator", &ChartResult::integrator, "the monodromy integrator used")
       .def_readonly("tol", &ChartResult::tol, "the tolerance used")
       .def_readonly("threads", &ChartResult::threads, "threads used over points")
-      .def_property_readonly("check_every", [](const ChartResult& c) { return c.options.check_every; }, "error estimate on every k-th point")
-      .def_property_readonly("axes", [](const ChartResult& c) {
-        std::vector<std::string> names;
-        for (const auto& a : c.grid.axes) names.push_back(a.name);
-        return names;
-      }, "the swept parameters' names")
-      .def_property_readonly("values", [](const ChartResult& c) {
-        py::list out;
-        for (const auto& v : c.grid.values) out.append(RealArray(v));
-        return out;
-      }, "the grid values of each axis")
-      .def_property_readonly("point_values", [](const ChartResult& c) {
-        std::vector<std::vector<double>> v;
-        for (const SweepPoint& p : c.points) v.push_back(p.values);
-        return RealTable(v, c.grid.axes.size());
-      }, "parameter values of every point, shape (points, axes)")
-      .def_property_readonly("ok", [](const ChartResult& c) {
-        py::array_t<bool> a(static_cast<py::ssize_t>(c.points.size()));
-        for (size_t i = 0; i < c.points.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = c.points[i].ok;
-        return a;
-      }, "per point: the analysis succeeded")
-      .def_property_readonly("verdicts", [](const ChartResult& c) {
-        std::vector<std::string> v;
-        for (const SweepPoint& p : c.points) v.emplace_back(ToString(p.verdict));
-        return v;
-      }, "'stable', 'marginal', 'unstable' or 'failed' per point")
-      .def_property_readonly("periods", PointArray([](const SweepPoint& p) { return p.period; }), "per point: the period T (s)")
-      .def_property_readonly("max_real_exponent", PointArray([](const SweepPoint& p) { return p.max_real_exponent; }), "per point: max Re λ (1/s)")
-      .def_property_readonly("max_log_multiplier", PointArray([](const SweepPoint& p) { return p.max_log_multiplier; }), "per point: max log|ρ| = T max Re λ")
-      .def_property_readonly("error_estimate", PointArray([](const SweepPoint& p) { return p.error_estimate; }),
+      .def_property_readonly(
+          "check_every", [](const ChartResult& c) { return c.options.check_every; },
+          "error estimate on every k-th point")
+      .def_property_readonly(
+          "axes",
+          [](const ChartResult& c) {
+            std::vector<std::string> names;
+            for (const auto& a : c.grid.axes) names.push_back(a.name);
+            return names;
+          },
+          "the swept parameters' names")
+      .def_property_readonly(
+          "values",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const auto& v : c.grid.values) out.append(RealArray(v));
+            return out;
+          },
+          "the grid values of each axis")
+      .def_property_readonly(
+          "point_values",
+          [](const ChartResult& c) {
+            std::vector<std::vector<double>> v;
+            for (const SweepPoint& p : c.points) v.push_back(p.values);
+            return RealTable(v, c.grid.axes.size());
+          },
+          "parameter values of every point, shape (points, axes)")
+      .def_property_readonly(
+          "ok",
+          [](const ChartResult& c) {
+            py::array_t<bool> a(static_cast<py::ssize_t>(c.points.size()));
+            for (size_t i = 0; i < c.points.size(); ++i)
+              a.mutable_at(static_cast<py::ssize_t>(i)) = c.points[i].ok;
+            return a;
+          },
+          "per point: the analysis succeeded")
+      .def_property_readonly(
+          "verdicts",
+          [](const ChartResult& c) {
+            std::vector<std::string> v;
+            for (const SweepPoint& p : c.points) v.emplace_back(ToString(p.verdict));
+            return v;
+          },
+          "'stable', 'marginal', 'unstable' or 'failed' per point")
+      .def_property_readonly("periods", PointArray([](const SweepPoint& p) { return p.period; }),
+                             "per point: the period T (s)")
+      .def_property_readonly("max_real_exponent",
+                             PointArray([](const SweepPoint& p) { return p.max_real_exponent; }),
+                             "per point: max Re λ (1/s)")
+      .def_property_readonly("max_log_multiplier",
+                             PointArray([](const SweepPoint& p) { return p.max_log_multiplier; }),
+                             "per point: max log|ρ| = T max Re λ")
+      .def_property_readonly("error_estimate",
+                             PointArray([](const SweepPoint& p) { return p.error_estimate; }),
                              "per point (1/s); -1 where the point was not checked")
-      .def_property_readonly("exponents", [](const ChartResult& c) {
-        std::vector<std::vector<Complex>> v;
-        for (const SweepPoint& p : c.points) {
-          v.emplace_back();
-          for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
-        }
-        return ComplexTable(v, static_cast<size_t>(c.states));
-      }, "exponents of every point in its own display order, shape (points, n); NaN where failed")
-      .def_property_readonly("tracked_exponents", [](const ChartResult& c) {
-        std::vector<std::vector<Complex>> v;
-        for (size_t i = 0; i < c.points.size(); ++i) {
-          v.emplace_back();
-          if (i >= c.tracking.labels.size()) continue;
-          for (int index : c.tracking.labels[i])
-            v.back().push_back(index >= 0 ? c.points[i].modes[static_cast<size_t>(index)].exponent : Complex(NAN, NAN));
-        }
-        return ComplexTable(v, static_cast<size_t>(c.states));
-      }, "1-D: exponents by tracked label ([:, k] is one Campbell line), shape (points, n)")
-      .def_property_readonly("tracked_frequencies_hz", [](const ChartResult& c) {
-        return RealTable(c.tracking.frequency_hz, static_cast<size_t>(c.states));
-      }, "1-D: tracked frequencies, unwrapped along each line (Hz), shape (points, n)")
-      .def_property_readonly("snapshot_eigenvalues", [](const ChartResult& c) {
-        std::vector<std::vector<Complex>> v;
-        for (const SweepPoint& p : c.points) v.push_back(p.snapshot_eigenvalues);
-        return ComplexTable(v, static_cast<size_t>(c.states));
-      }, "compare=True: eigenvalues of the frozen A(0) per point")
-      .def_property_readonly("averaged_eigenvalues", [](const ChartResult& c) {
-        std::vector<std::vector<Complex>> v;
-        for (const SweepPoint& p : c.points) v.push_back(p.averaged_eigenvalues);
-        return ComplexTable(v, static_cast<size_t>(c.states));
-      }, "compare=True: eigenvalues of the averaged A_0 per point")
-      .def_property_readonly("counts", [](const ChartResult& c) {
-        std::map<std::string, size_t> counts{{"stable", 0}, {"marginal", 0}, {"unstable", 0}, {"failed", 0}};
-        for (const SweepPoint& p : c.points) ++counts[std::string(ToString(p.verdict))];
-        return counts;
-      }, "points per verdict")
-      .def_property_readonly("checked_points", [](const ChartResult& c) {
-        size_t n = 0;
-        for (const SweepPoint& p : c.points) n += p.ok && p.error_estimate >= 0;
-        return n;
-      }, "points with an error estimate")
-      .def_property_readonly("max_error_estimate", [](const ChartResult& c) {
-        double e = -1;
-        for (const SweepPoint& p : c.points)
-          if (p.ok && p.error_estimate >= 0) e = std::max(e, p.error_estimate);
-        return e;
-      }, "over the checked points (1/s); -1 when none was checked")
-      .def_property_readonly("failures", [](const ChartResult& c) {
-        py::list out;
-        for (const SweepPoint& p : c.points)
-          if (!p.ok) out.append(py::dict(py::arg("values") = p.values, py::arg("reason") = p.failure));
-        return out;
-      }, "the failed points: values and reason")
-      .def_property_readonly("unstable_intervals", [](const ChartResult& c) {
-        std::vector<std::vector<double>> v;
-        for (const auto& in : c.intervals) v.push_back({in.lo.value, in.hi.value});
-        return RealTable(v, 2);
-      }, "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
-      .def_property_readonly("unstable_interval_details", [](const ChartResult& c) {
-        py::list out;
-        for (const auto& in : c.intervals)
-          out.append(py::dict(py::arg("lo") = BoundaryDict(in.lo), py::arg("hi") = BoundaryDict(in.hi)));
-        return out;
-      }, "1-D: per end of each interval: value, refined, bracket, at_sweep_edge, evaluations, note")
-      .def_property_readonly("boundary_points", [](const ChartResult& c) {
-        std::vector<std::vector<double>> v;
-        for (const auto& b : c.boundary)
-          if (b.estimate.refined) v.push_back(b.values);
-        return RealTable(v, 2);
-      }, "maps: the refined boundary points, shape (count, 2)")
-      .def_property_readonly("boundary_point_details", [](const ChartResult& c) {
-        py::list out;
-        for (const auto& b : c.boundary)
-          out.append(py::dict(py::arg("values") = b.values,
-                              py::arg("refined_parameter") = c.grid.axes[static_cast<size_t>(b.axis)].name,
-                              py::arg("entering_unstable") = b.entering_unstable,
-                              py::arg("estimate") = BoundaryDict(b.estimate)));
-        return out;
-      }, "maps: every grid crossing, refined or not, with its estimate")
-      .def_property_readonly("mode_tracking", [](const ChartResult& c) {
-        return py::dict(py::arg("min_mac") = c.tracking.min_mac,
-                        py::arg("ambiguous_points") = c.tracking.ambiguous);
-      }, "1-D: smallest accepted MAC and the points where a match was ambiguous")
-      .def_property_readonly("lines", [](const ChartResult& c) {
-        py::list out;
-        for (const CampbellLine& line : c.campbell.lines)
-          out.append(py::dict(py::arg("description") = line.description,
-                              py::arg("description_end") = line.description_end,
-                              py::arg("frequency_hz") = RealArray(line.frequency_hz),
-                              py::arg("real_part") = RealArray(line.real_part),
-                              py::arg("damping_ratio") = RealArray(line.damping_ratio),
-                              py::arg("lost_after") = line.lost_after));
-        return out;
-      }, "1-D: one Campbell line per physical mode: description (states carrying it), per-point "
-         "frequency_hz, real_part, damping_ratio (NaN where not tracked), lost_after (point index or -1)")
-      .def_property_readonly("rotor_speeds", [](const ChartResult& c) { return RealArray(c.campbell.rotor_speed); },
-                             "1-D: rotor speed per point (rad/s; NaN when the scene is not a rotor)")
-      .def_property_readonly("per_rev", [](const ChartResult& c) { return c.campbell.per_rev; },
-                             "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
-      .def_property_readonly("crossings", [](const ChartResult& c) {
-        py::list out;
-        for (const CampbellCrossing& x : c.campbell.crossings)
-          out.append(py::dict(py::arg("mode") = x.line + 1, py::arg("description") = c.campbell.lines[x.line].description,
-                              py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
-                              py::arg("parameter_error") = x.parameter_error, py::arg("rotor_speed") = x.rotor_speed,
-                              py::arg("frequency_hz") = x.frequency_hz, py::arg("real_part") = x.real_part,
-                              py::arg("damping_ratio") = x.damping_ratio));
-        return out;
-      }, "1-D: where each line crosses a per-rev line (mode numbered as in lines, from 1)")
-      .def_property_readonly("weakly_damped", [](const ChartResult& c) {
-        std::vector<std::vector<double>> v;
-        for (const auto& [lo, hi] : c.campbell.weakly_damped) v.push_back({lo, hi});
-        return RealTable(v, 2);
-      }, "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
-      .def_property_readonly("campbell_notes", [](const ChartResult& c) { return c.campbell.diagnostics; },
-                             "1-D: lost lines and ambiguous tracking")
+      .def_property_readonly(
+          "exponents",
+          [](const ChartResult& c) {
+            std::vector<std::vector<Complex>> v;
+            for (const SweepPoint& p : c.points) {
+              v.emplace_back();
+              for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
+            }
+            return ComplexTable(v, static_cast<size_t>(c.states));
+          },
+          "exponents of every point in its own display order, shape (points, n); NaN where failed")
+      .def_property_readonly(
+          "tracked_exponents",
+          [](const ChartResult& c) {
+            std::vector<std::vector<Complex>> v;
+            for (size_t i = 0; i < c.points.size(); ++i) {
+              v.emplace_back();
+              if (i >= c.tracking.labels.size()) continue;
+              for (int index : c.tracking.labels[i])
+                v.back().push_back(index >= 0
+                                       ? c.points[i].modes[static_cast<size_t>(index)].exponent
+                                       : Complex(NAN, NAN));
+            }
+            return ComplexTable(v, static_cast<size_t>(c.states));
+          },
+          "1-D: exponents by tracked label ([:, k] is one Campbell line), shape (points, n)")
+      .def_property_readonly(
+          "tracked_frequencies_hz",
+          [](const ChartResult& c) {
+            return RealTable(c.tracking.frequency_hz, static_cast<size_t>(c.states));
+          },
+          "1-D: tracked frequencies, unwrapped along each line (Hz), shape (points, n)")
+      .def_property_readonly(
+          "snapshot_eigenvalues",
+          [](const ChartResult& c) {
+            std::vector<std::vector<Complex>> v;
+            for (const SweepPoint& p : c.points) v.push_back(p.snapshot_eigenvalues);
+            return ComplexTable(v, static_cast<size_t>(c.states));
+          },
+          "compare=True: eigenvalues of the frozen A(0) per point")
+      .def_property_readonly(
+          "averaged_eigenvalues",
+          [](const ChartResult& c) {
+            std::vector<std::vector<Complex>> v;
+            for (const SweepPoint& p : c.points) v.push_back(p.averaged_eigenvalues);
+            return ComplexTable(v, static_cast<size_t>(c.states));
+          },
+          "compare=True: eigenvalues of the averaged A_0 per point")
+      .def_property_readonly(
+          "counts",
+          [](const ChartResult& c) {
+            std::map<std::string, size_t> counts{
+                {"stable", 0}, {"marginal", 0}, {"unstable", 0}, {"failed", 0}};
+            for (const SweepPoint& p : c.points) ++counts[std::string(ToString(p.verdict))];
+            return counts;
+          },
+          "points per verdict")
+      .def_property_readonly(
+          "checked_points",
+          [](const ChartResult& c) {
+            size_t n = 0;
+            for (const SweepPoint& p : c.points) n += p.ok && p.error_estimate >= 0;
+            return n;
+          },
+          "points with an error estimate")
+      .def_property_readonly(
+          "max_error_estimate",
+          [](const ChartResult& c) {
+            double e = -1;
+            for (const SweepPoint& p : c.points)
+              if (p.ok && p.error_estimate >= 0) e = std::max(e, p.error_estimate);
+            return e;
+          },
+          "over the checked points (1/s); -1 when none was checked")
+      .def_property_readonly(
+          "failures",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const SweepPoint& p : c.points)
+              if (!p.ok)
+                out.append(py::dict(py::arg("values") = p.values, py::arg("reason") = p.failure));
+            return out;
+          },
+          "the failed points: values and reason")
+      .def_property_readonly(
+          "unstable_intervals",
+          [](const ChartResult& c) {
+            std::vector<std::vector<double>> v;
+            for (const auto& in : c.intervals) v.push_back({in.lo.value, in.hi.value});
+            return RealTable(v, 2);
+          },
+          "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
+      .def_property_readonly(
+          "unstable_interval_details",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const auto& in : c.intervals)
+              out.append(py::dict(py::arg("lo") = BoundaryDict(in.lo),
+                                  py::arg("hi") = BoundaryDict(in.hi)));
+            return out;
+          },
+          "1-D: per end of each interval: value, refined, bracket, at_sweep_edge, evaluations, "
+          "note")
+      .def_property_readonly(
+          "boundary_points",
+          [](const ChartResult& c) {
+            std::vector<std::vector<double>> v;
+            for (const auto& b : c.boundary)
+              if (b.estimate.refined) v.push_back(b.values);
+            return RealTable(v, 2);
+          },
+          "maps: the refined boundary points, shape (count, 2)")
+      .def_property_readonly(
+          "boundary_point_details",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const auto& b : c.boundary)
+              out.append(py::dict(
+                  py::arg("values") = b.values,
+                  py::arg("refined_parameter") = c.grid.axes[static_cast<size_t>(b.axis)].name,
+                  py::arg("entering_unstable") = b.entering_unstable,
+                  py::arg("estimate") = BoundaryDict(b.estimate)));
+            return out;
+          },
+          "maps: every grid crossing, refined or not, with its estimate")
+      .def_property_readonly(
+          "mode_tracking",
+          [](const ChartResult& c) {
+            return py::dict(py::arg("min_mac") = c.tracking.min_mac,
+                            py::arg("ambiguous_points") = c.tracking.ambiguous);
+          },
+          "1-D: smallest accepted MAC and the points where a match was ambiguous")
+      .def_property_readonly(
+          "lines",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const CampbellLine& line : c.campbell.lines)
+              out.append(py::dict(py::arg("description") = line.description,
+                                  py::arg("description_end") = line.description_end,
+                                  py::arg("frequency_hz") = RealArray(line.frequency_hz),
+                                  py::arg("real_part") = RealArray(line.real_part),
+                                  py::arg("damping_ratio") = RealArray(line.damping_ratio),
+                                  py::arg("lost_after") = line.lost_after));
+            return out;
+          },
+          "1-D: one Campbell line per physical mode: description (states carrying it), per-point "
+          "frequency_hz, real_part, damping_ratio (NaN where not tracked), lost_after (point index "
+          "or -1)")
+      .def_property_readonly(
+          "rotor_speeds", [](const ChartResult& c) { return RealArray(c.campbell.rotor_speed); },
+          "1-D: rotor speed per point (rad/s; NaN when the scene is not a rotor)")
+      .def_property_readonly(
+          "per_rev", [](const ChartResult& c) { return c.campbell.per_rev; },
+          "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
+      .def_property_readonly(
+          "crossings",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const CampbellCrossing& x : c.campbell.crossings)
+              out.append(py::dict(
+                  py::arg("mode") = x.line + 1,
+                  py::arg("description") = c.campbell.lines[x.line].description,
+                  py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
+                  py::arg("parameter_error") = x.parameter_error,
+                  py::arg("rotor_speed") = x.rotor_speed, py::arg("frequency_hz") = x.frequency_hz,
+                  py::arg("real_part") = x.real_part, py::arg("damping_ratio") = x.damping_ratio));
+            return out;
+          },
+          "1-D: where each line crosses a per-rev line (mode numbered as in lines, from 1)")
+      .def_property_readonly(
+          "weakly_damped",
+          [](const ChartResult& c) {
+            std::vector<std::vector<double>> v;
+            for (const auto& [lo, hi] : c.campbell.weakly_damped) v.push_back({lo, hi});
+            return RealTable(v, 2);
+          },
+          "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
+      .def_property_readonly(
+          "campbell_notes", [](const ChartResult& c) { return c.campbell.diagnostics; },
+          "1-D: lost lines and ambiguous tracking")
       .def_readonly("sweep_s", &ChartResult::sweep_s, "wall time of the sweep (s)")
       .def_readonly("refine_s", &ChartResult::refine_s, "wall time of the boundary refinement (s)")
       .def("__repr__", [](const ChartResult& c) {
@@ -273,8 +369,8 @@ members of each conjugate pair).)doc")
       "chart",
       [](const py::object& scene, const py::object& sweep, const py::object& sweep2,
          const std::string& method, std::optional<std::string> integrator, double tol, int threads,
-         bool compare, int check_every, bool refine, double refine_tol, int refine_lines, int per_rev,
-         double weak_damping) {
+         bool compare, int check_every, bool refine, double refine_tol, int refine_lines,
+         int per_rev, double weak_damping) {
         const System system = py::isinstance<py::str>(scene)
                                   ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
                                   : scene.cast<System>();
@@ -299,11 +395,12 @@ members of each conjugate pair).)doc")
         return Chart(system, axes, o);
       },
       py::arg("scene"), py::arg("sweep"), py::arg("sweep2") = py::none(), py::kw_only(),
-      py::arg("method") = std::string(ToString(defaults.method)), py::arg("integrator") = py::none(),
-      py::arg("tol") = defaults.tol, py::arg("threads") = defaults.threads,
-      py::arg("compare") = defaults.compare, py::arg("check_every") = defaults.check_every,
-      py::arg("refine") = defaults.refine, py::arg("refine_tol") = defaults.refine_tol,
-      py::arg("refine_lines") = defaults.refine_lines, py::arg("per_rev") = defaults.campbell.max_per_rev,
+      py::arg("method") = std::string(ToString(defaults.method)),
+      py::arg("integrator") = py::none(), py::arg("tol") = defaults.tol,
+      py::arg("threads") = defaults.threads, py::arg("compare") = defaults.compare,
+      py::arg("check_every") = defaults.check_every, py::arg("refine") = defaults.refine,
+      py::arg("refine_tol") = defaults.refine_tol, py::arg("refine_lines") = defaults.refine_lines,
+      py::arg("per_rev") = defaults.campbell.max_per_rev,
       py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
 Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
 parameters: `ltp chart SCENE --sweep ... --json` as a function, with the same options and

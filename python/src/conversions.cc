@@ -37,7 +37,8 @@ void Callbacks::RethrowIfFailed() {
   if (error) std::rethrow_exception(error);
 }
 
-void Callbacks::Evaluate(size_t which, const char* name, double t, Eigen::Ref<Eigen::MatrixXd> out) {
+void Callbacks::Evaluate(size_t which, const char* name, double t,
+                         Eigen::Ref<Eigen::MatrixXd> out) {
   if (failed_) {  // one failure is enough: the analysis is abandoned
     out.setZero();
     return;
@@ -47,7 +48,8 @@ void Callbacks::Evaluate(size_t which, const char* name, double t, Eigen::Ref<Ei
     const py::object value = functions_[which](t);
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
     const bool scalar_ok = out.rows() == 1 && out.cols() == 1 && a && a.size() == 1;
-    if (!a || (!scalar_ok && (a.ndim() != 2 || a.shape(0) != out.rows() || a.shape(1) != out.cols()))) {
+    if (!a ||
+        (!scalar_ok && (a.ndim() != 2 || a.shape(0) != out.rows() || a.shape(1) != out.cols()))) {
       std::ostringstream s;
       s << name << "(t) must return a real " << out.rows() << "×" << out.cols() << " array";
       if (a) {
@@ -106,7 +108,8 @@ py::array_t<double> RealTable(const std::vector<std::vector<double>>& rows, size
   auto out = a.mutable_unchecked<2>();
   for (size_t i = 0; i < rows.size(); ++i)
     for (size_t j = 0; j < cols; ++j)
-      out(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = j < rows[i].size() ? rows[i][j] : NAN;
+      out(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) =
+          j < rows[i].size() ? rows[i][j] : NAN;
   return a;
 }
 
@@ -124,12 +127,14 @@ std::vector<double> FrequenciesFrom(const py::object& freq) {
 
 std::pair<int, int> OrdersFrom(const py::object& orders) {
   if (py::isinstance<py::str>(orders)) return ParseOrderRange(orders.cast<std::string>(), "orders");
-  if (py::isinstance<py::int_>(orders)) return ParseOrderRange(std::to_string(orders.cast<long>()), "orders");
+  if (py::isinstance<py::int_>(orders))
+    return ParseOrderRange(std::to_string(orders.cast<long>()), "orders");
   if (py::isinstance<py::sequence>(orders) && py::len(orders) == 2) {
     const auto seq = orders.cast<py::sequence>();
     if (py::isinstance<py::int_>(seq[0]) && py::isinstance<py::int_>(seq[1]))
-      return ParseOrderRange(std::to_string(seq[0].cast<long>()) + ":" + std::to_string(seq[1].cast<long>()),
-                             "orders");
+      return ParseOrderRange(
+          std::to_string(seq[0].cast<long>()) + ":" + std::to_string(seq[1].cast<long>()),
+          "orders");
   }
   throw InputError("orders must be 'ZMIN:ZMAX', an int or a pair of ints");
 }

@@ -52,51 +52,70 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       .def_readonly("states", &FloquetResult::states, "n")
       .def_readonly("period", &FloquetResult::period, "T (s)")
       .def_readonly("integrator", &FloquetResult::integrator, "the integrator used (auto resolved)")
-      .def_readonly("multiplier_method", &FloquetResult::multiplier_method, "'periodic-schur' or 'single-shot'")
+      .def_readonly("multiplier_method", &FloquetResult::multiplier_method,
+                    "'periodic-schur' or 'single-shot'")
       .def_readonly("segments", &FloquetResult::segments, "K, the number of segments used")
-      .def_property_readonly("segment_times", [](const FloquetResult& f) { return RealArray(f.segment_times); }, "t_0 = 0 < ... < t_K = T")
-      .def_readonly("max_real_exponent", &FloquetResult::max_real_exponent, "max Re λ (1/s), rigid-body modes excluded")
-      .def_readonly("max_log_abs_multiplier", &FloquetResult::max_log_abs_multiplier, "max log|ρ| = T max Re λ")
+      .def_property_readonly(
+          "segment_times", [](const FloquetResult& f) { return RealArray(f.segment_times); },
+          "t_0 = 0 < ... < t_K = T")
+      .def_readonly("max_real_exponent", &FloquetResult::max_real_exponent,
+                    "max Re λ (1/s), rigid-body modes excluded")
+      .def_readonly("max_log_abs_multiplier", &FloquetResult::max_log_abs_multiplier,
+                    "max log|ρ| = T max Re λ")
       .def_readonly("stable", &FloquetResult::stable, "verdict == 'stable'")
-      .def_property_readonly("verdict", [](const FloquetResult& f) { return std::string(ToString(f.verdict)); },
-                             "'stable' or 'unstable' only when max Re λ lies beyond the error estimate; "
-                             "'marginal' within it; 'failed'")
+      .def_property_readonly(
+          "verdict", [](const FloquetResult& f) { return std::string(ToString(f.verdict)); },
+          "'stable' or 'unstable' only when max Re λ lies beyond the error estimate; "
+          "'marginal' within it; 'failed'")
       .def_readonly("error_estimate", &FloquetResult::error_estimate,
                     "estimated absolute error of every exponent (1/s): the difference to a second, "
                     "tighter run; -1 when not computed")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|)")
-      .def_readonly("mode_condition", &FloquetResult::mode_condition, "cond(Ξ(0)); large = (near-)defective")
+      .def_readonly("mode_condition", &FloquetResult::mode_condition,
+                    "cond(Ξ(0)); large = (near-)defective")
       .def_readonly("monodromy", &FloquetResult::monodromy, "Φ(T, 0), n×n")
       .def_readonly("mode_descriptions", &FloquetResult::mode_descriptions,
-                    "what carries each mode: shares of its displacement energy per state at t = 0, blade states "
+                    "what carries each mode: shares of its displacement energy per state at t = 0, "
+                    "blade states "
                     "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
-      .def_property_readonly("sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); }, "uniform times of mode_samples")
-      .def_property_readonly("mode_samples", [](const FloquetResult& f) {
-        return ComplexStack(f.mode_samples, f.states, f.states);
-      }, "ξ_k(t_s): shape (S, n, n), column k of [s] is mode k at sample_times[s]")
-      .def_property_readonly("mode_harmonics", [](const FloquetResult& f) {
-        return ComplexStack(f.mode_fourier, f.states, f.states);
-      }, "Fourier coefficients of the mode shapes: shape (2H+1, n, n), [v + H][:, k] is "
-         "harmonic v of mode k (v = -H..H, see mode_harmonic_orders)")
-      .def_property_readonly("mode_harmonic_orders", [](const FloquetResult& f) {
-        py::array_t<int> v(2 * f.mode_harmonics + 1);
-        for (int h = -f.mode_harmonics; h <= f.mode_harmonics; ++h) v.mutable_at(h + f.mode_harmonics) = h;
-        return v;
-      }, "the harmonics v = -H..H of mode_harmonics")
+      .def_property_readonly(
+          "sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); },
+          "uniform times of mode_samples")
+      .def_property_readonly(
+          "mode_samples",
+          [](const FloquetResult& f) { return ComplexStack(f.mode_samples, f.states, f.states); },
+          "ξ_k(t_s): shape (S, n, n), column k of [s] is mode k at sample_times[s]")
+      .def_property_readonly(
+          "mode_harmonics",
+          [](const FloquetResult& f) { return ComplexStack(f.mode_fourier, f.states, f.states); },
+          "Fourier coefficients of the mode shapes: shape (2H+1, n, n), [v + H][:, k] is "
+          "harmonic v of mode k (v = -H..H, see mode_harmonic_orders)")
+      .def_property_readonly(
+          "mode_harmonic_orders",
+          [](const FloquetResult& f) {
+            py::array_t<int> v(2 * f.mode_harmonics + 1);
+            for (int h = -f.mode_harmonics; h <= f.mode_harmonics; ++h)
+              v.mutable_at(h + f.mode_harmonics) = h;
+            return v;
+          },
+          "the harmonics v = -H..H of mode_harmonics")
       .def_readonly("rhs_evals", &FloquetResult::rhs_evals, "evaluations of A(t)")
       .def_readonly("elapsed_s", &FloquetResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &FloquetResult::diagnostics, "what the analysis noticed, one line each")
+      .def_readonly("diagnostics", &FloquetResult::diagnostics,
+                    "what the analysis noticed, one line each")
       .def("mode_matrix", &FloquetResult::ModeMatrix, py::arg("t"),
            "Ξ(t): the mode shapes at time t (spectral interpolation), n×n, column k = mode k")
       .def("left_modes", &FloquetResult::LeftModes, py::arg("t"), "rows of Ξ(t)⁻¹")
-      .def("__repr__", [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });
+      .def("__repr__",
+           [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });
 
   const FloquetOptions defaults;
   m.def(
       "floquet",
       [](const System& system, const std::string& integrator, double tol, int steps,
-         const py::object& segments, const std::string& multipliers, int mode_samples, int threads) {
+         const py::object& segments, const std::string& multipliers, int mode_samples,
+         int threads) {
         FloquetOptions o;
         o.integrator.type = IntegratorFrom(integrator);
         o.integrator.rel_tol = tol;

@@ -15,7 +15,8 @@ template <class T, class Field>
 auto InfoColumn(Field field) {
   return [field](const HillResult& h) {
     py::array_t<T> a(static_cast<py::ssize_t>(h.info.size()));
-    for (size_t k = 0; k < h.info.size(); ++k) a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
+    for (size_t k = 0; k < h.info.size(); ++k)
+      a.mutable_at(static_cast<py::ssize_t>(k)) = field(h.info[k]);
     return a;
   };
 }
@@ -45,41 +46,72 @@ Koopman–Hill cross-check.)doc");
       .def_readonly("matrix_size", &HillResult::matrix_size, "(2N+1) n")
       .def_readonly("period", &HillResult::period, "T (s)")
       .def_readonly("solver", &HillResult::solver, "'dense' or 'structured' (auto resolved)")
-      .def_readonly("selection_rule", &HillResult::selection_rule, "how the physical eigenvalues were picked")
-      .def_property_readonly("centroids", InfoColumn<double>([](const HillModeInfo& i) { return i.centroid; }),
+      .def_readonly("selection_rule", &HillResult::selection_rule,
+                    "how the physical eigenvalues were picked")
+      .def_property_readonly("centroids",
+                             InfoColumn<double>([](const HillModeInfo& i) { return i.centroid; }),
                              "energy centroid of each eigenvector over the harmonic blocks")
-      .def_property_readonly("selection_margins", InfoColumn<double>([](const HillModeInfo& i) { return i.selection_margin; }),
+      .def_property_readonly("selection_margins", InfoColumn<double>([](const HillModeInfo& i) {
+                               return i.selection_margin;
+                             }),
                              "1 = clean choice, 0 = tie between λ and λ ± jΩp")
-      .def_property_readonly("tail_weights", InfoColumn<double>([](const HillModeInfo& i) { return i.tail_weight; }),
-                             "energy on the outermost blocks ±N (large: N too small for the mode)")
-      .def_property_readonly("truncation_changes", InfoColumn<double>([](const HillModeInfo& i) { return i.truncation_change; }),
+      .def_property_readonly(
+          "tail_weights", InfoColumn<double>([](const HillModeInfo& i) { return i.tail_weight; }),
+          "energy on the outermost blocks ±N (large: N too small for the mode)")
+      .def_property_readonly("truncation_changes", InfoColumn<double>([](const HillModeInfo& i) {
+                               return i.truncation_change;
+                             }),
                              "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); -1 when not computed")
-      .def_property_readonly("residuals", InfoColumn<double>([](const HillModeInfo& i) { return i.residual; }), "relative eigen-residual of each selected eigenvalue")
-      .def_property_readonly("passed", InfoColumn<bool>([](const HillModeInfo& i) { return i.passed; }), "the selection rule's pass condition per mode")
-      .def_property_readonly("ambiguous", InfoColumn<bool>([](const HillModeInfo& i) { return i.ambiguous; }), "selection margin below the threshold (a tie between λ and λ ± jΩp)")
+      .def_property_readonly("residuals",
+                             InfoColumn<double>([](const HillModeInfo& i) { return i.residual; }),
+                             "relative eigen-residual of each selected eigenvalue")
+      .def_property_readonly("passed",
+                             InfoColumn<bool>([](const HillModeInfo& i) { return i.passed; }),
+                             "the selection rule's pass condition per mode")
+      .def_property_readonly("ambiguous",
+                             InfoColumn<bool>([](const HillModeInfo& i) { return i.ambiguous; }),
+                             "selection margin below the threshold (a tie between λ and λ ± jΩp)")
       .def_readonly("max_real_exponent", &HillResult::max_real_exponent, "max Re λ (1/s)")
       .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
-      .def_property_readonly("verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); }, "'stable', 'unstable' (beyond the error estimate), 'marginal' or 'failed'")
-      .def_readonly("delta_harmonics", &HillResult::delta_harmonics, "Δ of the N vs N+Δ estimate (0: not computed)")
+      .def_property_readonly(
+          "verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); },
+          "'stable', 'unstable' (beyond the error estimate), 'marginal' or 'failed'")
+      .def_readonly("delta_harmonics", &HillResult::delta_harmonics,
+                    "Δ of the N vs N+Δ estimate (0: not computed)")
       .def_readonly("truncation_estimate", &HillResult::truncation_estimate,
                     "max_k |λ_k(N) − λ_k(N+Δ)| mod jΩp (1/s); -1 = not computed")
-      .def_readonly("apriori_bound", &HillResult::apriori_bound, "a-priori bound on the exponent error (inf: none)")
-      .def_property_readonly("coefficient_decay", [](const HillResult& h) {
-        return py::dict(py::arg("kind") = h.decay.kind, py::arg("rate") = h.decay.rate,
-                        py::arg("harmonics") = h.decay.harmonics, py::arg("fourier_tail") = h.decay.fourier_tail,
-                        py::arg("norms") = RealArray(h.decay.norms));
-      }, "how fast the Fourier coefficients of A decay: kind 'finite', 'exponential' or 'algebraic'")
-      .def_readonly("fourier_fit_error", &HillResult::fourier_fit_error, "error of the exponents due to the FFT fit of A(t) (1/s); 0 for Fourier input")
-      .def_readonly("tolerance_met", &HillResult::tolerance_met, "harmonics='auto': whether tol was met; else None")
-      .def_readonly("error_estimate", &HillResult::error_estimate,
-                    "the error estimate of every exponent (1/s); see the C++ HillResult for its parts")
-      .def_property_readonly("koopman_log_multipliers", [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); }, "log eig of the Koopman–Hill transition (sorting-free cross-check)")
+      .def_readonly("apriori_bound", &HillResult::apriori_bound,
+                    "a-priori bound on the exponent error (inf: none)")
+      .def_property_readonly(
+          "coefficient_decay",
+          [](const HillResult& h) {
+            return py::dict(py::arg("kind") = h.decay.kind, py::arg("rate") = h.decay.rate,
+                            py::arg("harmonics") = h.decay.harmonics,
+                            py::arg("fourier_tail") = h.decay.fourier_tail,
+                            py::arg("norms") = RealArray(h.decay.norms));
+          },
+          "how fast the Fourier coefficients of A decay: kind 'finite', 'exponential' or "
+          "'algebraic'")
+      .def_readonly("fourier_fit_error", &HillResult::fourier_fit_error,
+                    "error of the exponents due to the FFT fit of A(t) (1/s); 0 for Fourier input")
+      .def_readonly("tolerance_met", &HillResult::tolerance_met,
+                    "harmonics='auto': whether tol was met; else None")
+      .def_readonly(
+          "error_estimate", &HillResult::error_estimate,
+          "the error estimate of every exponent (1/s); see the C++ HillResult for its parts")
+      .def_property_readonly(
+          "koopman_log_multipliers",
+          [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); },
+          "log eig of the Koopman–Hill transition (sorting-free cross-check)")
       .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy, "-1 = skipped")
-      .def_property_readonly("eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
-                             "every eigenvalue of the Hill matrix found")
+      .def_property_readonly(
+          "eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
+          "every eigenvalue of the Hill matrix found")
       .def_readonly("elapsed_s", &HillResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &HillResult::diagnostics, "what the analysis noticed, one line each")
-      .def("__repr__", [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
+      .def_readonly("diagnostics", &HillResult::diagnostics,
+                    "what the analysis noticed, one line each")
+      .def("__repr__",
+           [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
 
   py::class_<HillStudyRun>(m, "HillStudy", R"doc(
 The result of ltp.hill_study: Hill's method at N = 1 .. max_harmonics (every N up to 10,
@@ -87,53 +119,77 @@ then about ×1.25), each row with its error against the monodromy route (modulo 
 a-priori bound and the N vs N+Δ estimate; the fitted convergence law; and the full analysis
 at N = max_harmonics (`last`).)doc")
       .def_property_readonly("harmonics", StudyColumn(&HillStudyRow::harmonics), "N of each row")
-      .def_property_readonly("matrix_size", StudyColumn(&HillStudyRow::matrix_size), "(2N+1) n of each row")
-      .def_property_readonly("errors", [](const HillStudyRun& r) {
-        std::vector<std::vector<double>> v;
-        for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
-        return RealTable(v, r.study.reference.size());
-      }, "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
-      .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error), "per row; -1 without a reference")
-      .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound), "a-priori error bound per row (inf: none)")
-      .def_property_readonly("truncation_estimate", StudyColumn(&HillStudyRow::truncation_estimate), "N vs N+Δ estimate per row")
-      .def_property_readonly("selection_margin", StudyColumn(&HillStudyRow::selection_margin), "smallest selection margin per row")
-      .def_property_readonly("tail_weight", StudyColumn(&HillStudyRow::tail_weight), "largest tail weight per row")
-      .def_property_readonly("convergence", [](const HillStudyRun& r) {
-        return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
-      }, "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
-      .def_property_readonly("coefficient_decay", [](const HillStudyRun& r) {
-        return py::dict(py::arg("kind") = r.study.decay.kind, py::arg("rate") = r.study.decay.rate,
-                        py::arg("harmonics") = r.study.decay.harmonics,
-                        py::arg("fourier_tail") = r.study.decay.fourier_tail);
-      }, "how fast the Fourier coefficients of A decay")
-      .def_property_readonly("reference", [](const HillStudyRun& r) { return ComplexArray(r.study.reference); },
-                             "the monodromy route's exponents (empty: no reference)")
+      .def_property_readonly("matrix_size", StudyColumn(&HillStudyRow::matrix_size),
+                             "(2N+1) n of each row")
+      .def_property_readonly(
+          "errors",
+          [](const HillStudyRun& r) {
+            std::vector<std::vector<double>> v;
+            for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
+            return RealTable(v, r.study.reference.size());
+          },
+          "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
+      .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error),
+                             "per row; -1 without a reference")
+      .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound),
+                             "a-priori error bound per row (inf: none)")
+      .def_property_readonly("truncation_estimate", StudyColumn(&HillStudyRow::truncation_estimate),
+                             "N vs N+Δ estimate per row")
+      .def_property_readonly("selection_margin", StudyColumn(&HillStudyRow::selection_margin),
+                             "smallest selection margin per row")
+      .def_property_readonly("tail_weight", StudyColumn(&HillStudyRow::tail_weight),
+                             "largest tail weight per row")
+      .def_property_readonly(
+          "convergence",
+          [](const HillStudyRun& r) {
+            return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
+          },
+          "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
+      .def_property_readonly(
+          "coefficient_decay",
+          [](const HillStudyRun& r) {
+            return py::dict(py::arg("kind") = r.study.decay.kind,
+                            py::arg("rate") = r.study.decay.rate,
+                            py::arg("harmonics") = r.study.decay.harmonics,
+                            py::arg("fourier_tail") = r.study.decay.fourier_tail);
+          },
+          "how fast the Fourier coefficients of A decay")
+      .def_property_readonly(
+          "reference", [](const HillStudyRun& r) { return ComplexArray(r.study.reference); },
+          "the monodromy route's exponents (empty: no reference)")
       .def_readonly("last", &HillStudyRun::last, "the HillResult at N = max_harmonics")
-      .def_property_readonly("elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
-      .def_readonly("diagnostics", &HillStudyRun::diagnostics, "what the study noticed, one line each")
+      .def_property_readonly(
+          "elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
+      .def_readonly("diagnostics", &HillStudyRun::diagnostics,
+                    "what the study noticed, one line each")
       .def("__repr__", [](const HillStudyRun& r) {
         return "<ltp.HillStudy: " + std::to_string(r.study.rows.size()) + " truncations, " +
-               (r.study.rate_kind.empty() ? std::string("rate not fitted") : r.study.rate_kind) + ">";
+               (r.study.rate_kind.empty() ? std::string("rate not fitted") : r.study.rate_kind) +
+               ">";
       });
 
   m.def(
       "hill_study",
-      [](const System& system, int max_harmonics, const std::string& solver, const std::string& selection,
-         bool reference) {
+      [](const System& system, int max_harmonics, const std::string& solver,
+         const std::string& selection, bool reference) {
         HillOptions o;
         const auto s = ParseHillSolver(solver);
-        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        if (!s)
+          throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
         o.solver = *s;
         const auto rule = ParseHillSelectionRule(selection);
         if (!rule)
-          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" +
+                           selection + "'");
         o.selection = *rule;
         if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
-        return WithoutGil(system, [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
+        return WithoutGil(system,
+                          [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
       },
       py::arg("system"), py::kw_only(), py::arg("max_harmonics") = kHillStudyMaxHarmonics,
       py::arg("solver") = std::string(ToString(HillOptions{}.solver)),
-      py::arg("selection") = std::string(ToString(HillOptions{}.selection)), py::arg("reference") = true,
+      py::arg("selection") = std::string(ToString(HillOptions{}.selection)),
+      py::arg("reference") = true,
       R"doc(
 Convergence study of Hill's method over the truncation N: `ltp hill SCENE --json` as a
 function, with the same options and defaults.
@@ -153,11 +209,13 @@ Returns a HillStudy. Runs without the GIL.)doc");
          const std::string& selection, double tol) {
         HillOptions o;
         const auto s = ParseHillSolver(solver);
-        if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+        if (!s)
+          throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
         o.solver = *s;
         const auto rule = ParseHillSelectionRule(selection);
         if (!rule)
-          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" + selection + "'");
+          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" +
+                           selection + "'");
         o.selection = *rule;
         if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
         if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {

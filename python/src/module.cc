@@ -27,17 +27,21 @@ PYBIND11_MODULE(_ltp, m) {
 
   // The library's typed errors as Python exceptions carrying its one-line message. Bad input is
   // a ValueError too, so `except ValueError` catches what a caller got wrong.
-  static PyObject* error = NewException(m, "Error", PyExc_Exception,
-                                        "Base of every error ltp raises on purpose.");
-  static PyObject* input_error = NewException(
-      m, "InputError", py::make_tuple(py::handle(error), py::handle(PyExc_ValueError)).release().ptr(),
-      "Bad input: an unknown scene or parameter, wrong sizes, NaN, a bad option.");
-  static PyObject* scene_error = NewException(
-      m, "SceneError", input_error, "A scene file that cannot be read or is malformed (names file, line, entry).");
-  static PyObject* singular_mass_error = NewException(
-      m, "SingularMassError", input_error, "The mass matrix of a second-order scene is singular at some time.");
+  static PyObject* error =
+      NewException(m, "Error", PyExc_Exception, "Base of every error ltp raises on purpose.");
+  static PyObject* input_error =
+      NewException(m, "InputError",
+                   py::make_tuple(py::handle(error), py::handle(PyExc_ValueError)).release().ptr(),
+                   "Bad input: an unknown scene or parameter, wrong sizes, NaN, a bad option.");
+  static PyObject* scene_error =
+      NewException(m, "SceneError", input_error,
+                   "A scene file that cannot be read or is malformed (names file, line, entry).");
+  static PyObject* singular_mass_error =
+      NewException(m, "SingularMassError", input_error,
+                   "The mass matrix of a second-order scene is singular at some time.");
   static PyObject* resource_error = NewException(
-      m, "ResourceError", error, "A computation would not fit in memory, or was asked for something it cannot do.");
+      m, "ResourceError", error,
+      "A computation would not fit in memory, or was asked for something it cannot do.");
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -36,17 +36,20 @@ FourierMatrix FourierFrom(const py::object& obj, const std::string& name) {
   if (obj.is_none()) return {};
   const ComplexArrayIn a = ComplexArrayIn::ensure(obj);
   if (!a || (a.ndim() != 2 && a.ndim() != 3))
-    throw InputError(name + " must be a 2-D array (constant) or a 3-D array of Fourier coefficients "
+    throw InputError(name +
+                     " must be a 2-D array (constant) or a 3-D array of Fourier coefficients "
                      "(2H+1, rows, cols) for harmonics -H..H");
   if (a.ndim() == 2) {
     Eigen::MatrixXcd m(a.shape(0), a.shape(1));
     for (py::ssize_t i = 0; i < a.shape(0); ++i)
       for (py::ssize_t j = 0; j < a.shape(1); ++j) m(i, j) = a.at(i, j);
-    if (m.imag().cwiseAbs().maxCoeff() > 0) throw InputError(name + ": a constant matrix must be real");
+    if (m.imag().cwiseAbs().maxCoeff() > 0)
+      throw InputError(name + ": a constant matrix must be real");
     return FourierMatrix::Constant(m.real());
   }
   if (a.shape(0) % 2 == 0)
-    throw InputError(name + ": the first axis holds harmonics -H..H, so its length must be odd, got " +
+    throw InputError(name +
+                     ": the first axis holds harmonics -H..H, so its length must be odd, got " +
                      Shape(a));
   const int h = static_cast<int>(a.shape(0) / 2);
   FourierMatrix f(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(2)), h);
@@ -76,7 +79,8 @@ struct TimeFunction {
   int rows = 0, cols = 0;
 };
 
-TimeFunction FunctionFrom(const py::object& obj, const char* name, std::vector<py::object>* callables,
+TimeFunction FunctionFrom(const py::object& obj, const char* name,
+                          std::vector<py::object>* callables,
                           std::shared_ptr<std::shared_ptr<Callbacks>> owner) {
   if (obj.is_none()) return {};
   if (PyCallable_Check(obj.ptr())) {
@@ -99,37 +103,47 @@ TimeFunction FunctionFrom(const py::object& obj, const char* name, std::vector<p
 
 System FromFunction(double period, const py::object& a, const py::object& b, const py::object& c,
                     const py::object& d, const std::vector<double>& breakpoints) {
-  if (!PyCallable_Check(a.ptr())) throw InputError("A must be a callable A(t) returning an n×n array");
+  if (!PyCallable_Check(a.ptr()))
+    throw InputError("A must be a callable A(t) returning an n×n array");
   std::vector<py::object> callables;
   auto owner = std::make_shared<std::shared_ptr<Callbacks>>();
   TimeFunction fa = FunctionFrom(a, "A", &callables, owner);
   TimeFunction fb = FunctionFrom(b, "B", &callables, owner);
   TimeFunction fc = FunctionFrom(c, "C", &callables, owner);
   TimeFunction fd = FunctionFrom(d, "D", &callables, owner);
-  if (fa.rows != fa.cols) throw InputError("A(t) must be square, got " + std::to_string(fa.rows) + "×" + std::to_string(fa.cols));
+  if (fa.rows != fa.cols)
+    throw InputError("A(t) must be square, got " + std::to_string(fa.rows) + "×" +
+                     std::to_string(fa.cols));
   if (fb.function && fb.rows != fa.rows) throw InputError("B must have as many rows as A");
   if (fc.function && fc.cols != fa.rows) throw InputError("C must have as many columns as A");
   const int inputs = fb.function ? fb.cols : 0, outputs = fc.function ? fc.rows : 0;
-  if (fd.function && (fd.rows != outputs || fd.cols != inputs)) throw InputError("D must be outputs × inputs");
+  if (fd.function && (fd.rows != outputs || fd.cols != inputs))
+    throw InputError("D must be outputs × inputs");
   *owner = std::make_shared<Callbacks>(std::move(callables));
   return System{PeriodicSystem::FromFunctions(period, fa.rows, inputs, outputs,
                                               {fa.function, fb.function, fc.function, fd.function},
                                               breakpoints),
-                std::nullopt, {}, {}, *owner};
+                std::nullopt,
+                {},
+                {},
+                *owner};
 }
 
 // (K, rows, cols) samples, or one (rows, cols) matrix held for every sample.
-std::vector<Eigen::MatrixXd> SamplesFrom(const py::object& obj, size_t count, const std::string& name) {
+std::vector<Eigen::MatrixXd> SamplesFrom(const py::object& obj, size_t count,
+                                         const std::string& name) {
   if (obj.is_none()) return std::vector<Eigen::MatrixXd>(count);
   const Array a = Array::ensure(obj);
   if (a && a.ndim() == 2) return std::vector<Eigen::MatrixXd>(count, MatrixFrom(obj, name));
   if (!a || a.ndim() != 3 || static_cast<size_t>(a.shape(0)) != count)
-    throw InputError(name + " must be a (K, rows, cols) array with one matrix per sample time (K = " +
+    throw InputError(name +
+                     " must be a (K, rows, cols) array with one matrix per sample time (K = " +
                      std::to_string(count) + "), or one constant 2-D array");
   std::vector<Eigen::MatrixXd> out(count, Eigen::MatrixXd(a.shape(1), a.shape(2)));
   for (size_t k = 0; k < count; ++k)
     for (py::ssize_t i = 0; i < a.shape(1); ++i)
-      for (py::ssize_t j = 0; j < a.shape(2); ++j) out[k](i, j) = a.at(static_cast<py::ssize_t>(k), i, j);
+      for (py::ssize_t j = 0; j < a.shape(2); ++j)
+        out[k](i, j) = a.at(static_cast<py::ssize_t>(k), i, j);
   return out;
 }
 
@@ -144,9 +158,14 @@ System FromSamples(double period, const std::vector<double>& times, const py::ob
     samples[i].A = as[i];
     samples[i].B = b.is_none() ? Eigen::MatrixXd(n, 0) : bs[i];
     samples[i].C = c.is_none() ? Eigen::MatrixXd(0, n) : cs[i];
-    samples[i].D = d.is_none() ? Eigen::MatrixXd::Zero(samples[i].C.rows(), samples[i].B.cols()) : ds[i];
+    samples[i].D =
+        d.is_none() ? Eigen::MatrixXd::Zero(samples[i].C.rows(), samples[i].B.cols()) : ds[i];
   }
-  return System{PeriodicSystem::FromSamples(period, times, std::move(samples)), std::nullopt, {}, {}, nullptr};
+  return System{PeriodicSystem::FromSamples(period, times, std::move(samples)),
+                std::nullopt,
+                {},
+                {},
+                nullptr};
 }
 
 // A scene parameter value as the CLI's --set takes it: numbers exactly (shortest repr), text
@@ -196,10 +215,18 @@ Eigen::MatrixXd Evaluate(const System& s, char which, double t) {
   if (s.callbacks) s.callbacks->Reset();
   Eigen::MatrixXd m;
   switch (which) {
-    case 'A': m = s.system.A(t); break;
-    case 'B': m = s.system.B(t); break;
-    case 'C': m = s.system.C(t); break;
-    default: m = s.system.D(t); break;
+    case 'A':
+      m = s.system.A(t);
+      break;
+    case 'B':
+      m = s.system.B(t);
+      break;
+    case 'C':
+      m = s.system.C(t);
+      break;
+    default:
+      m = s.system.D(t);
+      break;
   }
   if (s.callbacks) s.callbacks->RethrowIfFailed();
   return m;
@@ -207,9 +234,12 @@ Eigen::MatrixXd Evaluate(const System& s, char which, double t) {
 
 std::string FormName(PeriodicSystem::Form form) {
   switch (form) {
-    case PeriodicSystem::Form::kFourier: return "fourier";
-    case PeriodicSystem::Form::kFunction: return "function";
-    case PeriodicSystem::Form::kPiecewiseConstant: return "piecewise-constant";
+    case PeriodicSystem::Form::kFourier:
+      return "fourier";
+    case PeriodicSystem::Form::kFunction:
+      return "function";
+    case PeriodicSystem::Form::kPiecewiseConstant:
+      return "piecewise-constant";
   }
   return "?";
 }
@@ -228,9 +258,13 @@ ltp.chart takes a system made by ltp.scene, whose parameters it sweeps.)doc")
           "from_fourier",
           [](double period, const py::object& a, const py::object& b, const py::object& c,
              const py::object& d) {
-            return System{PeriodicSystem::FromFourier(period, FourierFrom(a, "A"), FourierFrom(b, "B"),
-                                                      FourierFrom(c, "C"), FourierFrom(d, "D")),
-                          std::nullopt, {}, {}, nullptr};
+            return System{
+                PeriodicSystem::FromFourier(period, FourierFrom(a, "A"), FourierFrom(b, "B"),
+                                            FourierFrom(c, "C"), FourierFrom(d, "D")),
+                std::nullopt,
+                {},
+                {},
+                nullptr};
           },
           py::arg("period"), py::arg("A"), py::arg("B") = py::none(), py::arg("C") = py::none(),
           py::arg("D") = py::none(), R"doc(
@@ -274,58 +308,84 @@ A piecewise-constant system: the matrices A[k] (arrays of shape (K, rows, cols),
 constant 2-D array) hold on [times[k], times[k+1]), times[K] = times[0] + period. `times`
 must be strictly increasing in [0, period). The state transition is then an exact product
 of matrix exponentials (e.g. a rotor measured at K azimuths).)doc")
-      .def("with_labels",
-           [](const System& s, std::optional<std::vector<std::string>> states,
-              std::optional<std::vector<std::string>> inputs,
-              std::optional<std::vector<std::string>> outputs) {
-             SystemLabels labels = s.system.labels();
-             if (states) labels.states = *states;
-             if (inputs) labels.inputs = *inputs;
-             if (outputs) labels.outputs = *outputs;
-             System out = s;
-             out.system = s.system.WithLabels(labels);
-             return out;
-           },
-           py::arg("states") = py::none(), py::arg("inputs") = py::none(),
-           py::arg("outputs") = py::none(),
-           "A copy with these names of states, inputs and outputs (None keeps the present ones); "
-           "pfrf and snapshot then take input= and output= by name.")
-      .def("with_rotor_speed",
-           [](const System& s, double speed) {
-             System out = s;
-             out.system = s.system.WithRotorSpeed(speed);
-             return out;
-           },
-           py::arg("rad_per_s"), "A copy whose rotor angle is rad_per_s · t (snapshot(angle=...)).")
-      .def_property_readonly("period", [](const System& s) { return s.system.period(); }, "T (s)")
-      .def_property_readonly("omega", [](const System& s) { return s.system.omega(); }, "Ωp = 2π/T (rad/s)")
-      .def_property_readonly("states", [](const System& s) { return s.system.states(); }, "n")
-      .def_property_readonly("inputs", [](const System& s) { return s.system.inputs(); }, "m")
-      .def_property_readonly("outputs", [](const System& s) { return s.system.outputs(); }, "p")
-      .def_property_readonly("form", [](const System& s) { return FormName(s.system.form()); },
-                             "'fourier', 'function' or 'piecewise-constant'")
-      .def_property_readonly("state_names", [](const System& s) { return s.system.labels().states; }, "names of the states (may be empty)")
-      .def_property_readonly("input_names", [](const System& s) { return s.system.labels().inputs; }, "names of the inputs")
-      .def_property_readonly("output_names", [](const System& s) { return s.system.labels().outputs; }, "names of the outputs")
-      .def_property_readonly("rotor_speed", [](const System& s) { return s.system.rotor_speed(); },
-                             "rad/s, or None when the system is not a rotor")
-      .def_property_readonly("breakpoints", [](const System& s) { return RealArray(s.system.breakpoints()); },
-                             "times in [0, T) where the matrices jump")
-      .def_property_readonly("scene", [](const System& s) -> py::object {
-        if (!s.scene) return py::none();
-        return py::str(s.scene->name);
-      }, "the scene's name (ltp.scene), else None")
-      .def_property_readonly("parameters", [](const System& s) { return s.parameters; },
-                             "the scene's parameters, all resolved (ltp.scene), else {}")
-      .def_property_readonly("notes", [](const System& s) { return s.notes; },
-                             "caveats that belong beside any result (OpenFAST .lin input)")
-      .def_property_readonly("fourier_A", [](const System& s) { return MaybeFourier(s.system.fourier_A()); },
-                             "A's coefficients (2H+1, n, n) for w = -H..H when the system is in "
-                             "Fourier form, else None")
-      .def("A", [](const System& s, double t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
-      .def("B", [](const System& s, double t) { return Evaluate(s, 'B', t); }, py::arg("t"), "B(t)")
-      .def("C", [](const System& s, double t) { return Evaluate(s, 'C', t); }, py::arg("t"), "C(t)")
-      .def("D", [](const System& s, double t) { return Evaluate(s, 'D', t); }, py::arg("t"), "D(t)")
+      .def(
+          "with_labels",
+          [](const System& s, std::optional<std::vector<std::string>> states,
+             std::optional<std::vector<std::string>> inputs,
+             std::optional<std::vector<std::string>> outputs) {
+            SystemLabels labels = s.system.labels();
+            if (states) labels.states = *states;
+            if (inputs) labels.inputs = *inputs;
+            if (outputs) labels.outputs = *outputs;
+            System out = s;
+            out.system = s.system.WithLabels(labels);
+            return out;
+          },
+          py::arg("states") = py::none(), py::arg("inputs") = py::none(),
+          py::arg("outputs") = py::none(),
+          "A copy with these names of states, inputs and outputs (None keeps the present ones); "
+          "pfrf and snapshot then take input= and output= by name.")
+      .def(
+          "with_rotor_speed",
+          [](const System& s, double speed) {
+            System out = s;
+            out.system = s.system.WithRotorSpeed(speed);
+            return out;
+          },
+          py::arg("rad_per_s"), "A copy whose rotor angle is rad_per_s · t (snapshot(angle=...)).")
+      .def_property_readonly(
+          "period", [](const System& s) { return s.system.period(); }, "T (s)")
+      .def_property_readonly(
+          "omega", [](const System& s) { return s.system.omega(); }, "Ωp = 2π/T (rad/s)")
+      .def_property_readonly(
+          "states", [](const System& s) { return s.system.states(); }, "n")
+      .def_property_readonly(
+          "inputs", [](const System& s) { return s.system.inputs(); }, "m")
+      .def_property_readonly(
+          "outputs", [](const System& s) { return s.system.outputs(); }, "p")
+      .def_property_readonly(
+          "form", [](const System& s) { return FormName(s.system.form()); },
+          "'fourier', 'function' or 'piecewise-constant'")
+      .def_property_readonly(
+          "state_names", [](const System& s) { return s.system.labels().states; },
+          "names of the states (may be empty)")
+      .def_property_readonly(
+          "input_names", [](const System& s) { return s.system.labels().inputs; },
+          "names of the inputs")
+      .def_property_readonly(
+          "output_names", [](const System& s) { return s.system.labels().outputs; },
+          "names of the outputs")
+      .def_property_readonly(
+          "rotor_speed", [](const System& s) { return s.system.rotor_speed(); },
+          "rad/s, or None when the system is not a rotor")
+      .def_property_readonly(
+          "breakpoints", [](const System& s) { return RealArray(s.system.breakpoints()); },
+          "times in [0, T) where the matrices jump")
+      .def_property_readonly(
+          "scene",
+          [](const System& s) -> py::object {
+            if (!s.scene) return py::none();
+            return py::str(s.scene->name);
+          },
+          "the scene's name (ltp.scene), else None")
+      .def_property_readonly(
+          "parameters", [](const System& s) { return s.parameters; },
+          "the scene's parameters, all resolved (ltp.scene), else {}")
+      .def_property_readonly(
+          "notes", [](const System& s) { return s.notes; },
+          "caveats that belong beside any result (OpenFAST .lin input)")
+      .def_property_readonly(
+          "fourier_A", [](const System& s) { return MaybeFourier(s.system.fourier_A()); },
+          "A's coefficients (2H+1, n, n) for w = -H..H when the system is in "
+          "Fourier form, else None")
+      .def(
+          "A", [](const System& s, double t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
+      .def(
+          "B", [](const System& s, double t) { return Evaluate(s, 'B', t); }, py::arg("t"), "B(t)")
+      .def(
+          "C", [](const System& s, double t) { return Evaluate(s, 'C', t); }, py::arg("t"), "C(t)")
+      .def(
+          "D", [](const System& s, double t) { return Evaluate(s, 'D', t); }, py::arg("t"), "D(t)")
       .def("__repr__", [](const System& s) {
         std::ostringstream r;
         r << "<ltp.System";
@@ -350,18 +410,22 @@ directory, a glob, or a list of paths), with parameters overridden as the CLI's
 Raises ltp.InputError (unknown scene or parameter, bad value) or ltp.SceneError (a file
 that cannot be read, naming file, line and entry).)doc");
 
-  m.def("scenes", [] {
-    py::list out;
-    for (const Scene& s : BuiltinScenes()) {
-      py::list parameters;
-      for (const SceneParameter& p : s.parameters)
-        parameters.append(py::dict(py::arg("name") = p.name, py::arg("value") = p.value,
-                                   py::arg("description") = p.description));
-      out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
-                          py::arg("parameters") = parameters));
-    }
-    return out;
-  }, "The built-in scenes (what `ltp scenes` lists): name, description, parameters with defaults.");
+  m.def(
+      "scenes",
+      [] {
+        py::list out;
+        for (const Scene& s : BuiltinScenes()) {
+          py::list parameters;
+          for (const SceneParameter& p : s.parameters)
+            parameters.append(py::dict(py::arg("name") = p.name, py::arg("value") = p.value,
+                                       py::arg("description") = p.description));
+          out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+                              py::arg("parameters") = parameters));
+        }
+        return out;
+      },
+      "The built-in scenes (what `ltp scenes` lists): name, description, parameters with "
+      "defaults.");
 }
 
 }  // namespace ltp::python

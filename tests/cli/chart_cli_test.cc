@@ -21,7 +21,8 @@ std::string Tmp(const std::string& name) { return std::string(::testing::TempDir
 // Asymmetric shaft, undamped: unstable for 1 < Ω < sqrt(1.5) (closed form).
 TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
   const std::string csv = Tmp("chart_jeffcott.csv");
-  const auto r = RunLtp("chart jeffcott --set k2=1.5 --sweep Omega=0.8:1.4:0.05 --csv " + csv + " --json");
+  const auto r =
+      RunLtp("chart jeffcott --set k2=1.5 --sweep Omega=0.8:1.4:0.05 --csv " + csv + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   ASSERT_EQ(j["unstable_intervals"].size(), 1u);
@@ -32,7 +33,7 @@ TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "Omega,max_real_exponent,stable,verdict,error_estimate,freq_hz_1,real_1,damping_1,"
             "freq_hz_2,real_2,damping_2,failure");  // one column set per conjugate pair (2 modes)
-  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);  // header + 13 rows
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);     // header + 13 rows
   EXPECT_FALSE(std::filesystem::exists(csv + ".points.jsonl"));  // journal gone when complete
 }
 
@@ -60,11 +61,13 @@ TEST(ChartCli, CampbellCrossingsInTextJsonAndCsv) {
   }
   const std::string crossings = ReadFile(Tmp("chart_gyro-crossings.csv"));
   EXPECT_EQ(crossings.substr(0, crossings.find('\n')),
-            "mode,description,per_rev,Omega,Omega_error,rotor_speed_rad_s,frequency_hz,real_part,damping_ratio");
+            "mode,description,per_rev,Omega,Omega_error,rotor_speed_rad_s,frequency_hz,real_part,"
+            "damping_ratio");
   EXPECT_EQ(std::count(crossings.begin(), crossings.end(), '\n'), 5);
   const auto text = RunLtp(args);
   ASSERT_EQ(text.code, 0) << text.err;
-  EXPECT_NE(text.out.find("crossings with the per-rev lines n·Ω/2π (4)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("crossings with the per-rev lines n·Ω/2π (4)"), std::string::npos)
+      << text.out;
   EXPECT_NE(text.out.find("theta 50%, phi 50%"), std::string::npos);
 }
 
@@ -73,17 +76,20 @@ TEST(ChartCli, CampbellCrossingsInTextJsonAndCsv) {
 TEST(ChartCli, CampbellOfAnOperatingPointSet) {
   const std::string root = test::Src("tests/data/openfast/rotor-speeds");
   std::string dirs;
-  for (const char* w : {"1.2", "0.4", "0.8", "1.6", "0.6", "1.0", "1.4"}) dirs += " " + root + "/omega-" + w;
+  for (const char* w : {"1.2", "0.4", "0.8", "1.6", "0.6", "1.0", "1.4"})
+    dirs += " " + root + "/omega-" + w;
   const std::string csv = Tmp("campbell_set.csv");
   const auto r = RunLtp("campbell" + dirs + " --csv " + csv + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   ASSERT_EQ(j["points"].size(), 7u);
   for (size_t p = 1; p < 7; ++p)
-    EXPECT_GT(j["points"][p]["rotor_speed_rad_s"].get<double>(), j["points"][p - 1]["rotor_speed_rad_s"].get<double>());
+    EXPECT_GT(j["points"][p]["rotor_speed_rad_s"].get<double>(),
+              j["points"][p - 1]["rotor_speed_rad_s"].get<double>());
   EXPECT_NEAR(j["points"][0]["parameter"].get<double>(), 0.4 * 30 / M_PI, 1e-12);  // rpm
   ASSERT_EQ(j["campbell"]["lines"].size(), 5u);
-  EXPECT_NE(j["campbell"]["lines"][0]["description"].get<std::string>().find("lag angle of blade"), std::string::npos);
+  EXPECT_NE(j["campbell"]["lines"][0]["description"].get<std::string>().find("lag angle of blade"),
+            std::string::npos);
   EXPECT_FALSE(j["campbell"]["crossings"].empty());
   const std::string table = ReadFile(csv);
   EXPECT_EQ(table.substr(0, table.find(',')), "rpm");
@@ -146,7 +152,8 @@ TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
   EXPECT_EQ(ReadFile(cut), ReadFile(whole));
   // A journal from another sweep is refused.
   RunLtp(sweep + "--csv " + cut + " --stop-after 5");
-  const auto other = RunLtp("chart mathieu --sweep a=-1:3:0.5 --sweep2 q=0:2:0.25 --csv " + cut + " --resume");
+  const auto other =
+      RunLtp("chart mathieu --sweep a=-1:3:0.5 --sweep2 q=0:2:0.25 --csv " + cut + " --resume");
   EXPECT_EQ(other.code, 2);
   EXPECT_NE(other.err.find("different sweep"), std::string::npos) << other.err;
 }
@@ -171,7 +178,7 @@ TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   for (size_t i = 1; i < lines.size(); ++i)
     if (lines[i].rfind("{\"diagnostic\"", 0) != 0) points.push_back(i);
   ASSERT_GE(points.size(), 5u);
-  ASSERT_EQ(points.back(), lines.size() - 1);  // the last line, torn below, is a point
+  ASSERT_EQ(points.back(), lines.size() - 1);              // the last line, torn below, is a point
   const long good = static_cast<long>(points.size()) - 2;  // two records damaged below
   // Forge a record: change a digit of its JSON but keep the old checksum.
   std::string& forged = lines[points[0]];
@@ -179,7 +186,8 @@ TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   forged[digit] = forged[digit] == '9' ? '1' : static_cast<char>(forged[digit] + 1);
   const std::string duplicate = lines[points[1]];
   std::string bad_index = lines[points[2]];
-  bad_index.replace(bad_index.find("\"index\":"), 8, "\"index\":9");  // index 9… out of range, bad sum
+  bad_index.replace(bad_index.find("\"index\":"), 8,
+                    "\"index\":9");              // index 9… out of range, bad sum
   lines.back().resize(lines.back().size() / 2);  // torn
   {
     std::ofstream out(journal, std::ios::trunc);
@@ -188,7 +196,8 @@ TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   }
   const auto resumed = RunLtp(sweep + "--csv " + cut + " --resume --json");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
-  EXPECT_EQ(json::parse(resumed.out)["resumed_points"].get<long>(), good);  // forged, torn, bad, duplicate out
+  EXPECT_EQ(json::parse(resumed.out)["resumed_points"].get<long>(),
+            good);  // forged, torn, bad, duplicate out
   EXPECT_EQ(ReadFile(cut), ReadFile(whole));
 }
 

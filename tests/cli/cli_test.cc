@@ -1,14 +1,14 @@
 // End-to-end: run the `ltp` binary as a user would and check its output and exit codes.
 #include <gtest/gtest.h>
 
-#include "support/ltp_cli.h"
-
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+
+#include "support/ltp_cli.h"
 
 namespace {
 
@@ -75,9 +75,9 @@ TEST(Cli, FloquetJsonHasTheDocumentedKeys) {
   const Outcome r = Ltp("floquet mathieu --set a=1.5 --set q=2 --set c=0 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"scene", "parameters", "states", "period", "method", "integrator",
-                          "segments", "exponents", "multipliers", "max_real_exponent", "stable",
-                          "error_estimate", "elapsed_s", "diagnostics"})
+  for (const char* key :
+       {"scene", "parameters", "states", "period", "method", "integrator", "segments", "exponents",
+        "multipliers", "max_real_exponent", "stable", "error_estimate", "elapsed_s", "diagnostics"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["method"], "monodromy");
   ASSERT_EQ(j["exponents"].size(), 2u);
@@ -88,8 +88,9 @@ TEST(Cli, FloquetJsonHasTheDocumentedKeys) {
   EXPECT_FALSE(j["stable"].get<bool>());
   EXPECT_GT(j["max_real_exponent"].get<double>(), 0.1);
   // Liouville for c = 0: log|ρ1| + log|ρ2| = 0.
-  EXPECT_NEAR(j["multipliers"][0]["log_abs"].get<double>() + j["multipliers"][1]["log_abs"].get<double>(),
-              0, 1e-8);
+  EXPECT_NEAR(
+      j["multipliers"][0]["log_abs"].get<double>() + j["multipliers"][1]["log_abs"].get<double>(),
+      0, 1e-8);
   // Negative real multipliers: arg = ±π.
   EXPECT_NEAR(std::abs(j["multipliers"][0]["arg"].get<double>()), std::numbers::pi, 1e-8);
 }
@@ -137,7 +138,8 @@ TEST(Cli, ResultThatFailsItsChecksIsNotOk) {
   EXPECT_NE(bad.out.find("FAILED its own checks"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("Liouville check failed"), std::string::npos) << bad.out;
   EXPECT_EQ(bad.out.find("→  UNSTABLE"), std::string::npos) << bad.out;
-  const Outcome kept = Ltp("floquet " + scene + " --segments 1 --multipliers single-shot --json --keep-going");
+  const Outcome kept =
+      Ltp("floquet " + scene + " --segments 1 --multipliers single-shot --json --keep-going");
   EXPECT_EQ(kept.code, 0);
   const auto j = nlohmann::json::parse(kept.out);
   EXPECT_FALSE(j["ok"].get<bool>());
@@ -179,14 +181,17 @@ TEST(Cli, StripEdgeFrequencyIsHalfTheParametricFrequencyOnBothRoutes) {
 // (10 states), a discontinuous A(t) (square wave). Both routes ok, and their disagreement within
 // the sum of their own estimates.
 TEST(Cli, BothRoutesAgreeOnRepeatedMultipliersAndJumps) {
-  for (const std::string& scene : {Src("tests/data/double-negative-multiplier.yaml"), Src("scenes/meissner.yaml")})
+  for (const std::string& scene :
+       {Src("tests/data/double-negative-multiplier.yaml"), Src("scenes/meissner.yaml")})
     for (const char* solver : {"auto", "structured", "dense"}) {
-      const Outcome r = Ltp("floquet " + scene + " --method both --hill-solver " + solver + " --json");
+      const Outcome r =
+          Ltp("floquet " + scene + " --method both --hill-solver " + solver + " --json");
       ASSERT_EQ(r.code, 0) << scene << " " << solver << ": " << r.err;
       const auto j = nlohmann::json::parse(r.out);
       EXPECT_TRUE(j["hill"]["ok"].get<bool>()) << scene << " " << solver;
       const double d = j["disagreement"].get<double>();
-      EXPECT_LE(d, j["monodromy"]["error_estimate"].get<double>() + j["hill"]["error_estimate"].get<double>())
+      EXPECT_LE(d, j["monodromy"]["error_estimate"].get<double>() +
+                       j["hill"]["error_estimate"].get<double>())
           << scene << " " << solver;
       EXPECT_EQ(j["hill"]["exponents"].size(), j["monodromy"]["exponents"].size());
     }
@@ -209,7 +214,8 @@ TEST(Cli, HugeCoefficientsAnalyseWithoutModeShapes) {
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_NEAR(j["max_log_abs_multiplier"].get<double>(), c.log_rho, 0.005 * c.log_rho) << c.args;
     bool said = false;
-    for (const auto& d : j["diagnostics"]) said = said || d.get<std::string>().find("no periodic mode shape") != std::string::npos;
+    for (const auto& d : j["diagnostics"])
+      said = said || d.get<std::string>().find("no periodic mode shape") != std::string::npos;
     EXPECT_TRUE(said) << c.args;
   }
 }
@@ -226,7 +232,8 @@ TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
   const double e2 = j["hill"]["error_estimate"].get<double>();
   EXPECT_LE(d, e1 + e2);
   EXPECT_LT(d, 1e-9);
-  const Outcome h = Ltp("floquet mathieu --set a=2.5 --set q=0.7 --method hill --harmonics 12 --json");
+  const Outcome h =
+      Ltp("floquet mathieu --set a=2.5 --set q=0.7 --method hill --harmonics 12 --json");
   ASSERT_EQ(h.code, 0) << h.err;
   const auto k = nlohmann::json::parse(h.out);
   EXPECT_EQ(k["method"], "hill");
@@ -255,9 +262,9 @@ TEST(Cli, RotorMbcCrossCheck) {
 TEST(Cli, BadInputGivesExitTwoAndOneLine) {
   for (const std::string& args : std::vector<std::string>{
            "floquet nosuchscene", "floquet mathieu --set nosuch=1", "floquet mathieu --set a=nan",
-        "floquet mathieu --integrator euler", "floquet mathieu --segments 0",
-        "floquet mathieu --tol -1", "info " + Src("tests/data/does-not-exist.yaml"), "frobnicate",
-        "floquet mathieu --plot out.pdf", "floquet mathieu --method magic",
+           "floquet mathieu --integrator euler", "floquet mathieu --segments 0",
+           "floquet mathieu --tol -1", "info " + Src("tests/data/does-not-exist.yaml"),
+           "frobnicate", "floquet mathieu --plot out.pdf", "floquet mathieu --method magic",
            "floquet mathieu --method hill --harmonics -3"}) {
     const Outcome r = Ltp(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;

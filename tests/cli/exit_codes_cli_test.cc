@@ -3,12 +3,12 @@
 // `ltp: error: …`. Inputs from the robustness reproducers that used to answer unclearly.
 #include <gtest/gtest.h>
 
-#include "support/ltp_cli.h"
-
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "support/ltp_cli.h"
 
 namespace {
 
@@ -20,7 +20,8 @@ TEST(ExitCodes, FailedAnalysisSaysWhyOnStderr) {
   // Result that fails its own Liouville check (see cli_test.cc), and a time route with no
   // steady state (undamped Mathieu inside a tongue).
   for (const std::string& args :
-       {"floquet " + Src("tests/data/stiff-rotating.yaml") + " --segments 1 --multipliers single-shot",
+       {"floquet " + Src("tests/data/stiff-rotating.yaml") +
+            " --segments 1 --multipliers single-shot",
         std::string("pfrf mathieu --freq 0:1:0.25 --route time --set c=0 --set q=2 --set a=1.5")}) {
     const auto r = RunLtp(args);
     EXPECT_EQ(r.code, 1) << args;
@@ -49,7 +50,8 @@ TEST(ExitCodes, SnapshotTimesAreFiniteAndReducedModuloThePeriod) {
   ASSERT_EQ(big.code, 0) << big.err;
   EXPECT_EQ(big.out.find("nan"), std::string::npos);
   const double reduced = std::fmod(1e308, 360.0);
-  const auto same = RunLtp("snapshot jeffcott --angle " + std::to_string(reduced) + " --freq 0:0.2:0.1 --json");
+  const auto same =
+      RunLtp("snapshot jeffcott --angle " + std::to_string(reduced) + " --freq 0:0.2:0.1 --json");
   const auto a = nlohmann::json::parse(big.out), b = nlohmann::json::parse(same.out);
   EXPECT_NEAR(a["time"].get<double>(), b["time"].get<double>(), 1e-9);
 }
@@ -60,7 +62,8 @@ namespace {
 
 TEST(ExitCodes, BadSceneTextAndPeriodsAreRefusedWithTheirReason) {
   // A 0xFF byte in the scene name used to surface as nlohmann's raw type_error.316.
-  const auto utf = RunLtp("floquet " + Src("tests/data/robustness/json_invalid_utf8_name.yaml") + " --json");
+  const auto utf =
+      RunLtp("floquet " + Src("tests/data/robustness/json_invalid_utf8_name.yaml") + " --json");
   EXPECT_EQ(utf.code, 2);
   EXPECT_NE(utf.err.find("not valid UTF-8"), std::string::npos) << utf.err;
   EXPECT_EQ(utf.err.find("json.exception"), std::string::npos) << utf.err;
@@ -95,7 +98,8 @@ TEST(ExitCodes, SizesBeyondTheLimitsAreRefusedUpFront) {
   const auto alias = RunLtp("floquet " + Src("tests/data/robustness/bad_alloc_alias_5000.yaml"));
   EXPECT_EQ(alias.code, 2);
   EXPECT_NE(alias.err.find("limit for expression scenes"), std::string::npos) << alias.err;
-  for (const auto& r : {map, segments, alias}) EXPECT_EQ(r.err.find("std::bad_alloc"), std::string::npos);
+  for (const auto& r : {map, segments, alias})
+    EXPECT_EQ(r.err.find("std::bad_alloc"), std::string::npos);
 }
 
 TEST(ExitCodes, SingularitiesInsideThePeriodAreFoundWhereTheyAre) {
@@ -108,7 +112,8 @@ TEST(ExitCodes, SingularitiesInsideThePeriodAreFoundWhereTheyAre) {
                {"hang_mass_singular_between_checks.yaml", "near t = 1.570796327"}};
   for (const auto& c : cases)
     for (const char* command : {"floquet", "info"}) {
-      const auto r = RunLtp(std::string(command) + " " + Src(std::string("tests/data/robustness/") + c.file));
+      const auto r =
+          RunLtp(std::string(command) + " " + Src(std::string("tests/data/robustness/") + c.file));
       EXPECT_EQ(r.code, 2) << command << " " << c.file;
       EXPECT_NE(r.err.find(c.at), std::string::npos) << r.err;
       EXPECT_NE(r.err.find("unbounded"), std::string::npos) << r.err;

@@ -17,7 +17,9 @@ const std::string kScene = "mathieu --set a=2 --set c=0.2 --set q=0.3";  // stab
 
 TEST(IdentifyCli, SimulatedStepSineIdentifiesTheModel) {
   const std::string csv = Tmp("identify_sim.csv");
-  const auto sim = RunLtp("simulate " + kScene + " --excitation stepsine:0.05:0.45:0.1 --periods 16 --out " + csv + " --json");
+  const auto sim =
+      RunLtp("simulate " + kScene + " --excitation stepsine:0.05:0.45:0.1 --periods 16 --out " +
+             csv + " --json");
   ASSERT_EQ(sim.code, 0) << sim.err;
   EXPECT_EQ(json::parse(sim.out)["records"].get<int>(), 5);
   const auto id = RunLtp("identify " + csv + " --orders -1:1 --compare " + kScene + " --json");
@@ -39,7 +41,10 @@ TEST(IdentifyCli, SimulatedStepSineIdentifiesTheModel) {
 
 TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   const std::string csv = Tmp("identify_noisy.csv");
-  ASSERT_EQ(RunLtp("simulate " + kScene + " --excitation sine:0.13 --periods 8 --noise 30 --seed 7 --out " + csv).code, 0);
+  ASSERT_EQ(RunLtp("simulate " + kScene +
+                   " --excitation sine:0.13 --periods 8 --noise 30 --seed 7 --out " + csv)
+                .code,
+            0);
   const auto id = RunLtp("identify " + csv + " --orders 0 --json");
   ASSERT_EQ(id.code, 0) << id.err;
   const double bound = json::parse(id.out)["frequencies"][0]["H"][0]["bound_95"].get<double>();
@@ -52,7 +57,8 @@ TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("period"), std::string::npos) << r.err;
   const std::string gap = Tmp("identify_gap.csv");
-  std::ofstream(gap) << "# period_s: 1\nrecord,excitation_hz,t,in:u,out:y\n1,1,0,1,0\n1,1,0.1,1,0\n1,1,0.3,1,0\n";
+  std::ofstream(gap)
+      << "# period_s: 1\nrecord,excitation_hz,t,in:u,out:y\n1,1,0,1,0\n1,1,0.1,1,0\n1,1,0.3,1,0\n";
   const auto g = RunLtp("identify " + gap);
   EXPECT_EQ(g.code, 2);
   EXPECT_NE(g.err.find("unequal sampling"), std::string::npos) << g.err;

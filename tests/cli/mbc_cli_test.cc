@@ -1,7 +1,6 @@
 // End-to-end: `ltp mbc` and the scene commands on OpenFAST .lin files.
 #include <gtest/gtest.h>
-
-#include "support/ltp_cli.h"
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -11,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include <unistd.h>
+#include "support/ltp_cli.h"
 
 namespace {
 
@@ -67,7 +66,8 @@ TEST(MbcCli, TextTableCsvAndGlob) {
   std::string line;
   int rows = 0;
   std::getline(in, line);
-  EXPECT_EQ(line.rfind("mode,natural_frequency_hz,damped_frequency_hz,damping_ratio", 0), 0u) << line;
+  EXPECT_EQ(line.rfind("mode,natural_frequency_hz,damped_frequency_hz,damping_ratio", 0), 0u)
+      << line;
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 11);
 }

@@ -1,8 +1,6 @@
 // End-to-end: `ltp pfrf` and `ltp snapshot` as a user runs them.
 #include <gtest/gtest.h>
 
-#include "support/ltp_cli.h"
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -11,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/ltp_cli.h"
+
 namespace {
 
 using CliRun = test::LtpRun;
@@ -18,8 +18,10 @@ CliRun Ltp(const std::string& args) { return test::RunLtp(args); }
 
 TEST(PfrfCli, JsonAndCsv) {
   const std::string csv = std::string(::testing::TempDir()) + "pfrf.csv";
-  const CliRun r = Ltp("pfrf jeffcott --set c=0.05 --set Omega=0.6 --input fy --output x "
-                    "--freq 0:0.5:0.01 --orders -2:2 --json --csv " + csv);
+  const CliRun r =
+      Ltp("pfrf jeffcott --set c=0.05 --set Omega=0.6 --input fy --output x "
+          "--freq 0:0.5:0.01 --orders -2:2 --json --csv " +
+          csv);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["input"], 1);  // "fy" by name
@@ -28,18 +30,21 @@ TEST(PfrfCli, JsonAndCsv) {
   std::ifstream f(csv);
   std::string header;
   std::getline(f, header);
-  EXPECT_EQ(header.rfind("f_exc_hz,z,f_resp_hz,re,im,abs,phase_deg,error_estimate", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("f_exc_hz,z,f_resp_hz,re,im,abs,phase_deg,error_estimate", 0), 0u)
+      << header;
 }
 
 TEST(PfrfCli, OneFrequencyTable) {
-  const CliRun r = Ltp("pfrf mathieu --set a=2 --set c=0.2 --freq 0.3:0.3:1 --route all --orders -1:1");
+  const CliRun r =
+      Ltp("pfrf mathieu --set a=2 --set c=0.2 --freq 0.3:0.3:1 --route all --orders -1:1");
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* want : {"modal", "htf", "shooting", "time", "max disagreement"})
     EXPECT_NE(r.out.find(want), std::string::npos) << want;
 }
 
 TEST(PfrfCli, SnapshotCompare) {
-  const CliRun r = Ltp("snapshot jeffcott --set c=0.05 --angle 30 --freq 0:0.5:0.05 --compare --json");
+  const CliRun r =
+      Ltp("snapshot jeffcott --set c=0.05 --angle 30 --freq 0:0.5:0.05 --compare --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["values"].size(), 11u);
@@ -47,11 +52,11 @@ TEST(PfrfCli, SnapshotCompare) {
 }
 
 TEST(PfrfCli, BadInputExitTwoOneLine) {
-  for (const char* args : {"pfrf mathieu --freq 1:0:0.1", "pfrf mathieu --freq 0:1:0.1 --input nope",
-                           "pfrf mathieu --freq 0:1:0.1 --route fast", "pfrf mathieu --freq a:b:c",
-                           "pfrf mathieu --freq 0:1:0.1 --orders 3:-3",
-                           "snapshot mathieu --angle 10 --freq 0:1:0.1",
-                           "snapshot mathieu --freq 0:1:0.1"}) {
+  for (const char* args :
+       {"pfrf mathieu --freq 1:0:0.1", "pfrf mathieu --freq 0:1:0.1 --input nope",
+        "pfrf mathieu --freq 0:1:0.1 --route fast", "pfrf mathieu --freq a:b:c",
+        "pfrf mathieu --freq 0:1:0.1 --orders 3:-3", "snapshot mathieu --angle 10 --freq 0:1:0.1",
+        "snapshot mathieu --freq 0:1:0.1"}) {
     const CliRun r = Ltp(args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;

@@ -96,8 +96,7 @@ TEST(FourierFit, RecoversFiniteSeriesExactly) {
   };
   const FourierFit fit = FitFourier(fn, 2, 3, period);
   ASSERT_EQ(fit.series.max_harmonic(), 5);  // exactly the harmonics that are there
-  for (int w = -5; w <= 5; ++w)
-    EXPECT_LT((fit.series[w] - known[w]).norm(), 1e-13) << "w = " << w;
+  for (int w = -5; w <= 5; ++w) EXPECT_LT((fit.series[w] - known[w]).norm(), 1e-13) << "w = " << w;
   EXPECT_EQ(fit.decay, "finite");
   EXPECT_TRUE(fit.converged);
   EXPECT_LE(fit.tail, 1e-12);
@@ -108,7 +107,9 @@ TEST(FourierFit, BesselCoefficientsOfExpCos) {
   // exp(r cos θ) = Σ_w I_|w|(r) e^{jwθ} (generating function of the modified Bessel functions,
   // Abramowitz & Stegun 9.6.34), so A_w = I_|w|(r) with θ = Ωp t.
   const double r = 2.5, period = 1.3, omega = 2 * kPi / period;
-  auto fn = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { out(0, 0) = std::exp(r * std::cos(omega * t)); };
+  auto fn = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out(0, 0) = std::exp(r * std::cos(omega * t));
+  };
   const FourierFit fit = FitFourier(fn, 1, 1, period);
   EXPECT_TRUE(fit.converged);
   EXPECT_LE(fit.tail, 1e-12);
@@ -128,7 +129,9 @@ TEST(FourierFit, BesselCoefficientsOfExpCos) {
 
 TEST(FourierFit, MaxHarmonicsCapsTheSeriesAndReportsTheTail) {
   const double r = 2.5, period = 2 * kPi;
-  auto fn = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { out(0, 0) = std::exp(r * std::cos(t)); };
+  auto fn = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out(0, 0) = std::exp(r * std::cos(t));
+  };
   FourierFitOptions options;
   options.max_harmonics = 3;
   const FourierFit fit = FitFourier(fn, 1, 1, period, options);
@@ -145,7 +148,9 @@ TEST(FourierFit, SquareWaveHasAlgebraicTail) {
   // sign(cos t): A_w = (2/(πw)) sin(wπ/2) for w != 0, A_0 = 0 (elementary integral of the
   // square wave; ±1 on alternating quarter periods around t = 0).
   auto coefficient = [](int w) { return w == 0 ? 0.0 : 2 / (kPi * w) * std::sin(w * kPi / 2); };
-  auto fn = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out(0, 0) = std::cos(t) >= 0 ? 1.0 : -1.0; };
+  auto fn = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out(0, 0) = std::cos(t) >= 0 ? 1.0 : -1.0;
+  };
   FourierFitOptions options;
   options.max_samples = 1 << 14;
   const FourierFit fit = FitFourier(fn, 1, 1, 2 * kPi, options);
@@ -234,14 +239,14 @@ TEST(FourierFit, ToFourierCopiesFourierFormExactly) {
 
 TEST(FourierFit, ToFourierOfPiecewiseConstantSystem) {
   // A = a1 on [0, T/2), a2 on [T/2, T): A_0 = (a1 + a2)/2, and for w != 0
-  // A_w = (1/T)[a1 ∫_0^{T/2} + a2 ∫_{T/2}^T] e^{-jwΩt} dt = (a1 − a2)/(jπw) for odd w, 0 for even w.
+  // A_w = (1/T)[a1 ∫_0^{T/2} + a2 ∫_{T/2}^T] e^{-jwΩt} dt = (a1 − a2)/(jπw) for odd w, 0 for even
+  // w.
   const double period = 3.0;
   Eigen::MatrixXd a1(1, 1), a2(1, 1);
   a1 << 2.0;
   a2 << -1.0;
-  const PeriodicSystem sys = PeriodicSystem::FromSamples(period, {0.0, period / 2},
-                                                         {LtiSystem{a1, {}, {}, {}},
-                                                          LtiSystem{a2, {}, {}, {}}});
+  const PeriodicSystem sys = PeriodicSystem::FromSamples(
+      period, {0.0, period / 2}, {LtiSystem{a1, {}, {}, {}}, LtiSystem{a2, {}, {}, {}}});
   FourierFitOptions options;
   options.max_samples = 1 << 12;
   const SystemFourier f = ToFourier(sys, options);

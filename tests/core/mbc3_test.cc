@@ -72,7 +72,7 @@ TEST(Mbc3, BladeTransformIsOrthogonalUpToColumnScaling) {
   }
   MatrixXd ttv(3, 3);
   ttv << c[1] * s[2] - s[1] * c[2], c[2] * s[0] - s[2] * c[0], c[0] * s[1] - s[0] * c[1],  //
-      s[1] - s[2], s[2] - s[0], s[0] - s[1],                                                  //
+      s[1] - s[2], s[2] - s[0], s[0] - s[1],                                               //
       c[2] - c[1], c[0] - c[2], c[1] - c[0];
   ttv /= 1.5 * std::sqrt(3.0);
   EXPECT_LT((MbcTransform(3, psi).inverse() - ttv).norm(), 1e-14);
@@ -87,7 +87,8 @@ TEST(Mbc3, StateTransformMatchesBirEquation29) {
   const std::vector<int> rate_of = RateOf(op.states);
   const double psi = 1.3, w = 0.9, wd = 0.01;
   const MbcStateTransform t = MbcStateTransformAt(c, rate_of, psi, w, wd);
-  const MatrixXd t0 = MbcTransform(3, psi), t1 = MbcTransform(3, psi, 1), t2 = MbcTransform(3, psi, 2);
+  const MatrixXd t0 = MbcTransform(3, psi), t1 = MbcTransform(3, psi, 1),
+                 t2 = MbcTransform(3, psi, 2);
   // Flap 1 of blades 1-3 are states 1-3 (0-based), their rates 11-13.
   for (int b = 0; b < 3; ++b)
     for (int k = 0; k < 3; ++k) {
@@ -98,7 +99,7 @@ TEST(Mbc3, StateTransformMatchesBirEquation29) {
       EXPECT_EQ(t.T_dot(11 + b, 11 + k), w * t1(b, k));
       EXPECT_EQ(t.T_dot(11 + b, 1 + k), w * w * t2(b, k) + wd * t1(b, k));
     }
-  EXPECT_EQ(t.T(0, 0), 1);   // generator azimuth: fixed frame
+  EXPECT_EQ(t.T(0, 0), 1);  // generator azimuth: fixed frame
   EXPECT_EQ(t.T(10, 10), 1);
   EXPECT_EQ(t.T_dot.row(0).norm(), 0);
 }
@@ -213,7 +214,8 @@ TEST(Mbc3, BladeTuplesNeedEveryBlade) {
 //  2. benchmarks/peers/mbc3_reference.py: numpy, Bir's eq. 29 written out as in fx_mbc3.m
 //     with its closed-form t̃⁻¹, its own .lin reader. Same inputs and formulation, so they
 //     must agree to round-off (1e-9 relative). Rerun by hand with
-//       /usr/bin/python3 benchmarks/peers/mbc3_reference.py tests/data/openfast/nrel5mw-rotating/*.lin
+//       /usr/bin/python3 benchmarks/peers/mbc3_reference.py
+//       tests/data/openfast/nrel5mw-rotating/*.lin
 TEST(Mbc3, FiveMwCampbellTableMatchesOpenFast) {
   const LinOperatingPoint op = ReadLinOperatingPoint({FiveMwDir()});
   const Mbc3Result r = Mbc3(op);
@@ -263,7 +265,8 @@ TEST(Mbc3, FiveMwCampbellTableMatchesOpenFast) {
     GTEST_SKIP() << "/usr/bin/python3 with numpy not available: the peer check of " << script
                  << " was skipped (the published OpenFAST values above were checked)";
   const std::string cmd = "/usr/bin/python3 " + script + " " + FiveMwDir() + "/Main.1.lin " +
-                          FiveMwDir() + "/Main.12.lin " + FiveMwDir() + "/Main.24.lin --eigenvalues";
+                          FiveMwDir() + "/Main.12.lin " + FiveMwDir() +
+                          "/Main.24.lin --eigenvalues";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::string out;

@@ -16,7 +16,8 @@ using cd = std::complex<double>;
 
 SystemLabels ThreeBladeRotor() {
   SystemLabels l;
-  l.states = {"zeta1", "zeta2", "zeta3", "x", "y", "zeta1_dot", "zeta2_dot", "zeta3_dot", "x_dot", "y_dot"};
+  l.states = {"zeta1",     "zeta2",     "zeta3",     "x",     "y",
+              "zeta1_dot", "zeta2_dot", "zeta3_dot", "x_dot", "y_dot"};
   l.blades = 3;
   l.blade_states = {0, 1, 2};
   return l;
@@ -64,8 +65,8 @@ TEST(ModeDescription, SharesOfAMixtureAndRatesLeftOut) {
 
 TEST(ModeDescription, TwoBladesHaveADifferentialAndNamesKeepTheirOtherNumbers) {
   SystemLabels l;
-  l.states = {"cantilever_bend_z1", "cantilever_bend_z2", "blade1_flap1", "blade2_flap1", "blade1_flap2",
-              "blade2_flap2"};
+  l.states = {"cantilever_bend_z1", "cantilever_bend_z2", "blade1_flap1",
+              "blade2_flap1",       "blade1_flap2",       "blade2_flap2"};
   l.blades = 2;
   l.blade_states = {2, 3, 4, 5};
   // The blade number follows "blade"; flap1/flap2 stay apart, and the cantilever's modes 1
@@ -82,7 +83,8 @@ TEST(ModeDescription, TwoBladesHaveADifferentialAndNamesKeepTheirOtherNumbers) {
 
 TEST(ModeDescription, OpenFastStyleLabelsAndIncompleteFamilies) {
   SystemLabels l;
-  for (int b = 1; b <= 3; ++b) l.states.push_back("ED 1st flapwise bending-mode DOF of blade " + std::to_string(b) + ", m");
+  for (int b = 1; b <= 3; ++b)
+    l.states.push_back("ED 1st flapwise bending-mode DOF of blade " + std::to_string(b) + ", m");
   l.states.push_back("ED 1st tower fore-aft bending mode DOF, m");
   l.blades = 3;
   l.blade_states = {0, 1, 2};

@@ -1,4 +1,6 @@
 // Tests of PeriodicSystem (periodic_system.h) and of its conversion to Fourier form.
+#include "ltp/core/periodic_system.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -12,7 +14,6 @@
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/fourier_matrix.h"
-#include "ltp/core/periodic_system.h"
 
 namespace ltp {
 namespace {
@@ -89,10 +90,10 @@ TEST(PeriodicSystem, FromSamplesHoldsAndWraps) {
   // Periodic continuation: t and t ± kT give the same sample.
   EXPECT_EQ(sys.A(2.0)(0, 0), 1.0);
   EXPECT_EQ(sys.A(2.6)(0, 0), 2.0);
-  EXPECT_EQ(sys.A(-0.1)(0, 0), 3.0);   // −0.1 ≡ 1.9
-  EXPECT_EQ(sys.A(-1.6)(0, 0), 1.0);   // −1.6 ≡ 0.4
-  EXPECT_EQ(sys.A(-3.3)(0, 0), 2.0);   // −3.3 ≡ 0.7
-  EXPECT_EQ(sys.A(41.5)(0, 0), 3.0);   // 41.5 ≡ 1.5
+  EXPECT_EQ(sys.A(-0.1)(0, 0), 3.0);  // −0.1 ≡ 1.9
+  EXPECT_EQ(sys.A(-1.6)(0, 0), 1.0);  // −1.6 ≡ 0.4
+  EXPECT_EQ(sys.A(-3.3)(0, 0), 2.0);  // −3.3 ≡ 0.7
+  EXPECT_EQ(sys.A(41.5)(0, 0), 3.0);  // 41.5 ≡ 1.5
   EXPECT_EQ(sys.breakpoints(), (std::vector<double>{0.0, 0.5, 1.2}));
   EXPECT_EQ(sys.sample_times().size(), 3u);
 }
@@ -107,15 +108,18 @@ TEST(PeriodicSystem, RejectsBadInput) {
   FourierMatrix nan_coefficient = a;
   nan_coefficient[-1](1, 0) = cd(kNaN, 0);
   EXPECT_THROW(PeriodicSystem::FromFourier(1.0, nan_coefficient), InputError);
-  EXPECT_THROW(PeriodicSystem::FromFourier(1.0, FourierMatrix(2, 3, 0)), InputError);  // A not square
+  EXPECT_THROW(PeriodicSystem::FromFourier(1.0, FourierMatrix(2, 3, 0)),
+               InputError);  // A not square
   EXPECT_THROW(PeriodicSystem::FromFourier(1.0, a, FourierMatrix(3, 1, 0)), InputError);  // B rows
 
   PeriodicSystem::Functions fn;
   fn.A = [](double, Eigen::Ref<Eigen::MatrixXd> out) { out.setZero(); };
   EXPECT_THROW(PeriodicSystem::FromFunctions(kNaN, 1, 0, 0, fn), InputError);
   EXPECT_THROW(PeriodicSystem::FromFunctions(1.0, 1, 1, 0, fn), InputError);  // B(t) missing
-  EXPECT_THROW(PeriodicSystem::FromFunctions(1.0, 1, 0, 0, fn, {1.0}), InputError);  // not in [0, T)
-  EXPECT_THROW(PeriodicSystem::FromFunctions(1.0, 1, 0, 0, PeriodicSystem::Functions{}), InputError);
+  EXPECT_THROW(PeriodicSystem::FromFunctions(1.0, 1, 0, 0, fn, {1.0}),
+               InputError);  // not in [0, T)
+  EXPECT_THROW(PeriodicSystem::FromFunctions(1.0, 1, 0, 0, PeriodicSystem::Functions{}),
+               InputError);
 
   const LtiSystem one{Eigen::MatrixXd::Ones(1, 1), {}, {}, {}};
   const LtiSystem two{Eigen::MatrixXd::Ones(2, 2), {}, {}, {}};
@@ -126,7 +130,8 @@ TEST(PeriodicSystem, RejectsBadInput) {
   EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {0.2, 0.2}, {one, one}), InputError);   // repeated
   EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {0.0, 0.5}, {one}), InputError);  // count mismatch
   EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {}, {}), InputError);
-  EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {0.0, 0.5}, {one, two}), InputError);  // sizes differ
+  EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {0.0, 0.5}, {one, two}),
+               InputError);  // sizes differ
   const LtiSystem not_square{Eigen::MatrixXd::Ones(1, 2), {}, {}, {}};
   EXPECT_THROW(PeriodicSystem::FromSamples(1.0, {0.0}, {not_square}), InputError);
   LtiSystem nan_sample = one;
@@ -149,9 +154,10 @@ TEST(PeriodicSystem, ToFourierSystemReproducesFunctionForm) {
   fn.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = MathieuA(t); };
   fn.B = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out << 0, 1 + 0.5 * std::sin(2 * t); };
   fn.C = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out << std::exp(std::cos(2 * t)), 0; };
-  const PeriodicSystem sys = PeriodicSystem::FromFunctions(kPeriod, 2, 1, 1, fn)
-                                 .WithLabels({.states = {"p", "v"}, .inputs = {"force"}, .outputs = {"disp"}})
-                                 .WithRotorSpeed(2.0);
+  const PeriodicSystem sys =
+      PeriodicSystem::FromFunctions(kPeriod, 2, 1, 1, fn)
+          .WithLabels({.states = {"p", "v"}, .inputs = {"force"}, .outputs = {"disp"}})
+          .WithRotorSpeed(2.0);
   FourierFitOptions options;
   options.tol = 1e-13;
   const PeriodicSystem fourier = ToFourierSystem(sys, options);

@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <filesystem>
-#include <complex>
 #include <numbers>
 #include <random>
 #include <string>
@@ -56,8 +56,8 @@ TEST(Rotor, MassSymmetricAndDampingIsMassRatePlusGyroscopic) {
   const double t = 0.7, h = 1e-6;
   const RotorMatrices m = RotorSecondOrderMatrices(r, t);
   EXPECT_TRUE(CompareMatrices(m.M, m.M.transpose(), 0));
-  const MatrixXd m_dot = (RotorSecondOrderMatrices(r, t + h).M -
-                          RotorSecondOrderMatrices(r, t - h).M) / (2 * h);
+  const MatrixXd m_dot =
+      (RotorSecondOrderMatrices(r, t + h).M - RotorSecondOrderMatrices(r, t - h).M) / (2 * h);
   const MatrixXd g = m.D - m_dot;
   EXPECT_TRUE(CompareMatrices(g, -g.transpose(), 1e-8));
 }
@@ -131,14 +131,15 @@ TEST(Rotor, ScenesAreRegisteredWithDescribedParameters) {
 TEST(Flap, FourierFormEqualsTheFlapEquation) {
   // Johnson's flap equation (flap_scene.cc), evaluated directly.
   const double gamma = 12, mu = 0.8, nu = 1.1, w = 1.3;
-  const PeriodicSystem s = LoadScene("flap").Build(
-      {{"gamma", "12"}, {"mu", "0.8"}, {"nu", "1.1"}, {"Omega", "1.3"}});
+  const PeriodicSystem s =
+      LoadScene("flap").Build({{"gamma", "12"}, {"mu", "0.8"}, {"nu", "1.1"}, {"Omega", "1.3"}});
   ASSERT_EQ(s.form(), PeriodicSystem::Form::kFourier);
   for (double t : {0.0, 0.4, 2.2, 3.9}) {
     const double psi = w * t;
     MatrixXd a(2, 2);
     a << 0, 1,
-        -w * w * (nu * nu + gamma / 8 * (4.0 / 3 * mu * std::cos(psi) + mu * mu * std::sin(2 * psi))),
+        -w * w *
+            (nu * nu + gamma / 8 * (4.0 / 3 * mu * std::cos(psi) + mu * mu * std::sin(2 * psi))),
         -w * gamma / 8 * (1 + 4.0 / 3 * mu * std::sin(psi));
     EXPECT_TRUE(CompareMatrices(s.A(t), a, 1e-14));
   }

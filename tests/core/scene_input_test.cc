@@ -20,9 +20,9 @@ TEST(SceneInput, BuiltinWithAssignments) {
 
 TEST(SceneInput, RefusesWhatItCannotLoad) {
   EXPECT_THROW(LoadSceneInput({"no-such-scene"}), InputError);
-  EXPECT_THROW(LoadSceneInput({"mathieu"}, {"a"}), InputError);         // no '='
-  EXPECT_THROW(LoadSceneInput({"mathieu"}, {"zz=1"}), InputError);      // not a parameter
-  EXPECT_THROW(LoadSceneInput({"mathieu", "extra"}), InputError);       // several: .lin only
+  EXPECT_THROW(LoadSceneInput({"mathieu"}, {"a"}), InputError);     // no '='
+  EXPECT_THROW(LoadSceneInput({"mathieu"}, {"zz=1"}), InputError);  // not a parameter
+  EXPECT_THROW(LoadSceneInput({"mathieu", "extra"}), InputError);   // several: .lin only
   EXPECT_THROW(LoadSceneInput({}), InputError);
 }
 

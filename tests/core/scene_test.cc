@@ -340,7 +340,8 @@ TEST(Scene, LoadSceneByNameOrPath) {
   // Later scenes (rotor, flap, tower-rotor, ...) are appended to the list.
   const std::string message = ThrownMessage<InputError>([] { LoadScene("nosuch"); });
   EXPECT_EQ(message.rfind("unknown scene 'nosuch': not a built-in (mathieu, meissner, jeffcott", 0),
-            0u) << message;
+            0u)
+      << message;
   EXPECT_NE(message.find(") and no such file"), std::string::npos) << message;
 }
 

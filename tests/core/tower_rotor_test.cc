@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-#include "support/throws.h"
 #include "ltp/core/scene.h"
+#include "support/throws.h"
 
 namespace ltp {
 namespace {
@@ -189,8 +189,7 @@ TEST(TowerRotorModel, SymmetricPartOfGyroscopicMatrixIsMassRate) {
   MatrixXd m_dot = MatrixXd::Zero(model.dofs, model.dofs);
   for (int w = -2; w <= 2; ++w) {
     const std::complex<double> factor(0, w * p.omega);
-    m_dot += (factor * model.M.coefficient(w) *
-              std::exp(std::complex<double>(0, w * p.omega * t)))
+    m_dot += (factor * model.M.coefficient(w) * std::exp(std::complex<double>(0, w * p.omega * t)))
                  .real();
   }
   const MatrixXd d = model.D.Evaluate(t, p.omega);
@@ -262,11 +261,12 @@ TEST(TowerRotorScene, BadParametersNameTheParameter) {
     const char* name;
     const char* value;
   };
-  for (const Case& c : {Case{"L_c", "-1"}, Case{"zeta", "1.5"}, Case{"Omega", "-3"},
-                        Case{"n_c", "2.5"}, Case{"n_b", "0"}, Case{"fmax", "0"},
-                        Case{"t_b", "0"}}) {
-    const std::string message =
-        ThrownMessage<InputError>([&] { scene.Build({{c.name, c.value}}); });
+  for (const Case& c :
+       {Case{"L_c", "-1"}, Case{"zeta", "1.5"}, Case{"Omega", "-3"}, Case{"n_c", "2.5"},
+        Case{"n_b", "0"}, Case{"fmax", "0"}, Case{"t_b", "0"}}) {
+    const std::string message = ThrownMessage<InputError>([&] {
+      scene.Build({{c.name, c.value}});
+    });
     EXPECT_NE(message.find(std::string("'") + c.name + "'"), std::string::npos) << message;
   }
 }

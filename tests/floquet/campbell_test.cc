@@ -26,7 +26,9 @@ double Whirl(double omega, bool forward) {
   const double s = std::sqrt(Ip * Ip * omega * omega + 4 * Id * k);
   return ((forward ? Ip : -Ip) * omega + s) / (2 * Id);
 }
-double CrossingSpeed(int n, bool forward) { return std::sqrt(k / (n * (n * Id + (forward ? -Ip : Ip)))); }
+double CrossingSpeed(int n, bool forward) {
+  return std::sqrt(k / (n * (n * Id + (forward ? -Ip : Ip))));
+}
 
 struct Chart {
   std::vector<SweepPoint> points;
@@ -34,7 +36,8 @@ struct Chart {
   SystemLabels labels;
 };
 
-Chart Sweep(const std::string& spec, const std::vector<std::pair<std::string, std::string>>& set = {}) {
+Chart Sweep(const std::string& spec,
+            const std::vector<std::pair<std::string, std::string>>& set = {}) {
   const Scene scene = LoadScene(test::SourceDir() + "/tests/data/gyroscopic-rotor.yaml");
   const ParameterMap base = scene.Resolve(set);
   const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse(spec)});
@@ -71,7 +74,8 @@ TEST(Campbell, GyroscopicRotorWhirlLinesAndCrossingsMatchTheClosedForm) {
     const double omega = d.parameter[p];
     EXPECT_NEAR(d.rotor_speed[p], omega, 0);
     EXPECT_NEAR(d.lines[forward].frequency_hz[p], Whirl(omega, true) / (2 * kPi), 1e-8) << omega;
-    EXPECT_NEAR(d.lines[1 - forward].frequency_hz[p], Whirl(omega, false) / (2 * kPi), 1e-8) << omega;
+    EXPECT_NEAR(d.lines[1 - forward].frequency_hz[p], Whirl(omega, false) / (2 * kPi), 1e-8)
+        << omega;
     EXPECT_NEAR(d.lines[forward].damping_ratio[p], 0, 1e-8);
   }
   // Each whirl line crosses 1P, 2P and 3P once in the sweep (Ω* from 3.09 to 14.1 rad/s).
@@ -102,7 +106,8 @@ TEST(Campbell, WeakDampingIsShadedWhereTheDampingRatioIsBelowTheThreshold) {
   // Closed form: in z = θ + jφ, Id s² + (c − j Ip Ω) s + k = 0; the root with Im s > 0 is the
   // forward whirl, the other is the conjugate of the backward one. ζ = −Re s/|s| ≈ 0.45..0.50 %.
   ASSERT_EQ(weak.lines.size(), 2u);
-  const size_t forward = weak.lines[0].frequency_hz.back() > weak.lines[0].frequency_hz.front() ? 0 : 1;
+  const size_t forward =
+      weak.lines[0].frequency_hz.back() > weak.lines[0].frequency_hz.front() ? 0 : 1;
   for (size_t p = 0; p < weak.parameter.size(); ++p) {
     const std::complex<double> b(0.1, -Ip * weak.parameter[p]);
     const std::complex<double> root = std::sqrt(b * b - 4 * Id * k);
@@ -131,7 +136,8 @@ TEST(Campbell, AFailedPointEndsTheLineWithADiagnostic) {
     EXPECT_TRUE(std::isfinite(line.frequency_hz[4]));
   }
   ASSERT_FALSE(d.diagnostics.empty());
-  EXPECT_NE(d.diagnostics[0].find("lost after 3: the point failed: integration failed"), std::string::npos)
+  EXPECT_NE(d.diagnostics[0].find("lost after 3: the point failed: integration failed"),
+            std::string::npos)
       << d.diagnostics[0];
 }
 
@@ -152,7 +158,8 @@ TEST(Campbell, AFrequencyLockedToAPerRevLineIsNotCounted) {
   });
   CampbellOptions o;
   o.max_per_rev = 1;
-  const CampbellDiagram d = MakeCampbellDiagram(points, TrackModes(points), scene.build(base).labels(), o);
+  const CampbellDiagram d =
+      MakeCampbellDiagram(points, TrackModes(points), scene.build(base).labels(), o);
   // The locked line: on 1P at Ω = 1.1 (the other mode, near 0.178 Hz, truly crosses 1P at
   // Ω ≈ 1.12 and is counted).
   const size_t mid = 30;  // Ω = 1.1
@@ -167,7 +174,8 @@ TEST(Campbell, AFrequencyLockedToAPerRevLineIsNotCounted) {
     }
   }
   bool noted = false;
-  for (const std::string& note : d.diagnostics) noted = noted || note.find("locked to 1P") != std::string::npos;
+  for (const std::string& note : d.diagnostics)
+    noted = noted || note.find("locked to 1P") != std::string::npos;
   EXPECT_TRUE(noted);
 }
 

@@ -15,7 +15,8 @@ namespace {
 
 TEST(ChartOptions, MapsAndCampbellSweepsGetTheirOwnDefaults) {
   const ChartOptions defaults;
-  const SweepOptions line = ChartSweepOptions(defaults, false), map = ChartSweepOptions(defaults, true);
+  const SweepOptions line = ChartSweepOptions(defaults, false),
+                     map = ChartSweepOptions(defaults, true);
   EXPECT_EQ(line.floquet.integrator.type, IntegratorType::kRkf78);
   EXPECT_EQ(map.floquet.integrator.type, IntegratorType::kBulirschStoer);
   EXPECT_EQ(line.check_every, 1);
@@ -64,7 +65,8 @@ TEST(HillAuto, ToleranceFollowsTheIntegratorsWithARoundOffFloor) {
   const HillResult shared = AnalyzeHillToTolerance(mathieu, HillOptions{}, 1e-10);
   ASSERT_EQ(direct.modes.size(), shared.modes.size());
   EXPECT_EQ(direct.harmonics, shared.harmonics);
-  for (size_t k = 0; k < direct.modes.size(); ++k) EXPECT_EQ(direct.modes[k].exponent, shared.modes[k].exponent);
+  for (size_t k = 0; k < direct.modes.size(); ++k)
+    EXPECT_EQ(direct.modes[k].exponent, shared.modes[k].exponent);
 }
 
 }  // namespace

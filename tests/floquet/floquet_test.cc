@@ -1,7 +1,6 @@
 // Floquet analysis via the monodromy matrix against independent references: GSL's Mathieu
 // characteristic values, the Meissner closed form, the Jeffcott rotor's rotating-frame
 // eigenvalues, a Lyapunov-reducible system with prescribed exponents, Liouville's identity.
-#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 
 #include <gsl/gsl_sf_mathieu.h>
@@ -12,6 +11,7 @@
 #include <random>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "support/systems.h"
 
 namespace ltp {
@@ -62,7 +62,8 @@ TEST_P(MathieuTongue, TraceAtBoundariesAndClassificationAround) {
   // Inside the tongue: unstable, Re λ grows like sqrt(distance); outside: |tr Φ| < 2, both
   // multipliers on the unit circle (undamped), so max Re λ is 0 within the error estimate.
   const double width = an - bn;
-  const double inside = AnalyzeFloquet(test::Mathieu(bn + 0.5 * width, q), Tight()).max_real_exponent;
+  const double inside =
+      AnalyzeFloquet(test::Mathieu(bn + 0.5 * width, q), Tight()).max_real_exponent;
   EXPECT_GT(inside, 1e-4);
   for (double a : {an + 1e-3 * width, bn - 1e-3 * width}) {
     const FloquetResult r = AnalyzeFloquet(test::Mathieu(a, q), Tight());
@@ -128,7 +129,8 @@ TEST_P(MeissnerMonodromy, MatchesClosedForm) {
     Eigen::Vector2cd rho = ref.eigenvalues();
     for (const auto& m : r.modes) {
       double best = 1e9;
-      for (int i = 0; i < 2; ++i) best = std::min(best, std::abs(std::exp(m.log_multiplier) - rho(i)));
+      for (int i = 0; i < 2; ++i)
+        best = std::min(best, std::abs(std::exp(m.log_multiplier) - rho(i)));
       EXPECT_LT(best, 1e-10);
     }
     EXPECT_LE(std::abs(r.liouville_residual), 1e-10);  // det Φ = e^{−2πc}
@@ -261,9 +263,9 @@ TEST(Liouville, RandomPeriodicSystems) {
 TEST(Invariance, MultipliersIndependentOfIntegratorAndSegments) {
   const PeriodicSystem sys = test::Mathieu(2.5, 0.7, 0.05);
   const FloquetResult ref = AnalyzeFloquet(sys, Tight(IntegratorType::kRkf78));
-  for (IntegratorType t : {IntegratorType::kDopri5, IntegratorType::kCvodeBdf,
-                           IntegratorType::kCvodeAdams, IntegratorType::kMagnus4,
-                           IntegratorType::kMagnus6}) {
+  for (IntegratorType t :
+       {IntegratorType::kDopri5, IntegratorType::kCvodeBdf, IntegratorType::kCvodeAdams,
+        IntegratorType::kMagnus4, IntegratorType::kMagnus6}) {
     for (int k : {1, 3, 8, 32}) {
       FloquetOptions o = Tight(t);
       o.segments = k;
@@ -290,7 +292,8 @@ TEST(ErrorEstimate, CoversTrueErrorOnMeissnerAtLooseTolerance) {
     const FloquetResult r = AnalyzeFloquet(test::Meissner(a, b, 0.05), o);
     std::vector<cd> got;
     for (const auto& m : r.modes) got.push_back(m.log_multiplier);
-    const double err = MaxExponentMismatch(got, {std::log(rho(0)), std::log(rho(1))}, 2 * kPi) / r.period;
+    const double err =
+        MaxExponentMismatch(got, {std::log(rho(0)), std::log(rho(1))}, 2 * kPi) / r.period;
     EXPECT_GE(r.error_estimate, err) << "tol=" << tol;
     EXPECT_LT(r.error_estimate, 1e4 * std::max(err, 1e-14)) << "estimate should be informative";
   }

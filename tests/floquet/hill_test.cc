@@ -1,7 +1,6 @@
 // Hill's method against the monodromy route (AnalyzeFloquet at tight tolerance), the Meissner
 // closed-form monodromy, the Jeffcott rotor's rotating-frame eigenvalues, and its own
 // internal cross-checks (dense vs structured, Koopman–Hill, N vs N+Δ, a-priori bound).
-#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
 
 #include <gsl/gsl_sf_mathieu.h>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "support/compare.h"
 #include "support/systems.h"
 
@@ -45,7 +45,8 @@ double MaxDistanceModulo(const std::vector<cd>& a, const std::vector<cd>& b, dou
 }
 
 // Meissner y'' + c y' + (a + b sign(cos t)) y = 0 with its exact Fourier coefficients up to M:
-// sign(cos t) = (4/π) Σ_{k odd} (−1)^{(k−1)/2} cos(kt)/k, so A_k = [[0,0],[−b (2/π)(−1)^{(k−1)/2}/k, 0]].
+// sign(cos t) = (4/π) Σ_{k odd} (−1)^{(k−1)/2} cos(kt)/k, so A_k = [[0,0],[−b
+// (2/π)(−1)^{(k−1)/2}/k, 0]].
 PeriodicSystem MeissnerFourier(double a, double b, double c, int M) {
   FourierMatrix A(2, 2, M);
   Eigen::MatrixXcd a0(2, 2);
@@ -65,7 +66,6 @@ std::vector<cd> MeissnerExponents(double a, double b, double c) {
   return {std::log(rho(0)) / (2 * kPi), std::log(rho(1)) / (2 * kPi)};
 }
 
-
 // --- Hill matrix ---------------------------------------------------------------------------
 
 TEST(HillMatrix, BlocksFollowTheConvention) {
@@ -79,7 +79,8 @@ TEST(HillMatrix, BlocksFollowTheConvention) {
     for (int u = -N; u <= N; ++u) {
       Eigen::MatrixXcd expected = A.coefficient(v - u);
       if (v == u) expected -= cd(0, v * s.omega()) * Eigen::MatrixXcd::Identity(n, n);
-      EXPECT_LT((H.block((v + N) * n, (u + N) * n, n, n) - expected).norm(), 1e-15) << v << "," << u;
+      EXPECT_LT((H.block((v + N) * n, (u + N) * n, n, n) - expected).norm(), 1e-15)
+          << v << "," << u;
     }
 }
 
@@ -189,7 +190,8 @@ TEST(HillMeissner, FittedCoefficientsReportAlgebraicDecay) {
   EXPECT_NEAR(r.decay.rate, 1.0, 0.3);
   EXPECT_TRUE(std::isinf(r.apriori_phi_bound));
   bool said = false;
-  for (const std::string& d : r.diagnostics) said = said || d.find("algebraic") != std::string::npos;
+  for (const std::string& d : r.diagnostics)
+    said = said || d.find("algebraic") != std::string::npos;
   EXPECT_TRUE(said);
 }
 
@@ -220,15 +222,18 @@ TEST(HillBound, NeverBelowTrueError) {
       const HillResult r = AnalyzeHill(c.system, o);
       ASSERT_TRUE(r.ok);
       // Compared modulo Ωp (the tongue case sits on the strip edge: either member is right).
-      const double err = MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), 2 * kPi / r.period);
+      const double err =
+          MaxDistanceModulo(Exponents(r.modes), Exponents(ref.modes), 2 * kPi / r.period);
       // "True" error is known only up to the reference's own error estimate.
       EXPECT_GE(r.apriori_bound + ref.error_estimate, err) << c.name << " N=" << N;
       finite += std::isfinite(r.apriori_bound);
       // The Φ bound itself, against the monodromy matrix (Frobenius >= 2-norm: stricter).
-      const Eigen::MatrixXcd phi = KoopmanHillTransition(*c.system.fourier_A(), c.system.omega(), N, T);
+      const Eigen::MatrixXcd phi =
+          KoopmanHillTransition(*c.system.fourier_A(), c.system.omega(), N, T);
       const double phi_err = (phi - ref.monodromy.cast<cd>()).norm();
       // The reference Φ itself is only good to about its tolerance (1e-13 relative).
-      EXPECT_GE(r.apriori_phi_bound + 1e-12 * ref.monodromy.norm(), phi_err) << c.name << " N=" << N;
+      EXPECT_GE(r.apriori_phi_bound + 1e-12 * ref.monodromy.norm(), phi_err)
+          << c.name << " N=" << N;
     }
   }
   EXPECT_GE(finite, 6);  // the bound is not vacuous on these cases
@@ -256,7 +261,8 @@ TEST(HillSelection, StripEdgeExponentsAreTheSystemsOwn) {
   EXPECT_DOUBLE_EQ(r.period, s.period());
   for (const HillModeInfo& i : r.info) EXPECT_TRUE(i.ambiguous);
   bool said = false;
-  for (const std::string& d : r.diagnostics) said = said || d.find("strip edge") != std::string::npos;
+  for (const std::string& d : r.diagnostics)
+    said = said || d.find("strip edge") != std::string::npos;
   EXPECT_TRUE(said);
   // One exponent of each family, +σ and −σ (not two tied copies of one), both at +Ωp/2, with
   // the T multipliers (log|ρ| = ±σT, arg ρ = π): the same numbers as the monodromy route.
@@ -281,9 +287,9 @@ TEST(HillSelection, DoubleNegativeMultiplierKeepsEveryFamily) {
   // the monodromy route on its own (no Hill matrix, no 10-state selection involved). Both
   // solvers must return every exponent once — the structured one used to return one eigenpair
   // of the double exponent four times and miss the other family, while saying ok.
-  const std::vector<PeriodicSystem> blocks = {test::Mathieu(1, 0.5, 0.02), test::Mathieu(1, 0.5, 0.02),
-                                              test::Mathieu(3.2, 0.3, 0.05), test::Mathieu(7.1, 0.2, 0.03),
-                                              test::Mathieu(0.4, 0.1, 0.01)};
+  const std::vector<PeriodicSystem> blocks = {
+      test::Mathieu(1, 0.5, 0.02), test::Mathieu(1, 0.5, 0.02), test::Mathieu(3.2, 0.3, 0.05),
+      test::Mathieu(7.1, 0.2, 0.03), test::Mathieu(0.4, 0.1, 0.01)};
   std::vector<cd> want;
   for (const PeriodicSystem& b : blocks) {
     const FloquetResult r = Reference(b);
@@ -368,7 +374,8 @@ TEST(HillJumps, AutomaticTruncationSaysItStoppedShortAndStaysHonest) {
     o.harmonics = 4;
     const auto t0 = std::chrono::steady_clock::now();
     const HillResult h = AnalyzeHillAuto(system, o, 1e-10, 256);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ASSERT_TRUE(h.ok) << h.BriefReport();
     ASSERT_TRUE(h.tolerance_met.has_value());
     EXPECT_FALSE(*h.tolerance_met);
@@ -403,8 +410,8 @@ TEST(HillAuto, StopsAtRoundOffNearABoundary) {
 TEST(HillAuto, UnresolvedTruncationClaimsNoBound) {
   // Mathieu q = 1e5: the frozen eigenvalues swing between ±447 and ±447j, the exponents are
   // ±170.2 (monodromy route; the WKB growth over a period, ∫_{|t|<π/4} √(2q cos 2t) dt =
-  // 1.198·√(2q) ≈ 536, agrees with its log|ρ| = 534.8). At N = 200 (N·Ωp = 400 < 443) Hill returned ±21.7 with an
-  // N vs N+Δ change of 1.9 and called that its estimate; now there is no bound.
+  // 1.198·√(2q) ≈ 536, agrees with its log|ρ| = 534.8). At N = 200 (N·Ωp = 400 < 443) Hill returned
+  // ±21.7 with an N vs N+Δ change of 1.9 and called that its estimate; now there is no bound.
   const PeriodicSystem s = test::Mathieu(1, 1e5, 0.02);
   const FloquetResult ref = Reference(s);
   ASSERT_TRUE(ref.ok);
@@ -454,15 +461,17 @@ TEST(HillSolvers, DenseAndStructuredAgree) {
     const HillResult structured = AnalyzeHill(systems[i], o);
     ASSERT_TRUE(dense.ok && structured.ok) << i;
     EXPECT_EQ(structured.solver, "structured") << i;
-    EXPECT_LT(MaxDistanceModulo(Exponents(dense.modes), Exponents(structured.modes), systems[i].omega()),
-              1e-10)
+    EXPECT_LT(
+        MaxDistanceModulo(Exponents(dense.modes), Exponents(structured.modes), systems[i].omega()),
+        1e-10)
         << i;
   }
 }
 
 TEST(KoopmanHill, MultipliersMatchMonodromy) {
-  for (const PeriodicSystem& s : {test::Mathieu(2.5, 1.0, 0.2), test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45),
-                                  test::Mathieu(1.5, 2.0)}) {
+  for (const PeriodicSystem& s :
+       {test::Mathieu(2.5, 1.0, 0.2), test::Jeffcott(1, 1.0, 1.4, 0.05, 0.45),
+        test::Mathieu(1.5, 2.0)}) {
     const FloquetResult ref = Reference(s);
     HillOptions o;
     o.harmonics = 24;
@@ -484,7 +493,8 @@ TEST(HillOptionsTest, BadOptionsThrow) {
     o.Validate();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("HillOptions::harmonics = -1. Violated constraint:", 0), 0u)
+    EXPECT_EQ(std::string(e.what()).rfind("HillOptions::harmonics = -1. Violated constraint:", 0),
+              0u)
         << e.what();
   }
   o = {};

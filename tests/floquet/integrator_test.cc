@@ -228,12 +228,14 @@ TEST_P(IntegratorP, ConsecutiveFactorsMatchTheirPieces) {
   // uneven lengths: each must be Φ(t_{i+1}, t_i), and their product the monodromy.
   const double a = 1, b = 0.3, c = 0.2;
   const std::vector<double> times = {0, 2.0, 2.5, 3 * kPi / 2, 5.0, 2 * kPi};
-  const std::vector<TransitionResult> f = ConsecutiveTransitions(Meissner(a, b, c), times, With(GetParam()));
+  const std::vector<TransitionResult> f =
+      ConsecutiveTransitions(Meissner(a, b, c), times, With(GetParam()));
   ASSERT_EQ(f.size(), times.size() - 1);
   Eigen::MatrixXd product = Eigen::MatrixXd::Identity(2, 2);
   for (size_t i = 0; i < f.size(); ++i) {
     ASSERT_TRUE(f[i].ok) << f[i].message;
-    EXPECT_LT(RelErr(f[i].phi, MeissnerPieces(a, b, c, times[i], times[i + 1])), 1e-9) << "factor " << i;
+    EXPECT_LT(RelErr(f[i].phi, MeissnerPieces(a, b, c, times[i], times[i + 1])), 1e-9)
+        << "factor " << i;
     product = f[i].phi * product;
   }
   EXPECT_LT(RelErr(product, MeissnerDampedReference(a, b, c)), 1e-9);

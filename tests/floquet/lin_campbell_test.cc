@@ -8,8 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -37,7 +37,8 @@ std::vector<std::string> WriteSets(const std::string& name, const std::vector<do
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     const auto files = test::RotorLinFiles(Rotor(speeds[i]), {0.0, 2 * kPi / 3, 4 * kPi / 3});
-    for (size_t k = 0; k < files.size(); ++k) WriteLinFile(dir + "/rotor." + std::to_string(k + 1) + ".lin", files[k]);
+    for (size_t k = 0; k < files.size(); ++k)
+      WriteLinFile(dir + "/rotor." + std::to_string(k + 1) + ".lin", files[k]);
     dirs.push_back(dir);
   }
   return dirs;
@@ -47,7 +48,8 @@ TEST(LinCampbell, RotorSetsRoundTripToTheScenesFloquetExponents) {
   // Given out of order: the diagram sorts by rotor speed.
   const std::vector<double> speeds = {1.2, 0.4, 0.8, 1.6, 0.6, 1.0, 1.4};
   std::vector<LinOperatingPoint> ops;
-  for (const std::string& dir : WriteSets("lin_campbell_rotor", speeds)) ops.push_back(ReadLinOperatingPoint({dir}));
+  for (const std::string& dir : WriteSets("lin_campbell_rotor", speeds))
+    ops.push_back(ReadLinOperatingPoint({dir}));
   const LinCampbellResult r = MakeLinCampbell(ops);
   ASSERT_EQ(r.points.size(), speeds.size());
   ASSERT_EQ(r.diagram.lines.size(), 5u);  // 10 states: five oscillatory MBC modes
@@ -86,9 +88,11 @@ TEST(LinCampbell, RotorSetsRoundTripToTheScenesFloquetExponents) {
 TEST(LinCampbell, ShippedRotorSetsAreTheWritersOutput) {
   const std::string root = test::SourceDir() + "/tests/data/openfast/rotor-speeds";
   for (const char* speed : {"0.4", "0.6", "0.8", "1.0", "1.2", "1.4", "1.6"}) {
-    const auto files = test::RotorLinFiles(Rotor(std::stod(speed)), {0.0, 2 * kPi / 3, 4 * kPi / 3});
+    const auto files =
+        test::RotorLinFiles(Rotor(std::stod(speed)), {0.0, 2 * kPi / 3, 4 * kPi / 3});
     for (size_t k = 0; k < files.size(); ++k) {
-      const std::string path = root + "/omega-" + speed + "/rotor." + std::to_string(k + 1) + ".lin";
+      const std::string path =
+          root + "/omega-" + speed + "/rotor." + std::to_string(k + 1) + ".lin";
       std::ifstream in(path);
       std::stringstream text;
       text << in.rdbuf();
@@ -99,7 +103,8 @@ TEST(LinCampbell, ShippedRotorSetsAreTheWritersOutput) {
 
 TEST(LinCampbell, RefusesMixedModelsAndRepeatedPoints) {
   const auto dirs = WriteSets("lin_campbell_bad", {0.5, 0.5});
-  std::vector<LinOperatingPoint> ops = {ReadLinOperatingPoint({dirs[0]}), ReadLinOperatingPoint({dirs[1]})};
+  std::vector<LinOperatingPoint> ops = {ReadLinOperatingPoint({dirs[0]}),
+                                        ReadLinOperatingPoint({dirs[1]})};
   EXPECT_THROW(MakeLinCampbell(ops), InputError);  // same rotor speed twice
   EXPECT_THROW(MakeLinCampbell({}), InputError);
   LinCampbellOptions by_wind;
@@ -111,10 +116,12 @@ TEST(LinCampbell, TheNrel5MwFilesAreAOnePointSet) {
   const LinCampbellResult r = MakeLinCampbell({ReadLinOperatingPoint({test::FiveMwDir()})});
   ASSERT_EQ(r.points.size(), 1u);
   const Mbc3Result& mbc = r.points[0].mbc;
-  EXPECT_EQ(static_cast<int>(r.diagram.lines.size()) + mbc.rigid_body_modes, static_cast<int>(mbc.modes.size()));
+  EXPECT_EQ(static_cast<int>(r.diagram.lines.size()) + mbc.rigid_body_modes,
+            static_cast<int>(mbc.modes.size()));
   EXPECT_TRUE(r.diagram.crossings.empty());  // one point: nothing to bracket
   bool rigid_noted = false;
-  for (const auto& note : r.points[0].notes) rigid_noted = rigid_noted || note.find("rigid-body") != std::string::npos;
+  for (const auto& note : r.points[0].notes)
+    rigid_noted = rigid_noted || note.find("rigid-body") != std::string::npos;
   EXPECT_EQ(rigid_noted, mbc.rigid_body_modes > 0);
 }
 

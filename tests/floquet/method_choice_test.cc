@@ -2,7 +2,6 @@
 // system the work–precision study covered, and that the analyses it drives are accurate
 // against closed forms (Meissner's monodromy, the triangular stiff scene, a Lyapunov-reducible
 // stiff system) and say which method they used and why.
-#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/rotor.h"
 #include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
@@ -33,7 +33,8 @@ bool Mentions(const std::vector<std::string>& diagnostics, const std::string& wh
 
 // Largest distance of the modes' exponents to `exact`, matched one-to-one modulo Ωp (a missed
 // exponent cannot hide behind another mode's nearest value); +inf when the counts differ.
-double MatchedDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact, double omega) {
+double MatchedDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact,
+                       double omega) {
   EXPECT_EQ(modes.size(), exact.size());
   std::vector<cd> got;
   for (const FloquetMode& m : modes) got.push_back(m.exponent);
@@ -47,7 +48,8 @@ PeriodicSystem StiffYaml() {
 TEST(MethodChoice, PicksTheStudysWinnerPerKindOfSystem) {
   // Rules from the study (README): smooth → bs; constant between jumps → expm (exact);
   // stiff (fast real decay or growth) → magnus6.
-  EXPECT_EQ(ChooseIntegrator(test::Mathieu(1.5, 0.5, 0.05), 1e-10).type, IntegratorType::kBulirschStoer);
+  EXPECT_EQ(ChooseIntegrator(test::Mathieu(1.5, 0.5, 0.05), 1e-10).type,
+            IntegratorType::kBulirschStoer);
   EXPECT_EQ(ChooseIntegrator(test::Meissner(2, 0.5, 0.05), 1e-10).type, IntegratorType::kExpm);
   RotorParameters rotor;
   rotor.blades = 2;
@@ -64,7 +66,8 @@ TEST(MethodChoice, PicksTheStudysWinnerPerKindOfSystem) {
   f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
     out << 0, 1, -(1 + (std::cos(t) > 0 ? 0.3 : -0.3) * std::sin(t)), -0.1;
   };
-  const PeriodicSystem jumpy = PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f, {kPi / 2, 3 * kPi / 2});
+  const PeriodicSystem jumpy =
+      PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f, {kPi / 2, 3 * kPi / 2});
   const SystemTraits t = MeasureSystemTraits(jumpy);
   EXPECT_TRUE(t.has_jumps);
   EXPECT_FALSE(t.constant_pieces);
@@ -89,7 +92,8 @@ TEST(MethodChoice, AutoMonodromyOnMeissnerIsExactAndSaysWhy) {
   const FloquetResult r = AnalyzeFloquet(s, o);
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.integrator, "expm");
-  EXPECT_TRUE(Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
+  EXPECT_TRUE(
+      Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
   const double err = MatchedDistance(r.modes, exact, s.omega());
   EXPECT_LT(err, 1e-13);
   EXPECT_GE(r.error_estimate, err);

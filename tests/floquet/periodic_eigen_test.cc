@@ -119,7 +119,8 @@ TEST_P(PeriodicSchurRandomTest, MatchesEigOfFormedProduct) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicSchurRandomTest, ::testing::Values(1, 3, 8));
+INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicSchurRandomTest,
+                         ::testing::Values(1, 3, 8));
 
 TEST(PeriodicSchurTest, MultipliersSpanningSixHundredDecades) {
   // λ T = (0.1, −5, −300, −1400) with T = 1: the smallest multiplier e^{−1400} ≈ 1e−608 is far
@@ -228,8 +229,7 @@ TEST(SingleShotTest, ClosedFormAndInvalidInput) {
   const LogEigenvalues single = SingleShotLogEigenvalues(m);
   ASSERT_TRUE(single.ok) << single.message;
   ASSERT_EQ(single.log_values.size(), 4u);
-  EXPECT_NEAR(std::abs(single.log_values[0] - Complex(std::log(3.0), std::numbers::pi)), 0,
-              1e-14);
+  EXPECT_NEAR(std::abs(single.log_values[0] - Complex(std::log(3.0), std::numbers::pi)), 0, 1e-14);
   EXPECT_NEAR(std::abs(single.log_values[1] - Complex(std::log(2.0), th)), 0, 1e-14);
   EXPECT_NEAR(std::abs(single.log_values[2] - Complex(std::log(2.0), -th)), 0, 1e-14);
   EXPECT_EQ(single.log_values[3].real(), -std::numeric_limits<double>::infinity());
@@ -295,7 +295,8 @@ TEST_P(PeriodicEigenvectorsRandomTest, CyclicRelationAndEigenvectorOfProduct) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicEigenvectorsRandomTest, ::testing::Values(1, 3, 8));
+INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicEigenvectorsRandomTest,
+                         ::testing::Values(1, 3, 8));
 
 TEST(PeriodicEigenvectorsTest, SixHundredDecadesMatchClosedForm) {
   // Same construction as MultipliersSpanningSixHundredDecades: v_i = Q_i e_j exactly.
@@ -357,9 +358,10 @@ TEST(PeriodicEigenvectorsTest, CloseButDistinctEigenvaluesGetTheirOwnVectors) {
 TEST(PeriodicEigenvectorsTest, SingleFactorGivesPlainEigenvectors) {
   // K = 1: v_0 is an eigenvector of Φ_1 itself (diagonal: closed-form eigenvectors e_j).
   const std::vector<Eigen::MatrixXd> factors = {Eigen::Vector3d(2.0, -0.5, 0.1).asDiagonal()};
-  const std::vector<Complex> log_rho = {std::log(2.0), {std::log(0.5), std::numbers::pi},
-                                        std::log(0.1)};
-  const std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(factors, {1.0}, log_rho);
+  const std::vector<Complex> log_rho = {
+      std::log(2.0), {std::log(0.5), std::numbers::pi}, std::log(0.1)};
+  const std::vector<PeriodicEigenvector> vecs =
+      ComputePeriodicEigenvectors(factors, {1.0}, log_rho);
   for (int j = 0; j < 3; ++j) {
     EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[0], Eigen::Vector3cd::Unit(j), 1e-12));
     EXPECT_LT(vecs[j].residual, 1e-14);
@@ -370,7 +372,8 @@ TEST(PeriodicEigenvectorsTest, DefectiveClusterDoesNotCrash) {
   // Jordan block [[1, 1], [0, 1]]: ρ = 1 twice but one eigenvector e_1. The two returned sets
   // are (nearly) parallel — detected downstream by the mode matrix's condition number.
   const std::vector<Eigen::MatrixXd> factors = {(Eigen::Matrix2d() << 1, 1, 0, 1).finished()};
-  const std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(factors, {1.0}, {0.0, 0.0});
+  const std::vector<PeriodicEigenvector> vecs =
+      ComputePeriodicEigenvectors(factors, {1.0}, {0.0, 0.0});
   ASSERT_EQ(vecs.size(), 2u);
   for (const PeriodicEigenvector& vec : vecs) {
     ASSERT_TRUE(vec.v[0].allFinite());
@@ -383,8 +386,8 @@ TEST(PeriodicEigenvectorsTest, InvalidInputThrows) {
   const std::vector<Eigen::MatrixXd> factors(2, Eigen::MatrixXd::Identity(2, 2));
   EXPECT_THROW(ComputePeriodicEigenvectors(factors, {1.0}, {0.0}), InputError);
   EXPECT_THROW(ComputePeriodicEigenvectors(factors, {1.0, -1.0}, {0.0}), InputError);
-  EXPECT_THROW(ComputePeriodicEigenvectors(
-                   factors, {1.0, 1.0}, {Complex(std::numeric_limits<double>::quiet_NaN(), 0)}),
+  EXPECT_THROW(ComputePeriodicEigenvectors(factors, {1.0, 1.0},
+                                           {Complex(std::numeric_limits<double>::quiet_NaN(), 0)}),
                InputError);
   EXPECT_THROW(ComputePeriodicEigenvectors({}, {}, {0.0}), InputError);
 }

@@ -2,6 +2,8 @@
 // coordinates (a constant-coefficient route), the closed-form lag exponent of an isolated
 // blade, energy conservation, the 1/N-revolution monodromy, the flapping instability, and the
 // sampled scene files against the built-in Mathieu oscillator.
+#include "ltp/floquet/rotor_floquet.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,13 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/exponent_match.h"
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/mbc.h"
 #include "ltp/core/rotor.h"
 #include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/rotor_floquet.h"
 #include "support/compare.h"
 
 namespace ltp {
@@ -186,8 +187,7 @@ TEST(RotorFloquet, StiffSupportGivesEveryBladeItsOwnLagExponent) {
 
 TEST(RotorFloquet, TwoBladesOnAnAnisotropicSupport) {
   const Scene& scene = LoadScene("rotor");
-  const std::vector<std::pair<std::string, std::string>> set = {{"blades", "2"},
-                                                                {"Omega", "0.9"}};
+  const std::vector<std::pair<std::string, std::string>> set = {{"blades", "2"}, {"Omega", "0.9"}};
   const FloquetResult f = AnalyzeFloquet(scene.Build(set), Tight());
   ASSERT_TRUE(f.ok) << f.BriefReport();
   EXPECT_EQ(f.states, 8);

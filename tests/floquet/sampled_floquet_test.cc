@@ -1,12 +1,9 @@
 // Floquet analysis from azimuth samples (OpenFAST .lin files) against independent references:
 // the exact constant multi-blade system of the rotor scene, the continuous rotor integrated
 // without sampling, and the product of matrix exponentials formed directly.
-#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/sampled_floquet.h"
 
 #include <gtest/gtest.h>
-
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include <cmath>
 #include <complex>
@@ -14,13 +11,15 @@
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/mbc.h"
 #include "ltp/core/openfast_lin.h"
-#include "ltp/floquet/floquet.h"
 #include "ltp/core/rotor.h"
+#include "ltp/floquet/floquet.h"
 #include "support/rotor_lin.h"
 
 namespace ltp {
@@ -33,8 +32,8 @@ using std::numbers::pi;
 using test::FiveMwDir;
 
 // Largest distance of exponents matched one-to-one modulo jΩ (+inf when the counts differ).
-double MaxDistanceModulo(const std::vector<complex<double>>& a, const std::vector<complex<double>>& b,
-                         double omega) {
+double MaxDistanceModulo(const std::vector<complex<double>>& a,
+                         const std::vector<complex<double>>& b, double omega) {
   return MaxExponentMismatch(a, b, omega);
 }
 

@@ -1,5 +1,7 @@
 // Parameter sweeps: refined stability boundaries against closed forms and GSL, mode tracking
 // through a crossing, failing points, and the monodromy and Hill routes against each other.
+#include "ltp/floquet/sweep.h"
+
 #include <gsl/gsl_sf_mathieu.h>
 #include <gtest/gtest.h>
 
@@ -11,7 +13,6 @@
 #include "ltp/core/scene.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
-#include "ltp/floquet/sweep.h"
 
 namespace ltp {
 namespace {
@@ -65,7 +66,8 @@ TEST(UnstableIntervals, MathieuTonguesMatchGsl) {
   const auto intervals = RefineUnstableIntervals(scene, base, grid, points, o);
   ASSERT_EQ(intervals.size(), 3u);
   EXPECT_TRUE(intervals[0].lo.at_sweep_edge);
-  const double expected[][2] = {{-2, MathieuA(0, 1)}, {MathieuB(1, 1), MathieuA(1, 1)}, {MathieuB(2, 1), MathieuA(2, 1)}};
+  const double expected[][2] = {
+      {-2, MathieuA(0, 1)}, {MathieuB(1, 1), MathieuA(1, 1)}, {MathieuB(2, 1), MathieuA(2, 1)}};
   for (size_t i = 0; i < 3; ++i) {
     for (int end = 0; end < 2; ++end) {
       const BoundaryEstimate& e = end ? intervals[i].hi : intervals[i].lo;
@@ -129,7 +131,8 @@ TEST(UnstableIntervals, AsymmetricShaftBandEdges) {
 // monodromy route equals the one found independently by Hill's method.
 TEST(UnstableIntervals, TwoBladedRotorMonodromyEqualsHill) {
   const Scene scene = LoadScene("rotor");
-  ParameterMap base = scene.Resolve({{"blades", "2"}, {"C_zeta", "0.02"}, {"cx", "0.2"}, {"cy", "0.2"}});
+  ParameterMap base =
+      scene.Resolve({{"blades", "2"}, {"C_zeta", "0.02"}, {"cx", "0.2"}, {"cy", "0.2"}});
   const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("Omega=0.57:0.63:0.02")});
   std::vector<std::vector<UnstableInterval>> found;
   for (SweepMethod method : {SweepMethod::kMonodromy, SweepMethod::kHill}) {
@@ -174,7 +177,7 @@ TEST(RunSweep, FailingPointIsRecordedNotFatal) {
 TEST(TrackModes, CrossingKeepsLabels) {
   std::vector<SweepPoint> points;
   for (int i = 0; i <= 10; ++i) {
-    const double x = 0.5 + 0.1 * i;   // oscillator 1: ω = x; oscillator 2: ω = 1
+    const double x = 0.5 + 0.1 * i;  // oscillator 1: ω = x; oscillator 2: ω = 1
     SweepPoint p;
     p.ok = true;
     p.period = 1;

@@ -49,8 +49,7 @@ TEST(TowerRotorFloquet, DampedRotorIsStableAndCantileverModesStay) {
               0.01 * table[0].frequency_hz);
   EXPECT_NEAR(std::abs(result.modes[2].frequency_hz), table[1].frequency_hz,
               0.01 * table[1].frequency_hz);
-  EXPECT_NEAR(result.max_real_exponent, -0.01 * 2 * std::numbers::pi * table[0].frequency_hz,
-              0.05);
+  EXPECT_NEAR(result.max_real_exponent, -0.01 * 2 * std::numbers::pi * table[0].frequency_hz, 0.05);
 }
 
 }  // namespace

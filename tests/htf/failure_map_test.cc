@@ -26,9 +26,9 @@ TEST_P(FailureMapTest, NoSilentFailure) {
 
 // Substrings of the regime names in FailureRegimes().
 INSTANTIATE_TEST_SUITE_P(Regimes, FailureMapTest,
-                         ::testing::Values("double range", "fast rotation", "discontinuous", "strip edge",
-                                           "at +1", "at −1", "resonance", "slow rotation", "harmonic content",
-                                           "large n"),
+                         ::testing::Values("double range", "fast rotation", "discontinuous",
+                                           "strip edge", "at +1", "at −1", "resonance",
+                                           "slow rotation", "harmonic content", "large n"),
                          [](const auto& info) { return "regime" + std::to_string(info.index); });
 
 }  // namespace

@@ -59,7 +59,8 @@ TEST(PfrfRoutes, AllIsModalCheckedByTheOtherThree) {
   PfrfOptions o;
   ASSERT_TRUE(SelectPfrfRoutes("all", &o));
   EXPECT_EQ(o.primary, PfrfRoute::kModal);
-  EXPECT_EQ(o.checks, (std::vector<PfrfRoute>{PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime}));
+  EXPECT_EQ(o.checks,
+            (std::vector<PfrfRoute>{PfrfRoute::kHtf, PfrfRoute::kShooting, PfrfRoute::kTime}));
   ASSERT_TRUE(SelectPfrfRoutes("htf", &o));
   EXPECT_EQ(o.primary, PfrfRoute::kHtf);
   EXPECT_EQ(o.checks, std::vector<PfrfRoute>{PfrfRoute::kAuto});

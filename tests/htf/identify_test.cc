@@ -17,11 +17,14 @@ namespace ltp {
 namespace {
 
 // a = 2, q = 0.3: between the first two instability tongues (stable), natural frequency ≈ √2 rad/s.
-PeriodicSystem Mathieu() { return LoadScene("mathieu").Build({{"a", "2"}, {"c", "0.2"}, {"q", "0.3"}}); }
+PeriodicSystem Mathieu() {
+  return LoadScene("mathieu").Build({{"a", "2"}, {"c", "0.2"}, {"q", "0.3"}});
+}
 
 // The model's H_z at the records' frequencies (after ltp simulate moved them to the grid).
-std::vector<std::vector<std::complex<double>>> ModelFrf(const PeriodicSystem& system, const TimeData& data,
-                                                       int min_order, int max_order) {
+std::vector<std::vector<std::complex<double>>> ModelFrf(const PeriodicSystem& system,
+                                                        const TimeData& data, int min_order,
+                                                        int max_order) {
   PfrfOptions o;
   for (const TimeRecord& r : data.records) o.frequencies_hz.push_back(r.excitation_hz);
   o.min_order = min_order;
@@ -34,7 +37,8 @@ std::vector<std::vector<std::complex<double>>> ModelFrf(const PeriodicSystem& sy
 TEST(IdentifyStepSine, NoiseFreeEstimatesEqualTheModel) {
   const PeriodicSystem system = Mathieu();
   SimulateOptions s;
-  s.frequencies_hz = {0.05, 0.13, 0.21, 0.4};  // around the resonance near 1/(2π) Hz and its sidebands
+  s.frequencies_hz = {0.05, 0.13, 0.21,
+                      0.4};  // around the resonance near 1/(2π) Hz and its sidebands
   s.periods = 16;
   s.samples_per_period = 64;
   const SimulationResult sim = SimulateStepSine(system, s);
@@ -50,7 +54,8 @@ TEST(IdentifyStepSine, NoiseFreeEstimatesEqualTheModel) {
     for (size_t z = 0; z < 5; ++z) {
       EXPECT_LT(std::abs(id.frequencies[f].h[z] - model[f][z]), 1e-6 * scale)
           << "f = " << id.frequencies[f].excitation_hz << ", z = " << int(z) - 2;
-      EXPECT_LT(id.frequencies[f].bound[z], 1e-6 * scale);  // noise-free: the bins off the lines are empty
+      EXPECT_LT(id.frequencies[f].bound[z],
+                1e-6 * scale);  // noise-free: the bins off the lines are empty
     }
   }
 }
@@ -107,7 +112,8 @@ TEST(IdentifyStepSine, BadDataIsRefusedWithTheReason) {
   o.max_order = 40;  // above Nyquist at 16 samples per period
   EXPECT_THROW(IdentifyStepSine(sim.data, o), InputError);
   SimulateOptions unstable = s;
-  EXPECT_THROW(SimulateStepSine(LoadScene("mathieu").Build({{"c", "0"}, {"q", "0.3"}, {"a", "1"}}), unstable),
+  EXPECT_THROW(SimulateStepSine(LoadScene("mathieu").Build({{"c", "0"}, {"q", "0.3"}, {"a", "1"}}),
+                                unstable),
                InputError);  // undamped: no steady state
 }
 

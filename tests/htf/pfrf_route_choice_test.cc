@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <complex>
+#include <limits>
 #include <string>
 
 #include "ltp/core/scene.h"
@@ -81,7 +81,9 @@ TEST(PfrfRouteChoice, JumpsGetAShootingCheckAndTheValuesMeetTheTimeRoute) {
 // boundary a_1(q) (located by bisection on tr Φ = −2), where Φ approaches a Jordan block.
 PeriodicSystem NearBoundaryMathieu(double delta) {
   const double q = 0.3;
-  auto trace = [&](double a) { return StateTransition(test::MathieuIo(a, q, 0), 0, test::kPi).phi.trace(); };
+  auto trace = [&](double a) {
+    return StateTransition(test::MathieuIo(a, q, 0), 0, test::kPi).phi.trace();
+  };
   double lo = 1.1, hi = 1.6;  // tr Φ(1.1) < −2 (unstable tongue), tr Φ(1.6) > −2
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
@@ -137,8 +139,9 @@ TEST(PfrfRouteChoice, ModalValuesWrongBeyondTheLimitFailTheCrossCheckAndFallBack
   a << -1, 1, 0, -1;
   b << 0, 1;
   c << 1, 0;
-  const PeriodicSystem sys = PeriodicSystem::FromFourier(
-      2 * test::kPi, FourierMatrix::Constant(a), FourierMatrix::Constant(b), FourierMatrix::Constant(c));
+  const PeriodicSystem sys =
+      PeriodicSystem::FromFourier(2 * test::kPi, FourierMatrix::Constant(a),
+                                  FourierMatrix::Constant(b), FourierMatrix::Constant(c));
   PfrfOptions o;
   o.frequencies_hz = {0.05, 0.2, 0.7};
   o.min_order = -1;

@@ -1,5 +1,7 @@
 // Partial FRFs by four independent routes (htf/pfrf.h). Reference values: closed-form LTI
 // transfer functions, the symmetry of real systems, and the routes against each other.
+#include "ltp/htf/pfrf.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include "ltp/core/error.h"
 #include "ltp/core/scene.h"
 #include "ltp/floquet/hill.h"
-#include "ltp/htf/pfrf.h"
 #include "ltp/htf/snapshot.h"
 #include "support/systems.h"
 
@@ -66,7 +67,8 @@ AllRoutes RunAll(const PeriodicSystem& sys, double omega, int zmin, int zmax, bo
   r.shooting = forced.Shooting(omega, zmin, zmax, &ok);
   EXPECT_TRUE(ok);
   if (with_time) {
-    r.time = forced.TimeSimulation(omega, zmin, zmax, ForcedResponseSolver::SettlingTime(fl, 1e-9), &ok);
+    r.time =
+        forced.TimeSimulation(omega, zmin, zmax, ForcedResponseSolver::SettlingTime(fl, 1e-9), &ok);
     EXPECT_TRUE(ok);
   }
   return r;
@@ -79,8 +81,10 @@ TEST(PartialFrf, LtiGivesOnlyH0EqualToTransferFunction) {
     // Reference: H_0 = C (jωI − A)⁻¹ B + D (closed form of an LTI system), H_z = 0 otherwise.
     const Eigen::MatrixXcd ref = FrozenFrf(lti, omega);
     const Eigen::MatrixXcd direct =
-        lti.C.cast<cd>() * (cd(0, omega) * Eigen::MatrixXcd::Identity(3, 3) - lti.A.cast<cd>()).inverse() *
-            lti.B.cast<cd>() + lti.D.cast<cd>();
+        lti.C.cast<cd>() *
+            (cd(0, omega) * Eigen::MatrixXcd::Identity(3, 3) - lti.A.cast<cd>()).inverse() *
+            lti.B.cast<cd>() +
+        lti.D.cast<cd>();
     EXPECT_LT(std::abs(ref(0, 0) - direct(0, 0)), 1e-14);
     const AllRoutes r = RunAll(sys, omega, -3, 3, true);
     for (const PartialFrfs* h : {&r.modal, &r.htf, &r.shooting, &r.time}) {
@@ -198,7 +202,9 @@ TEST(PartialFrf, NearDefectiveModalReportsItsCondition) {
   // instability tongue, where the multipliers meet at −1 and Φ becomes a Jordan block. The
   // boundary is located here by bisection on tr Φ = −2.
   const double q = 0.3;
-  auto trace = [&](double a) { return StateTransition(test::MathieuIo(a, q, 0), 0, kPi).phi.trace(); };
+  auto trace = [&](double a) {
+    return StateTransition(test::MathieuIo(a, q, 0), 0, kPi).phi.trace();
+  };
   double lo = 1.1, hi = 1.6;  // tr Φ(1.1) < −2 (unstable tongue), tr Φ(1.6) > −2
   ASSERT_LT(trace(lo), -2);
   ASSERT_GT(trace(hi), -2);
@@ -249,8 +255,10 @@ TEST(PartialFrf, SweepErrorEstimateAndResonances) {
   bool found = false;
   for (const Resonance& p : r.resonances) {
     EXPECT_GE(p.mode, 0);
-    EXPECT_LT(std::abs(p.f_resp_hz - p.mode_line_hz), 0.03) << "z " << p.order << " f " << p.f_exc_hz;
-    if (p.order == 0 && p.harmonic == 0 && std::abs(p.f_resp_hz - p.mode_line_hz) <= 0.005) found = true;
+    EXPECT_LT(std::abs(p.f_resp_hz - p.mode_line_hz), 0.03)
+        << "z " << p.order << " f " << p.f_exc_hz;
+    if (p.order == 0 && p.harmonic == 0 && std::abs(p.f_resp_hz - p.mode_line_hz) <= 0.005)
+      found = true;
   }
   EXPECT_TRUE(found);
 }
@@ -280,7 +288,8 @@ TEST(PartialFrf, BadInputThrows) {
   o.min_order = 2;
   o.max_order = 1;
   EXPECT_THROW(ComputePartialFrf(sys, o), InputError);
-  EXPECT_THROW(BuildModalModel(test::Mathieu(1, 0.2), AnalyzeFloquet(test::Mathieu(1, 0.2))), InputError);
+  EXPECT_THROW(BuildModalModel(test::Mathieu(1, 0.2), AnalyzeFloquet(test::Mathieu(1, 0.2))),
+               InputError);
 }
 
 TEST(Snapshot, FrozenMathieuClosedForm) {

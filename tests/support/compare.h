@@ -47,17 +47,17 @@ template <typename A, typename B>
 ::testing::AssertionResult CompareMatrices(const Eigen::MatrixBase<A>& a,
                                            const Eigen::MatrixBase<B>& b, double tol) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) {
-    return ::testing::AssertionFailure() << "size " << a.rows() << "x" << a.cols() << " vs "
-                                         << b.rows() << "x" << b.cols();
+    return ::testing::AssertionFailure()
+           << "size " << a.rows() << "x" << a.cols() << " vs " << b.rows() << "x" << b.cols();
   }
   if (a.size() == 0) return ::testing::AssertionSuccess();
   Eigen::Index r = 0, c = 0;
   const double worst = (a - b).cwiseAbs().maxCoeff(&r, &c);
   const double allowed = tol * std::max(1.0, static_cast<double>(b.cwiseAbs().maxCoeff()));
   if (!(worst <= allowed)) {
-    return ::testing::AssertionFailure() << "max |a - b| = " << worst << " at (" << r << ", "
-                                         << c << "): " << a(r, c) << " vs " << b(r, c)
-                                         << ", allowed " << allowed;
+    return ::testing::AssertionFailure()
+           << "max |a - b| = " << worst << " at (" << r << ", " << c << "): " << a(r, c) << " vs "
+           << b(r, c) << ", allowed " << allowed;
   }
   return ::testing::AssertionSuccess();
 }
@@ -65,8 +65,7 @@ template <typename A, typename B>
 /// Passes when a = e^{jφ} b · (||a|| / ||b||) for some phase φ, i.e. the two vectors span the
 /// same complex line: || a/||a|| − e^{jφ} b/||b|| || <= tol with the best φ.
 inline ::testing::AssertionResult VectorsEqualUpToPhase(const Eigen::VectorXcd& a,
-                                                        const Eigen::VectorXcd& b,
-                                                        double tol) {
+                                                        const Eigen::VectorXcd& b, double tol) {
   if (a.size() != b.size()) {
     return ::testing::AssertionFailure() << "sizes " << a.size() << " vs " << b.size();
   }

@@ -39,7 +39,9 @@ inline LtpRun RunLtp(const std::string& args, const std::string& prefix = "") {
 }
 
 /// A path in the source tree (LTP_SOURCE_DIR, set by tests/CMakeLists.txt).
-inline std::string Src(const std::string& relative) { return std::string(LTP_SOURCE_DIR) + "/" + relative; }
+inline std::string Src(const std::string& relative) {
+  return std::string(LTP_SOURCE_DIR) + "/" + relative;
+}
 
 inline std::string ReadFile(const std::string& path) {
   std::ifstream f(path);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <vector>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "ltp/core/periodic_system.h"
 
@@ -27,12 +27,14 @@ inline PeriodicSystem Mathieu(double a, double q, double c = 0, double omega_p =
   return PeriodicSystem::FromFourier(2 * kPi / omega_p, A);  // 2π/2 = π exactly
 }
 
-/// The same with input u (B = [0; 1]) and output y (C = [1, 0]): y'' + c y' + (a − 2q cos 2t) y = u.
+/// The same with input u (B = [0; 1]) and output y (C = [1, 0]): y'' + c y' + (a − 2q cos 2t) y =
+/// u.
 inline PeriodicSystem MathieuIo(double a, double q, double c) {
   const PeriodicSystem s = Mathieu(a, q, c);
-  return PeriodicSystem::FromFourier(s.period(), *s.fourier_A(),
-                                     FourierMatrix::Constant((Eigen::MatrixXd(2, 1) << 0, 1).finished()),
-                                     FourierMatrix::Constant((Eigen::MatrixXd(1, 2) << 1, 0).finished()));
+  return PeriodicSystem::FromFourier(
+      s.period(), *s.fourier_A(),
+      FourierMatrix::Constant((Eigen::MatrixXd(2, 1) << 0, 1).finished()),
+      FourierMatrix::Constant((Eigen::MatrixXd(1, 2) << 1, 0).finished()));
 }
 
 /// `dofs` damped Mathieu oscillators with stiffnesses k_i = 1 + 0.37 i, coupled to their
@@ -108,7 +110,7 @@ inline PeriodicSystem Jeffcott(double m, double k1, double k2, double c, double 
 /// Its eigenvalues s relate to the fixed-frame Floquet exponents by λ = s ± jΩ, so
 /// Re λ = Re s exactly: an independent closed-form reference for the real parts.
 inline Eigen::VectorXcd JeffcottRotatingEigenvalues(double m, double k1, double k2, double c,
-                                                     double omega) {
+                                                    double omega) {
   Eigen::Matrix2d J;
   J << 0, -1, 1, 0;
   const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();

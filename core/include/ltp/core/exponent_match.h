@@ -21,7 +21,8 @@ std::vector<int> MatchExponentIndices(const std::vector<std::complex<double>>& v
 
 /// The distances of that matching: out[i] for values[i] (+inf when unmatched).
 std::vector<double> MatchExponents(const std::vector<std::complex<double>>& values,
-                                   const std::vector<std::complex<double>>& reference, double omega);
+                                   const std::vector<std::complex<double>>& reference,
+                                   double omega);
 
 /// The largest distance of that matching; +inf when the two sets differ in size, 0 when both
 /// are empty.

@@ -20,11 +20,11 @@ struct FourierFitOptions {
 
 struct FourierFit {
   FourierMatrix series;
-  int samples = 0;          ///< FFT length that was finally used
-  double tail = 0;          ///< estimated norm of the dropped harmonics, relative to max ||M_w||
-  bool converged = false;   ///< tail <= tol
-  std::string decay;        ///< "exponential", "algebraic" or "finite" (coefficients vanish)
-  double decay_rate = 0;    ///< b in ||M_w|| ~ a e^{-b|w|} (exponential) or p in ~ |w|^{-p}
+  int samples = 0;         ///< FFT length that was finally used
+  double tail = 0;         ///< estimated norm of the dropped harmonics, relative to max ||M_w||
+  bool converged = false;  ///< tail <= tol
+  std::string decay;       ///< "exponential", "algebraic" or "finite" (coefficients vanish)
+  double decay_rate = 0;   ///< b in ||M_w|| ~ a e^{-b|w|} (exponential) or p in ~ |w|^{-p}
 };
 
 /// FFT fit of a T-periodic rows×cols function.

@@ -42,7 +42,7 @@ std::vector<std::string> MbcCoordinateNames(int blades);
 /// The rotor in multi-blade coordinates q = (MBC blade coordinates, x, y): constant matrices.
 struct MbcRotorSystem {
   int blades = 0;
-  double rotor_speed = 0;               ///< Ω (rad/s)
+  double rotor_speed = 0;                ///< Ω (rad/s)
   std::vector<std::string> coordinates;  ///< names of q
   Eigen::MatrixXd M, D, K, F, Cd;        ///< M q'' + D q' + K q = F u,  y = Cd q
   Eigen::MatrixXd A, B;                  ///< first order, state (q, q')

@@ -81,8 +81,9 @@ std::vector<int> RateOf(const std::vector<LinChannel>& states);
 struct MbcStateTransform {
   Eigen::MatrixXd T, T_dot;
 };
-MbcStateTransform MbcStateTransformAt(const BladeCoordinates& states, const std::vector<int>& rate_of,
-                                      double psi, double omega, double omega_dot);
+MbcStateTransform MbcStateTransformAt(const BladeCoordinates& states,
+                                      const std::vector<int>& rate_of, double psi, double omega,
+                                      double omega_dot);
 /// t̃ on rotating input or output channels (identity on fixed-frame ones).
 Eigen::MatrixXd MbcChannelTransformAt(const BladeCoordinates& channels, double psi);
 
@@ -111,8 +112,8 @@ struct MbcMode {
   /// by the generator-azimuth state, or any |λ| <= 1e-9 ‖A‖.
   bool rigid_body = false;
   struct Share {
-    int state = 0;       ///< index into Mbc3Result::states
-    double share = 0;    ///< fraction of the displacement-state energy
+    int state = 0;     ///< index into Mbc3Result::states
+    double share = 0;  ///< fraction of the displacement-state energy
   };
   std::vector<Share> dominant;  ///< single states, largest first
   /// Shares summed per coordinate family (a fixed-frame state, a collective, a cosine/sine
@@ -121,7 +122,7 @@ struct MbcMode {
   /// "forward" or "backward" when the leading family is a cyclic pair whose cosine and sine
   /// are about ±90° apart (the pattern travels with or against the rotor), else empty.
   std::string whirl;
-  Eigen::VectorXcd eigenvector; ///< in MBC coordinates (all states)
+  Eigen::VectorXcd eigenvector;  ///< in MBC coordinates (all states)
 };
 
 struct Mbc3Result {
@@ -130,13 +131,13 @@ struct Mbc3Result {
   bool applicable = false;
   std::string reason;
   int blades = 0;
-  double rotor_speed = 0;          ///< mean Ω (rad/s)
-  std::vector<double> azimuths;    ///< ψ_k (rad)
+  double rotor_speed = 0;        ///< mean Ω (rad/s)
+  std::vector<double> azimuths;  ///< ψ_k (rad)
   BladeCoordinates state_coordinates, input_coordinates, output_coordinates;
-  std::vector<LinChannel> states;  ///< MBC state descriptions (derivative order and flags kept)
+  std::vector<LinChannel> states;      ///< MBC state descriptions (derivative order and flags kept)
   std::vector<LtiSystem> transformed;  ///< A_NR, B_NR, C_NR, D_NR at each azimuth
-  LtiSystem average;                    ///< their mean over the azimuths
-  std::vector<MbcMode> modes;           ///< sorted by natural frequency
+  LtiSystem average;                   ///< their mean over the azimuths
+  std::vector<MbcMode> modes;          ///< sorted by natural frequency
   int rigid_body_modes = 0;
   /// max Re λ over the modes that are not rigid-body (1/s).
   double max_real_part = 0;

@@ -45,7 +45,8 @@ ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::Vecto
 
 /// The text of each column of `shapes` (one mode per column); empty texts when the shapes
 /// are empty or do not fit the labels.
-std::vector<std::string> DescribeModeShapes(const SystemLabels& labels, const Eigen::MatrixXcd& shapes,
+std::vector<std::string> DescribeModeShapes(const SystemLabels& labels,
+                                            const Eigen::MatrixXcd& shapes,
                                             const ModeDescriptionOptions& options = {});
 
 }  // namespace ltp

@@ -37,8 +37,8 @@ struct LinChannel {
 
 /// One `.lin` file.
 struct LinFile {
-  std::string path;                 ///< as given (names the file in messages)
-  std::string title;                ///< first non-empty line ("Linearized model: ...")
+  std::string path;                       ///< as given (names the file in messages)
+  std::string title;                      ///< first non-empty line ("Linearized model: ...")
   std::optional<double> simulation_time;  ///< s
   std::optional<double> rotor_speed;      ///< Ω (rad/s) from the header
   std::optional<double> azimuth;          ///< rotor azimuth (rad) from the header
@@ -78,15 +78,15 @@ std::vector<std::string> ExpandLinPaths(const std::vector<std::string>& argument
 /// A set of files at one operating point, sorted by azimuth, with every file's channels
 /// matched to the first file's by description.
 struct LinOperatingPoint {
-  std::vector<std::string> files;  ///< sorted by azimuth
-  std::vector<double> azimuths;    ///< ψ_k in [0, 2π) (rad), strictly increasing
+  std::vector<std::string> files;    ///< sorted by azimuth
+  std::vector<double> azimuths;      ///< ψ_k in [0, 2π) (rad), strictly increasing
   std::vector<double> rotor_speeds;  ///< Ω_k (rad/s) from each header
   /// Rotor speed and acceleration at each azimuth from the operating point, as OpenFAST's
   /// MBC3 takes them: the derivative of the generator azimuth (ED DOF_GeAz, plus the
   /// drivetrain twist DOF_DrTr when present) and of its rate. When the files have no
   /// generator azimuth state: the header's rotor speed and zero.
   std::vector<double> operating_speeds, operating_accelerations;
-  double rotor_speed = 0;  ///< mean of rotor_speeds: the period is 2π/rotor_speed
+  double rotor_speed = 0;            ///< mean of rotor_speeds: the period is 2π/rotor_speed
   std::optional<double> wind_speed;  ///< m/s, from the first file's header when it has one
   std::vector<LinChannel> states, inputs, outputs;  ///< in the first file's order
   std::vector<LtiSystem> samples;  ///< A, B, C, D at each azimuth, channels in that order

@@ -45,18 +45,18 @@
 namespace ltp {
 
 struct RotorParameters {
-  int blades = 4;          ///< N >= 2
-  double omega = 1.0;      ///< rotor speed Ω (rad/s), > 0
-  double hinge_offset = 0.3;          ///< e (m), >= 0
-  double first_moment = 0.27;         ///< S_b (kg m), >= 0
-  double inertia = 1.0;               ///< I_b (kg m²), > 0
-  double lag_stiffness = 0.0;         ///< K_ζ (N m/rad), >= 0
-  double lag_damping = 0.19;          ///< C_ζ (N m s/rad), >= 0
-  double mass_x = 7.4, mass_y = 3.0;  ///< M_x, M_y (kg), support + hub + blades
+  int blades = 4;                                 ///< N >= 2
+  double omega = 1.0;                             ///< rotor speed Ω (rad/s), > 0
+  double hinge_offset = 0.3;                      ///< e (m), >= 0
+  double first_moment = 0.27;                     ///< S_b (kg m), >= 0
+  double inertia = 1.0;                           ///< I_b (kg m²), > 0
+  double lag_stiffness = 0.0;                     ///< K_ζ (N m/rad), >= 0
+  double lag_damping = 0.19;                      ///< C_ζ (N m s/rad), >= 0
+  double mass_x = 7.4, mass_y = 3.0;              ///< M_x, M_y (kg), support + hub + blades
   double stiffness_x = 2.86, stiffness_y = 2.86;  ///< k_x, k_y (N/m), >= 0
   double damping_x = 2.35, damping_y = 1.18;      ///< c_x, c_y (N s/m), >= 0
-  double mistune_k = 1.0;  ///< factor on blade 1's lag spring K_ζ, >= 0
-  double mistune_c = 1.0;  ///< factor on blade 1's lag damper C_ζ, >= 0
+  double mistune_k = 1.0;                         ///< factor on blade 1's lag spring K_ζ, >= 0
+  double mistune_c = 1.0;                         ///< factor on blade 1's lag damper C_ζ, >= 0
 
   /// @throws InputError naming the parameter (N not an integer >= 2, Ω <= 0, I_b <= 0, negative
   /// stiffness/damping, a mass matrix that is not positive definite: M_x, M_y must exceed

@@ -32,7 +32,8 @@ struct Scene {
   /// numbers and pi). @throws InputError on an unknown name, a bad expression or NaN/inf.
   ParameterMap Resolve(const std::vector<std::pair<std::string, std::string>>& overrides) const;
   /// Resolve + build.
-  PeriodicSystem Build(const std::vector<std::pair<std::string, std::string>>& overrides = {}) const;
+  PeriodicSystem Build(
+      const std::vector<std::pair<std::string, std::string>>& overrides = {}) const;
 };
 
 /// The built-in scenes, in display order.

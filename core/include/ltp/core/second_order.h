@@ -20,7 +20,7 @@ struct SecondOrderSystem {
   PeriodicSystem::MatrixFunction M, D, K;  ///< dofs × dofs; D may be empty (no damping)
   PeriodicSystem::MatrixFunction F;        ///< dofs × inputs (may be empty if inputs == 0)
   PeriodicSystem::MatrixFunction Cd, Cv;   ///< outputs × dofs; either may be empty (zero)
-  std::vector<double> breakpoints;          ///< times in [0, T) where a coefficient jumps
+  std::vector<double> breakpoints;         ///< times in [0, T) where a coefficient jumps
 };
 
 struct SecondOrderOptions {

@@ -39,9 +39,9 @@ namespace ltp {
 /// 181.3, 200.7, 332.4 Hz (largest deviation −5.4%, mode 7). The hub comes out as a steel
 /// disc (r 71 mm, 13.4 mm thick, 1.47 kg); the blade lag modes (~1.4 kHz) lie above 2·fmax.
 struct TowerRotorParams {
-  double omega = 100;    ///< rotor speed Ω (rad/s), >= 0; 0 = non-rotating (time-invariant)
-  double fmax = 400;     ///< frequency range of interest (Hz); body modes kept up to 2·fmax
-  double zeta = 0.01;    ///< modal damping ratio of every body mode (structural damping)
+  double omega = 100;  ///< rotor speed Ω (rad/s), >= 0; 0 = non-rotating (time-invariant)
+  double fmax = 400;   ///< frequency range of interest (Hz); body modes kept up to 2·fmax
+  double zeta = 0.01;  ///< modal damping ratio of every body mode (structural damping)
   // Cantilever (steel): length, cross-section width along y and depth along z.
   double cantilever_length = 0.470;
   double cantilever_width_y = 0.0227;
@@ -80,11 +80,11 @@ struct TowerRotorReduction {
 /// ψ = Ω t, p = [cantilever modal coords; blade 1 modal coords; blade 2 modal coords].
 /// The coefficients are exact Fourier series in ψ (harmonics −2..2), i.e. in t with Ωp = Ω.
 struct TowerRotorModel {
-  double omega = 0;           ///< rotor speed Ω (rad/s)
+  double omega = 0;  ///< rotor speed Ω (rad/s)
   int dofs = 0;
-  FourierMatrix M, D, K;      ///< in harmonics of ψ (constant when Ω = 0)
-  Eigen::MatrixXd F;          ///< dofs × 2: columns Fz_tip, Fy_tip
-  Eigen::MatrixXd Cd;         ///< 2 × dofs: rows z_tip, y_tip
+  FourierMatrix M, D, K;  ///< in harmonics of ψ (constant when Ω = 0)
+  Eigen::MatrixXd F;      ///< dofs × 2: columns Fz_tip, Fy_tip
+  Eigen::MatrixXd Cd;     ///< 2 × dofs: rows z_tip, y_tip
   std::vector<std::string> dof_labels;
   TowerRotorReduction reduction;
 };
@@ -100,11 +100,11 @@ TowerRotorMatrices TowerRotorMatricesAt(const TowerRotorParams& params, double p
 
 /// One row of the non-rotating mode table (Ω = 0, blades along ±z, i.e. ψ = 0, undamped).
 struct TowerRotorMode {
-  int index = 0;                ///< 1-based
-  double frequency_hz = 0;      ///< reduced model (the paper's "MBS" column)
-  double fe_frequency_hz = 0;   ///< unreduced FE model of the coupled structure ("FEM")
-  double paper_fem_hz = 0;      ///< paper §5.1 table, FEM column; 0 when the paper has no row
-  double paper_mbs_hz = 0;      ///< paper §5.1 table, MBS column; 0 when absent
+  int index = 0;                  ///< 1-based
+  double frequency_hz = 0;        ///< reduced model (the paper's "MBS" column)
+  double fe_frequency_hz = 0;     ///< unreduced FE model of the coupled structure ("FEM")
+  double paper_fem_hz = 0;        ///< paper §5.1 table, FEM column; 0 when the paper has no row
+  double paper_mbs_hz = 0;        ///< paper §5.1 table, MBS column; 0 when absent
   std::string paper_description;  ///< "cantilever | blades" as in the paper's table
   /// This model's mode from its strain-energy shares, e.g.
   /// "cantilever bending z 80%, blade flap anti-phase 15%".
@@ -130,7 +130,6 @@ std::vector<double> TowerRotorBeamFrequencies(double stiffness, double inertia, 
 /// part of the scene's stiffness. Exposed for tests (Southwell coefficients).
 std::vector<double> TowerRotorRotatingBladeFlapFrequencies(double ei, double rho_a,
                                                            double root_radius, double length,
-                                                           double omega, int elements,
-                                                           int count);
+                                                           double omega, int elements, int count);
 
 }  // namespace ltp

@@ -50,12 +50,12 @@ struct CampbellLine {
 };
 
 struct CampbellCrossing {
-  size_t line = 0;   ///< index into CampbellDiagram::lines
-  int per_rev = 0;   ///< n of the line n·Ω/2π
+  size_t line = 0;                            ///< index into CampbellDiagram::lines
+  int per_rev = 0;                            ///< n of the line n·Ω/2π
   double parameter = 0, parameter_error = 0;  ///< swept value at the crossing, its error estimate
-  double rotor_speed = 0;   ///< rad/s
-  double frequency_hz = 0;  ///< n·Ω/2π there
-  double real_part = 0;     ///< Re λ of the mode there (1/s), interpolated
+  double rotor_speed = 0;                     ///< rad/s
+  double frequency_hz = 0;                    ///< n·Ω/2π there
+  double real_part = 0;                       ///< Re λ of the mode there (1/s), interpolated
   double damping_ratio = 0;
 };
 
@@ -65,7 +65,7 @@ struct CampbellDiagram {
   int blades = 0;                   ///< SystemLabels::blades (per-rev multiples to emphasise)
   std::vector<int> per_rev;         ///< n of the drawn per-rev lines; empty without a rotor speed
   std::vector<CampbellLine> lines;
-  std::vector<CampbellCrossing> crossings;   ///< by line, then per-rev, then parameter
+  std::vector<CampbellCrossing> crossings;  ///< by line, then per-rev, then parameter
   /// Intervals of the swept parameter where the system is stable but weakly damped.
   std::vector<std::pair<double, double>> weakly_damped;
   std::vector<std::string> diagnostics;

@@ -64,9 +64,9 @@ struct FloquetOptions {
 struct FloquetMode {
   std::complex<double> exponent;        ///< λ on the chosen branch (1/s)
   std::complex<double> log_multiplier;  ///< log ρ = log|ρ| + j arg ρ, arg in (−π, π]
-  int branch = 0;             ///< m in λ = Log(ρ)/T + j m Ωp
-  double frequency_hz = 0;    ///< Im λ / 2π
-  double damping_ratio = 0;   ///< −Re λ / |λ| (0 when λ = 0)
+  int branch = 0;                       ///< m in λ = Log(ρ)/T + j m Ωp
+  double frequency_hz = 0;              ///< Im λ / 2π
+  double damping_ratio = 0;             ///< −Re λ / |λ| (0 when λ = 0)
   double central_weight = 0;  ///< fraction of ξ's Fourier energy on harmonic 0 (chosen branch)
   /// Distance of the energy centroid from the nearest branch tie (0.5 = unambiguous, 0 = tie:
   /// e.g. a negative real multiplier, whose exponent sits on the strip edge).
@@ -85,12 +85,12 @@ struct FloquetResult {
   double period = 0;
   std::string integrator;
   std::string multiplier_method;
-  int segments = 0;              ///< K actually used
-  std::vector<double> segment_times;   ///< t_0 = 0 < t_1 < … < t_K = T
-  std::vector<FloquetMode> modes;      ///< sorted by frequency (|Im λ|), then Re λ
-  double max_real_exponent = 0;        ///< max Re λ (1/s), rigid-body modes excluded
-  double max_log_abs_multiplier = 0;   ///< max log|ρ| = T · max Re λ
-  bool stable = false;                 ///< verdict == kStable
+  int segments = 0;                   ///< K actually used
+  std::vector<double> segment_times;  ///< t_0 = 0 < t_1 < … < t_K = T
+  std::vector<FloquetMode> modes;     ///< sorted by frequency (|Im λ|), then Re λ
+  double max_real_exponent = 0;       ///< max Re λ (1/s), rigid-body modes excluded
+  double max_log_abs_multiplier = 0;  ///< max log|ρ| = T · max Re λ
+  bool stable = false;                ///< verdict == kStable
   StabilityVerdict verdict = StabilityVerdict::kFailed;
   /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
   /// second run at a tighter tolerance, plus the round-off floor. -1 when not computed.

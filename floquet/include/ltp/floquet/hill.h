@@ -106,9 +106,9 @@ struct HillModeInfo {
 /// ||A_w|| <= a e^{−b|w|} envelope of the Fourier coefficients of A (Frobenius norms), or an
 /// algebraic decay ~ |w|^{−p} for which no exponential envelope exists.
 struct HillDecay {
-  std::string kind;  ///< "finite", "exponential" or "algebraic"
-  int harmonics = 0;          ///< H: largest harmonic of A used
-  double fourier_tail = 0;    ///< relative norm of the dropped harmonics of A (0 when exact)
+  std::string kind;         ///< "finite", "exponential" or "algebraic"
+  int harmonics = 0;        ///< H: largest harmonic of A used
+  double fourier_tail = 0;  ///< relative norm of the dropped harmonics of A (0 when exact)
   /// Fitted rate: b of ||A_w|| ~ e^{−b|w|} (exponential; caps the envelope's b) or p of
   /// ||A_w|| ~ |w|^{−p} (algebraic: no exponential envelope, no a-priori bound); 0 = finite.
   double rate = 0;
@@ -188,18 +188,18 @@ struct HillStudyRow {
   /// Per physical exponent (in the order of the reference): |λ_Hill − λ_ref| modulo jΩp of
   /// the analysed period; empty without a reference.
   std::vector<double> errors;
-  double max_error = -1;          ///< max of errors; -1 without a reference
-  double apriori_bound = 0;       ///< HillResult::apriori_bound
-  double truncation_estimate = 0; ///< N vs N+Δ (HillResult::truncation_estimate)
-  double selection_margin = 0;    ///< min over modes
-  double tail_weight = 0;         ///< max over modes
+  double max_error = -1;           ///< max of errors; -1 without a reference
+  double apriori_bound = 0;        ///< HillResult::apriori_bound
+  double truncation_estimate = 0;  ///< N vs N+Δ (HillResult::truncation_estimate)
+  double selection_margin = 0;     ///< min over modes
+  double tail_weight = 0;          ///< max over modes
   bool ambiguous = false;
   double elapsed_s = 0;
 };
 
 struct HillStudy {
   std::vector<HillStudyRow> rows;
-  HillDecay decay;           ///< of A's coefficients
+  HillDecay decay;  ///< of A's coefficients
   /// Fitted convergence law of the error (of the N vs N+Δ estimate without a reference):
   /// "exponential" (error ~ e^{−rate N}) or "algebraic" (error ~ N^{−rate}); "" = too few
   /// points above round-off.
@@ -230,8 +230,8 @@ struct HillStudyRun {
 inline constexpr int kHillStudyMaxHarmonics = 32;
 inline constexpr double kHillStudyReferenceTol = 1e-12;
 /// @throws InputError for max_harmonics < 1 or invalid options.
-HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics, const HillOptions& options,
-                          bool reference);
+HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
+                          const HillOptions& options, bool reference);
 
 // --- Building blocks (also used by tests and benchmarks) ------------------------------------
 
@@ -266,7 +266,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
 /// and in Python (`ltp.hill`): AnalyzeHillAuto from N = kHillAutoStartHarmonics to the
 /// tolerance HillAutoTolerance(rel_tol) of the analysis' relative tolerance. `options.harmonics`
 /// is replaced by the start.
-HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options, double rel_tol);
+HillResult AnalyzeHillToTolerance(const PeriodicSystem& system, HillOptions options,
+                                  double rel_tol);
 /// Doubled from here: smooth scenes converge by N = 8–16 (study).
 inline constexpr int kHillAutoStartHarmonics = 4;
 /// max(rel_tol, 1e-12): below 1e-12 the N vs N+Δ estimate meets the round-off of the eigensolve.

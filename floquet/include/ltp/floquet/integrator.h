@@ -12,8 +12,8 @@
 namespace ltp {
 
 enum class IntegratorType {
-  kDopri5,      ///< adaptive Dormand–Prince 5(4), Boost.Odeint; smooth non-stiff A(t)
-  kRkf78,       ///< adaptive Runge–Kutta–Fehlberg 7(8), Boost.Odeint; tight tolerances
+  kDopri5,  ///< adaptive Dormand–Prince 5(4), Boost.Odeint; smooth non-stiff A(t)
+  kRkf78,   ///< adaptive Runge–Kutta–Fehlberg 7(8), Boost.Odeint; tight tolerances
   /// Bulirsch–Stoer extrapolation with adaptive order, Boost.Odeint: the cheapest per digit
   /// for smooth small systems at tight tolerances (stability maps); no jumps inside pieces
   kBulirschStoer,
@@ -50,12 +50,12 @@ struct IntegratorOptions {
 };
 
 struct TransitionResult {
-  Eigen::MatrixXd phi;      ///< Φ(t1, t0), n×n
-  bool ok = false;          ///< false: integrator failed; `message` says why
+  Eigen::MatrixXd phi;  ///< Φ(t1, t0), n×n
+  bool ok = false;      ///< false: integrator failed; `message` says why
   std::string message;
-  long steps = 0;           ///< accepted steps (fixed-step: steps taken)
-  long rhs_evals = 0;       ///< evaluations of A(t)
-  int steps_per_period = 0; ///< fixed-step methods: the resolution used (after auto choice)
+  long steps = 0;              ///< accepted steps (fixed-step: steps taken)
+  long rhs_evals = 0;          ///< evaluations of A(t)
+  int steps_per_period = 0;    ///< fixed-step methods: the resolution used (after auto choice)
   double error_estimate = -1;  ///< fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; else -1
 };
 

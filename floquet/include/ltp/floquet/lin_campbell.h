@@ -35,10 +35,10 @@ struct LinCampbellOptions {
 };
 
 struct LinCampbellPoint {
-  std::vector<std::string> files;   ///< the azimuth files, sorted by azimuth
-  double rotor_speed = 0;           ///< rad/s
-  std::optional<double> wind_speed; ///< m/s
-  double parameter = 0;             ///< the diagram's abscissa: rpm or m/s
+  std::vector<std::string> files;    ///< the azimuth files, sorted by azimuth
+  double rotor_speed = 0;            ///< rad/s
+  std::optional<double> wind_speed;  ///< m/s
+  double parameter = 0;              ///< the diagram's abscissa: rpm or m/s
   Mbc3Result mbc;
   /// Caveats of this point: too few azimuths to resolve the periodic part, rigid-body modes,
   /// MBC3's own diagnostics.
@@ -46,11 +46,11 @@ struct LinCampbellPoint {
 };
 
 struct LinCampbellResult {
-  std::string axis_label;               ///< "rotor speed [rpm]" or "wind speed [m/s]"
-  std::vector<LinCampbellPoint> points; ///< ordered by the abscissa
-  std::vector<SweepPoint> sweep;        ///< per point: the MBC3 modes as a sweep point
+  std::string axis_label;                ///< "rotor speed [rpm]" or "wind speed [m/s]"
+  std::vector<LinCampbellPoint> points;  ///< ordered by the abscissa
+  std::vector<SweepPoint> sweep;         ///< per point: the MBC3 modes as a sweep point
   ModeTracking tracking;
-  CampbellDiagram diagram;              ///< lines named by MBC3's descriptions
+  CampbellDiagram diagram;  ///< lines named by MBC3's descriptions
 };
 
 /// @throws InputError when fewer than one point is given, MBC3 does not apply to a point, two

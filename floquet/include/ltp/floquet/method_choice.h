@@ -51,6 +51,7 @@ struct HillSolverChoice {
 /// (2N+1)n rows, band = (min(H_A, 2N)+1)n) and m ≥ 50, or whenever max|Re eig A_0| > 10 Ωp (the
 /// dense selection missed stiff.yaml's +150 exponent at every N; shift-invert around A_0's
 /// eigenvalues found it); dense otherwise. `coefficient_harmonics` = H_A of the series used.
-HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics, int coefficient_harmonics);
+HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics,
+                                  int coefficient_harmonics);
 
 }  // namespace ltp

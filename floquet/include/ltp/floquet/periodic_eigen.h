@@ -36,7 +36,7 @@ LogEigenvalues SingleShotLogEigenvalues(const Eigen::MatrixXd& product);
 /// Each vector set is normalised to max_i ||v_i|| = 1.
 struct PeriodicEigenvector {
   std::vector<Eigen::VectorXcd> v;  ///< K vectors of length n
-  double residual = 0;  ///< max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i|| + |σ_i|)
+  double residual = 0;              ///< max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i|| + |σ_i|)
 };
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,

@@ -21,10 +21,10 @@
 namespace ltp {
 
 struct SectorFloquetResult {
-  bool ok = false;       ///< false: the integrator failed (see message)
+  bool ok = false;  ///< false: the integrator failed (see message)
   std::string message;
-  int sectors = 0;       ///< N
-  double sector_time = 0;  ///< τ = T/N (s)
+  int sectors = 0;             ///< N
+  double sector_time = 0;      ///< τ = T/N (s)
   Eigen::MatrixXd sector_map;  ///< G = P Φ(τ, 0)
   Eigen::MatrixXd monodromy;   ///< Φ(T, 0) = G^N (entries may under/overflow when stiff)
   /// log ρ = N log μ (real part exact even when ρ under/overflows), arg wrapped to (−π, π].

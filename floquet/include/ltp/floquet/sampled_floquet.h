@@ -37,7 +37,7 @@ struct SampledFloquetMode {
   /// Index into Mbc3Result::modes, or −1 when MBC does not apply (the modes are then those of
   /// the nearest-sample route with Im λ >= 0, on its own branch).
   int mbc_mode = -1;
-  std::complex<double> reference;  ///< the MBC eigenvalue (or the hold route's exponent)
+  std::complex<double> reference;   ///< the MBC eigenvalue (or the hold route's exponent)
   std::complex<double> hold, trig;  ///< exponents (1/s) of the two routes
   double difference = 0;            ///< |hold − trig| (1/s)
   double to_reference = 0;          ///< max(|hold − ref|, |trig − ref|) (MBC modes only)
@@ -54,10 +54,10 @@ struct SampledFloquetResult {
   std::vector<SampledFloquetMode> modes;
   /// max Re λ of each route without the rigid-body mode (1/s).
   double max_real_hold = 0, max_real_trig = 0;
-  bool stable = false;            ///< both routes: max Re λ (rigid body excluded) < 0
-  double max_difference = 0;      ///< max |hold − trig| over the modes (1/s)
-  double max_to_reference = 0;    ///< max distance to the MBC eigenvalues (1/s), −1 if none
-  std::vector<std::string> notes; ///< caveats: what K samples resolve, branches, rigid body
+  bool stable = false;             ///< both routes: max Re λ (rigid body excluded) < 0
+  double max_difference = 0;       ///< max |hold − trig| over the modes (1/s)
+  double max_to_reference = 0;     ///< max distance to the MBC eigenvalues (1/s), −1 if none
+  std::vector<std::string> notes;  ///< caveats: what K samples resolve, branches, rigid body
 };
 
 /// Both Floquet routes on the samples, matched to `mbc`'s modes (pass a result with

@@ -30,9 +30,9 @@ struct BoundaryOptions {
 };
 
 struct BoundaryEstimate {
-  double value = 0;          ///< boundary location in the swept parameter
-  bool refined = false;      ///< false: the grid value (reason in `note`)
-  double bracket = 0;        ///< width of the final bracket (or the grid step)
+  double value = 0;            ///< boundary location in the swept parameter
+  bool refined = false;        ///< false: the grid value (reason in `note`)
+  double bracket = 0;          ///< width of the final bracket (or the grid step)
   bool at_sweep_edge = false;  ///< the interval extends beyond the sweep: value is the sweep end
   int evaluations = 0;
   std::string note;

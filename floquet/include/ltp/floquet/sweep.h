@@ -66,18 +66,18 @@ struct SweepOptions {
 };
 
 struct SweepPoint {
-  size_t index = 0;             ///< grid index: i0 + n0 · i1 (first axis fastest)
-  std::vector<double> values;   ///< parameter value per axis
+  size_t index = 0;            ///< grid index: i0 + n0 · i1 (first axis fastest)
+  std::vector<double> values;  ///< parameter value per axis
   bool ok = false;
-  std::string failure;          ///< why the point failed (empty when ok)
+  std::string failure;  ///< why the point failed (empty when ok)
   StabilityVerdict verdict = StabilityVerdict::kFailed;
   double period = 0;
   /// Rotor speed of the point's system (rad/s; NaN when the system is not a rotor): the
   /// per-rev excitation lines of a Campbell diagram.
   double rotor_speed = std::numeric_limits<double>::quiet_NaN();
-  double max_real_exponent = std::numeric_limits<double>::quiet_NaN();  ///< 1/s
-  double max_log_multiplier = std::numeric_limits<double>::quiet_NaN(); ///< T · max Re λ
-  double error_estimate = -1;   ///< exponents (1/s); -1 when this point was not checked
+  double max_real_exponent = std::numeric_limits<double>::quiet_NaN();   ///< 1/s
+  double max_log_multiplier = std::numeric_limits<double>::quiet_NaN();  ///< T · max Re λ
+  double error_estimate = -1;  ///< exponents (1/s); -1 when this point was not checked
   /// Exponents on the chosen branch, in ModeDisplayOrder (principal branch without modes).
   std::vector<FloquetMode> modes;
   /// Column k: mode k's shape ξ_k(0), unit norm (monodromy route with modes; else empty).
@@ -90,8 +90,8 @@ struct SweepPoint {
 
 /// The grid of a sweep: axis values and the parameter map of every point.
 struct SweepGrid {
-  std::vector<SweepAxis> axes;               ///< 1 or 2
-  std::vector<std::vector<double>> values;   ///< per axis
+  std::vector<SweepAxis> axes;              ///< 1 or 2
+  std::vector<std::vector<double>> values;  ///< per axis
   size_t size() const;
   std::vector<double> PointValues(size_t index) const;
 };

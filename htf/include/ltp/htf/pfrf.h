@@ -70,21 +70,21 @@ struct ModalModel {
   int states = 0, inputs = 0, outputs = 0;
   double period = 0, omega_p = 0;
   std::vector<std::complex<double>> exponents;  ///< λ_k (the branches given)
-  int harmonics = 0;                   ///< V: Ĉ_v, B̂_u, D_w kept for |v| <= V
-  std::vector<Eigen::MatrixXcd> c_hat;  ///< Ĉ_v (outputs × states), index v + V
-  std::vector<Eigen::MatrixXcd> b_hat;  ///< B̂_u (states × inputs), index u + V
-  std::vector<Eigen::MatrixXcd> d_hat;  ///< D_w (outputs × inputs), index w + V
-  int samples = 0;        ///< uniform samples per period finally used
-  double tail = 0;        ///< worst relative Fourier amplitude in the upper half (per mode)
+  int harmonics = 0;                            ///< V: Ĉ_v, B̂_u, D_w kept for |v| <= V
+  std::vector<Eigen::MatrixXcd> c_hat;          ///< Ĉ_v (outputs × states), index v + V
+  std::vector<Eigen::MatrixXcd> b_hat;          ///< B̂_u (states × inputs), index u + V
+  std::vector<Eigen::MatrixXcd> d_hat;          ///< D_w (outputs × inputs), index w + V
+  int samples = 0;                              ///< uniform samples per period finally used
+  double tail = 0;  ///< worst relative Fourier amplitude in the upper half (per mode)
   /// The tail stopped shrinking when the samples were doubled: it is the noise level of the
   /// integrated mode samples, and harmonics below it were dropped.
   bool noise_floor = false;
-  double condition = 0;   ///< max(mode_condition, max_t cond Ξ(t)); information only
+  double condition = 0;  ///< max(mode_condition, max_t cond Ξ(t)); information only
   /// The Floquet analysis succeeded and tail <= max_tail. A sweep with route auto can still
   /// find the model wrong by its cross-check (PfrfResult::modal_cross_check_failed).
   bool reliable = false;
   long rhs_evals = 0;
-  double elapsed_s = 0;   ///< building the model (the Floquet analysis not included)
+  double elapsed_s = 0;  ///< building the model (the Floquet analysis not included)
   std::vector<std::string> diagnostics;
 
   /// H_z(ω) for z = min_order..max_order.
@@ -113,9 +113,9 @@ struct HtfOptions {
   int harmonics = 0;
   /// Δ of the truncation check (0 = automatic: max(2, N/4)).
   int delta = 0;
-  double tol = 1e-11;          ///< relative truncation target of the automatic choice
-  int max_harmonics = 128;     ///< upper bound of the automatic choice
-  FourierFitOptions fourier;   ///< for systems not in Fourier form
+  double tol = 1e-11;         ///< relative truncation target of the automatic choice
+  int max_harmonics = 128;    ///< upper bound of the automatic choice
+  FourierFitOptions fourier;  ///< for systems not in Fourier form
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
@@ -230,7 +230,7 @@ class ForcedResponseSolver {
 struct PfrfOptions {
   std::vector<double> frequencies_hz;  ///< excitation frequencies f = ω/2π
   int min_order = -4, max_order = 4;
-  int input = 0, output = 0;           ///< the channel reported
+  int input = 0, output = 0;  ///< the channel reported
   PfrfRoute primary = PfrfRoute::kAuto;
   /// Routes run on every `check_every`-th frequency (and the last) to estimate the error.
   /// kAuto in this list: the check the automatic choice pairs with the primary.
@@ -257,20 +257,20 @@ struct RouteRun {
   /// max |H_route − H_primary| over orders at each point (0 for the primary)
   std::vector<double> deviation;
   int failures = 0;
-  double setup_s = 0;   ///< one-off work (decomposition, Fourier fit, Φ samples)
-  double elapsed_s = 0; ///< setup + all points
+  double setup_s = 0;    ///< one-off work (decomposition, Fourier fit, Φ samples)
+  double elapsed_s = 0;  ///< setup + all points
   std::vector<std::string> diagnostics;
 };
 
 struct Resonance {
-  int order = 0;              ///< z
-  double f_exc_hz = 0;        ///< excitation frequency of the peak
-  double f_resp_hz = 0;       ///< f_exc + z fp
-  double magnitude = 0;       ///< |H_z| at the peak
-  int mode = -1;              ///< Floquet mode k (index into FloquetResult::modes), -1 unknown
-  int harmonic = 0;           ///< v: the response line f_k + v fp of that mode
-  double mode_line_hz = 0;    ///< Im λ_k/2π + v fp
-  double share = 0;           ///< |dominant modal term| / Σ |terms| at the peak
+  int order = 0;            ///< z
+  double f_exc_hz = 0;      ///< excitation frequency of the peak
+  double f_resp_hz = 0;     ///< f_exc + z fp
+  double magnitude = 0;     ///< |H_z| at the peak
+  int mode = -1;            ///< Floquet mode k (index into FloquetResult::modes), -1 unknown
+  int harmonic = 0;         ///< v: the response line f_k + v fp of that mode
+  double mode_line_hz = 0;  ///< Im λ_k/2π + v fp
+  double share = 0;         ///< |dominant modal term| / Σ |terms| at the peak
 };
 
 struct PfrfResult {
@@ -284,7 +284,7 @@ struct PfrfResult {
   /// Absolute error estimate of every value: the spread of the routes at the nearest check
   /// points (and the HTF truncation change there), at least the modal tail.
   std::vector<std::vector<double>> error_estimate;
-  std::vector<bool> checked;  ///< frequency f had check routes run on it
+  std::vector<bool> checked;     ///< frequency f had check routes run on it
   std::vector<RouteRun> routes;  ///< primary first
   /// Why these routes (automatic choice), or "as requested".
   std::string route_choice;

@@ -14,8 +14,8 @@
 namespace ltp {
 
 struct SimulateOptions {
-  int input = 0;                      ///< the excited input
-  std::vector<double> frequencies_hz; ///< one record per frequency (> 0)
+  int input = 0;                       ///< the excited input
+  std::vector<double> frequencies_hz;  ///< one record per frequency (> 0)
   double amplitude = 1;
   /// Recorded length per record, in periods T. Frequencies are moved to the nearest multiple
   /// of 1/(periods·T) (the record then holds whole cycles of every response line: no leakage)
@@ -37,8 +37,8 @@ struct SimulateOptions {
 
 struct SimulationResult {
   TimeData data;
-  double settle_time = 0;            ///< s, integrated before each record
-  double max_real_exponent = 0;      ///< of the system (1/s)
+  double settle_time = 0;                ///< s, integrated before each record
+  double max_real_exponent = 0;          ///< of the system (1/s)
   std::vector<std::string> diagnostics;  ///< e.g. frequencies moved to the record's grid
 };
 

@@ -41,13 +41,13 @@ struct SnapshotOptions {
 };
 
 struct SnapshotResult {
-  double time = 0;                   ///< the instant frozen (s)
-  std::optional<double> angle_deg;   ///< when frozen at a rotor angle
+  double time = 0;                  ///< the instant frozen (s)
+  std::optional<double> angle_deg;  ///< when frozen at a rotor angle
   LtiSystem frozen;
   std::vector<std::complex<double>> eigenvalues;  ///< of the frozen A ("snapshot modes")
   std::vector<double> frequencies_hz;
-  std::vector<std::complex<double>> snapshot;      ///< H(2πf) of the channel
-  std::vector<std::complex<double>> summed;        ///< G(2πf) (compare only)
+  std::vector<std::complex<double>> snapshot;  ///< H(2πf) of the channel
+  std::vector<std::complex<double>> summed;    ///< G(2πf) (compare only)
   /// Error estimate of G: the check's relative disagreement times Σ_z |H_z(ω − zΩp)|.
   std::vector<double> summed_error;
   /// max over check points of max_z |H_z,modal − H_z,htf| / max_z |H_z,htf|

@@ -11,15 +11,15 @@
 namespace ltp {
 
 struct TimeRecord {
-  double excitation_hz = 0;    ///< the sine's frequency (Hz) of a step-sine record
-  std::vector<double> time;    ///< uniform, increasing (s)
-  Eigen::MatrixXd inputs;      ///< samples × inputs
-  Eigen::MatrixXd outputs;     ///< samples × outputs
+  double excitation_hz = 0;  ///< the sine's frequency (Hz) of a step-sine record
+  std::vector<double> time;  ///< uniform, increasing (s)
+  Eigen::MatrixXd inputs;    ///< samples × inputs
+  Eigen::MatrixXd outputs;   ///< samples × outputs
 };
 
 struct TimeData {
-  double period = 0;                 ///< T (s) of the system
-  std::optional<double> rotor_speed; ///< rad/s, when the system is a rotor
+  double period = 0;                  ///< T (s) of the system
+  std::optional<double> rotor_speed;  ///< rad/s, when the system is a rotor
   std::vector<std::string> input_names, output_names;
   std::vector<TimeRecord> records;
   /// @throws InputError naming the record and sample: T not positive, sizes that disagree,
