@@ -9,8 +9,9 @@
 //   formed from the pieces and never from ρ itself (which may lie far outside double range).
 //   SLICOT's product is ordered A_1 A_2 ⋯ A_K (A_1 leftmost), so A_j = Φ_{K+1-j}.
 //
-// Eigenvectors: null vectors of the block-cyclic "lifted" matrix, by sparse inverse iteration
-// (see ComputePeriodicEigenvectors below).
+// Eigenvectors: from the periodic Schur form (periodic_schur_vectors.cc) for isolated
+// multipliers, else null vectors of the block-cyclic "lifted" matrix by sparse inverse
+// iteration (see ComputePeriodicEigenvectors below); docs/periodic-eigenvectors.md.
 #include "ltp/floquet/periodic_eigen.h"
 
 #include <Eigen/Sparse>
@@ -26,20 +27,8 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-
-// SLICOT 5.0 (Fortran 77, gfortran ABI): every argument by pointer, the lengths of CHARACTER
-// arguments appended as hidden size_t arguments. Argument lists checked against the SLICOT 5.0
-// sources of MB03VD.f and MB03BD.f.
-extern "C" {
-void mb03vd_(const int* n, const int* p, const int* ilo, const int* ihi, double* a, const int* lda1,
-             const int* lda2, double* tau, const int* ldtau, double* dwork, int* info);
-void mb03bd_(const char* job, const char* defl, const char* compq, const int* qind, const int* k,
-             const int* n, const int* h, const int* ilo, const int* ihi, const int* s, double* a,
-             const int* lda1, const int* lda2, double* q, const int* ldq1, const int* ldq2,
-             double* alphar, double* alphai, double* beta, int* scal, int* iwork, const int* liwork,
-             double* dwork, const int* ldwork, int* iwarn, int* info, std::size_t job_len,
-             std::size_t defl_len, std::size_t compq_len);
-}
+#include "periodic_schur_vectors.h"
+#include "slicot.h"
 
 namespace ltp {
 namespace {
@@ -383,54 +372,10 @@ PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
   return out;
 }
 
-// Propagation is tried only while the multipliers span at most this many e-folds: an error of
-// v_0 along another mode grows by |ρ_j / ρ_k| over the period.
-constexpr double kMaxPropagationSpread = 25;
-// A propagated vector is kept when its cyclic residual is at this level (the block-cyclic
-// inverse iteration reaches ~1e-15); otherwise that mode goes through the inverse iteration.
-constexpr double kPropagationResidual = 1e-12;
-
-/// The cheap route for isolated multipliers of a product whose multipliers span few decades:
-/// v_0 from the eigenvectors of the formed product, v_{i+1} = Φ_i v_i / σ_i. Returns an
-/// infinite residual for modes it does not handle, so that the caller falls back.
-std::vector<PeriodicEigenvector> PropagatedEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
-                                                        const std::vector<double>& norms,
-                                                        const std::vector<double>& dt,
-                                                        double period,
-                                                        const std::vector<Complex>& log_rho,
-                                                        const std::vector<bool>& isolated) {
-  const int k = static_cast<int>(factors.size());
-  const Eigen::Index n = factors[0].rows();
-  std::vector<PeriodicEigenvector> out(log_rho.size());
-  for (auto& o : out) o.residual = kInf;
-  double lo = kInf, hi = -kInf;
-  for (const Complex& l : log_rho) {
-    if (!std::isfinite(l.real())) return out;
-    lo = std::min(lo, l.real());
-    hi = std::max(hi, l.real());
-  }
-  if (hi - lo > kMaxPropagationSpread) return out;
-  Eigen::MatrixXd product = factors[0];
-  for (int i = 1; i < k; ++i) product = (factors[i] * product).eval();
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(product.cast<Complex>());
-  if (eig.info() != Eigen::Success) return out;
-  const Eigen::VectorXcd& rho = eig.eigenvalues();
-  for (std::size_t m = 0; m < log_rho.size(); ++m) {
-    if (!isolated[m]) continue;
-    const Complex target = std::exp(log_rho[m]);
-    Eigen::Index best = 0;
-    (rho.array() - target).abs().minCoeff(&best);
-    std::vector<Complex> sigma(k);
-    for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
-    Eigen::VectorXcd stacked(static_cast<Eigen::Index>(k) * n);
-    stacked.segment(0, n) = eig.eigenvectors().col(best);
-    for (int i = 0; i + 1 < k; ++i)
-      stacked.segment((i + 1) * n, n) = factors[i] * stacked.segment(i * n, n) / sigma[i];
-    PeriodicEigenvector v = FinishVector(factors, norms, sigma, stacked);
-    if (v.residual <= kPropagationResidual) out[m] = std::move(v);
-  }
-  return out;
-}
+// A vector from the periodic Schur form is kept when its cyclic residual is at this level (the
+// block-cyclic inverse iteration reaches ~1e-15); otherwise that mode goes through the inverse
+// iteration.
+constexpr double kSchurResidual = 1e-12;
 
 /// |a − b| in the log plane, with −inf real parts (zero multipliers) comparing equal.
 double LogDistance(Complex a, Complex b) {
@@ -484,7 +429,7 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   std::normal_distribution<double> normal;
   const Eigen::Index size = static_cast<Eigen::Index>(k) * n;
 
-  // Isolated multipliers first by propagation (a few n×n products per segment); the rest, and
+  // Isolated multipliers from the periodic Schur form (O(K n³) for all of them); the rest, and
   // any whose residual is not at round-off, by block-cyclic inverse iteration.
   std::vector<bool> isolated(log_rho.size(), true);
   for (std::size_t a = 0; a < log_rho.size(); ++a)
@@ -492,11 +437,17 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
   std::vector<bool> done(log_rho.size(), false);
   {
-    std::vector<PeriodicEigenvector> propagated =
-        PropagatedEigenvectors(factors, norms, dt, period, log_rho, isolated);
+    std::string schur_message;
+    const std::vector<Eigen::VectorXcd> schur =
+        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, &schur_message);
+    std::vector<Complex> sigma(k);
     for (std::size_t m = 0; m < log_rho.size(); ++m) {
-      if (std::isfinite(propagated[m].residual)) {
-        result[m] = std::move(propagated[m]);
+      if (schur[m].size() == 0) continue;
+      for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
+      PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
+      if (v.residual <= kSchurResidual) {
+        v.method = PeriodicEigenvectorMethod::kSchur;
+        result[m] = std::move(v);
         done[m] = true;
       }
     }

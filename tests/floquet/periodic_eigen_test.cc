@@ -314,6 +314,57 @@ TEST(PeriodicEigenvectorsTest, SixHundredDecadesMatchClosedForm) {
     EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[0], expected, 1e-10)) << "mode " << j;
     // All v_i have unit norm by construction (orthogonal Q_i, σ_i = exact step factor).
     EXPECT_NEAR(vecs[j].v[100].norm(), 1.0, 1e-10) << "mode " << j;
+    // Isolated multipliers: the periodic Schur route, not the per-mode sparse LU.
+    EXPECT_EQ(vecs[j].method, PeriodicEigenvectorMethod::kSchur) << "mode " << j;
+  }
+}
+
+TEST(PeriodicEigenvectorsTest, ComplexPairAcrossHundredsOfDecadesMatchesClosedForm) {
+  // Φ_i = Q_{i+1} blockdiag(e^{a_i} R(θ_i), −e^{b_i}, e^{c_i}) Q_iᵀ, K = 200 unequal segments:
+  // R(θ)(1, −j)ᵀ = e^{jθ}(1, −j)ᵀ, so the pair's periodic eigenvectors are v_i ∝ Q_i (e_1 ∓ j e_2)
+  // and the real ones v_i ∝ Q_i e_3, Q_i e_4 (closed form, up to one scalar per i). The pair
+  // decays by e^{−600} per period against e^{+2} and e^{−1200} for the others: the Schur route
+  // has to split the 2×2 block (complex pair) and run the recurrences both ways. K = 200 keeps
+  // each factor's range moderate (e^{−1200 dt} ≥ e^{−9}), as in an integrated stiff system.
+  const int k = 200;
+  Uniform random(4242);
+  std::vector<Eigen::MatrixXd> q, factors;
+  for (int i = 0; i < k; ++i) q.push_back(random.Orthogonal(4));
+  const std::vector<double> dt = UnequalSegments(k, 1.0);
+  double theta = 0;
+  for (int i = 0; i < k; ++i) {
+    const double th = 0.3 + 0.02 * i;
+    theta += th;
+    Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+    block.topLeftCorner<2, 2>() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th);
+    block.topLeftCorner<2, 2>() *= std::exp(-600.0 * dt[i]);
+    block(2, 2) = -std::exp(2.0 * dt[i]);
+    block(3, 3) = std::exp(-1200.0 * dt[i]);
+    factors.push_back(q[(i + 1) % k] * block * q[i].transpose());
+  }
+  const double wrapped = std::remainder(theta, 2 * std::numbers::pi);
+  // The third block changes sign in every segment; K = 200 is even, so its multiplier is e^{+2}.
+  const std::vector<Complex> log_rho = {
+      {2.0, 0.0}, {-600.0, wrapped}, {-600.0, -wrapped}, {-1200.0, 0.0}};
+  const LogEigenvalues eig = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(eig.ok) << eig.message;
+  ExpectLogEigenvaluesNear(eig.log_values, log_rho, 1e-9);
+
+  const std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(factors, dt, log_rho);
+  ASSERT_EQ(vecs.size(), 4u);
+  const Complex j1(0, 1);
+  for (int m = 0; m < 4; ++m) {
+    EXPECT_EQ(vecs[m].method, PeriodicEigenvectorMethod::kSchur) << "mode " << m;
+    EXPECT_LT(CyclicResidual(factors, dt, log_rho[m], vecs[m]), 1e-12) << "mode " << m;
+    for (int i : {0, 77, 199}) {
+      Eigen::VectorXcd expected;
+      if (m == 0) expected = q[i].col(2).cast<Complex>();
+      if (m == 1) expected = (q[i].col(0) - j1 * q[i].col(1)) / std::sqrt(2.0);
+      if (m == 2) expected = (q[i].col(0) + j1 * q[i].col(1)) / std::sqrt(2.0);
+      if (m == 3) expected = q[i].col(3).cast<Complex>();
+      const Eigen::VectorXcd v = vecs[m].v[i] / vecs[m].v[i].norm();
+      EXPECT_NEAR(std::abs(expected.dot(v)), 1.0, 1e-12) << "mode " << m << ", segment " << i;
+    }
   }
 }
 
@@ -329,6 +380,7 @@ TEST(PeriodicEigenvectorsTest, IdentityFactorsGiveIndependentVectors) {
     Eigen::Matrix3cd v0;
     for (int j = 0; j < 3; ++j) {
       EXPECT_LT(vecs[j].residual, 1e-12);
+      EXPECT_EQ(vecs[j].method, PeriodicEigenvectorMethod::kInverseIteration);  // a cluster
       v0.col(j) = vecs[j].v[0];
     }
     const Eigen::JacobiSVD<Eigen::Matrix3cd> svd(v0);

@@ -28,15 +28,21 @@ LogEigenvalues SingleShotLogEigenvalues(const Eigen::MatrixXd& product);
 /// vectors v_0 … v_{K-1} with
 ///   Φ_i v_i = σ_i v_{i+1}  (v_K = v_0),  σ_i = exp(log_rho · dt_i / T),  T = Σ dt_i,
 /// where dt_i are the segment lengths. With log_rho = λT these are the periodic mode shape
-/// ξ(t_i) at the segment boundaries t_i = dt_0 + … + dt_{i-1}. Each is the null vector of the
-/// block-cyclic matrix (inverse iteration with a sparse LU), never propagated through the
-/// product, so it stays accurate when multipliers span hundreds of decades. Eigenvalues that
-/// coincide (a cluster) get vectors made independent by block inverse iteration; a defective
-/// cluster then shows up as a large condition number of the mode matrix, not as a crash.
+/// ξ(t_i) at the segment boundaries t_i = dt_0 + … + dt_{i-1}. Nothing is propagated through
+/// the product, so the vectors stay accurate when multipliers span hundreds of decades: an
+/// isolated multiplier's vector comes from the periodic Schur form by cyclic back-substitution
+/// (O(K n³) for all modes), kept when its residual is at round-off; the others (repeated or
+/// clustered multipliers, or a Schur vector that failed its residual) are null vectors of the
+/// block-cyclic matrix by inverse iteration with a sparse LU. Eigenvalues that coincide (a
+/// cluster) get vectors made independent by block inverse iteration; a defective cluster then
+/// shows up as a large condition number of the mode matrix, not as a crash. Method and
+/// measured residual are reported per vector (docs/periodic-eigenvectors.md).
 /// Each vector set is normalised to max_i ||v_i|| = 1.
+enum class PeriodicEigenvectorMethod { kSchur, kInverseIteration };
 struct PeriodicEigenvector {
   std::vector<Eigen::VectorXcd> v;  ///< K vectors of length n
   double residual = 0;              ///< max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i|| + |σ_i|)
+  PeriodicEigenvectorMethod method = PeriodicEigenvectorMethod::kInverseIteration;
 };
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,

@@ -1,0 +1,259 @@
+// Periodic eigenvectors from the periodic Schur form, by cyclic back-substitution
+// (docs/periodic-eigenvectors.md):
+//   1. SLICOT MB03VD + MB03VY + MB03BD give the real periodic Schur form with its vectors,
+//      R_i = U_{i+1}ᵀ Φ_i U_i, every R_i upper triangular except one quasi-triangular factor;
+//   2. each 2×2 block (a complex pair) is split by unitary 2×2 rotations W_i built from the
+//      eigenvector of the block's own 2×2 product, giving complex upper triangular T_i;
+//   3. for the multiplier at diagonal position j, y_i(j) = 1 and each row above is a scalar
+//      cyclic recurrence y_{i+1} = (T_i(l,l) y_i + r_i) / T_i(j,j), solved in the direction in
+//      which it contracts (forwards when |ρ_l| < |ρ_j|, backwards otherwise), so nothing grows
+//      like the ratio of two multipliers however many decades they span;
+//   4. v_i = c_i V_i y_i with the scalars c_i carried as logarithms.
+// O(K n³) for all modes, against one sparse LU of the nK × nK lifted matrix per mode.
+#include "periodic_schur_vectors.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+
+#include "slicot.h"
+
+namespace ltp::internal {
+
+namespace {
+
+using Complex = std::complex<double>;
+
+/// Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i (U_K = U_0), R_{K−1}
+/// quasi-triangular, the others upper triangular. SLICOT's product is A_1 ⋯ A_K with
+/// A_j = Φ_{K−j} and Q_jᵀ A_j Q_{j+1} = S_j, so R_i = S_{K−i} and U_i = Q_{(K−i) mod K + 1}.
+bool RealPeriodicSchur(const std::vector<Eigen::MatrixXd>& factors, std::vector<Eigen::MatrixXd>& r,
+                       std::vector<Eigen::MatrixXd>& u, std::string* message) {
+  const int n = static_cast<int>(factors[0].rows());
+  const int k = static_cast<int>(factors.size());
+  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
+  std::vector<double> a(static_cast<std::size_t>(block * k));
+  for (int j = 0; j < k; ++j)
+    Eigen::Map<Eigen::MatrixXd>(a.data() + j * block, n, n) = factors[k - 1 - j];
+  const int ilo = 1, ihi = n, lda = n, ldtau = std::max(1, n - 1);
+  std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
+  std::vector<double> dwork(static_cast<std::size_t>(std::max(1, n)) * 32);
+  int info = 0;
+  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &info);
+  if (info != 0) {
+    *message = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
+    return false;
+  }
+  std::vector<double> q = a;
+  const int ldwork_vy = static_cast<int>(dwork.size());
+  mb03vy_(&n, &k, &ilo, &ihi, q.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &ldwork_vy,
+          &info);
+  if (info != 0) {
+    *message = "SLICOT MB03VY failed, INFO = " + std::to_string(info);
+    return false;
+  }
+  for (int j = 0; j < k; ++j) {  // MB03BD wants zeros where MB03VD left its reflectors
+    Eigen::Map<Eigen::MatrixXd> aj(a.data() + j * block, n, n);
+    for (int c = 0; c < n; ++c)
+      for (int row = c + (j == 0 ? 2 : 1); row < n; ++row) aj(row, c) = 0.0;
+  }
+  const char job = 'S', defl = 'C', compq = 'U';
+  const int h = 1;
+  std::vector<int> qind(k, 0), signature(k, 1), scal(n);
+  std::vector<double> alphar(n), alphai(n), beta(n);
+  const int liwork = 2 * k + n;
+  const int ldwork = k + std::max(2 * n, 8 * k);  // the larger of the SLICOT 5.0 and 5.7 minimums
+  std::vector<int> iwork(liwork);
+  std::vector<double> work(ldwork);
+  int iwarn = 0;
+  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
+          &lda, &lda, q.data(), &lda, &lda, alphar.data(), alphai.data(), beta.data(), scal.data(),
+          iwork.data(), &liwork, work.data(), &ldwork, &iwarn, &info, 1, 1, 1);
+  if (info != 0) {
+    *message = "SLICOT MB03BD (periodic QZ with Schur vectors) did not converge, INFO = " +
+               std::to_string(info);
+    return false;
+  }
+  r.resize(k);
+  u.resize(k);
+  for (int i = 0; i < k; ++i) {
+    r[i] = Eigen::Map<const Eigen::MatrixXd>(a.data() + (k - 1 - i) * block, n, n);
+    u[i] = Eigen::Map<const Eigen::MatrixXd>(q.data() + ((k - i) % k) * block, n, n);
+  }
+  return true;
+}
+
+/// Complex periodic Schur form T_i = V_{i+1}ᴴ Φ_i V_i, all upper triangular.
+struct ComplexSchurForm {
+  std::vector<Eigen::MatrixXcd> t, v;
+};
+
+/// Splits every 2×2 block of R_{K−1}. With w_0 an eigenvector of the block's product
+/// B_{K−1} ⋯ B_0 and w_{i+1} ∝ B_i w_i, the unitary W_i = [w_i, w_i^⊥] make each
+/// W_{i+1}ᴴ B_i W_i upper triangular. The w_i are propagated, not the product formed: the two
+/// eigenvectors of a conjugate pair grow alike, so the propagation is stable.
+bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::MatrixXd>& u,
+                ComplexSchurForm& s, std::string* message) {
+  const int k = static_cast<int>(r.size());
+  const int n = static_cast<int>(r[0].rows());
+  s.t.resize(k);
+  s.v.resize(k);
+  for (int i = 0; i < k; ++i) {
+    s.t[i] = r[i].cast<Complex>();
+    s.v[i] = u[i].cast<Complex>();
+  }
+  std::vector<Eigen::Matrix2cd> w(k);
+  for (int p = 0; p + 1 < n; ++p) {
+    if (r[k - 1](p + 1, p) == 0.0) continue;
+    Eigen::Matrix2d product = Eigen::Matrix2d::Identity();
+    for (int i = 0; i < k; ++i) {
+      product = (r[i].block<2, 2>(p, p) * product).eval();
+      const double norm = product.norm();
+      if (!(norm > 0) || !std::isfinite(norm)) {
+        *message = "a 2x2 block of the periodic Schur form has a singular or non-finite product";
+        return false;
+      }
+      product /= norm;
+    }
+    Eigen::ComplexEigenSolver<Eigen::Matrix2cd> eig(product.cast<Complex>());
+    if (eig.info() != Eigen::Success) {
+      *message = "the eigenvectors of a 2x2 block product failed";
+      return false;
+    }
+    const int pick = eig.eigenvalues()(0).imag() >= eig.eigenvalues()(1).imag() ? 0 : 1;
+    Eigen::Vector2cd x = eig.eigenvectors().col(pick).normalized();
+    for (int i = 0; i < k; ++i) {
+      w[i].col(0) = x;
+      w[i].col(1) << -std::conj(x(1)), std::conj(x(0));
+      x = (r[i].block<2, 2>(p, p).cast<Complex>() * x).normalized();
+    }
+    for (int i = 0; i < k; ++i) {
+      s.t[i].middleCols(p, 2) = (s.t[i].middleCols(p, 2) * w[i]).eval();
+      s.t[i].middleRows(p, 2) = (w[(i + 1) % k].adjoint() * s.t[i].middleRows(p, 2)).eval();
+      s.t[i](p + 1, p) = 0.0;  // rounding level by construction; the caller's residual checks it
+      s.v[i].middleCols(p, 2) = (s.v[i].middleCols(p, 2) * w[i]).eval();
+    }
+    ++p;  // the second row of the block
+  }
+  return true;
+}
+
+/// 1 − e^{d} for Re d ≤ 0, without overflow (e^{d} underflows harmlessly to 0).
+Complex OneMinusExp(Complex d) { return d.real() < -700 ? Complex(1.0) : 1.0 - std::exp(d); }
+
+/// The stacked eigenvector of the multiplier at diagonal position j (see the file comment);
+/// empty when a recurrence is singular (a repeated multiplier) or the numbers are not finite.
+Eigen::VectorXcd BackSubstitute(const ComplexSchurForm& s, int j,
+                                const std::vector<Complex>& log_diag,
+                                const std::vector<Complex>& log_sigma) {
+  const int k = static_cast<int>(s.t.size());
+  const int n = static_cast<int>(s.t[0].rows());
+  Eigen::MatrixXcd y = Eigen::MatrixXcd::Zero(n, k);  // column i: y_i in Schur coordinates
+  y.row(j).setOnes();
+  std::vector<Complex> tau(k), rhs(k);
+  for (int i = 0; i < k; ++i) tau[i] = s.t[i](j, j);
+  for (int l = j - 1; l >= 0; --l) {
+    const int m = j - l;
+    for (int i = 0; i < k; ++i)
+      rhs[i] = s.t[i]
+                   .row(l)
+                   .segment(l + 1, m)
+                   .transpose()
+                   .cwiseProduct(y.col(i).segment(l + 1, m))
+                   .sum();
+    const Complex d = log_diag[l] - log_diag[j];  // log(ρ_l / ρ_j)
+    if (d.real() <= 0) {  // forwards: y_{i+1} = (T_i(l,l) y_i + r_i) / τ_i contracts
+      Complex x = 0;
+      for (int i = 0; i < k; ++i) x = (s.t[i](l, l) * x + rhs[i]) / tau[i];
+      const Complex denominator = OneMinusExp(d);
+      if (!(std::abs(denominator) > 1e-13)) return {};
+      x /= denominator;
+      for (int i = 0; i < k; ++i) {
+        y(l, i) = x;
+        x = (s.t[i](l, l) * x + rhs[i]) / tau[i];
+      }
+    } else {  // backwards: y_i = (τ_i y_{i+1} − r_i) / T_i(l,l) contracts
+      Complex x = 0;
+      for (int i = k - 1; i >= 0; --i) x = (tau[i] * x - rhs[i]) / s.t[i](l, l);
+      const Complex denominator = OneMinusExp(-d);
+      if (!(std::abs(denominator) > 1e-13)) return {};
+      x /= denominator;
+      y(l, 0) = x;
+      for (int i = k - 1; i >= 1; --i) {
+        x = (tau[i] * x - rhs[i]) / s.t[i](l, l);
+        y(l, i) = x;
+      }
+    }
+    if (!y.row(l).allFinite()) return {};
+  }
+  // v_i = c_i V_i y_i with c_0 = 1, c_{i+1} = c_i τ_i / σ_i, scaled by the largest ||v_i||.
+  std::vector<Complex> log_c(k);
+  std::vector<Eigen::VectorXcd> x(k);
+  Complex acc = 0;
+  double top = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < k; ++i) {
+    log_c[i] = acc;
+    acc += std::log(tau[i]) - log_sigma[i];
+    x[i] = s.v[i] * y.col(i);
+    top = std::max(top, log_c[i].real() + std::log(x[i].norm()));
+  }
+  if (!std::isfinite(top)) return {};
+  Eigen::VectorXcd stacked(static_cast<Eigen::Index>(k) * n);
+  for (int i = 0; i < k; ++i)
+    stacked.segment(static_cast<Eigen::Index>(i) * n, n) = x[i] * std::exp(log_c[i] - top);
+  if (!stacked.allFinite()) return {};
+  return stacked;
+}
+
+/// Distance of two log multipliers, the imaginary parts compared modulo 2π.
+double LogDistance(Complex a, Complex b) {
+  return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), 2 * std::numbers::pi));
+}
+
+}  // namespace
+
+std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
+                                                        const std::vector<double>& dt,
+                                                        const std::vector<Complex>& log_rho,
+                                                        const std::vector<bool>& wanted,
+                                                        std::string* message) {
+  std::vector<Eigen::VectorXcd> out(log_rho.size());
+  if (factors.empty() || factors[0].rows() == 0 ||
+      std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
+    return out;
+  const int k = static_cast<int>(factors.size());
+  const int n = static_cast<int>(factors[0].rows());
+  double period = 0;
+  for (double d : dt) period += d;
+  std::vector<Eigen::MatrixXd> r, u;
+  ComplexSchurForm s;
+  if (!RealPeriodicSchur(factors, r, u, message) || !Complexify(r, u, s, message)) return out;
+  std::vector<Complex> log_diag(n, 0.0);
+  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < n; ++l) log_diag[l] += std::log(s.t[i](l, l));
+  std::vector<bool> used(n, false);
+  std::vector<Complex> log_sigma(k);
+  for (std::size_t m = 0; m < log_rho.size(); ++m) {
+    if (!wanted[m] || !std::isfinite(log_rho[m].real())) continue;
+    int best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int l = 0; l < n; ++l) {
+      const double d = LogDistance(log_diag[l], log_rho[m]);
+      if (!used[l] && d < best_distance) {
+        best = l;
+        best_distance = d;
+      }
+    }
+    // The same multiplier as the eigenvalue route's, up to that route's rounding.
+    if (best < 0 || !(best_distance <= 1e-6 * std::max(1.0, std::abs(log_rho[m])))) continue;
+    used[best] = true;
+    for (int i = 0; i < k; ++i) log_sigma[i] = log_rho[m] * (dt[i] / period);
+    out[m] = BackSubstitute(s, best, log_diag, log_sigma);
+  }
+  return out;
+}
+
+}  // namespace ltp::internal

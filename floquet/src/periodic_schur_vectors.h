@@ -1,0 +1,22 @@
+// Periodic eigenvectors from the periodic Schur form (docs/periodic-eigenvectors.md).
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace ltp::internal {
+
+/// For each log_rho[m] with wanted[m]: the stacked periodic eigenvector (v_0; …; v_{K−1}),
+/// Φ_i v_i = σ_i v_{i+1} with σ_i = exp(log_rho[m] · dt_i / Σdt), scaled so that the largest
+/// ||v_i|| is about 1. Empty for a mode the Schur route could not deliver (no converged
+/// Schur form, no diagonal entry matching log_rho[m], a repeated multiplier, or non-finite
+/// numbers): the caller falls back to another method, and checks every returned vector's
+/// cyclic residual itself. `message` says why the whole route failed, if it did.
+std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(
+    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
+    const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted,
+    std::string* message);
+
+}  // namespace ltp::internal
