@@ -1,7 +1,5 @@
 #include "ltp/floquet/floquet.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,8 +7,8 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
-#include <unsupported/Eigen/FFT>
 
+#include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
@@ -56,53 +54,6 @@ int AutoModeSamples(const PeriodicSystem& system) {
 int ModeSegments(int samples, int states) {
   const int shrink = NextPowerOfTwo(std::max(1, (states + 23) / 24));
   return std::max(std::min(samples, 8), samples / shrink);
-}
-
-// A first guess of each mode's branch m in λ = Log ρ / T + j m Ωp, from the time-averaged
-// system: the averaged A's eigenvector that dominates the mode shape ξ_k(0) (its coefficient
-// in the eigenbasis) names the frequency the mode has, and m brings the principal exponent to
-// it. The mode samples are demodulated by that branch, so their spectra sit near harmonic 0
-// and a few dozen samples resolve them whatever the mode's frequency; the Fourier centroid
-// then corrects the guess.
-std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<cd>& log_rho,
-                               const Eigen::MatrixXcd& xi0) {
-  const int n = system.states();
-  const double T = system.period(), omega = system.omega();
-  Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(n, n);
-  if (const FourierMatrix* fa = system.fourier_A()) {
-    mean = (*fa)[0];
-  } else {
-    constexpr int kSamples = 16;
-    Eigen::MatrixXd a(n, n);
-    for (int s = 0; s < kSamples; ++s) {
-      system.EvalA((s + 0.5) * T / kSamples, a);
-      mean += a.cast<cd>() / double(kSamples);
-    }
-  }
-  std::vector<int> prior(log_rho.size(), 0);
-  if (!mean.allFinite() || !xi0.allFinite()) return prior;
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(mean);
-  if (eig.info() != Eigen::Success) return prior;
-  const Eigen::MatrixXcd coefficients =
-      eig.eigenvectors().colPivHouseholderQr().solve(xi0);  // ξ_k(0) in the eigenbasis
-  for (size_t k = 0; k < log_rho.size(); ++k) {
-    const cd principal = log_rho[k] / T;
-    if (!std::isfinite(principal.imag())) continue;
-    Eigen::Index i = 0;
-    if (!coefficients.col(k).allFinite()) continue;
-    coefficients.col(k).cwiseAbs().maxCoeff(&i);
-    const double m = std::round((eig.eigenvalues()(i).imag() - principal.imag()) / omega);
-    if (std::abs(m) < 1e6) prior[k] = static_cast<int>(m);
-  }
-  return prior;
-}
-
-double Condition(const Eigen::MatrixXcd& m) {
-  if (m.size() == 0) return 1;
-  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(m);
-  const auto& s = svd.singularValues();
-  if (s(s.size() - 1) == 0) return std::numeric_limits<double>::infinity();
-  return s(0) / s(s.size() - 1);
 }
 
 }  // namespace
@@ -257,300 +208,102 @@ void CheckPeriodScale(const PeriodicSystem& system, double limit) {
   }
 }
 
-FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& requested) {
-  requested.Validate();
-  CheckPeriodScale(system, requested.max_period_scale);
-  const auto start = std::chrono::steady_clock::now();
-  FloquetResult r;
-  std::string choice;
-  FloquetOptions options = requested;
-  options.integrator = ResolveIntegrator(system, requested.integrator, &choice);
-  if (!choice.empty())
-    r.diagnostics.push_back("integrator auto → " + std::string(ToString(options.integrator.type)) +
-                            ": " + choice);
-  const int n = system.states();
-  const double T = system.period();
-  const double omega = system.omega();
-  r.states = n;
-  r.period = T;
-  r.integrator = std::string(ToString(options.integrator.type));
-  r.multiplier_method = std::string(ToString(options.multipliers));
-  const int threads = ThreadsFor(options.threads);
+namespace {
 
-  // 1. Segment factors on a grid refined where factors grow or decay too fast.
-  const int samples = options.compute_modes ? (options.mode_samples > 0 ? options.mode_samples
-                                                                        : AutoModeSamples(system))
-                                            : 1;
-  internal::SegmentGridOptions grid_options;
-  grid_options.integrator = options.integrator;
-  grid_options.uniform_segments =
-      options.segments > 0 ? options.segments : ModeSegments(samples, n);
-  grid_options.refine = options.segments == 0;
-  grid_options.max_factor_condition = options.max_factor_condition;
-  grid_options.max_segments = options.max_segments;
-  grid_options.threads = threads;
-  internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
-  r.rhs_evals += grid.rhs_evals;
-  for (auto& d : grid.diagnostics) r.diagnostics.push_back(d);
-  if (options.segments == 0 && grid.ok) {
-    // Fewest segments whose factors stay well conditioned: the study's K panel found more
-    // segments only cost time once every factor is below the limit, and fewer lose the small
-    // multipliers (stiff.yaml: K = 1 overflows, K = 4 is off by 327 1/s).
-    std::ostringstream s;
-    s << "segments auto → K = " << grid.times.size() - 1
-      << (options.estimate_error ? " (halved again in the refined run that gives the numbers)" : "")
-      << ": ";
-    if (static_cast<int>(grid.times.size()) - 1 == grid.initial_segments)
-      s << "the " << grid.initial_segments
-        << (grid.initial_segments == 1 ? " segment" : " uniform segments")
-        << " already keep every factor's condition below " << options.max_factor_condition
-        << " (worst " << std::setprecision(3) << grid.worst_condition << ")";
-    else
-      s << "refined from " << grid.initial_segments
-        << " where factors grew or decayed beyond condition " << options.max_factor_condition
-        << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
-    r.diagnostics.push_back(s.str());
-  }
-  if (!grid.ok) {
-    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return r;
-  }
-  // 2. Multipliers as logarithms.
-  auto log_eigenvalues = [&](const internal::SegmentGrid& g) {
-    if (options.multipliers == MultiplierMethod::kSingleShot) {
-      Eigen::MatrixXd product = Eigen::MatrixXd::Identity(n, n);
-      for (const auto& f : g.factors) product = f * product;
-      return SingleShotLogEigenvalues(product);
-    }
-    return PeriodicSchurLogEigenvalues(g.factors);
-  };
-  LogEigenvalues eig = log_eigenvalues(grid);
-  if (!eig.ok) {
-    r.diagnostics.push_back("eigenvalues of the monodromy failed: " + eig.message);
-    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return r;
-  }
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  // 3. Error estimate: a second run with every segment halved and a 100× tighter tolerance
-  // (twice the fixed steps). Halving the segments matters: on short segments an adaptive
-  // method may take the same single step at both tolerances, and a same-grid comparison would
-  // then see no difference at all. The reported numbers come from this better run, so the
-  // difference bounds their error with a wide margin.
-  double integration_error = 0;
-  if (options.estimate_error && n > 0) {
-    internal::SegmentGridOptions fine = grid_options;
-    fine.refine = false;
-    fine.fixed_times.clear();
-    for (size_t i = 0; i + 1 < grid.times.size(); ++i) {
-      fine.fixed_times.push_back(grid.times[i]);
-      fine.fixed_times.push_back(0.5 * (grid.times[i] + grid.times[i + 1]));
-    }
-    fine.fixed_times.push_back(grid.times.back());
-    fine.integrator.rel_tol = std::max(options.integrator.rel_tol * 1e-2, 1e-15);
-    fine.integrator.abs_tol = options.integrator.abs_tol * 1e-2;
-    if (fine.integrator.steps_per_period > 0) fine.integrator.steps_per_period *= 2;
-    internal::SegmentGrid reference = internal::ComputeSegmentGrid(system, fine);
-    r.rhs_evals += reference.rhs_evals;
-    LogEigenvalues ref_eig = reference.ok ? log_eigenvalues(reference) : LogEigenvalues{};
-    if (ref_eig.ok) {
-      integration_error = MaxExponentMismatch(eig.log_values, ref_eig.log_values, 2 * kPi) / T;
-      grid = std::move(reference);
-      eig = std::move(ref_eig);
-    } else {
-      r.diagnostics.push_back(
-          "error estimate: the refined reference run failed; results are "
-          "from the first run and their error is unknown");
-      integration_error = std::numeric_limits<double>::infinity();
-    }
-  }
-  r.segments = static_cast<int>(grid.factors.size());
-  r.segment_times = grid.times;
-  r.monodromy = Eigen::MatrixXd::Identity(n, n);
-  for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
-  const std::vector<cd>& log_rho = eig.log_values;
-  std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers, from the modes below
+// Step 1: the starting grid: one segment per mode sample (fewer for large systems), refined
+// automatically unless the user fixed K.
+internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int samples, int n) {
+  internal::SegmentGridOptions grid;
+  grid.integrator = options.integrator;
+  grid.uniform_segments = options.segments > 0 ? options.segments : ModeSegments(samples, n);
+  grid.refine = options.segments == 0;
+  grid.max_factor_condition = options.max_factor_condition;
+  grid.max_segments = options.max_segments;
+  grid.threads = ThreadsFor(options.threads);
+  return grid;
+}
 
-  // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
-  std::vector<FloquetMode> modes(n);
-  for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(log_rho[k], 0, T);  // principal branch
-  if (options.compute_modes && n > 0) {
-    std::vector<double> dt(grid.factors.size());
-    for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
-    std::vector<PeriodicEigenvector> vecs = ComputePeriodicEigenvectors(grid.factors, dt, log_rho);
-    // The uniform mode samples are grid points (the grid refines the uniform one); find them.
-    r.sample_times.resize(samples);
-    std::vector<int> at(samples);
-    for (int s = 0; s < samples; ++s) {
-      const double ts = T * s / samples;
-      auto it = std::lower_bound(grid.times.begin(), grid.times.end(), ts - 1e-12 * T);
-      at[s] = static_cast<int>(it - grid.times.begin());
-      r.sample_times[s] = grid.times[at[s]];
-    }
-    bool uniform_hit = true;
-    for (int s = 0; s < samples; ++s)
-      uniform_hit = uniform_hit && at[s] < static_cast<int>(grid.times.size()) - 1 &&
-                    std::abs(grid.times[at[s]] - T * s / samples) <= 1e-9 * T;
-    std::vector<Eigen::MatrixXcd> xi(samples, Eigen::MatrixXcd(n, n));
-    if (uniform_hit) {
-      for (int s = 0; s < samples; ++s)
-        for (int k = 0; k < n; ++k) xi[s].col(k) = vecs[k].v[at[s]];
-    } else {
-      // A grid that does not contain the uniform samples (a user-chosen K, or fewer segments
-      // for a large system, see ModeSegments): propagate from the last grid point before each
-      // sample, ξ(t_s) = Φ(t_s, t_i) ξ(t_i) e^{-λ(t_s − t_i)}.
-      r.diagnostics.push_back(
-          "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
-          " segments for " + std::to_string(samples) + " samples)");
-      for (int s = 0; s < samples; ++s) {
-        const double ts = T * s / samples;
-        auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
-        const int i = static_cast<int>(it - grid.times.begin()) - 1;
-        r.sample_times[s] = ts;
-        // ts can sit a rounding error below grid.times[i]: never integrate backwards.
-        TransitionResult tr =
-            StateTransition(system, grid.times[i], std::max(ts, grid.times[i]), options.integrator);
-        r.rhs_evals += tr.rhs_evals;
-        for (int k = 0; k < n; ++k)
-          xi[s].col(k) =
-              tr.phi.cast<cd>() * vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
-      }
-    }
-    // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
-    const std::vector<int> prior = PriorBranches(system, log_rho, xi[0]);
-    for (int s = 0; s < samples; ++s)
-      for (int k = 0; k < n; ++k)
-        xi[s].col(k) *= std::polar(1.0, -prior[k] * omega * r.sample_times[s]);
-    // Fourier coefficients of every entry (FFT), then the branch centred on harmonic 0.
-    Eigen::FFT<double> fft;
-    const int H = samples / 2 - 1;  // the Nyquist bin is dropped (ambiguous sign)
-    std::vector<Eigen::MatrixXcd> coef(2 * H + 1, Eigen::MatrixXcd::Zero(n, n));
-    std::vector<cd> in(samples), out(samples);
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < n; ++k) {
-        for (int s = 0; s < samples; ++s) in[s] = xi[s](i, k);
-        fft.fwd(out, in);  // out[j] = Σ_s in[s] e^{-2πj js/S}
-        for (int v = -H; v <= H; ++v)
-          coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
-      }
-    double worst_tail = 0;
-    std::vector<int> failed_modes;
-    for (int k = 0; k < n; ++k) {
-      std::vector<double> energy(2 * H + 1);
-      double total = 0, first_moment = 0, tail = 0;
-      for (int v = -H; v <= H; ++v) {
-        energy[v + H] = coef[v + H].col(k).squaredNorm();
-        total += energy[v + H];
-        first_moment += v * energy[v + H];
-        if (std::abs(v) > H / 2) tail += energy[v + H];
-      }
-      if (!(total > 0) || !std::isfinite(total) || !std::isfinite(vecs[k].residual)) {
-        // The cyclic null-vector solve failed (seen for mode shapes whose magnitude varies
-        // over hundreds of decades within a period). The exponent does not depend on it.
-        failed_modes.push_back(k);
-        for (int s = 0; s < samples; ++s) xi[s].col(k).setZero();
-        for (auto& c : coef) c.col(k).setZero();
-        modes[k].eigvec_residual = std::numeric_limits<double>::infinity();
-        continue;
-      }
-      worst_tail = std::max(worst_tail, tail / total);
-      const double centroid = first_moment / total;
-      int m = static_cast<int>(std::lround(centroid));
-      if (std::abs(std::abs(centroid - m) - 0.5) < 0.01) {
-        // A tie (negative real multiplier: the exponent sits on the strip edge ±Ωp/2). Both
-        // neighbours are valid; take the one with the smallest non-negative frequency so that
-        // repeated runs agree, and say so in the diagnostics below.
-        const int lo = static_cast<int>(std::floor(centroid)), hi = lo + 1;
-        const double im_lo = (log_rho[k] / T).imag() + (prior[k] + lo) * omega;
-        const double im_hi = (log_rho[k] / T).imag() + (prior[k] + hi) * omega;
-        m = (im_lo >= -1e-12 * omega && (im_hi < -1e-12 * omega || im_lo <= im_hi)) ? lo : hi;
-      }
-      FloquetMode& mode = modes[k];
-      mode = MakeFloquetMode(log_rho[k], prior[k] + m, T);
-      mode.central_weight = (std::abs(m) <= H ? energy[m + H] : 0) / total;
-      mode.branch_margin = std::max(0.0, 0.5 - std::abs(centroid - m));
-      mode.eigvec_residual = vecs[k].residual;
-      // Shift to the chosen branch: ξ^(m)(t) = ξ(t) e^{-j m Ωp t}, coefficients c_{v+m}.
-      for (int s = 0; s < samples; ++s)
-        xi[s].col(k) *= std::polar(1.0, -m * omega * r.sample_times[s]);
-      std::vector<Eigen::VectorXcd> shifted(2 * H + 1, Eigen::VectorXcd::Zero(n));
-      for (int v = -H; v <= H; ++v)
-        if (std::abs(v + m) <= H) shifted[v + H] = coef[v + m + H].col(k);
-      for (int v = -H; v <= H; ++v) coef[v + H].col(k) = shifted[v + H];
-    }
-    if (worst_tail > 1e-10) {
-      std::ostringstream s;
-      s << "mode shapes under-resolved: " << worst_tail
-        << " of a mode's Fourier energy lies in the upper half of the " << samples
-        << " samples; raise --mode-samples";
-      r.diagnostics.push_back(s.str());
-    }
-    r.mode_samples = std::move(xi);
-    r.mode_fourier = std::move(coef);
-    r.mode_harmonics = H;
-    // Condition of the mode matrix: the best over (up to 16 of) the sample times (a mode shape
-    // may be tiny at t = 0 and large elsewhere; defectiveness makes Ξ(t) ill-conditioned at
-    // every t). An SVD per sample was a fifth of a 60-state analysis. Modes whose shape could
-    // not be computed are left out.
-    std::vector<int> good;
-    for (int k = 0; k < n; ++k)
-      if (std::find(failed_modes.begin(), failed_modes.end(), k) == failed_modes.end())
-        good.push_back(k);
-    r.mode_condition = std::numeric_limits<double>::infinity();
-    Eigen::MatrixXcd best_xi;
-    for (int s = 0; s < samples; s += std::max(1, samples / 16)) {
-      Eigen::MatrixXcd x(n, good.size());
-      for (size_t j = 0; j < good.size(); ++j) {
-        x.col(j) = r.mode_samples[s].col(good[j]);
-        const double norm = x.col(j).norm();
-        if (norm > 0) x.col(j) /= norm;
-      }
-      const double c = Condition(x);
-      if (c < r.mode_condition || best_xi.size() == 0) {
-        r.mode_condition = c;
-        best_xi = x;
-      }
-    }
-    // Eigenvalue condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(t)/||ξ_k(t)|| and y_k
-    // the k-th row of Ξ(t)⁻¹ (left eigenvector scaled so that y_k x_k = 1), at that best t.
-    if (good.empty()) {  // every cyclic solve failed: no mode matrix (and no condition) at all
-      r.mode_condition = std::numeric_limits<double>::infinity();
-    } else {
-      const Eigen::MatrixXcd left = best_xi.completeOrthogonalDecomposition().pseudoInverse();
-      for (size_t j = 0; j < good.size(); ++j)
-        kappa[good[j]] = std::isfinite(r.mode_condition) ? left.row(j).norm()
-                                                         : std::numeric_limits<double>::infinity();
-    }
-    for (int k : failed_modes) {
-      kappa[k] = std::numeric_limits<double>::infinity();
-      std::ostringstream s;
-      s << "the periodic mode shape of the exponent " << (log_rho[k] / T).real()
-        << (log_rho[k].imag() < 0 ? " - " : " + ") << std::abs((log_rho[k] / T).imag())
-        << "j could not be computed (cyclic eigenvector solve failed); its exponent is "
-           "unaffected, its branch is the principal one and its shape is reported as zero";
-      r.diagnostics.push_back(s.str());
-    }
-    if (good.empty()) {
-      r.diagnostics.push_back(
-          "no periodic mode shape could be computed (the solutions grow and "
-          "decay over hundreds of decades within a period): exponents and "
-          "multipliers are unaffected; mode shapes, left modes and branches "
-          "are not available");
-    } else if (!(r.mode_condition < 1e8)) {
-      std::ostringstream s;
-      s << "mode matrix is ill-conditioned (cond = " << r.mode_condition
-        << "): the monodromy is (near-)defective, e.g. a double multiplier at ±1 on a stability "
-           "boundary; mode shapes, left modes and branch choices are unreliable, and exponents "
-           "are accurate only to about the square root of the integration error";
-      r.diagnostics.push_back(s.str());
-    }
-  } else {
-    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
-  }
+// Fewest segments whose factors stay well conditioned: the study's K panel found more
+// segments only cost time once every factor is below the limit, and fewer lose the small
+// multipliers (stiff.yaml: K = 1 overflows, K = 4 is off by 327 1/s).
+std::string DescribeSegmentChoice(const internal::SegmentGrid& grid,
+                                  const FloquetOptions& options) {
+  const int k = static_cast<int>(grid.times.size()) - 1;
+  std::ostringstream s;
+  s << "segments auto → K = " << k
+    << (options.estimate_error ? " (halved again in the refined run that gives the numbers)" : "")
+    << ": ";
+  if (k == grid.initial_segments)
+    s << "the " << grid.initial_segments
+      << (grid.initial_segments == 1 ? " segment" : " uniform segments")
+      << " already keep every factor's condition below " << options.max_factor_condition
+      << " (worst " << std::setprecision(3) << grid.worst_condition << ")";
+  else
+    s << "refined from " << grid.initial_segments
+      << " where factors grew or decayed beyond condition " << options.max_factor_condition
+      << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
+  return s.str();
+}
 
-  // 5. Order the modes: by |frequency|, positive first, then by Re λ.
+// Step 2: the multipliers as logarithms.
+LogEigenvalues MultiplierLogs(const internal::SegmentGrid& grid, MultiplierMethod method, int n) {
+  if (method == MultiplierMethod::kSingleShot) {
+    Eigen::MatrixXd product = Eigen::MatrixXd::Identity(n, n);
+    for (const auto& f : grid.factors) product = f * product;
+    return SingleShotLogEigenvalues(product);
+  }
+  return PeriodicSchurLogEigenvalues(grid.factors);
+}
+
+// Step 3, the error estimate: a second run with every segment halved and a 100× tighter
+// tolerance (twice the fixed steps). Halving the segments matters: on short segments an
+// adaptive method may take the same single step at both tolerances, and a same-grid
+// comparison would then see no difference at all. The reported numbers come from this better
+// run (grid and eig are replaced), so the difference bounds their error with a wide margin.
+// Returns the integration error of the exponents (∞ when the reference run failed).
+double RefineForErrorEstimate(const PeriodicSystem& system, const FloquetOptions& options,
+                              internal::SegmentGridOptions fine, internal::SegmentGrid& grid,
+                              LogEigenvalues& eig, FloquetResult& r) {
+  fine.refine = false;
+  fine.fixed_times.clear();
+  for (size_t i = 0; i + 1 < grid.times.size(); ++i) {
+    fine.fixed_times.push_back(grid.times[i]);
+    fine.fixed_times.push_back(0.5 * (grid.times[i] + grid.times[i + 1]));
+  }
+  fine.fixed_times.push_back(grid.times.back());
+  fine.integrator.rel_tol = std::max(options.integrator.rel_tol * 1e-2, 1e-15);
+  fine.integrator.abs_tol = options.integrator.abs_tol * 1e-2;
+  if (fine.integrator.steps_per_period > 0) fine.integrator.steps_per_period *= 2;
+  internal::SegmentGrid reference = internal::ComputeSegmentGrid(system, fine);
+  r.rhs_evals += reference.rhs_evals;
+  LogEigenvalues ref_eig = reference.ok
+                               ? MultiplierLogs(reference, options.multipliers, system.states())
+                               : LogEigenvalues{};
+  if (!ref_eig.ok) {
+    r.diagnostics.push_back(
+        "error estimate: the refined reference run failed; results are "
+        "from the first run and their error is unknown");
+    return std::numeric_limits<double>::infinity();
+  }
+  const double error =
+      MaxExponentMismatch(eig.log_values, ref_eig.log_values, 2 * kPi) / system.period();
+  grid = std::move(reference);
+  eig = std::move(ref_eig);
+  return error;
+}
+
+// Step 5: modes ordered by |frequency|, positive first, then by Re λ; samples and Fourier
+// coefficients permuted alike; near-ties of the branch choice reported.
+void StoreOrderedModes(const PeriodicSystem& system, const std::vector<FloquetMode>& modes,
+                       bool with_shapes, FloquetResult& r) {
+  const int n = static_cast<int>(modes.size());
   const std::vector<int> order = ModeDisplayOrder(modes);
   for (int k : order) r.modes.push_back(modes[k]);
-  if (options.compute_modes)
+  if (with_shapes)
     for (int k = 0; k < n; ++k)
       if (r.modes[k].branch_margin < 0.05 && std::isfinite(r.modes[k].eigvec_residual)) {
         std::ostringstream s;
@@ -563,27 +316,29 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
                "non-negative one is reported";
         } else {
           s << "mode " << k + 1 << ": branch ambiguous (margin " << r.modes[k].branch_margin
-            << "): its mode shape's Fourier energy is split between two neighbouring harmonics; "
-               "the smaller non-negative frequency was taken";
+            << "): its mode shape's Fourier energy is split between two neighbouring "
+               "harmonics; the smaller non-negative frequency was taken";
         }
         r.diagnostics.push_back(s.str());
       }
-  if (!r.mode_samples.empty()) {
-    auto permute = [&](Eigen::MatrixXcd& m) {
-      Eigen::MatrixXcd p(m.rows(), m.cols());
-      for (int j = 0; j < n; ++j) p.col(j) = m.col(order[j]);
-      m = p;
-    };
-    for (auto& m : r.mode_samples) permute(m);
-    for (auto& m : r.mode_fourier) permute(m);
-    r.mode_descriptions = DescribeModeShapes(system.labels(), r.mode_samples.front());
-  }
+  if (r.mode_samples.empty()) return;
+  auto permute = [&](Eigen::MatrixXcd& m) {
+    Eigen::MatrixXcd p(m.rows(), m.cols());
+    for (int j = 0; j < n; ++j) p.col(j) = m.col(order[j]);
+    m = p;
+  };
+  for (auto& m : r.mode_samples) permute(m);
+  for (auto& m : r.mode_fourier) permute(m);
+  r.mode_descriptions = DescribeModeShapes(system.labels(), r.mode_samples.front());
+}
 
-  // 6. Summary numbers and checks. A state labelled rigid-body (a free rotation angle) owns
-  // one exponent that is 0 in theory: among the modes whose shape lies mostly in that state
-  // (without shapes: all modes), the exponent nearest 0 is flagged and left out of the verdict.
-  // Nearest 0, not largest share: a slow real mode of the rotor speed also lies mostly in the
-  // angle (its angle amplitude is the speed amplitude divided by λ).
+// Step 6a: a state labelled rigid-body (a free rotation angle) owns one exponent that is 0 in
+// theory: among the modes whose shape lies mostly in that state (without shapes: all modes),
+// the exponent nearest 0 is flagged and left out of the verdict. Nearest 0, not largest
+// share: a slow real mode of the rotor speed also lies mostly in the angle (its angle
+// amplitude is the speed amplitude divided by λ).
+void FlagRigidBodyModes(const PeriodicSystem& system, FloquetResult& r) {
+  const int n = r.states;
   for (int state : system.labels().rigid_body_states) {
     if (state < 0 || state >= n) continue;
     int best = -1;
@@ -610,6 +365,15 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
          "error (e.g. azimuth sampling); left out of max Re λ and the stability verdict";
     r.diagnostics.push_back(s.str());
   }
+}
+
+// Step 6b: max Re λ, the error estimate (integration error plus the round-off floor), the
+// Liouville check and the verdict.
+void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_rho,
+                       const std::vector<double>& kappa, double integration_error,
+                       const FloquetOptions& options, FloquetResult& r) {
+  const int n = r.states;
+  const double T = r.period;
   r.max_real_exponent = -std::numeric_limits<double>::infinity();
   for (const auto& mode : r.modes)
     if (!mode.rigid_body) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
@@ -637,7 +401,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   // sum is within n·T·estimate of it. Beyond that some exponents are wrong — e.g. forced
   // settings: one segment with single-shot multipliers loses every |ρ| below eps·max|ρ| — and
   // the result is not ok. Without an estimate only a gross failure can be told from the
-  // integration's own error: the allowance is then 1e4 × the tolerance (at least 1e-6), relative.
+  // integration's own error: the allowance is then 1e4 × the tolerance (at least 1e-6),
+  // relative.
   const double gross =
       std::max(1e-6, 1e4 * options.integrator.rel_tol) * std::max(1.0, std::abs(trace_integral));
   const double liouville_allowance =
@@ -660,7 +425,83 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error "
         "estimate (a conservative system, or one on a stability boundary)");
-  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& requested) {
+  requested.Validate();
+  CheckPeriodScale(system, requested.max_period_scale);
+  const auto start = std::chrono::steady_clock::now();
+  FloquetResult r;
+  std::string choice;
+  FloquetOptions options = requested;
+  options.integrator = ResolveIntegrator(system, requested.integrator, &choice);
+  if (!choice.empty())
+    r.diagnostics.push_back("integrator auto → " + std::string(ToString(options.integrator.type)) +
+                            ": " + choice);
+  const int n = system.states();
+  const double T = system.period();
+  r.states = n;
+  r.period = T;
+  r.integrator = std::string(ToString(options.integrator.type));
+  r.multiplier_method = std::string(ToString(options.multipliers));
+
+  // 1. Segment factors on a grid refined where factors grow or decay too fast.
+  const int samples = options.compute_modes ? (options.mode_samples > 0 ? options.mode_samples
+                                                                        : AutoModeSamples(system))
+                                            : 1;
+  const internal::SegmentGridOptions grid_options = GridOptionsFor(options, samples, n);
+  internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
+  r.rhs_evals += grid.rhs_evals;
+  for (auto& d : grid.diagnostics) r.diagnostics.push_back(d);
+  if (options.segments == 0 && grid.ok)
+    r.diagnostics.push_back(DescribeSegmentChoice(grid, options));
+  if (!grid.ok) {
+    r.elapsed_s = SecondsSince(start);
+    return r;
+  }
+  // 2. Multipliers as logarithms.
+  LogEigenvalues eig = MultiplierLogs(grid, options.multipliers, n);
+  if (!eig.ok) {
+    r.diagnostics.push_back("eigenvalues of the monodromy failed: " + eig.message);
+    r.elapsed_s = SecondsSince(start);
+    return r;
+  }
+  // 3. Error estimate (the numbers then come from the refined run).
+  double integration_error = 0;
+  if (options.estimate_error && n > 0)
+    integration_error = RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
+  r.segments = static_cast<int>(grid.factors.size());
+  r.segment_times = grid.times;
+  r.monodromy = Eigen::MatrixXd::Identity(n, n);
+  for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
+
+  // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
+  std::vector<FloquetMode> modes(n);
+  for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(eig.log_values[k], 0, T);
+  std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers
+  const bool with_shapes = options.compute_modes && n > 0;
+  if (with_shapes) {
+    internal::ModeShapes shapes =
+        internal::ComputeModeShapes(system, grid, eig.log_values, samples, options.integrator);
+    r.rhs_evals += shapes.rhs_evals;
+    for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
+    modes = std::move(shapes.modes);
+    kappa = std::move(shapes.kappa);
+    r.sample_times = std::move(shapes.sample_times);
+    r.mode_samples = std::move(shapes.samples);
+    r.mode_fourier = std::move(shapes.fourier);
+    r.mode_harmonics = shapes.harmonics;
+    r.mode_condition = shapes.condition;
+  } else {
+    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
+  }
+  // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
+  StoreOrderedModes(system, modes, options.compute_modes, r);
+  FlagRigidBodyModes(system, r);
+  SummariseAndCheck(system, eig.log_values, kappa, integration_error, options, r);
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 
