@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "integrator_internal.h"
@@ -317,6 +319,46 @@ std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& syste
     if (r.ok && !r.phi.allFinite()) {
       r.ok = false;
       r.message = internal::kNotFiniteMessage;
+    }
+  }
+  return results;
+}
+
+std::vector<TransitionResult> IntervalTransitions(
+    const PeriodicSystem& system, const std::vector<std::pair<double, double>>& intervals,
+    const IntegratorOptions& options, int threads) {
+  options.Validate();
+  std::vector<std::pair<size_t, size_t>> jobs;  // [first, last) ranges of intervals
+  const size_t target =
+      std::max<size_t>(1, intervals.size() / (2 * static_cast<size_t>(std::max(threads, 1))));
+  for (size_t j = 0; j < intervals.size();) {
+    size_t k = j + 1;
+    while (k < intervals.size() && k - j < target && intervals[k].first == intervals[k - 1].second)
+      ++k;
+    jobs.emplace_back(j, k);
+    j = k;
+  }
+  std::vector<TransitionResult> results(intervals.size());
+  const long count = static_cast<long>(jobs.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+  for (long job = 0; job < count; ++job) {
+    const auto [first, last] = jobs[job];
+    std::vector<double> times = {intervals[first].first};
+    for (size_t j = first; j < last; ++j) times.push_back(intervals[j].second);
+    std::vector<TransitionResult> pass;
+    std::string failure = "not integrated: an earlier factor of the same pass failed";
+    try {
+      pass = ConsecutiveTransitions(system, times, options);
+    } catch (const std::exception& e) {  // never let an exception cross the OpenMP region
+      failure = e.what();
+    }
+    for (size_t j = first; j < last; ++j) {
+      if (j - first < pass.size()) {
+        results[j] = std::move(pass[j - first]);
+      } else {
+        results[j].ok = false;
+        results[j].message = failure;
+      }
     }
   }
   return results;

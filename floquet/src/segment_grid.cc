@@ -35,47 +35,20 @@ struct Piece {
   double cond = 1;
 };
 
-// Integrates the pieces listed in `todo` (sorted). Neighbouring pieces form chains that one
-// integrator pass covers (ConsecutiveTransitions keeps the step size across their ends); the
-// chains are cut into about 2 × threads jobs for the cores.
+// Integrates the pieces listed in `todo` (sorted; chains of neighbouring pieces share one
+// integrator pass, see IntervalTransitions) and measures each factor's condition.
 void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
                const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
-  std::vector<std::pair<size_t, size_t>> jobs;  // [first, last) ranges of todo
-  const size_t target =
-      std::max<size_t>(1, todo.size() / (2 * static_cast<size_t>(std::max(threads, 1))));
-  for (size_t j = 0; j < todo.size();) {
-    size_t k = j + 1;
-    while (k < todo.size() && k - j < target && todo[k] == todo[k - 1] + 1 &&
-           pieces[todo[k]].t0 == pieces[todo[k - 1]].t1)
-      ++k;
-    jobs.emplace_back(j, k);
-    j = k;
-  }
-  const long count = static_cast<long>(jobs.size());
-#pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (long job = 0; job < count; ++job) {
-    const auto [first, last] = jobs[job];
-    std::vector<double> times = {pieces[todo[first]].t0};
-    for (size_t j = first; j < last; ++j) times.push_back(pieces[todo[j]].t1);
-    std::vector<TransitionResult> results;
-    try {
-      results = ConsecutiveTransitions(system, times, integrator);
-    } catch (const std::exception& e) {  // never let an exception cross the OpenMP region
-      TransitionResult failed;
-      failed.message = e.what();
-      results.assign(1, failed);
-    }
-    for (size_t j = first; j < last; ++j) {
-      Piece& p = pieces[todo[j]];
-      const size_t r = j - first;
-      if (r < results.size()) {
-        p.tr = std::move(results[r]);
-      } else {
-        p.tr = TransitionResult{};
-        p.tr.message = "not integrated: an earlier factor of the same pass failed";
-      }
-      p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
-    }
+  std::vector<std::pair<double, double>> intervals;
+  for (size_t i : todo) intervals.emplace_back(pieces[i].t0, pieces[i].t1);
+  std::vector<TransitionResult> results =
+      IntervalTransitions(system, intervals, integrator, threads);
+  const long count = static_cast<long>(todo.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+  for (long j = 0; j < count; ++j) {
+    Piece& p = pieces[todo[j]];
+    p.tr = std::move(results[j]);
+    p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
   }
 }
 

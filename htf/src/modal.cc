@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <sstream>
 
 #include "fft_util.h"
@@ -46,39 +45,6 @@ double PerModeTail(const std::vector<Eigen::MatrixXcd>& c, const std::vector<Eig
     if (b_all > 0) worst = std::max(worst, b_up / b_all);
   }
   return worst;
-}
-
-// Φ over [t_i, t_{i+1}], t_i = i T/count, for i = 0..count−1: the grid split into one
-// contiguous piece per core, each a single ConsecutiveTransitions pass (the pieces restart
-// the stepper once each). Fewer results than `count` when an integration failed.
-std::vector<TransitionResult> FineGridTransitions(const PeriodicSystem& system, int count,
-                                                  const IntegratorOptions& integrator) {
-  const double T = system.period();
-  const int pieces = std::max(1, std::min(ThreadsFor(0), count / 64));
-  std::vector<std::vector<TransitionResult>> parts(static_cast<size_t>(pieces));
-  std::vector<std::exception_ptr> errors(
-      static_cast<size_t>(pieces));  // no exception leaves OpenMP
-#pragma omp parallel for num_threads(pieces) schedule(static, 1)
-  for (int k = 0; k < pieces; ++k) {
-    const int first = count * k / pieces, last = count * (k + 1) / pieces;
-    std::vector<double> times;
-    for (int s = first; s <= last; ++s) times.push_back(T * s / count);
-    try {
-      parts[static_cast<size_t>(k)] = ConsecutiveTransitions(system, times, integrator);
-    } catch (...) {
-      errors[static_cast<size_t>(k)] = std::current_exception();
-    }
-  }
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-  std::vector<TransitionResult> all;
-  for (int k = 0; k < pieces; ++k) {
-    const int expected = count * (k + 1) / pieces - count * k / pieces;
-    for (TransitionResult& r : parts[static_cast<size_t>(k)]) all.push_back(std::move(r));
-    if (static_cast<int>(parts[static_cast<size_t>(k)].size()) != expected)
-      break;  // failed: stop here
-  }
-  return all;
 }
 
 }  // namespace
@@ -202,11 +168,13 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
     Eigen::VectorXcd decay(n);
     for (int k = 0; k < n; ++k) decay(k) = std::exp(-r.exponents[k] * h);
     std::vector<Eigen::MatrixXcd> finer(2 * S);
-    // One pass over the fine grid per core (the step size carries across the samples); the
+    // Chains over the fine grid on the cores (the step size carries across the samples); the
     // factors over [t_s, t_s + h] are every other one.
+    std::vector<std::pair<double, double>> fine(2 * S);
+    for (int q = 0; q < 2 * S; ++q) fine[q] = {T * q / (2 * S), T * (q + 1) / (2 * S)};
     const std::vector<TransitionResult> steps =
-        FineGridTransitions(system, 2 * S, options.integrator);
-    bool ok = static_cast<int>(steps.size()) == 2 * S;
+        IntervalTransitions(system, fine, options.integrator, ThreadsFor(0));
+    bool ok = true;
     for (const TransitionResult& tr : steps) {
       r.rhs_evals += tr.rhs_evals;
       ok = ok && tr.ok;

@@ -241,6 +241,36 @@ TEST_P(IntegratorP, ConsecutiveFactorsMatchTheirPieces) {
   EXPECT_LT(RelErr(product, MeissnerDampedReference(a, b, c)), 1e-9);
 }
 
+TEST_P(IntegratorP, IntervalTransitionsWithGapsMatchClosedForm) {
+  // Chains broken by gaps and cut across two threads: every factor is still the closed-form
+  // product of the Meissner pieces' matrix exponentials over its own interval.
+  const double a = 1, b = 0.3, c = 0.2;
+  const std::vector<std::pair<double, double>> intervals = {{0, 0.4},   {0.4, 1.0}, {1.0, 2.5},
+                                                            {3.0, 3.5}, {3.5, 5.0}, {5.5, 2 * kPi}};
+  const std::vector<TransitionResult> f =
+      IntervalTransitions(Meissner(a, b, c), intervals, With(GetParam()), 2);
+  ASSERT_EQ(f.size(), intervals.size());
+  for (size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(f[i].ok) << f[i].message;
+    EXPECT_LT(RelErr(f[i].phi, MeissnerPieces(a, b, c, intervals[i].first, intervals[i].second)),
+              1e-9)
+        << "interval " << i;
+  }
+}
+
+TEST(IntervalTransitions, BadIntervalFailsItsPassWithoutThrowing) {
+  // A backwards interval makes its pass throw inside the parallel region: it must come back
+  // as failed results with the reason, and the other chain must be unaffected.
+  const std::vector<std::pair<double, double>> intervals = {{0, 1}, {2, 1.5}, {3, 4}};
+  const std::vector<TransitionResult> f =
+      IntervalTransitions(Meissner(1, 0.3, 0), intervals, {}, 2);
+  ASSERT_EQ(f.size(), 3u);
+  EXPECT_TRUE(f[0].ok) << f[0].message;
+  EXPECT_FALSE(f[1].ok);
+  EXPECT_NE(f[1].message.find("strictly increasing"), std::string::npos) << f[1].message;
+  EXPECT_TRUE(f[2].ok) << f[2].message;
+}
+
 TEST(ConsecutiveTransitions, RejectsTimesThatDoNotIncrease) {
   EXPECT_THROW(ConsecutiveTransitions(Meissner(1, 0.3, 0), {0, 1, 1}), InputError);
   EXPECT_THROW(ConsecutiveTransitions(Meissner(1, 0.3, 0), {0, NAN}), InputError);

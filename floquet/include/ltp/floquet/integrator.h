@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
@@ -75,5 +76,14 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
 std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& system,
                                                      const std::vector<double>& times,
                                                      const IntegratorOptions& options = {});
+
+/// Φ over each of `intervals` (sorted, non-overlapping [t0, t1]) on up to `threads` cores:
+/// runs of touching intervals (one's t1 is the next one's t0) are chains that one
+/// ConsecutiveTransitions pass covers, cut into about 2 × threads jobs. One result per
+/// interval, in order; an interval after a failure in its pass (or in a pass that threw, e.g.
+/// for bad times) gets ok = false and a message. Throws InputError only for bad options.
+std::vector<TransitionResult> IntervalTransitions(
+    const PeriodicSystem& system, const std::vector<std::pair<double, double>>& intervals,
+    const IntegratorOptions& options, int threads);
 
 }  // namespace ltp
