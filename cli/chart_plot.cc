@@ -51,13 +51,20 @@ int LegendMargin(const CampbellDiagram& d) {
   return static_cast<int>(std::min<size_t>(longest, 64) * 3 / 4 + 8);
 }
 
-std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
+// What the Campbell panels draw besides the mode lines.
+struct CampbellExtras {
+  double ytop = 1;       // top of the frequency panel
+  bool lost = false;     // some line ends at a failed point ($L)
+  bool compare = false;  // snapshot and averaged eigenvalues ($S, $A)
+};
+
+// The data blocks: $M (x, then per line frequency, Re λ and the sidebands f ± kΩp/2π), $R
+// (per-rev lines), $X (crossings), $L (lost lines), $S/$A (frozen eigenvalues).
+CampbellExtras CampbellData(const ChartPlotInput& in, std::ostringstream& g) {
   const CampbellDiagram& d = *in.campbell;
   const auto& points = *in.points;
-  const size_t L = d.lines.size(), P = d.parameter.size();
-  std::ostringstream g;
-  g << GnuplotTerminal(file, 1400, 950) << "set output '" << file << "'\n";
-  // $M: x, then per line: frequency (Hz), Re λ, and the sidebands f ± kΩp/2π.
+  const size_t P = d.parameter.size();
+  CampbellExtras x;
   g << "$M << EOD\n";
   double fmax = 0;
   for (size_t p = 0; p < P; ++p) {
@@ -72,8 +79,7 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
     g << "\n";
   }
   g << "EOD\n";
-  const double ytop = fmax > 0 ? 1.15 * fmax : 1.0;
-  // $R: x, then n·Ω/2π per per-rev line.
+  x.ytop = fmax > 0 ? 1.15 * fmax : 1.0;
   if (!d.per_rev.empty()) {
     g << "$R << EOD\n";
     for (size_t p = 0; p < P; ++p) {
@@ -88,9 +94,8 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
     for (const auto& c : d.crossings) g << V(c.parameter) << " " << V(c.frequency_hz) << "\n";
     g << "EOD\n";
   }
-  bool lost = false;
-  for (const CampbellLine& line : d.lines) lost = lost || line.lost_after >= 0;
-  if (lost) {
+  for (const CampbellLine& line : d.lines) x.lost = x.lost || line.lost_after >= 0;
+  if (x.lost) {
     g << "$L << EOD\n";
     for (const CampbellLine& line : d.lines)
       if (line.lost_after >= 0) {
@@ -100,9 +105,8 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
       }
     g << "EOD\n";
   }
-  const bool compare =
-      in.compare && !points.empty() && !points.front().snapshot_eigenvalues.empty();
-  if (compare) {
+  x.compare = in.compare && !points.empty() && !points.front().snapshot_eigenvalues.empty();
+  if (x.compare) {
     g << "$S << EOD\n";
     for (const SweepPoint& pt : points)
       for (const auto& e : pt.snapshot_eigenvalues)
@@ -113,18 +117,12 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
         if (e.imag() >= 0) g << V(pt.values[0]) << " " << V(e.imag() / (2 * kPi)) << "\n";
     g << "EOD\n";
   }
-  const std::string xlabel = GnuplotEscape(in.axis_labels.at(0));
-  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title) << "\" font ',13'\n"
-    << "set grid\nset xlabel \"" << xlabel << "\"\nset key outside right top font ',9'\n"
-    << "set lmargin 12\nset rmargin " << LegendMargin(d) << "\n";
-  Bands(g, in);
-  std::string shading;
-  if (in.intervals && !in.intervals->empty()) shading += "; red: unstable";
-  if (!d.weakly_damped.empty()) shading += "; yellow: weakly damped";
-  g << "set title '" << in.eigenvalues << " (one line per mode, tracked by MAC)"
-    << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π, circles: crossings") << shading << "'\n"
-    << "set ylabel 'frequency  [Hz]'\nset yrange [0:" << V(ytop) << "]\n";
-  // "nP" where each per-rev line leaves the panel (its last point below the top).
+  return x;
+}
+
+// "nP" where each per-rev line leaves the frequency panel (its last point below the top).
+void PerRevLabels(const CampbellDiagram& d, double ytop, std::ostringstream& g) {
+  const size_t P = d.parameter.size();
   for (size_t k = 0; k < d.per_rev.size(); ++k) {
     size_t last = P;
     for (size_t p = 0; p < P; ++p)
@@ -135,6 +133,20 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
       << V(d.per_rev[k] * d.rotor_speed[last] / (2 * kPi))
       << (right ? " offset 0.5,0" : " offset -1,-0.6") << " font ',8' tc rgb '#606060'\n";
   }
+}
+
+// Top panel: sidebands (light), per-rev lines (dashed), the modes, crossings, lost lines and
+// the frozen eigenvalues.
+void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostringstream& g) {
+  const CampbellDiagram& d = *in.campbell;
+  const size_t L = d.lines.size();
+  std::string shading;
+  if (in.intervals && !in.intervals->empty()) shading += "; red: unstable";
+  if (!d.weakly_damped.empty()) shading += "; yellow: weakly damped";
+  g << "set title '" << in.eigenvalues << " (one line per mode, tracked by MAC)"
+    << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π, circles: crossings") << shading << "'\n"
+    << "set ylabel 'frequency  [Hz]'\nset yrange [0:" << V(x.ytop) << "]\n";
+  PerRevLabels(d, x.ytop, g);
   std::ostringstream plot;
   plot << "plot ";
   bool first = true;
@@ -164,29 +176,44 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
         kColors[k % kColorCount] + "' title \"" + LegendTitle(k, d.lines[k].description) + "\"");
   if (!d.crossings.empty())
     add("$X using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb '#000000' title 'crossings'");
-  if (lost)
+  if (x.lost)
     add("$L using 1:2 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' title 'line lost (see "
         "output)'");
-  if (compare) {
+  if (x.compare) {
     add("$S using 1:2 with points pt 7 ps 0.25 lc rgb '#444444' title 'snapshot A(0)'");
     add("$A using 1:2 with points pt 6 ps 0.35 lc rgb '#e08000' title 'averaged A_0'");
   }
   g << plot.str() << "\n";
   for (size_t k = 0; k < d.per_rev.size(); ++k) g << "unset label " << 100 + k << "\n";
+}
+
+// Bottom panel: Re λ of every line, in the frequency panel's colours.
+void DampingPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostringstream& g) {
+  const CampbellDiagram& d = *in.campbell;
+  const int stride = 2 + 2 * in.sidebands;
   g << "set title 'Damping diagram: " << in.real_parts << " (above 0: unstable)'\n"
     << "set ylabel 'Re λ  [1/s]'\nset autoscale y\nset yrange [*:*]\n"
     << "set arrow 100 from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#000000' lw 1\n";
-  std::ostringstream damp;
-  damp << "plot ";
-  first = true;
-  for (size_t k = 0; k < L; ++k) {
-    damp << (first ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1
-         << " with lines lw 2 lc rgb '" << kColors[k % kColorCount]
-         << "' notitle";  // colours as in the frequency panel's legend
-    first = false;
-  }
-  if (lost) damp << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
-  g << damp.str() << "\nunset multiplot\n";
+  g << "plot ";
+  for (size_t k = 0; k < d.lines.size(); ++k)
+    g << (k == 0 ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1
+      << " with lines lw 2 lc rgb '" << kColors[k % kColorCount] << "' notitle";
+  if (x.lost) g << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
+  g << "\n";
+}
+
+std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
+  std::ostringstream g;
+  g << GnuplotTerminal(file, 1400, 950) << "set output '" << file << "'\n";
+  const CampbellExtras x = CampbellData(in, g);
+  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title) << "\" font ',13'\n"
+    << "set grid\nset xlabel \"" << GnuplotEscape(in.axis_labels.at(0))
+    << "\"\nset key outside right top font ',9'\n"
+    << "set lmargin 12\nset rmargin " << LegendMargin(*in.campbell) << "\n";
+  Bands(g, in);
+  FrequencyPanel(in, x, g);
+  DampingPanel(in, x, g);
+  g << "unset multiplot\n";
   return g.str();
 }
 

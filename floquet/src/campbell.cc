@@ -81,8 +81,7 @@ std::string Describe(const SweepPoint& point, int mode, const SystemLabels& labe
 }
 
 CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking& tracking,
-                       int label, const SystemLabels& labels,
-                       const ModeDescriptionOptions& options) {
+                       int label, const CampbellModeNamer& describe) {
   CampbellLine line;
   line.label = label;
   const size_t P = points.size();
@@ -114,10 +113,8 @@ CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking
     const auto mode_at = [&](long p) {
       return tracking.labels[static_cast<size_t>(p)][static_cast<size_t>(label)];
     };
-    line.description =
-        Describe(points[static_cast<size_t>(first)], mode_at(first), labels, options);
-    line.description_end =
-        Describe(points[static_cast<size_t>(last)], mode_at(last), labels, options);
+    line.description = describe(static_cast<size_t>(first), mode_at(first));
+    line.description_end = describe(static_cast<size_t>(last), mode_at(last));
   }
   return line;
 }
@@ -301,7 +298,8 @@ void CampbellOptions::Validate() const {
 
 CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
                                     const ModeTracking& tracking, const SystemLabels& labels,
-                                    const CampbellOptions& options) {
+                                    const CampbellOptions& options,
+                                    const CampbellModeNamer& namer) {
   options.Validate();
   if (tracking.labels.size() != points.size())
     throw InputError("mode tracking covers " + std::to_string(tracking.labels.size()) +
@@ -313,8 +311,12 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     d.parameter.push_back(p.values[0]);
     d.rotor_speed.push_back(p.rotor_speed);
   }
+  const CampbellModeNamer by_shape = [&](size_t p, int mode) {
+    return Describe(points[p], mode, labels, options.description);
+  };
+  const CampbellModeNamer& describe = namer ? namer : by_shape;
   for (int label : PhysicalLabels(points, tracking)) {
-    d.lines.push_back(TraceLine(points, tracking, label, labels, options.description));
+    d.lines.push_back(TraceLine(points, tracking, label, describe));
     CampbellLine& line = d.lines.back();
     const std::string name = "mode " + std::to_string(d.lines.size());
     if (line.description.empty()) line.description = name;

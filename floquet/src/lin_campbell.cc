@@ -109,23 +109,14 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   SystemLabels labels;
   for (const LinChannel& c : reference.mbc.states) labels.states.push_back(c.description);
   labels.blades = reference.mbc.blades;
-  r.diagram = MakeCampbellDiagram(r.sweep, r.tracking, labels, options.campbell);
   // MBC3 names its modes better than shares of single states can: its descriptions sum the
   // cosine/sine pair of a cyclic family and name the whirl.
-  for (CampbellLine& line : r.diagram.lines) {
-    std::vector<std::string> names;
-    for (size_t p = 0; p < r.sweep.size(); ++p) {
-      const auto& at = r.tracking.labels[p];
-      if (line.label >= static_cast<int>(at.size()) || at[static_cast<size_t>(line.label)] < 0)
-        continue;
-      const int mode = index_of[p][static_cast<size_t>(at[static_cast<size_t>(line.label)])];
-      names.push_back(r.points[p].mbc.modes[static_cast<size_t>(mode)].description);
-    }
-    if (!names.empty()) {
-      line.description = names.front();
-      line.description_end = names.back();
-    }
-  }
+  const CampbellModeNamer by_mbc = [&](size_t p, int mode) {
+    return r.points[p]
+        .mbc.modes[static_cast<size_t>(index_of[p][static_cast<size_t>(mode)])]
+        .description;
+  };
+  r.diagram = MakeCampbellDiagram(r.sweep, r.tracking, labels, options.campbell, by_mbc);
   return r;
 }
 

@@ -12,6 +12,7 @@
 // the quadratic through three neighbouring points; its error estimate is its distance to the
 // root of the straight line through the two bracketing points (the size of the curvature term
 // the quadratic corrects), and the half step when no third point exists.
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,10 +72,16 @@ struct CampbellDiagram {
   std::vector<std::string> diagnostics;
 };
 
+/// Names mode `mode` of point `point` (indices into the sweep points and their modes).
+using CampbellModeNamer = std::function<std::string(size_t point, int mode)>;
+
 /// `points` in sweep order (a 1-D sweep), `tracking` = TrackModes(points), `labels` those of
-/// the swept scene's system (they name the states in the descriptions).
+/// the swept scene's system (they name the states in the descriptions). `namer` names a line
+/// by its mode at its first and last point; without one, by the states carrying the mode's
+/// shape (DescribeModeShape with `labels`).
 CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
                                     const ModeTracking& tracking, const SystemLabels& labels,
-                                    const CampbellOptions& options = {});
+                                    const CampbellOptions& options = {},
+                                    const CampbellModeNamer& namer = {});
 
 }  // namespace ltp
