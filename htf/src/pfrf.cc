@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include "fft_util.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
+#include "pfrf_route.h"
 
 namespace ltp {
 
@@ -111,6 +113,129 @@ void PfrfOptions::Validate() const {
 
 namespace {
 
+// One route over `points` (indices into the frequencies): set up, evaluated (in parallel
+// when the route allows), reported.
+RouteRun RunRoute(PfrfRoute route, const std::vector<int>& points, const PeriodicSystem& system,
+                  const PfrfOptions& options, const std::function<void()>& tick, PfrfResult& r,
+                  std::vector<internal::RoutePoint>& at) {
+  RouteRun run;
+  run.route = route;
+  run.points = points;
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<internal::PfrfRouteSolver> solver =
+      internal::MakeRouteSolver(route, system, options, r);
+  run.setup_s = internal::SecondsSince(start);
+  const int n_points = static_cast<int>(points.size());
+  at.assign(points.size(), {});
+#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0)) if (solver->concurrent())
+  for (int q = 0; q < n_points; ++q) {
+    at[q] = solver->Evaluate(kTwoPi * options.frequencies_hz[points[q]]);
+#pragma omp critical(ltp_pfrf_progress)
+    tick();
+  }
+  run.diagnostics = solver->Finish(at);
+  run.elapsed_s = internal::SecondsSince(start);
+  for (const internal::RoutePoint& p : at) {
+    run.values.push_back(p.values);
+    if (!p.ok) ++run.failures;
+  }
+  return run;
+}
+
+// The primary's values, with the error it measured at each point.
+void AdoptPrimary(const std::vector<internal::RoutePoint>& at, RouteRun& run, PfrfResult& r) {
+  run.deviation.assign(at.size(), 0.0);
+  for (size_t i = 0; i < at.size(); ++i) {
+    r.values[i] = at[i].values;
+    for (double& e : r.error_estimate[i]) e = at[i].measured_error;
+  }
+}
+
+// Per-point deviations of a check route from the primary bound the primary's error only up to
+// the check route's own error, so that is added (measured and assumed). Without it the
+// estimate fell just below the true error whenever both routes erred the same way.
+void MergeCheck(const std::vector<internal::RoutePoint>& at, RouteRun& run, PfrfResult& r) {
+  for (size_t q = 0; q < run.points.size(); ++q) {
+    const int i = run.points[q];
+    const double own = at[q].measured_error + at[q].assumed_error;
+    double worst = 0;
+    for (size_t z = 0; z < r.values[i].size(); ++z) {
+      const double d = std::abs(at[q].values[z] - r.values[i][z]) + own;
+      if (std::isfinite(d)) {
+        worst = std::max(worst, d);
+        r.error_estimate[i][z] = std::max(r.error_estimate[i][z], d);
+      }
+    }
+    run.deviation.push_back(worst);
+    r.checked[i] = true;
+    r.max_disagreement = std::max(r.max_disagreement, worst);
+  }
+}
+
+// Error estimate between check points: the larger of the neighbours' absolute error and
+// their relative error times |H| here.
+void EstimateBetweenCheckPoints(const std::vector<int>& check_points, PfrfResult& r) {
+  const int F = static_cast<int>(r.values.size());
+  const int Z = r.max_order - r.min_order + 1;
+  for (int i = 0; i < F; ++i) {
+    if (r.checked[i]) continue;
+    auto it = std::upper_bound(check_points.begin(), check_points.end(), i);
+    const int hi = *it, lo = *(it - 1);
+    for (int z = 0; z < Z; ++z) {
+      double abs_e = 0, rel_e = 0;
+      for (int nb : {lo, hi}) {
+        abs_e = std::max(abs_e, r.error_estimate[nb][z]);
+        const double mag = std::abs(r.values[nb][z]);
+        if (mag > 0) rel_e = std::max(rel_e, r.error_estimate[nb][z] / mag);
+      }
+      r.error_estimate[i][z] =
+          std::max(r.error_estimate[i][z], std::max(abs_e, rel_e * std::abs(r.values[i][z])));
+    }
+  }
+}
+
+// Excitation exactly at a Floquet resonance of an (un)damped mode: H_z has a pole where
+// j(ω + uΩp) = λ_k, so when ω is within the exponent's own error of it the value is not
+// determined by the data at all — every route still returns a large finite number, and
+// their spread says nothing. Flag it and make the estimate infinite.
+void FlagExactResonances(const PeriodicSystem& system, PfrfResult& r) {
+  const int F = static_cast<int>(r.values.size());
+  double scale = 1;
+  for (const auto& m : r.floquet.modes) scale = std::max(scale, std::abs(m.exponent));
+  const double dl = std::max(r.floquet.error_estimate, 0.0) + 1e-13 * scale;
+  const double wp = kTwoPi / system.period();
+  for (int i = 0; i < F; ++i) {
+    const double omega = kTwoPi * r.frequencies_hz[i];
+    for (size_t k = 0; k < r.floquet.modes.size(); ++k) {
+      const cd lam = r.floquet.modes[k].exponent;
+      const double d = std::hypot(lam.real(), std::remainder(omega - lam.imag(), wp));
+      if (d > dl) continue;
+      for (double& e : r.error_estimate[i]) e = std::numeric_limits<double>::infinity();
+      std::ostringstream msg;
+      msg << "resonance: the excitation at " << r.frequencies_hz[i] << " Hz is within " << d
+          << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error " << dl
+          << " 1/s): H_z is unbounded there and the values are not meaningful";
+      r.diagnostics.push_back(msg.str());
+      break;
+    }
+  }
+}
+
+// The evidence that decides the automatic choice: the largest disagreement of a check route
+// with the (modal) primary beyond `limit`, relative to the largest response at that check
+// point; 0 when every check point agrees within the limit.
+double ModalCheckDisagreement(const PfrfResult& r, double limit) {
+  double worst = 0;
+  for (size_t k = 1; k < r.routes.size(); ++k)
+    for (size_t q = 0; q < r.routes[k].points.size(); ++q) {
+      double hmax = 0;
+      for (const cd& v : r.values[r.routes[k].points[q]]) hmax = std::max(hmax, std::abs(v));
+      const double d = r.routes[k].deviation[q];
+      if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, d / hmax);
+    }
+  return worst;
+}
+
 // The sweep itself, on a given Floquet decomposition (and modal model, when one was built):
 // route choice, primary and check routes, error estimates, resonances. ComputePartialFrf
 // validates and decomposes; the automatic choice's fallback comes back here with both.
@@ -147,180 +272,23 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
   for (int i = 0; i < F; i += options.check_every) check_points.push_back(i);
   if (check_points.back() != F - 1) check_points.push_back(F - 1);
   const bool any_checks = routes.size() > 1;
-  const int total = F + (any_checks ? static_cast<int>(check_points.size()) : 0);
+  const int total = F + static_cast<int>((routes.size() - 1) * check_points.size());
   int done = 0;
   auto tick = [&] {
     ++done;
     if (options.progress) options.progress(done, total);
   };
 
-  std::unique_ptr<HtfSolver> htf;
-  std::unique_ptr<ForcedResponseSolver> forced;
-  const auto omega_of = [&](int i) { return kTwoPi * options.frequencies_hz[i]; };
+  std::vector<int> all(F);
+  for (int i = 0; i < F; ++i) all[i] = i;
   for (PfrfRoute route : routes) {
-    RouteRun run;
-    run.route = route;
     const bool primary = route == primary_route;
-    const std::vector<int>* points_ptr = &check_points;
-    std::vector<int> all;
-    if (primary) {
-      for (int i = 0; i < F; ++i) all.push_back(i);
-      points_ptr = &all;
-    }
-    const std::vector<int>& points = *points_ptr;
-    const auto route_start = std::chrono::steady_clock::now();
-    // The route's H_z of the chosen channel, z = zmin..zmax, at the q-th of its points.
-    std::function<std::vector<cd>(size_t, bool*)> eval;
-    const auto channel = [in, out](const PartialFrfs& h) {
-      std::vector<cd> v(h.size());
-      for (size_t z = 0; z < h.size(); ++z) v[z] = h[z](out, in);
-      return v;
-    };
-    std::vector<double> truncation(points.size(), 0.0);  // htf: N vs N+Δ per point
-    switch (route) {
-      case PfrfRoute::kModal: {
-        if (!r.floquet.ok) {
-          run.diagnostics.push_back("modal: no Floquet decomposition");
-          eval = [Z](size_t, bool* ok) {
-            *ok = false;
-            return std::vector<cd>(Z, cd(std::numeric_limits<double>::quiet_NaN(), 0));
-          };
-          break;
-        }
-        if (!r.modal) r.modal = BuildModalModel(system, r.floquet, options.modal);
-        for (const auto& d : r.modal->diagnostics) run.diagnostics.push_back(d);
-        const ModalModel* model = &*r.modal;
-        eval = [&, model](size_t q, bool* ok) {
-          *ok = true;
-          return model->EvaluateChannel(omega_of(points[q]), zmin, zmax, out, in);
-        };
-        break;
-      }
-      case PfrfRoute::kHtf: {
-        htf = std::make_unique<HtfSolver>(system, options.htf);
-        std::vector<double> probes;
-        for (int q = 0; q < 3; ++q) probes.push_back(omega_of((F - 1) * q / 2));
-        r.htf_harmonics = htf->ChooseTruncation(zmin, zmax, probes);
-        HtfSolver* solver = htf.get();
-        eval = [&, solver](size_t q, bool* ok) {
-          const double w = omega_of(points[q]);
-          const std::vector<cd> h = channel(solver->Evaluate(w, zmin, zmax));
-          const std::vector<cd> h2 =
-              channel(solver->Evaluate(w, zmin, zmax, solver->harmonics() + solver->delta()));
-          double change = 0;
-          for (size_t z = 0; z < h.size(); ++z) change = std::max(change, std::abs(h[z] - h2[z]));
-          truncation[q] = change;
-          *ok = std::isfinite(change);
-          return h;
-        };
-        break;
-      }
-      case PfrfRoute::kAuto:  // resolved by ChooseRoutes, never in `routes`
-      case PfrfRoute::kShooting:
-      case PfrfRoute::kTime: {
-        if (!forced) forced = std::make_unique<ForcedResponseSolver>(system, options.shooting);
-        ForcedResponseSolver* solver = forced.get();
-        if (route == PfrfRoute::kShooting) {
-          eval = [&, solver](size_t q, bool* ok) {
-            return channel(solver->Shooting(omega_of(points[q]), zmin, zmax, ok));
-          };
-        } else {
-          r.settle_time = r.floquet.ok ? ForcedResponseSolver::SettlingTime(
-                                             r.floquet, options.shooting.settle_tol)
-                                       : std::numeric_limits<double>::infinity();
-          std::ostringstream s;
-          s << "time: settling time " << r.settle_time << " s = ln(cond Ξ / "
-            << options.shooting.settle_tol << ") / |max Re λ| (slowest Floquet exponent "
-            << r.floquet.max_real_exponent << " 1/s), then " << options.shooting.record_periods
-            << " periods projected";
-          run.diagnostics.push_back(s.str());
-          const double settle = r.settle_time;
-          eval = [&, solver, settle](size_t q, bool* ok) {
-            return channel(solver->TimeSimulation(omega_of(points[q]), zmin, zmax, settle, ok));
-          };
-        }
-        break;
-      }
-    }
-    run.setup_s = internal::SecondsSince(route_start);
-    // The HTF solver is const and each frequency an independent banded solve: those run in
-    // parallel (the other routes keep per-solver state and run in order).
-    const int n_points = static_cast<int>(points.size());
-    run.points = points;
-    run.values.assign(points.size(), {});
-    std::vector<char> point_ok(points.size(), 0);
-#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0)) if (route == PfrfRoute::kHtf)
-    for (int q = 0; q < n_points; ++q) {
-      bool ok = false;
-      run.values[q] = eval(q, &ok);
-      point_ok[q] = ok;
-#pragma omp critical(ltp_pfrf_progress)
-      tick();
-    }
-    run.failures = static_cast<int>(std::count(point_ok.begin(), point_ok.end(), 0));
-    if (route == PfrfRoute::kHtf) {
-      for (const auto& d : htf->diagnostics()) run.diagnostics.push_back(d);
-      double worst = 0;
-      for (double c : truncation) worst = std::max(worst, c);
-      r.htf_truncation_change = worst;
-      std::ostringstream s;
-      s << "htf: truncation N = " << htf->harmonics() << " (A has " << htf->coefficient_harmonics()
-        << " harmonics; banded solve), check against N + " << htf->delta() << ": max change "
-        << worst;
-      run.diagnostics.push_back(s.str());
-    }
-    if ((route == PfrfRoute::kShooting || route == PfrfRoute::kTime) && forced) {
-      std::ostringstream s;
-      s << ToString(route) << ": " << forced->samples() << " samples per period, RKF78 rel tol "
-        << options.shooting.rel_tol << "; response spectrum upper-half amplitude "
-        << forced->sample_tail()
-        << (forced->sample_tail() > options.shooting.sample_tol
-                ? " (NOT resolved: raise max_samples)"
-                : "");
-      run.diagnostics.push_back(s.str());
-      for (const auto& d : forced->diagnostics())
-        if (d.rfind(std::string(ToString(route)), 0) == 0 || d.rfind("forced", 0) == 0)
-          run.diagnostics.push_back(d);
-    }
-    run.elapsed_s = internal::SecondsSince(route_start);
-    if (primary) {
-      for (int i = 0; i < F; ++i) r.values[i] = run.values[i];
-      run.deviation.assign(F, 0.0);
-      if (route == PfrfRoute::kHtf)  // its own N vs N+Δ change, at every point
-        for (int i = 0; i < F; ++i)
-          for (int z = 0; z < Z; ++z) r.error_estimate[i][z] = truncation[i];
-    } else {
-      // Per-point deviations from the primary bound the primary's error only up to the check
-      // route's own error, so that is added: the HTF's truncation change, and for the other
-      // routes their tolerance relative to the largest response at this frequency (errors
-      // spread over all orders, so a tiny H_z is not known better than that). Without it the
-      // estimate fell just below the true error whenever both routes erred the same way.
-      for (size_t q = 0; q < run.points.size(); ++q) {
-        const int i = run.points[q];
-        double worst = 0, hmax = 0;
-        for (int z = 0; z < Z; ++z)
-          if (std::isfinite(std::abs(run.values[q][z])))
-            hmax = std::max(hmax, std::abs(run.values[q][z]));
-        double own = 0;
-        if (route == PfrfRoute::kModal)
-          own = std::max(options.floquet.integrator.rel_tol, r.modal ? r.modal->tail : 0.0) * hmax;
-        else if (route == PfrfRoute::kShooting)
-          own = options.shooting.rel_tol * hmax;
-        else if (route == PfrfRoute::kTime)
-          own = options.shooting.settle_tol * hmax;
-        for (int z = 0; z < Z; ++z) {
-          double d = std::abs(run.values[q][z] - r.values[i][z]) + own;
-          if (route == PfrfRoute::kHtf) d += truncation[q];
-          if (std::isfinite(d)) {
-            worst = std::max(worst, d);
-            r.error_estimate[i][z] = std::max(r.error_estimate[i][z], d);
-          }
-        }
-        run.deviation.push_back(worst);
-        r.checked[i] = true;
-        r.max_disagreement = std::max(r.max_disagreement, worst);
-      }
-    }
+    std::vector<internal::RoutePoint> at;
+    RouteRun run = RunRoute(route, primary ? all : check_points, system, options, tick, r, at);
+    if (primary)
+      AdoptPrimary(at, run, r);
+    else
+      MergeCheck(at, run, r);
     r.routes.push_back(std::move(run));
   }
 
@@ -333,48 +301,8 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       r.order_max[z] = std::max(r.order_max[z], std::abs(r.values[i][z]));
       global_max = std::max(global_max, std::abs(r.values[i][z]));
     }
-  if (any_checks) {
-    for (int i = 0; i < F; ++i) {
-      if (r.checked[i]) continue;
-      auto it = std::upper_bound(check_points.begin(), check_points.end(), i);
-      const int hi = *it, lo = *(it - 1);
-      for (int z = 0; z < Z; ++z) {
-        double abs_e = 0, rel_e = 0;
-        for (int nb : {lo, hi}) {
-          abs_e = std::max(abs_e, r.error_estimate[nb][z]);
-          const double mag = std::abs(r.values[nb][z]);
-          if (mag > 0) rel_e = std::max(rel_e, r.error_estimate[nb][z] / mag);
-        }
-        r.error_estimate[i][z] =
-            std::max(r.error_estimate[i][z], std::max(abs_e, rel_e * std::abs(r.values[i][z])));
-      }
-    }
-  }
-  if (r.floquet.ok) {
-    // Excitation exactly at a Floquet resonance of an (un)damped mode: H_z has a pole where
-    // j(ω + uΩp) = λ_k, so when ω is within the exponent's own error of it the value is not
-    // determined by the data at all — every route still returns a large finite number, and
-    // their spread says nothing. Flag it and make the estimate infinite.
-    double scale = 1;
-    for (const auto& m : r.floquet.modes) scale = std::max(scale, std::abs(m.exponent));
-    const double dl = std::max(r.floquet.error_estimate, 0.0) + 1e-13 * scale;
-    const double wp = kTwoPi / system.period();
-    for (int i = 0; i < F; ++i) {
-      for (size_t k = 0; k < r.floquet.modes.size(); ++k) {
-        const cd lam = r.floquet.modes[k].exponent;
-        const double d = std::hypot(lam.real(), std::remainder(omega_of(i) - lam.imag(), wp));
-        if (d > dl) continue;
-        for (int z = 0; z < Z; ++z)
-          r.error_estimate[i][z] = std::numeric_limits<double>::infinity();
-        std::ostringstream msg;
-        msg << "resonance: the excitation at " << options.frequencies_hz[i] << " Hz is within " << d
-            << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error " << dl
-            << " 1/s): H_z is unbounded there and the values are not meaningful";
-        r.diagnostics.push_back(msg.str());
-        break;
-      }
-    }
-  }
+  if (any_checks) EstimateBetweenCheckPoints(check_points, r);
+  if (r.floquet.ok) FlagExactResonances(system, r);
   if (r.modal && primary_route == PfrfRoute::kModal) {
     // The modal tail bounds what the primary's Fourier truncation can add anywhere.
     for (int i = 0; i < F; ++i)
@@ -404,14 +332,7 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
     // The evidence that decides the automatic choice: the modal values against the check
     // route at the check points, relative to the largest response there.
     const double limit = ModalAgreementLimit(options);
-    double worst = 0;
-    for (size_t k = 1; k < r.routes.size(); ++k)
-      for (size_t q = 0; q < r.routes[k].points.size(); ++q) {
-        double hmax = 0;
-        for (const cd& v : r.values[r.routes[k].points[q]]) hmax = std::max(hmax, std::abs(v));
-        const double d = r.routes[k].deviation[q];
-        if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, d / hmax);
-      }
+    const double worst = ModalCheckDisagreement(r, limit);
     if (worst > 0) {
       // Redo the sweep from the same decomposition and modal model (now the check).
       PfrfOptions again = options;
