@@ -137,6 +137,7 @@ RouteRun RunRoute(PfrfRoute route, const std::vector<int>& points, const Periodi
   run.elapsed_s = internal::SecondsSince(start);
   for (const internal::RoutePoint& p : at) {
     run.values.push_back(p.values);
+    run.own_error.push_back(p.measured_error + p.assumed_error);
     if (!p.ok) ++run.failures;
   }
   return run;
@@ -157,7 +158,7 @@ void AdoptPrimary(const std::vector<internal::RoutePoint>& at, RouteRun& run, Pf
 void MergeCheck(const std::vector<internal::RoutePoint>& at, RouteRun& run, PfrfResult& r) {
   for (size_t q = 0; q < run.points.size(); ++q) {
     const int i = run.points[q];
-    const double own = at[q].measured_error + at[q].assumed_error;
+    const double own = run.own_error[q];
     double worst = 0;
     for (size_t z = 0; z < r.values[i].size(); ++z) {
       const double d = std::abs(at[q].values[z] - r.values[i][z]) + own;
@@ -223,14 +224,16 @@ void FlagExactResonances(const PeriodicSystem& system, PfrfResult& r) {
 
 // The evidence that decides the automatic choice: the largest disagreement of a check route
 // with the (modal) primary beyond `limit`, relative to the largest response at that check
-// point; 0 when every check point agrees within the limit.
+// point; 0 when every check point agrees within the limit. What the check route's own error
+// explains is no evidence against the primary: a coarse HTF truncation must not condemn a
+// right modal answer.
 double ModalCheckDisagreement(const PfrfResult& r, double limit) {
   double worst = 0;
   for (size_t k = 1; k < r.routes.size(); ++k)
     for (size_t q = 0; q < r.routes[k].points.size(); ++q) {
       double hmax = 0;
       for (const cd& v : r.values[r.routes[k].points[q]]) hmax = std::max(hmax, std::abs(v));
-      const double d = r.routes[k].deviation[q];
+      const double d = std::max(0.0, r.routes[k].deviation[q] - 2 * r.routes[k].own_error[q]);
       if (hmax > 0 && !(d <= limit * hmax)) worst = std::max(worst, d / hmax);
     }
   return worst;

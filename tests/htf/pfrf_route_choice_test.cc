@@ -130,6 +130,26 @@ TEST(PfrfRouteChoice, IllConditionedModesKeepTheModalRouteWhenItsCheckAgrees) {
   EXPECT_LE(WorstUncovered(r, ShootingReference(sys, o), 1e-12), 0);
 }
 
+TEST(PfrfRouteChoice, ACoarseCheckDoesNotCondemnARightModalAnswer) {
+  // The HTF check forced to N = 2 harmonics on a damped Mathieu (q = 0.5): its own truncation
+  // change (N vs N + 2) is far above the agreement limit, and so is its distance from the modal
+  // values. That is the checker's error, not evidence against the modal route, which must be
+  // kept — with the check's error in the estimate (reference: shooting at 1e-13).
+  const PeriodicSystem sys = test::MathieuIo(1.5, 0.5, 0.1);
+  PfrfOptions o;
+  o.frequencies_hz = {0.05, 0.13, 0.21, 0.29};
+  o.min_order = -2;
+  o.max_order = 2;
+  o.htf.harmonics = 2;
+  const PfrfResult r = ComputePartialFrf(sys, o);
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.routes.size(), 2u);
+  EXPECT_GT(r.max_relative_disagreement, 1e-6);  // the coarse check is visibly off
+  EXPECT_FALSE(r.modal_cross_check_failed) << r.route_choice;
+  EXPECT_EQ(r.routes[0].route, PfrfRoute::kModal) << r.route_choice;
+  EXPECT_LE(WorstUncovered(r, ShootingReference(sys, o), 1e-12), 0);
+}
+
 TEST(PfrfRouteChoice, ModalValuesWrongBeyondTheLimitFailTheCrossCheckAndFallBack) {
   // A defective monodromy: x' = [[−1, 1], [0, −1]] x + [0; 1] u, y = x_1 (a Jordan block,
   // viewed as periodic with T = 2π). Its mode matrix is singular, so the modal terms are

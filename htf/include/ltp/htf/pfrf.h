@@ -254,8 +254,12 @@ struct RouteRun {
   std::vector<int> points;  ///< indices into frequencies_hz where it ran
   /// values[i][z − min_order] for points[i] (the selected channel)
   std::vector<std::vector<std::complex<double>>> values;
-  /// max |H_route − H_primary| over orders at each point (0 for the primary)
+  /// max |H_route − H_primary| over orders at each point plus own_error there (0 for the
+  /// primary): a bound on the primary's error at that point
   std::vector<double> deviation;
+  /// The route's own error at each point: what it measured there (the HTF's N vs N + Δ
+  /// change) plus what its tolerance implies relative to the response there
+  std::vector<double> own_error;
   int failures = 0;
   double setup_s = 0;    ///< one-off work (decomposition, Fourier fit, Φ samples)
   double elapsed_s = 0;  ///< setup + all points
