@@ -1,6 +1,6 @@
-// `ltp identify DATA.csv`: partial FRFs H_z from step-sine time data (paper eq. 47), each with a
-// 95 % bound from the noise around its line; `--compare SCENE` sets the model's values beside
-// them.
+// `ltp identify DATA.csv`: partial FRFs H_z from step-sine time data (paper eq. 47) or from
+// broadband records (least squares across records per response line, §4.2), each with a 95 %
+// bound; `--compare SCENE` sets the model's values beside them.
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -29,7 +29,7 @@ using cd = std::complex<double>;
 
 struct IdentifyArgs {
   std::string data;
-  std::string method = "stepsine";
+  std::string method = "auto";
   double period = 0, rotor_speed = 0;
   std::string input = "0", output = "0", orders = "-2:2";
   std::string compare, csv, plot;
@@ -40,14 +40,15 @@ struct IdentifyArgs {
 // |H_z| per order against the excitation frequency: the estimates with their 95 % bounds as
 // error bars, the model's values as lines (--compare).
 void PlotIdentified(const std::string& file, const IdentifyResult& r,
-                    const std::vector<std::vector<cd>>& model, const std::string& title) {
+                    const std::vector<std::vector<cd>>& model, const std::string& title,
+                    const std::string& method) {
   const int Z = r.max_order - r.min_order + 1;
   std::ostringstream g;
   g << GnuplotTerminal(file, 1000, 650) << "set output '" << file << "'\n";
   for (int z = 0; z < Z; ++z) {
     g << "$E" << z << " << EOD\n";
     for (const auto& f : r.frequencies)
-      if (f.separable)
+      if (f.separable && std::isfinite(std::abs(f.h[static_cast<size_t>(z)])))
         g << f.excitation_hz << " " << std::abs(f.h[static_cast<size_t>(z)]) << " "
           << f.bound[static_cast<size_t>(z)] << "\n";
     g << "EOD\n";
@@ -69,7 +70,7 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
     const std::string color = colors[z % 9];
     g << (z ? ", \\\n     " : "") << "$E" << z
       << " using 1:2:3 with yerrorbars pt 7 ps 0.6 lc rgb '" << color
-      << "' title 'z = " << z + r.min_order << " (step-sine, 95 % bound)'";
+      << "' title 'z = " << z + r.min_order << " (" << method << ", 95 % bound)'";
     if (!model.empty())
       g << ", $M" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color
         << "' title 'z = " << z + r.min_order << " model'";
@@ -79,11 +80,6 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
 }
 
 int RunIdentify(const IdentifyArgs& args) {
-  if (args.method != "stepsine")
-    throw InputError(
-        "--method: only stepsine is built so far (broadband least squares over several records is "
-        "not), got '" +
-        args.method + "'");
   if (args.period < 0 || args.rotor_speed < 0)
     throw InputError("--period and --rotor-speed must be > 0");
   const double period = args.period > 0
@@ -96,7 +92,13 @@ int RunIdentify(const IdentifyArgs& args) {
   o.output = ResolveChannel(args.output, data.output_names,
                             static_cast<int>(data.output_names.size()), "--output", "output");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
-  const IdentifyResult r = IdentifyStepSine(data, o);
+  // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
+  bool broadband = true;
+  for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
+  const std::string method =
+      args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;
+  const IdentifyResult r =
+      method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
   const int Z = o.max_order - o.min_order + 1;
   std::vector<std::vector<cd>> model;
   if (!args.compare.empty()) {
@@ -131,7 +133,7 @@ int RunIdentify(const IdentifyArgs& args) {
     if (!out) throw InputError("cannot write '" + args.csv + "'");
   }
   if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data);
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data, method);
   if (args.json) {
     json freqs = json::array();
     for (size_t f = 0; f < r.frequencies.size(); ++f) {
@@ -145,6 +147,10 @@ int RunIdentify(const IdentifyArgs& args) {
         if (!model.empty())
           e["model"] = {JsonNumber(model[f][static_cast<size_t>(z)].real()),
                         JsonNumber(model[f][static_cast<size_t>(z)].imag())};
+        if (!r.frequencies[f].condition.empty()) {
+          e["condition"] = JsonNumber(r.frequencies[f].condition[static_cast<size_t>(z)]);
+          e["quality"] = JsonNumber(r.frequencies[f].quality[static_cast<size_t>(z)]);
+        }
         h.push_back(e);
       }
       freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz},
@@ -152,7 +158,7 @@ int RunIdentify(const IdentifyArgs& args) {
                        {"noise_rms", JsonNumber(r.frequencies[f].noise)},
                        {"H", h}});
     }
-    std::cout << json{{"data", args.data},       {"method", args.method},
+    std::cout << json{{"data", args.data},       {"method", method},
                       {"period_s", data.period}, {"input", o.input},
                       {"output", o.output},      {"records", data.records.size()},
                       {"frequencies", freqs},    {"diagnostics", r.diagnostics}}
@@ -161,8 +167,12 @@ int RunIdentify(const IdentifyArgs& args) {
     return 0;
   }
   std::cout << "Partial FRFs identified from " << args.data
-            << " (step-sine, eq. 47): " << r.frequencies.size()
-            << " records, T = " << Num(data.period, 10) << " s, output " << o.output << " / input "
+            << (broadband && method == "broadband"
+                    ? " (broadband: least squares across " + std::to_string(data.records.size()) +
+                          " records per response line, §4.2): " +
+                          std::to_string(r.frequencies.size()) + " excited frequencies"
+                    : " (step-sine, eq. 47): " + std::to_string(r.frequencies.size()) + " records")
+            << ", T = " << Num(data.period, 10) << " s, output " << o.output << " / input "
             << o.input << "\n"
             << "    f_exc [Hz]    z       |H_z|    ± 95 %     phase [°]"
             << (model.empty() ? "" : "   |model − H_z|") << "\n";
@@ -172,6 +182,11 @@ int RunIdentify(const IdentifyArgs& args) {
       if (!r.frequencies[f].separable) {
         std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5)
                   << "   not separable from one record (a multiple of fp/2)\n";
+        continue;
+      }
+      if (std::isnan(h.real())) {
+        std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5)
+                  << "   under-determined: too few records for the unknowns of its line\n";
         continue;
       }
       std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5)
@@ -193,9 +208,13 @@ Command AddIdentifyCommand(CLI::App& app) {
   static IdentifyArgs args;
   args = IdentifyArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
   auto* cmd = app.add_subcommand(
-      "identify", "partial FRFs from step-sine time data (CSV of ltp simulate or a rig)");
+      "identify",
+      "partial FRFs from step-sine or broadband time data (CSV of ltp simulate or a rig)");
   cmd->add_option("data", args.data, "the time-data CSV")->required();
-  cmd->add_option("--method", args.method, "stepsine")->capture_default_str();
+  cmd->add_option("--method", args.method,
+                  "auto (broadband when every record is), stepsine or broadband")
+      ->check(CLI::IsMember({"auto", "stepsine", "broadband"}))
+      ->capture_default_str();
   cmd->add_option("--period", args.period, "period T (s), when the file does not give it");
   cmd->add_option("--rotor-speed", args.rotor_speed, "or the rotor speed (rad/s): T = 2π/Ω");
   cmd->add_option("--input", args.input, "input (index or name)")->capture_default_str();

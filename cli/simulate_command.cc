@@ -1,6 +1,7 @@
-// `ltp simulate SCENE`: step-sine time data of a scene, as a test rig would record it — one
-// record per excitation frequency, after the transient, with optional output noise — written
-// as CSV for `ltp identify` (or for any other tool).
+// `ltp simulate SCENE`: time data of a scene as a test rig would record it — step-sine (one
+// record per excitation frequency) or multisine (every frequency at once, several records with
+// random phases), after the transient, with optional output noise — written as CSV for
+// `ltp identify` (or for any other tool).
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -28,20 +29,25 @@ struct SimulateArgs {
   double amplitude = SimulateOptions{}.amplitude;
   double noise_db = SimulateOptions{}.noise_snr_db;
   std::uint64_t seed = SimulateOptions{}.seed;
+  int records = SimulateOptions{}.records;
   std::string out;
   bool json = false;
 };
 
-// "sine:F" or "stepsine:F0:F1:DF" → the frequencies of the records.
-std::vector<double> ExcitationFrequencies(const std::string& text) {
+// "sine:F", "stepsine:F0:F1:DF" or "multisine:F0:F1:DF" → the kind and the frequencies.
+std::pair<std::string, std::vector<double>> Excitation(const std::string& text) {
   const auto colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
-  if (kind == "sine") return ParseFrequencyRange(rest + ":" + rest + ":1", "--excitation sine:F");
-  if (kind == "stepsine") return ParseFrequencyRange(rest, "--excitation stepsine:F0:F1:DF");
+  if (kind == "sine")
+    return {"step-sine", ParseFrequencyRange(rest + ":" + rest + ":1", "--excitation sine:F")};
+  if (kind == "stepsine")
+    return {"step-sine", ParseFrequencyRange(rest, "--excitation stepsine:F0:F1:DF")};
+  if (kind == "multisine")
+    return {"multisine", ParseFrequencyRange(rest, "--excitation multisine:F0:F1:DF")};
   throw InputError(
-      "--excitation must be sine:F or stepsine:F0:F1:DF (Hz), got '" + text +
-      "' (multisine and noise excitation with broadband identification are not built yet)");
+      "--excitation must be sine:F, stepsine:F0:F1:DF or multisine:F0:F1:DF (Hz), got '" + text +
+      "'");
 }
 
 int RunSimulate(const SimulateArgs& args) {
@@ -49,19 +55,23 @@ int RunSimulate(const SimulateArgs& args) {
   SimulateOptions o;
   o.input =
       ResolveChannel(args.input, l.system.labels().inputs, l.system.inputs(), "--input", "input");
-  o.frequencies_hz = ExcitationFrequencies(args.excitation);
+  const auto [kind, frequencies] = Excitation(args.excitation);
+  o.frequencies_hz = frequencies;
+  o.records = args.records;
   o.periods = args.periods;
   o.samples_per_period = args.samples_per_period;
   o.amplitude = args.amplitude;
   o.noise_snr_db = args.noise_db;
   o.seed = args.seed;
-  const SimulationResult r = SimulateStepSine(l.system, o);
+  const SimulationResult r =
+      kind == "multisine" ? SimulateMultisine(l.system, o) : SimulateStepSine(l.system, o);
   std::string comment = "ltp simulate " + l.scene.name;
   if (!l.parameters.empty()) comment += " (" + ParameterList(l.parameters) + ")";
-  comment += ", step-sine on input " + std::to_string(o.input) + ", amplitude " + Num(o.amplitude) +
-             (std::isfinite(o.noise_snr_db) ? ", output noise " + Num(o.noise_snr_db) +
-                                                  " dB SNR, seed " + std::to_string(o.seed)
-                                            : "");
+  comment +=
+      ", " + kind + " on input " + std::to_string(o.input) + ", amplitude " + Num(o.amplitude) +
+      (std::isfinite(o.noise_snr_db)
+           ? ", output noise " + Num(o.noise_snr_db) + " dB SNR, seed " + std::to_string(o.seed)
+           : "");
   WriteTimeDataCsv(args.out, r.data, comment);
   size_t samples = 0;
   for (const TimeRecord& rec : r.data.records) samples += rec.time.size();
@@ -83,7 +93,7 @@ int RunSimulate(const SimulateArgs& args) {
               << "\n";
     return 0;
   }
-  std::cout << "Simulated step-sine test of " << l.scene.name << ": " << r.data.records.size()
+  std::cout << "Simulated " << kind << " test of " << l.scene.name << ": " << r.data.records.size()
             << " record" << (r.data.records.size() == 1 ? "" : "s") << " of " << o.periods
             << " periods (" << o.samples_per_period
             << " samples per period, T = " << Num(r.data.period, 10) << " s), each after "
@@ -99,10 +109,17 @@ int RunSimulate(const SimulateArgs& args) {
 Command AddSimulateCommand(CLI::App& app) {
   static SimulateArgs args;
   args = SimulateArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
-  auto* cmd = app.add_subcommand("simulate", "step-sine time data of a scene (for ltp identify)");
+  auto* cmd = app.add_subcommand("simulate",
+                                 "step-sine or multisine time data of a scene (for ltp identify)");
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--input", args.input, "excited input (index or name)")->capture_default_str();
-  cmd->add_option("--excitation", args.excitation, "sine:F or stepsine:F0:F1:DF (Hz)")->required();
+  cmd->add_option("--excitation", args.excitation,
+                  "sine:F, stepsine:F0:F1:DF (one record per frequency) or multisine:F0:F1:DF "
+                  "(all at once, --records realisations) (Hz)")
+      ->required();
+  cmd->add_option("--records", args.records,
+                  "multisine: records with random phases (at least the orders to identify)")
+      ->capture_default_str();
   cmd->add_option("--periods", args.periods,
                   "recorded periods per record (frequencies move to whole cycles)")
       ->capture_default_str();
@@ -110,7 +127,8 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--amplitude", args.amplitude, "of the input sine")->capture_default_str();
   cmd->add_option("--noise", args.noise_db, "white output noise at this SNR (dB)");
-  cmd->add_option("--seed", args.seed, "noise generator seed")->capture_default_str();
+  cmd->add_option("--seed", args.seed, "noise (and multisine phase) generator seed")
+      ->capture_default_str();
   cmd->add_option("--out", args.out, "the CSV file to write")->required();
   cmd->add_flag("--json", args.json, "one JSON summary on stdout");
   return {cmd, [] { return RunSimulate(args); }};

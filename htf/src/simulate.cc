@@ -18,11 +18,20 @@ namespace odeint = boost::numeric::odeint;
 using State = std::vector<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
-// x' = A(t) x + B(t) e_input a cos(ωt).
+// x' = A(t) x + B(t) e_input u(t), u(t) = Σ_k a_k cos(ω_k t + φ_k).
+struct Excitation {
+  std::vector<double> amplitude, omega, phase;
+  double operator()(double t) const {
+    double u = 0;
+    for (size_t k = 0; k < omega.size(); ++k) u += amplitude[k] * std::cos(omega[k] * t + phase[k]);
+    return u;
+  }
+};
+
 struct ForcedRealRhs {
   const PeriodicSystem& system;
   int input;
-  double amplitude, omega;
+  const Excitation& u;
   mutable Eigen::MatrixXd a, b;
   void operator()(const State& x, State& dxdt, double t) const {
     system.EvalA(t, a);
@@ -30,9 +39,143 @@ struct ForcedRealRhs {
     Eigen::Map<const Eigen::VectorXd> xv(x.data(), static_cast<Eigen::Index>(x.size()));
     Eigen::Map<Eigen::VectorXd> dv(dxdt.data(), static_cast<Eigen::Index>(x.size()));
     dv.noalias() = a * xv;
-    dv += b.col(input) * (amplitude * std::cos(omega * t));
+    dv += b.col(input) * u(t);
   }
 };
+
+// What every record shares: the settling time, the grid of the record's frequencies.
+struct RecordPlan {
+  double settle_time = 0, length = 0;
+  int samples = 0;
+};
+
+// Checks the system and the cost, and sets the settling time from the slowest Floquet
+// exponent and the conditioning of the modes.
+RecordPlan PlanRecords(const PeriodicSystem& system, const SimulateOptions& options, double records,
+                       SimulationResult& r) {
+  const int m = system.inputs(), p = system.outputs();
+  if (options.input >= m)
+    throw InputError("input " + std::to_string(options.input) + " does not exist (the system has " +
+                     std::to_string(m) + " inputs)");
+  if (p < 1) throw InputError("the system has no outputs to record");
+  const double T = system.period();
+  r.data.period = T;
+  r.data.rotor_speed = system.rotor_speed();
+  r.data.input_names = system.labels().inputs;
+  r.data.output_names = system.labels().outputs;
+  FloquetOptions fo;
+  fo.estimate_error = false;
+  const FloquetResult floquet = AnalyzeFloquet(system, fo);
+  if (!floquet.ok) throw InputError("the Floquet analysis that sets the settling time failed");
+  r.max_real_exponent = floquet.max_real_exponent;
+  if (!(floquet.max_real_exponent < 0))
+    throw InputError("the system is not asymptotically stable (max Re λ = " +
+                     MessageNumber(floquet.max_real_exponent, 10) +
+                     " 1/s): a sine never reaches a steady state to record");
+  const double cond =
+      std::isfinite(floquet.mode_condition) ? std::max(1.0, floquet.mode_condition) : 1.0;
+  const double settle_periods =
+      std::ceil(std::log(cond / options.settle_tol) / -floquet.max_real_exponent / T);
+  const double total = records * options.periods * options.samples_per_period;
+  if (total > 1e8)
+    throw InputError(MessageNumber(total, 10) +
+                     " samples in all: more than 10^8 (split the test or sample slower)");
+  if (settle_periods > 100000)
+    throw InputError("the transient needs " + MessageNumber(settle_periods, 10) +
+                     " periods to decay: too lightly damped to simulate");
+  r.settle_time = settle_periods * T;
+  return {r.settle_time, options.periods * T, options.periods * options.samples_per_period};
+}
+
+// The requested frequencies moved to whole cycles of the record and off the multiples of fp/2
+// (2k/P whole), where one record cannot separate H_z from the mirror of another order
+// (identify.h): one grid step aside. Two on one grid frequency are merged; both are reported.
+std::vector<double> GridFrequencies(const SimulateOptions& options, double T, SimulationResult& r) {
+  const double length = options.periods * T;
+  double largest_move = 0;
+  int moved = 0, merged = 0;
+  std::set<long> used;
+  std::vector<double> grid;
+  for (double requested : options.frequencies_hz) {
+    if (!(2 * requested * T < options.samples_per_period))  // first: keeps the cycle count small
+      throw InputError("excitation " + MessageNumber(requested, 10) +
+                       " Hz is above the Nyquist frequency of " +
+                       std::to_string(options.samples_per_period) + " samples per period");
+    long cycles = std::max(1L, std::lround(requested * length));
+    if ((2 * cycles) % options.periods == 0)
+      cycles += (requested * length > static_cast<double>(cycles) || cycles == 1) ? 1 : -1;
+    if (!used.insert(cycles).second) {
+      ++merged;
+      continue;
+    }
+    const double f = static_cast<double>(cycles) / length;
+    if (std::abs(f - requested) > 1e-12 * requested) {
+      ++moved;
+      largest_move = std::max(largest_move, std::abs(f - requested));
+    }
+    if (2 * f * T >= options.samples_per_period)
+      throw InputError("excitation " + MessageNumber(f, 10) +
+                       " Hz is above the Nyquist frequency of " +
+                       std::to_string(options.samples_per_period) + " samples per period");
+    grid.push_back(f);
+  }
+  if (merged)
+    r.diagnostics.push_back(
+        std::to_string(merged) +
+        " requested frequencies fell on the grid frequency of another and were "
+        "recorded once: the grid is 1/(periods·T); record more periods for a finer one");
+  if (moved)
+    r.diagnostics.push_back(
+        std::to_string(moved) + " of " + std::to_string(options.frequencies_hz.size()) +
+        " excitation frequencies moved to whole cycles of the " + std::to_string(options.periods) +
+        "-period record, off the multiples of fp/2 (grid " + MessageNumber(1 / length, 10) +
+        " Hz; largest move " + MessageNumber(largest_move, 10) +
+        " Hz): each record's own frequency is in the data");
+  return grid;
+}
+
+// One record: from rest through the transient, then the samples, then the output noise
+// (seeded with `seed`).
+TimeRecord SimulateRecord(const PeriodicSystem& system, const SimulateOptions& options,
+                          const RecordPlan& plan, const Excitation& u, std::uint64_t seed) {
+  const int n = system.states(), m = system.inputs(), p = system.outputs();
+  const double T = system.period();
+  ForcedRealRhs rhs{system, options.input, u, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
+  State x(static_cast<size_t>(n), 0.0);
+  auto stepper = odeint::make_controlled(options.rel_tol * options.amplitude * 1e-3,
+                                         options.rel_tol, odeint::runge_kutta_fehlberg78<State>());
+  const double dt0 = T / options.samples_per_period;
+  odeint::integrate_adaptive(stepper, std::cref(rhs), x, 0.0, plan.settle_time, dt0);
+  TimeRecord rec;
+  rec.time.resize(static_cast<size_t>(plan.samples));
+  for (int s = 0; s < plan.samples; ++s)
+    rec.time[static_cast<size_t>(s)] = plan.settle_time + plan.length * s / plan.samples;
+  rec.inputs = Eigen::MatrixXd::Zero(plan.samples, m);
+  rec.outputs.resize(plan.samples, p);
+  Eigen::MatrixXd c(p, n), d(p, m);
+  int s = 0;
+  odeint::integrate_times(stepper, std::cref(rhs), x, rec.time.begin(), rec.time.end(), dt0,
+                          [&](const State& xs, double t) {
+                            system.EvalC(t, c);
+                            system.EvalD(t, d);
+                            const double ut = u(t);
+                            Eigen::Map<const Eigen::VectorXd> xv(xs.data(), n);
+                            rec.inputs(s, options.input) = ut;
+                            rec.outputs.row(s) = (c * xv + d.col(options.input) * ut).transpose();
+                            ++s;
+                          });
+  if (!rec.outputs.allFinite()) throw InputError("the simulation diverged");
+  if (std::isfinite(options.noise_snr_db)) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal;
+    for (int j = 0; j < p; ++j) {
+      const double rms = std::sqrt(rec.outputs.col(j).squaredNorm() / plan.samples);
+      const double sigma = rms * std::pow(10.0, -options.noise_snr_db / 20);
+      for (int i = 0; i < plan.samples; ++i) rec.outputs(i, j) += sigma * normal(rng);
+    }
+  }
+  return rec;
+}
 
 }  // namespace
 
@@ -56,125 +199,45 @@ void SimulateOptions::Validate() const {
     fail("settle_tol", MessageNumber(settle_tol, 10), "in (0, 1)");
   if (std::isnan(noise_snr_db)) fail("noise_snr_db", "nan", "a number (+inf = no noise)");
   if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", MessageNumber(rel_tol, 10), "in (0, 0.01)");
+  if (records < 1 || records > 10000) fail("records", std::to_string(records), "in 1..10000");
 }
 
 SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options) {
   options.Validate();
-  const int n = system.states(), m = system.inputs(), p = system.outputs();
-  if (options.input >= m)
-    throw InputError("input " + std::to_string(options.input) + " does not exist (the system has " +
-                     std::to_string(m) + " inputs)");
-  if (p < 1) throw InputError("the system has no outputs to record");
-  const double T = system.period();
   SimulationResult r;
-  r.data.period = T;
-  r.data.rotor_speed = system.rotor_speed();
-  r.data.input_names = system.labels().inputs;
-  r.data.output_names = system.labels().outputs;
-  // Settling time from the slowest Floquet exponent and the conditioning of the modes.
-  FloquetOptions fo;
-  fo.estimate_error = false;
-  const FloquetResult floquet = AnalyzeFloquet(system, fo);
-  if (!floquet.ok) throw InputError("the Floquet analysis that sets the settling time failed");
-  r.max_real_exponent = floquet.max_real_exponent;
-  if (!(floquet.max_real_exponent < 0))
-    throw InputError("the system is not asymptotically stable (max Re λ = " +
-                     MessageNumber(floquet.max_real_exponent, 10) +
-                     " 1/s): a sine never reaches a steady state to record");
-  const double cond =
-      std::isfinite(floquet.mode_condition) ? std::max(1.0, floquet.mode_condition) : 1.0;
-  const double settle_periods =
-      std::ceil(std::log(cond / options.settle_tol) / -floquet.max_real_exponent / T);
-  const double total =
-      double(options.frequencies_hz.size()) * options.periods * options.samples_per_period;
-  if (total > 1e8)
-    throw InputError(MessageNumber(total, 10) +
-                     " samples in all: more than 10^8 (split the test or sample slower)");
-  if (settle_periods > 100000)
-    throw InputError("the transient needs " + MessageNumber(settle_periods, 10) +
-                     " periods to decay: too lightly damped to simulate");
-  r.settle_time = settle_periods * T;
-  const double length = options.periods * T;
-  const int samples = options.periods * options.samples_per_period;
-  double largest_move = 0;
-  int moved = 0, merged = 0;
-  std::set<long> used;
-  for (size_t k = 0; k < options.frequencies_hz.size(); ++k) {
-    const double requested = options.frequencies_hz[k];
-    if (!(2 * requested * T < options.samples_per_period))  // first: keeps the cycle count small
-      throw InputError("excitation " + MessageNumber(requested, 10) +
-                       " Hz is above the Nyquist frequency of " +
-                       std::to_string(options.samples_per_period) + " samples per period");
-    // Whole cycles per record, and not a multiple of fp/2 (2k/P whole), where one record
-    // cannot separate H_z from the mirror of another order (identify.h): one grid step aside.
-    long cycles = std::max(1L, std::lround(requested * length));
-    if ((2 * cycles) % options.periods == 0)
-      cycles += (requested * length > static_cast<double>(cycles) || cycles == 1) ? 1 : -1;
-    if (!used.insert(cycles).second) {
-      ++merged;  // two requested frequencies on one grid frequency: one record
-      continue;
+  const RecordPlan plan =
+      PlanRecords(system, options, static_cast<double>(options.frequencies_hz.size()), r);
+  const std::vector<double> grid = GridFrequencies(options, system.period(), r);
+  for (size_t k = 0; k < grid.size(); ++k) {
+    const Excitation u{{options.amplitude}, {kTwoPi * grid[k]}, {0.0}};
+    try {
+      r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
+    } catch (const InputError& e) {
+      throw InputError(std::string(e.what()) + " at " + MessageNumber(grid[k], 10) + " Hz");
     }
-    const double f = static_cast<double>(cycles) / length;
-    if (std::abs(f - requested) > 1e-12 * requested) {
-      ++moved;
-      largest_move = std::max(largest_move, std::abs(f - requested));
-    }
-    if (2 * f * T >= options.samples_per_period)
-      throw InputError("excitation " + MessageNumber(f, 10) +
-                       " Hz is above the Nyquist frequency of " +
-                       std::to_string(options.samples_per_period) + " samples per period");
-    ForcedRealRhs rhs{system,     options.input,         options.amplitude,
-                      kTwoPi * f, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
-    State x(static_cast<size_t>(n), 0.0);
-    auto stepper =
-        odeint::make_controlled(options.rel_tol * options.amplitude * 1e-3, options.rel_tol,
-                                odeint::runge_kutta_fehlberg78<State>());
-    const double dt0 = T / options.samples_per_period;
-    odeint::integrate_adaptive(stepper, std::cref(rhs), x, 0.0, r.settle_time, dt0);
-    TimeRecord rec;
-    rec.excitation_hz = f;
-    rec.time.resize(static_cast<size_t>(samples));
-    for (int s = 0; s < samples; ++s)
-      rec.time[static_cast<size_t>(s)] = r.settle_time + length * s / samples;
-    rec.inputs = Eigen::MatrixXd::Zero(samples, m);
-    rec.outputs.resize(samples, p);
-    Eigen::MatrixXd c(p, n), d(p, m);
-    int s = 0;
-    odeint::integrate_times(stepper, std::cref(rhs), x, rec.time.begin(), rec.time.end(), dt0,
-                            [&](const State& xs, double t) {
-                              system.EvalC(t, c);
-                              system.EvalD(t, d);
-                              const double u = options.amplitude * std::cos(kTwoPi * f * t);
-                              Eigen::Map<const Eigen::VectorXd> xv(xs.data(), n);
-                              rec.inputs(s, options.input) = u;
-                              rec.outputs.row(s) = (c * xv + d.col(options.input) * u).transpose();
-                              ++s;
-                            });
-    if (!rec.outputs.allFinite())
-      throw InputError("the simulation diverged at " + MessageNumber(f, 10) + " Hz");
-    if (std::isfinite(options.noise_snr_db)) {
-      std::mt19937_64 rng(options.seed + k);
-      std::normal_distribution<double> normal;
-      for (int j = 0; j < p; ++j) {
-        const double rms = std::sqrt(rec.outputs.col(j).squaredNorm() / samples);
-        const double sigma = rms * std::pow(10.0, -options.noise_snr_db / 20);
-        for (int i = 0; i < samples; ++i) rec.outputs(i, j) += sigma * normal(rng);
-      }
-    }
-    r.data.records.push_back(std::move(rec));
+    r.data.records.back().excitation_hz = grid[k];
   }
-  if (merged)
-    r.diagnostics.push_back(
-        std::to_string(merged) +
-        " requested frequencies fell on the grid frequency of another and were "
-        "recorded once: the grid is 1/(periods·T); record more periods for a finer one");
-  if (moved)
-    r.diagnostics.push_back(
-        std::to_string(moved) + " of " + std::to_string(options.frequencies_hz.size()) +
-        " excitation frequencies moved to whole cycles of the " + std::to_string(options.periods) +
-        "-period record, off the multiples of fp/2 (grid " + MessageNumber(1 / length, 10) +
-        " Hz; largest move " + MessageNumber(largest_move, 10) +
-        " Hz): each record's own frequency is in the data");
+  return r;
+}
+
+SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateOptions& options) {
+  options.Validate();
+  SimulationResult r;
+  const RecordPlan plan = PlanRecords(system, options, options.records, r);
+  const std::vector<double> grid = GridFrequencies(options, system.period(), r);
+  Excitation u;
+  for (double f : grid) {
+    u.amplitude.push_back(options.amplitude / std::sqrt(static_cast<double>(grid.size())));
+    u.omega.push_back(kTwoPi * f);
+  }
+  for (int k = 0; k < options.records; ++k) {
+    std::mt19937_64 rng(options.seed + 1000003 * static_cast<std::uint64_t>(k + 1));
+    std::uniform_real_distribution<double> phase(-std::numbers::pi, std::numbers::pi);
+    u.phase.clear();
+    for (size_t i = 0; i < grid.size(); ++i) u.phase.push_back(phase(rng));
+    r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
+    r.data.records.back().excitation_hz = 0;  // broadband
+  }
   return r;
 }
 

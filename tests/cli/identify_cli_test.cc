@@ -39,6 +39,35 @@ TEST(IdentifyCli, SimulatedStepSineIdentifiesTheModel) {
   EXPECT_GE(compared, 12);
 }
 
+// Multisine records through the CSV: `--method auto` picks broadband (every record has
+// excitation_hz 0), the estimates meet the model (modal route) within their 95 % bounds plus
+// 1e-9, and an explicit step-sine method on broadband data is refused with the reason.
+TEST(IdentifyCli, SimulatedMultisineIdentifiesTheModelByLeastSquares) {
+  const std::string csv = Tmp("identify_multisine.csv");
+  const auto sim = RunLtp("simulate " + kScene +
+                          " --excitation multisine:0.05:0.45:0.08 --records 6 --periods 16 "
+                          "--noise 40 --seed 3 --out " +
+                          csv + " --json");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  EXPECT_EQ(json::parse(sim.out)["records"].get<int>(), 6);
+  const auto id = RunLtp("identify " + csv + " --orders -1:1 --compare " + kScene + " --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const json j = json::parse(id.out);
+  EXPECT_EQ(j["method"], "broadband");
+  int compared = 0, inside = 0;
+  for (const json& f : j["frequencies"])
+    for (const json& h : f["H"]) {
+      const double dre = h["re"].get<double>() - h["model"][0].get<double>();
+      const double dim = h["im"].get<double>() - h["model"][1].get<double>();
+      inside += std::hypot(dre, dim) <= h["bound_95"].get<double>() + 1e-9;
+      ++compared;
+      EXPECT_LT(h["condition"].get<double>(), 100);
+    }
+  EXPECT_GE(compared, 12);
+  EXPECT_GE(inside, compared - 2) << inside << " of " << compared;  // 95 % bounds
+  EXPECT_EQ(RunLtp("identify " + csv + " --method stepsine").code, 2);
+}
+
 TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   const std::string csv = Tmp("identify_noisy.csv");
   ASSERT_EQ(RunLtp("simulate " + kScene +

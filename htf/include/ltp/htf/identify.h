@@ -29,6 +29,10 @@ struct IdentifiedFrequency {
   std::vector<double> bound;            ///< 95 % bound on |error| of each H_z
   double noise = 0;                     ///< rms of the noise bins (output units)
   bool separable = true;                ///< false at multiples of Ωp/2 (see the header)
+  /// Broadband: per order, the condition number of the least-squares problem of the response
+  /// line that determines H_z (∞: under-determined) and its quality 1 − |residual|²/|Y|²
+  /// over the records (1: the lines explain the response; NaN: no residual to judge by).
+  std::vector<double> condition, quality;
 };
 
 struct IdentifyResult {
@@ -41,5 +45,17 @@ struct IdentifyResult {
 /// periods and whole cycles of its excitation, the input is not excited at the record's
 /// frequency, the sampling aliases a requested line, or the options do not fit the data.
 IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& options);
+
+/// Partial FRFs from broadband records (multisine or noise, excitation_hz = 0; §4.2 of the
+/// paper): every response line ν carries Σ_z H_z(ν − zΩp) U(ν − zΩp), so one record gives one
+/// equation per line and the orders are separated by least squares across records whose
+/// excitations differ (random phases): per line, unknowns H_z at the excited ν − zΩp (a
+/// negative one is the mirror conj H_{−z}(zΩp − ν) of a real system). The noise variance is
+/// pooled from the residuals of all lines (it needs more records than unknowns somewhere), and
+/// gives each estimate a 95 % bound sqrt(ln 20)·sqrt(σ² [(MᴴM)⁻¹]_jj). Lines with fewer records
+/// than unknowns (or a rank-deficient system) are reported, with the records still missing.
+/// @throws InputError when the data fail TimeData::Validate, a record is not broadband, the
+/// records differ in length, sampling or excited frequencies, or do not span whole periods.
+IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options);
 
 }  // namespace ltp

@@ -1,6 +1,7 @@
 #pragma once
-// Simulated step-sine tests: the response of a periodic system to u_i(t) = a cos(2π f t) on one
-// input, one record per frequency, started from rest, recorded after the transient has
+// Simulated tests: the response of a periodic system to u_i(t) = a cos(2π f t) on one input,
+// one record per frequency (step-sine), or to a multisine of many frequencies at once, several
+// records with random phases (broadband); started from rest, recorded after the transient has
 // decayed over a whole number of periods, with optional white output noise. The data an
 // experimentalist would measure on a rig, for `ltp identify` (identify.h) and for checking it.
 #include <cstdint>
@@ -31,6 +32,9 @@ struct SimulateOptions {
   double noise_snr_db = std::numeric_limits<double>::infinity();
   std::uint64_t seed = 1;
   double rel_tol = 1e-10;  ///< RKF78 tolerance (absolute: rel_tol · amplitude · 1e-3)
+  /// Multisine (SimulateMultisine): realisations to record, each exciting every frequency at
+  /// once with its own random phases (seed + record); ≥ the number of orders to identify.
+  int records = 10;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
@@ -46,5 +50,12 @@ struct SimulationResult {
 /// marginal system (no steady state), or a sampling rate that aliases a response line the
 /// records must resolve.
 SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options);
+
+/// Broadband (multisine) tests: `records` realisations of
+///   u(t) = (amplitude / √K) Σ_k cos(2π f_k t + φ_{r,k}),  φ uniform random (seed + r),
+/// every f_k of frequencies_hz moved to the record grid as for step-sine; the records are
+/// marked excitation_hz = 0 (broadband). For IdentifyBroadband (identify.h).
+/// @throws InputError as SimulateStepSine.
+SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateOptions& options);
 
 }  // namespace ltp

@@ -11,7 +11,7 @@
 namespace ltp {
 
 struct TimeRecord {
-  double excitation_hz = 0;  ///< the sine's frequency (Hz) of a step-sine record
+  double excitation_hz = 0;  ///< the sine's frequency (Hz) of a step-sine record; 0: broadband
   std::vector<double> time;  ///< uniform, increasing (s)
   Eigen::MatrixXd inputs;    ///< samples × inputs
   Eigen::MatrixXd outputs;   ///< samples × outputs
