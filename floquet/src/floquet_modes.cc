@@ -6,6 +6,7 @@
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
+#include "condition_number.h"
 #include "ltp/floquet/periodic_eigen.h"
 
 namespace ltp::internal {
@@ -54,14 +55,6 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
   return prior;
 }
 
-double Condition(const Eigen::MatrixXcd& m) {
-  if (m.size() == 0) return 1;
-  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(m);
-  const auto& s = svd.singularValues();
-  if (s(s.size() - 1) == 0) return kInf;
-  return s(0) / s(s.size() - 1);
-}
-
 // ξ_k(t_s) at the uniform sample times. The grid refines the uniform one when the segments
 // were chosen automatically, so the samples are grid points; otherwise (a user-chosen K, or
 // fewer segments for a large system) they are propagated from the last grid point before each
@@ -102,9 +95,10 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
     TransitionResult tr =
         StateTransition(system, grid.times[i], std::max(ts, grid.times[i]), integrator);
     out.rhs_evals += tr.rhs_evals;
+    Eigen::MatrixXcd at_grid(n, n);
     for (int k = 0; k < n; ++k)
-      xi[s].col(k) =
-          tr.phi.cast<cd>() * vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
+      at_grid.col(k) = vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
+    xi[s].noalias() = tr.phi.cast<cd>() * at_grid;
   }
   return xi;
 }
@@ -189,7 +183,7 @@ void ModeMatrixCondition(const std::vector<int>& good, ModeShapes& out) {
       const double norm = x.col(j).norm();
       if (norm > 0) x.col(j) /= norm;
     }
-    const double c = Condition(x);
+    const double c = ConditionNumber(x);
     if (c < out.condition || best_xi.size() == 0) {
       out.condition = c;
       best_xi = x;

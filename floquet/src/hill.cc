@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "condition_number.h"
 #include "hill_internal.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -281,10 +282,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     // Bauer–Fike: |Δρ| <= κ(V) ||ΔΦ||; |Δ log ρ| <= −log(1 − |Δρ|/|ρ|).
     Eigen::MatrixXcd V = es.eigenvectors();
     for (Eigen::Index k = 0; k < V.cols(); ++k) V.col(k).normalize();
-    const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(V);
-    const auto& s = svd.singularValues();
-    const double kappa =
-        s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
+    const double kappa = internal::ConditionNumber(V);
     double worst = 0;
     for (const FloquetMode& m : r.modes) {
       const double delta = kappa * r.apriori_phi_bound / std::exp(m.exponent.real() * T);

@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "condition_number.h"
+
 namespace ltp::internal {
 
 namespace {
@@ -23,10 +25,7 @@ double FactorCondition(const Eigen::MatrixXd& f) {
   lapack_int ilo = 0, ihi = 0;
   std::vector<double> scale(n);
   if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0) b = f;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(b);
-  const auto& s = svd.singularValues();
-  if (!(s(s.size() - 1) > 0)) return std::numeric_limits<double>::infinity();
-  return s(0) / s(s.size() - 1);
+  return ConditionNumber(b);
 }
 
 struct Piece {

@@ -179,7 +179,8 @@ TEST(IdentifyBroadband, NoiseFreeEstimatesEqualTheModel) {
   o.max_order = 4;
   const IdentifyResult id = IdentifyBroadband(sim.data, o);
   ASSERT_EQ(id.frequencies.size(), s.frequencies_hz.size());
-  EXPECT_TRUE(id.diagnostics.empty()) << id.diagnostics.front();
+  for (const std::string& d : id.diagnostics)  // every line determined (the bias note may come)
+    EXPECT_EQ(d.find("under-determined"), std::string::npos) << d;
   const auto model = ModelAt(system, id);
   for (size_t f = 0; f < id.frequencies.size(); ++f) {
     double scale = 0;
