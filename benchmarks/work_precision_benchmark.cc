@@ -1,4 +1,4 @@
-// Work–precision study (issue 9): for each scene, every method over its accuracy knob — the
+// Work–precision study: for each scene, every method over its accuracy knob — the
 // monodromy integrators × tolerance or step count (automatic segments), the segment count K,
 // Hill's truncation N (dense and structured), Koopman–Hill, and the partial-FRF routes — with the
 // error against a near-machine-precision reference computed by a *different* method, and the
@@ -31,9 +31,9 @@
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/scene.h"
 #include "ltp/htf/pfrf.h"
+#include "support/failure_map.h"
 #include "support/systems.h"
 #include "work_precision_common.h"
-#include "work_precision_failure_map.h"
 
 namespace {
 

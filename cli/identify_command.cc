@@ -37,22 +37,41 @@ struct IdentifyArgs {
   bool json = false;
 };
 
-// |H_z| per order against the excitation frequency: the estimates with their 95 % bounds as
-// error bars, the model's values as lines (--compare).
+// |H_z| per order against the excitation frequency: the estimates their 95 % bound resolves
+// (bound below |H_z|) with the bound as error bar, the others as grey dots (indistinguishable
+// from 0 at this noise), the model's values as lines (--compare; orders whose model is zero to
+// round-off are left out).
 void PlotIdentified(const std::string& file, const IdentifyResult& r,
                     const std::vector<std::vector<cd>>& model, const std::string& title,
                     const std::string& method) {
   const int Z = r.max_order - r.min_order + 1;
   std::ostringstream g;
   g << GnuplotTerminal(file, 1000, 650) << "set output '" << file << "'\n";
+  double model_max = 0;
+  for (const auto& row : model)
+    for (const cd& v : row) model_max = std::max(model_max, std::abs(v));
+  std::vector<bool> drawn_model(Z, false);
+  g << "$U << EOD\n";
+  for (const auto& f : r.frequencies)
+    for (int z = 0; z < Z; ++z) {
+      const double h = std::abs(f.h[static_cast<size_t>(z)]);
+      if (f.separable && h > 0 && std::isfinite(h) && !(f.bound[static_cast<size_t>(z)] < h))
+        g << f.excitation_hz << " " << h << "\n";
+    }
+  g << "EOD\n";
   for (int z = 0; z < Z; ++z) {
     g << "$E" << z << " << EOD\n";
-    for (const auto& f : r.frequencies)
-      if (f.separable && std::isfinite(std::abs(f.h[static_cast<size_t>(z)])))
-        g << f.excitation_hz << " " << std::abs(f.h[static_cast<size_t>(z)]) << " "
-          << f.bound[static_cast<size_t>(z)] << "\n";
+    for (const auto& f : r.frequencies) {
+      const double h = std::abs(f.h[static_cast<size_t>(z)]);
+      if (f.separable && std::isfinite(h) && f.bound[static_cast<size_t>(z)] < h)
+        g << f.excitation_hz << " " << h << " " << f.bound[static_cast<size_t>(z)] << "\n";
+    }
     g << "EOD\n";
-    if (!model.empty()) {
+    double order_max = 0;
+    for (const auto& row : model)
+      order_max = std::max(order_max, std::abs(row[static_cast<size_t>(z)]));
+    drawn_model[z] = !model.empty() && order_max > 1e-9 * model_max;
+    if (drawn_model[z]) {
       g << "$M" << z << " << EOD\n";
       for (size_t f = 0; f < r.frequencies.size(); ++f)
         g << r.frequencies[f].excitation_hz << " " << std::abs(model[f][static_cast<size_t>(z)])
@@ -65,13 +84,13 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
        "right top\n";
   const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                           "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
-  g << "plot ";
+  g << "plot $U using 1:2 with points pt 7 ps 0.25 lc rgb '#c0c0c0' title 'within the 95 % bound "
+       "of 0'";
   for (int z = 0; z < Z; ++z) {
     const std::string color = colors[z % 9];
-    g << (z ? ", \\\n     " : "") << "$E" << z
-      << " using 1:2:3 with yerrorbars pt 7 ps 0.6 lc rgb '" << color
+    g << ", \\\n     $E" << z << " using 1:2:3 with yerrorbars pt 7 ps 0.5 lc rgb '" << color
       << "' title 'z = " << z + r.min_order << " (" << method << ", 95 % bound)'";
-    if (!model.empty())
+    if (drawn_model[z])
       g << ", $M" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color
         << "' title 'z = " << z + r.min_order << " model'";
   }

@@ -90,13 +90,8 @@ void Plot(const PfrfResult& r, const std::string& title, double threshold,
   RunGnuplot(file, s.str());
 }
 
-int RunPfrf(PfrfArgs& args) {
-  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
-  if (args.freq.empty()) throw InputError("--freq F0:F1:DF is required");
-  LoadedScene l = LoadSceneArgs(args.scene);
-  const PeriodicSystem& sys = l.system;
-  if (sys.inputs() < 1 || sys.outputs() < 1)
-    throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
+// The library's options from the command line.
+PfrfOptions OptionsFrom(const PfrfArgs& args, const PeriodicSystem& sys) {
   PfrfOptions o;
   o.frequencies_hz = ParseFrequencyRange(args.freq, "--freq");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
@@ -107,112 +102,93 @@ int RunPfrf(PfrfArgs& args) {
   if (!SelectPfrfRoutes(args.route, &o))
     throw InputError("--route must be auto, modal, htf, shooting, time or all, got '" + args.route +
                      "'");
-  Progress progress("pfrf");
-  o.progress = [&progress](int done, int total) { progress(done, total); };
-  const PfrfResult r = ComputePartialFrf(sys, o);
-  const std::string in_name =
-      o.input < static_cast<int>(sys.labels().inputs.size()) ? sys.labels().inputs[o.input] : "";
-  const std::string out_name = o.output < static_cast<int>(sys.labels().outputs.size())
-                                   ? sys.labels().outputs[o.output]
-                                   : "";
+  return o;
+}
 
-  if (!args.csv.empty()) WriteCsv(r, args.csv);
-  if (!args.plot.empty())
-    Plot(r,
-         GnuplotEscape(l.scene.name + " " +
-                       (out_name.empty() ? std::to_string(o.output) : out_name) + "/" +
-                       (in_name.empty() ? std::to_string(o.input) : in_name)),
-         args.plot_threshold, args.plot);
+// The channel's names ("" where the scene has none).
+struct ChannelNames {
+  std::string input, output;
+};
 
-  if (args.json) {
-    json routes = json::array(), res = json::array(), points = json::array(), exps = json::array();
-    for (const RouteRun& run : r.routes) {
-      double worst = 0;
-      for (double d : run.deviation) worst = std::max(worst, d);
-      routes.push_back({{"route", std::string(ToString(run.route))},
-                        {"points", run.points.size()},
-                        {"failures", run.failures},
-                        {"max_deviation_from_primary", JsonNumber(worst)},
-                        {"setup_s", run.setup_s},
-                        {"elapsed_s", run.elapsed_s},
-                        {"diagnostics", run.diagnostics}});
+double MaxDeviation(const RouteRun& run) {
+  double worst = 0;
+  for (double d : run.deviation) worst = std::max(worst, d);
+  return worst;
+}
+
+json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
+              const ChannelNames& names) {
+  json routes = json::array(), res = json::array(), points = json::array(), exps = json::array();
+  for (const RouteRun& run : r.routes)
+    routes.push_back({{"route", std::string(ToString(run.route))},
+                      {"points", run.points.size()},
+                      {"failures", run.failures},
+                      {"max_deviation_from_primary", JsonNumber(MaxDeviation(run))},
+                      {"setup_s", run.setup_s},
+                      {"elapsed_s", run.elapsed_s},
+                      {"diagnostics", run.diagnostics}});
+  for (const Resonance& p : r.resonances)
+    res.push_back({{"z", p.order},
+                   {"f_exc_hz", p.f_exc_hz},
+                   {"f_resp_hz", p.f_resp_hz},
+                   {"abs", JsonNumber(p.magnitude)},
+                   {"mode", p.mode + 1},
+                   {"harmonic", p.harmonic},
+                   {"mode_line_hz", JsonNumber(p.mode_line_hz)},
+                   {"share", JsonNumber(p.share)}});
+  for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
+    for (int z = r.min_order; z <= r.max_order; ++z) {
+      const auto h = r.values[i][z - r.min_order];
+      points.push_back({{"f_exc_hz", r.frequencies_hz[i]},
+                        {"z", z},
+                        {"f_resp_hz", r.frequencies_hz[i] + z * r.fp_hz},
+                        {"re", JsonNumber(h.real())},
+                        {"im", JsonNumber(h.imag())},
+                        {"error_estimate", JsonNumber(r.error_estimate[i][z - r.min_order])},
+                        {"checked", static_cast<bool>(r.checked[i])}});
     }
-    for (const Resonance& p : r.resonances)
-      res.push_back({{"z", p.order},
-                     {"f_exc_hz", p.f_exc_hz},
-                     {"f_resp_hz", p.f_resp_hz},
-                     {"abs", JsonNumber(p.magnitude)},
-                     {"mode", p.mode + 1},
-                     {"harmonic", p.harmonic},
-                     {"mode_line_hz", JsonNumber(p.mode_line_hz)},
-                     {"share", JsonNumber(p.share)}});
-    for (size_t i = 0; i < r.frequencies_hz.size(); ++i)
-      for (int z = r.min_order; z <= r.max_order; ++z) {
-        const auto h = r.values[i][z - r.min_order];
-        points.push_back({{"f_exc_hz", r.frequencies_hz[i]},
-                          {"z", z},
-                          {"f_resp_hz", r.frequencies_hz[i] + z * r.fp_hz},
-                          {"re", JsonNumber(h.real())},
-                          {"im", JsonNumber(h.imag())},
-                          {"error_estimate", JsonNumber(r.error_estimate[i][z - r.min_order])},
-                          {"checked", static_cast<bool>(r.checked[i])}});
-      }
-    for (const auto& m : r.floquet.modes)
-      exps.push_back({{"re", JsonNumber(m.exponent.real())},
-                      {"im", JsonNumber(m.exponent.imag())},
-                      {"frequency_hz", JsonNumber(m.frequency_hz)}});
-    json j = {{"scene", l.scene.name},
-              {"parameters", ParametersJson(l.parameters)},
-              {"input", o.input},
-              {"input_name", in_name},
-              {"output", o.output},
-              {"output_name", out_name},
-              {"period", r.period},
-              {"fp_hz", r.fp_hz},
-              {"orders", {r.min_order, r.max_order}},
-              {"primary_route", std::string(ToString(r.routes.front().route))},
-              {"route_choice", r.route_choice},
-              {"check_every", o.check_every},
-              {"routes", routes},
-              {"max_disagreement", JsonNumber(r.max_disagreement)},
-              {"max_relative_disagreement", JsonNumber(r.max_relative_disagreement)},
-              {"htf_harmonics", r.htf_harmonics},
-              {"htf_truncation_change", JsonNumber(r.htf_truncation_change)},
-              {"modal_reliable", r.modal ? json(r.modal->reliable) : json(nullptr)},
-              {"modal_condition", r.modal ? JsonNumber(r.modal->condition) : json(nullptr)},
-              {"settle_time", JsonNumber(r.settle_time)},
-              {"floquet_exponents", exps},
-              {"stable", r.floquet.stable},
-              {"resonances", res},
-              {"values", points},
-              {"elapsed_s", r.elapsed_s},
-              {"ok", r.ok},
-              {"diagnostics", r.diagnostics}};
-    std::cout << j.dump(2) << "\n";
-    if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
-    return r.ok ? 0 : 1;
-  }
+  for (const auto& m : r.floquet.modes)
+    exps.push_back({{"re", JsonNumber(m.exponent.real())},
+                    {"im", JsonNumber(m.exponent.imag())},
+                    {"frequency_hz", JsonNumber(m.frequency_hz)}});
+  return {{"scene", l.scene.name},
+          {"parameters", ParametersJson(l.parameters)},
+          {"input", o.input},
+          {"input_name", names.input},
+          {"output", o.output},
+          {"output_name", names.output},
+          {"period", r.period},
+          {"fp_hz", r.fp_hz},
+          {"orders", {r.min_order, r.max_order}},
+          {"primary_route", std::string(ToString(r.routes.front().route))},
+          {"route_choice", r.route_choice},
+          {"check_every", o.check_every},
+          {"routes", routes},
+          {"max_disagreement", JsonNumber(r.max_disagreement)},
+          {"max_relative_disagreement", JsonNumber(r.max_relative_disagreement)},
+          {"htf_harmonics", r.htf_harmonics},
+          {"htf_truncation_change", JsonNumber(r.htf_truncation_change)},
+          {"modal_reliable", r.modal ? json(r.modal->reliable) : json(nullptr)},
+          {"modal_condition", r.modal ? JsonNumber(r.modal->condition) : json(nullptr)},
+          {"settle_time", JsonNumber(r.settle_time)},
+          {"floquet_exponents", exps},
+          {"stable", r.floquet.stable},
+          {"resonances", res},
+          {"values", points},
+          {"elapsed_s", r.elapsed_s},
+          {"ok", r.ok},
+          {"diagnostics", r.diagnostics}};
+}
 
-  const auto& f = r.frequencies_hz;
-  std::cout << "Partial FRFs of " << l.scene.name;
-  if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
-  std::cout << "\n  output " << o.output << (out_name.empty() ? "" : " (" + out_name + ")")
-            << " / input " << o.input << (in_name.empty() ? "" : " (" + in_name + ")") << ", "
-            << sys.states() << " states, T = " << Num(r.period, 10)
-            << " s, fp = " << Num(r.fp_hz, 8) << " Hz\n  " << f.size() << " excitation frequencies "
-            << Num(f.front(), 6) << " … " << Num(f.back(), 6) << " Hz, orders z = " << r.min_order
-            << " … " << r.max_order
-            << "  (H_z indexed by the excitation frequency; response at f + z fp)\n\n";
+// The routes, their agreement and the decomposition behind them.
+void PrintRoutes(const PfrfResult& r, const PfrfOptions& o) {
   std::cout << "  route       points  failures   max |Δ| vs primary    setup [ms]    total [ms]\n";
-  for (const RouteRun& run : r.routes) {
-    double worst = 0;
-    for (double d : run.deviation) worst = std::max(worst, d);
+  for (const RouteRun& run : r.routes)
     std::cout << "  " << std::left << std::setw(10) << ToString(run.route) << std::right
               << std::setw(8) << run.points.size() << std::setw(10) << run.failures
               << (&run == &r.routes.front() ? std::string(21, ' ') + "(primary)"
-                                            : Num(worst, 3, 21))
+                                            : Num(MaxDeviation(run), 3, 21))
               << Num(run.setup_s * 1e3, 4, 14) << Num(run.elapsed_s * 1e3, 4, 14) << "\n";
-  }
   std::cout << "\n  max disagreement between routes " << Num(r.max_disagreement, 3) << " ("
             << Num(r.max_relative_disagreement, 3) << " of max |H_z|), checked on every "
             << o.check_every << "th frequency";
@@ -227,6 +203,11 @@ int RunPfrf(PfrfArgs& args) {
   std::cout << "\n  Floquet: max Re λ = " << Num(r.floquet.max_real_exponent, 6) << " 1/s ("
             << (r.floquet.stable ? "stable" : "UNSTABLE") << "), "
             << Num(r.floquet.elapsed_s * 1e3, 3) << " ms\n";
+}
+
+// max |H_z| per order; every value when there are few; the resonances.
+void PrintValues(const PfrfResult& r, bool csv_written) {
+  const auto& f = r.frequencies_hz;
   std::cout << "\n  order z   max |H_z|\n";
   for (int z = r.min_order; z <= r.max_order; ++z)
     std::cout << std::setw(9) << z << Num(r.order_max[z - r.min_order], 4, 12) << "\n";
@@ -241,42 +222,88 @@ int RunPfrf(PfrfArgs& args) {
                   << Num(PhaseDeg(h.real(), h.imag()), 5, 12)
                   << Num(r.error_estimate[i][z - r.min_order], 2, 15) << "\n";
       }
-  } else if (args.csv.empty()) {
+  } else if (!csv_written) {
     std::cout << "\n  (" << f.size() * (r.max_order - r.min_order + 1)
               << " values: write them with --csv FILE, or --json)\n";
   }
-  if (!r.resonances.empty()) {
-    std::cout
-        << "\n  resonances (peaks of |H_z|; mode k and harmonic v of the resonant modal term, "
-           "line f_k + v fp)\n    z    f_exc [Hz]   f_resp [Hz]         |H_z|   mode  v   line "
-           "[Hz]   share\n";
-    for (const Resonance& p : r.resonances)
-      std::cout << std::setw(5) << p.order << Num(p.f_exc_hz, 6, 14) << Num(p.f_resp_hz, 6, 14)
-                << Num(p.magnitude, 4, 14) << std::setw(7)
-                << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?") << std::setw(3) << p.harmonic
-                << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
-  }
+  if (r.resonances.empty()) return;
+  std::cout << "\n  resonances (peaks of |H_z|; mode k and harmonic v of the resonant modal term, "
+               "line f_k + v fp)\n    z    f_exc [Hz]   f_resp [Hz]         |H_z|   mode  v   line "
+               "[Hz]   share\n";
+  for (const Resonance& p : r.resonances)
+    std::cout << std::setw(5) << p.order << Num(p.f_exc_hz, 6, 14) << Num(p.f_resp_hz, 6, 14)
+              << Num(p.magnitude, 4, 14) << std::setw(7)
+              << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?") << std::setw(3) << p.harmonic
+              << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
+}
+
+// The notes of the sweep and its routes; one repeated for many frequencies is printed once,
+// with its count.
+void PrintNotes(const PfrfResult& r) {
   std::vector<std::string> diags = r.diagnostics;
   for (const RouteRun& run : r.routes)
     for (const auto& d : run.diagnostics) diags.push_back(d);
-  if (!diags.empty()) {
-    // A note repeated for many frequencies is printed once, with its count.
-    std::vector<std::pair<std::string, int>> unique;
-    for (const auto& d : diags) {
-      auto it =
-          std::find_if(unique.begin(), unique.end(), [&](const auto& u) { return u.first == d; });
-      if (it == unique.end()) {
-        unique.emplace_back(d, 1);
-      } else {
-        ++it->second;
-      }
-    }
-    std::cout << "\n  notes:\n";
-    for (const auto& [d, count] : unique)
-      std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "")
-                << "\n";
+  if (diags.empty()) return;
+  std::vector<std::pair<std::string, int>> unique;
+  for (const auto& d : diags) {
+    auto it =
+        std::find_if(unique.begin(), unique.end(), [&](const auto& u) { return u.first == d; });
+    if (it == unique.end())
+      unique.emplace_back(d, 1);
+    else
+      ++it->second;
   }
+  std::cout << "\n  notes:\n";
+  for (const auto& [d, count] : unique)
+    std::cout << "    - " << d << (count > 1 ? " (" + std::to_string(count) + " points)" : "")
+              << "\n";
+}
+
+void PrintPfrf(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
+               const ChannelNames& names, bool csv_written) {
+  const auto& f = r.frequencies_hz;
+  std::cout << "Partial FRFs of " << l.scene.name;
+  if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
+  std::cout << "\n  output " << o.output << (names.output.empty() ? "" : " (" + names.output + ")")
+            << " / input " << o.input << (names.input.empty() ? "" : " (" + names.input + ")")
+            << ", " << l.system.states() << " states, T = " << Num(r.period, 10)
+            << " s, fp = " << Num(r.fp_hz, 8) << " Hz\n  " << f.size() << " excitation frequencies "
+            << Num(f.front(), 6) << " … " << Num(f.back(), 6) << " Hz, orders z = " << r.min_order
+            << " … " << r.max_order
+            << "  (H_z indexed by the excitation frequency; response at f + z fp)\n\n";
+  PrintRoutes(r, o);
+  PrintValues(r, csv_written);
+  PrintNotes(r);
   std::cout << "\n  total " << Num(r.elapsed_s, 4) << " s\n";
+}
+
+int RunPfrf(PfrfArgs& args) {
+  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
+  if (args.freq.empty()) throw InputError("--freq F0:F1:DF is required");
+  LoadedScene l = LoadSceneArgs(args.scene);
+  const PeriodicSystem& sys = l.system;
+  if (sys.inputs() < 1 || sys.outputs() < 1)
+    throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
+  PfrfOptions o = OptionsFrom(args, sys);
+  Progress progress("pfrf");
+  o.progress = [&progress](int done, int total) { progress(done, total); };
+  const PfrfResult r = ComputePartialFrf(sys, o);
+  ChannelNames names;
+  if (o.input < static_cast<int>(sys.labels().inputs.size()))
+    names.input = sys.labels().inputs[o.input];
+  if (o.output < static_cast<int>(sys.labels().outputs.size()))
+    names.output = sys.labels().outputs[o.output];
+  if (!args.csv.empty()) WriteCsv(r, args.csv);
+  if (!args.plot.empty())
+    Plot(r,
+         GnuplotEscape(l.scene.name + " " +
+                       (names.output.empty() ? std::to_string(o.output) : names.output) + "/" +
+                       (names.input.empty() ? std::to_string(o.input) : names.input)),
+         args.plot_threshold, args.plot);
+  if (args.json)
+    std::cout << PfrfJson(r, l, o, names).dump(2) << "\n";
+  else
+    PrintPfrf(r, l, o, names, !args.csv.empty());
   if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
   return r.ok ? 0 : 1;
 }

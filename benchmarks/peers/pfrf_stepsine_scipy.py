@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Step-sine peer for the partial FRFs of the work-precision study (issue 9, item 4): H_z
+"""Step-sine peer for the partial FRFs of the work-precision study: H_z
 computed the way the reference paper obtained its partial FRFs (eq. 47, a step-sine simulation
 from rest), with SciPy's solve_ivp, timed the same way as ltp (CPU time, median of repeats, the
 whole set of frequencies of a scene), with the error measured exactly like the study, and

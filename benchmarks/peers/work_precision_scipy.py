@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Peers for the work-precision study (issue 9): the same Floquet exponents computed the way
+"""Peers for the work-precision study: the same Floquet exponents computed the way
 most users would in Python, timed the same way (median of repeated runs, CPU and wall), with
 the error measured against the same kind of reference, and compared with ltp's fastest method
 at the same accuracy from OUT_DIR/work_precision.csv.

@@ -295,6 +295,145 @@ MatrixXd MbcChannelTransformAt(const BladeCoordinates& channels, double psi) {
   return t;
 }
 
+namespace {
+
+// Inputs and outputs are transformed when their rotating channels form tuples of the states'
+// blade count; otherwise B, C, D are left out of the result (the state analysis does not need
+// them), and the diagnostics say why.
+void FindChannelCoordinates(const LinOperatingPoint& op, bool* with_inputs, bool* with_outputs,
+                            Mbc3Result& r) {
+  const LtiSystem& s0 = op.samples.front();
+  *with_inputs = s0.B.size() > 0 && static_cast<int>(op.inputs.size()) == s0.B.cols();
+  *with_outputs = s0.C.size() > 0 && static_cast<int>(op.outputs.size()) == s0.C.rows();
+  if (s0.B.size() > 0 && !*with_inputs)
+    r.diagnostics.push_back("B not transformed: the files have no input table");
+  if (s0.C.size() > 0 && !*with_outputs)
+    r.diagnostics.push_back("C not transformed: the files have no output table");
+  auto channels = [&](const std::vector<LinChannel>& list, bool* use, const char* what) {
+    BladeCoordinates c;
+    if (!*use) return c;
+    try {
+      c = FindBladeCoordinates(list);
+      if (c.blades != 0 && c.blades != r.blades)
+        throw InputError(std::string("rotating ") + what + " form tuples of " +
+                         std::to_string(c.blades) + " blades, the states of " +
+                         std::to_string(r.blades));
+    } catch (const InputError& e) {
+      r.diagnostics.push_back(std::string(what) + " not transformed (" + e.what() + ")");
+      *use = false;
+      c = BladeCoordinates();
+    }
+    return c;
+  };
+  r.input_coordinates = channels(op.inputs, with_inputs, "inputs");
+  r.output_coordinates = channels(op.outputs, with_outputs, "outputs");
+}
+
+// Every azimuth sample in multi-blade coordinates (Bir 2008, eq. 29), and their mean.
+void TransformSamples(const LinOperatingPoint& op, const Mbc3Options& options,
+                      const std::vector<int>& rate_of, bool with_inputs, bool with_outputs,
+                      Mbc3Result& r) {
+  const int K = op.size();
+  LtiSystem& mean = r.average;
+  auto add = [K](MatrixXd& sum, const MatrixXd& m) {
+    if (m.size() == 0) return;
+    if (sum.size() == 0) sum = MatrixXd::Zero(m.rows(), m.cols());
+    sum += m / K;
+  };
+  for (int k = 0; k < K; ++k) {
+    const double psi = op.azimuths[k];
+    const double omega =
+        options.speed_from_operating_point ? op.operating_speeds[k] : op.rotor_speeds[k];
+    const double omega_dot =
+        options.speed_from_operating_point ? op.operating_accelerations[k] : 0.0;
+    const MbcStateTransform t =
+        MbcStateTransformAt(r.state_coordinates, rate_of, psi, omega, omega_dot);
+    const Eigen::PartialPivLU<MatrixXd> lu(t.T);
+    const LtiSystem& s = op.samples[k];
+    LtiSystem x;
+    x.A = lu.solve(s.A * t.T - t.T_dot);  // Bir (2008) eq. 29
+    if (with_inputs) x.B = lu.solve(s.B * MbcChannelTransformAt(r.input_coordinates, psi));
+    if (with_outputs) {
+      const Eigen::PartialPivLU<MatrixXd> out(MbcChannelTransformAt(r.output_coordinates, psi));
+      x.C = out.solve(s.C * t.T);
+      if (with_inputs && s.D.size() > 0)
+        x.D = out.solve(s.D * MbcChannelTransformAt(r.input_coordinates, psi));
+    }
+    add(mean.A, x.A);
+    add(mean.B, x.B);
+    add(mean.C, x.C);
+    add(mean.D, x.D);
+    r.transformed.push_back(std::move(x));
+  }
+  const double norm = mean.A.norm();
+  for (const LtiSystem& x : r.transformed)
+    r.periodic_part = std::max(r.periodic_part, (x.A - mean.A).norm() / std::max(norm, 1e-300));
+}
+
+// One mode per eigenvalue of the averaged matrix with Im λ ≥ 0 (a conjugate is not listed
+// twice), with the states that carry it: shares over displacements and first-order states (a
+// rate is λ times its displacement).
+bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& options, Mbc3Result& r) {
+  const Eigen::EigenSolver<MatrixXd> eig(r.average.A);
+  if (eig.info() != Eigen::Success) {
+    r.diagnostics.push_back("the eigenvalue solver did not converge on the averaged matrix");
+    return false;
+  }
+  const int n = static_cast<int>(r.average.A.rows());
+  const Eigen::VectorXcd values = eig.eigenvalues();
+  const Eigen::MatrixXcd vectors = eig.eigenvectors();
+  for (int k = 0; k < n; ++k) {
+    const std::complex<double> lambda = values[k];
+    if (lambda.imag() < 0) continue;
+    MbcMode m;
+    m.eigenvalue = lambda;
+    const double magnitude = std::abs(lambda);
+    m.natural_frequency_hz = magnitude / (2 * pi);
+    m.damped_frequency_hz = lambda.imag() / (2 * pi);
+    m.damping_ratio = magnitude > 0 ? -lambda.real() / magnitude : 0;
+    m.kind = lambda.imag() > 0 ? "oscillatory" : "real";
+    m.eigenvector = vectors.col(k);
+    double total = 0;
+    for (int i = 0; i < n; ++i)
+      if (rate_of[i] < 0) total += std::norm(m.eigenvector[i]);
+    std::vector<MbcMode::Share> shares;
+    for (int i = 0; i < n; ++i)
+      if (rate_of[i] < 0 && total > 0) shares.push_back({i, std::norm(m.eigenvector[i]) / total});
+    std::sort(shares.begin(), shares.end(),
+              [](const MbcMode::Share& a, const MbcMode::Share& b) { return a.share > b.share; });
+    for (const auto& s : shares) {
+      if (static_cast<int>(m.dominant.size()) >= options.max_dominant_states) break;
+      if (s.share < options.dominant_share && !m.dominant.empty()) break;
+      m.dominant.push_back(s);
+    }
+    r.modes.push_back(std::move(m));
+  }
+  return true;
+}
+
+// The rigid rotation: the real mode nearest 0 led by the azimuth state; or an exact zero.
+void MarkRigidBodyModes(const LinOperatingPoint& op, Mbc3Result& r) {
+  const double norm = r.average.A.norm();
+  int rigid = -1;
+  for (int k = 0; k < static_cast<int>(r.modes.size()); ++k) {
+    const MbcMode& m = r.modes[k];
+    if (m.kind != "real" || m.dominant.empty() || !op.azimuth_state ||
+        m.dominant.front().state != *op.azimuth_state)
+      continue;
+    if (rigid < 0 || std::abs(m.eigenvalue) < std::abs(r.modes[rigid].eigenvalue)) rigid = k;
+  }
+  for (int k = 0; k < static_cast<int>(r.modes.size()); ++k) {
+    MbcMode& m = r.modes[k];
+    if (k == rigid || std::abs(m.eigenvalue) <= 1e-9 * std::max(norm, 1.0)) {
+      m.rigid_body = true;
+      m.kind = "rigid-body";
+      ++r.rigid_body_modes;
+    }
+  }
+}
+
+}  // namespace
+
 Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
   Mbc3Result r;
   r.rotor_speed = op.rotor_speed;
@@ -317,129 +456,16 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
   CheckRateGroups(r.state_coordinates, rate_of, op.states);
   if (r.blades == 0)
     r.diagnostics.push_back("no rotating-frame states: the transform is the identity");
-
-  // Inputs and outputs: transformed when their rotating channels form tuples of the same N;
-  // otherwise B, C, D are left out of the result (the state analysis does not need them).
-  const LtiSystem& s0 = op.samples.front();
-  bool with_inputs = s0.B.size() > 0 && static_cast<int>(op.inputs.size()) == s0.B.cols();
-  bool with_outputs = s0.C.size() > 0 && static_cast<int>(op.outputs.size()) == s0.C.rows();
-  if (s0.B.size() > 0 && !with_inputs)
-    r.diagnostics.push_back("B not transformed: the files have no input table");
-  if (s0.C.size() > 0 && !with_outputs)
-    r.diagnostics.push_back("C not transformed: the files have no output table");
-  auto channels = [&](const std::vector<LinChannel>& list, bool* use, const char* what) {
-    BladeCoordinates c;
-    if (!*use) return c;
-    try {
-      c = FindBladeCoordinates(list);
-      if (c.blades != 0 && c.blades != r.blades)
-        throw InputError(std::string("rotating ") + what + " form tuples of " +
-                         std::to_string(c.blades) + " blades, the states of " +
-                         std::to_string(r.blades));
-    } catch (const InputError& e) {
-      r.diagnostics.push_back(std::string(what) + " not transformed (" + e.what() + ")");
-      *use = false;
-      c = BladeCoordinates();
-    }
-    return c;
-  };
-  r.input_coordinates = channels(op.inputs, &with_inputs, "inputs");
-  r.output_coordinates = channels(op.outputs, &with_outputs, "outputs");
-
+  bool with_inputs = false, with_outputs = false;
+  FindChannelCoordinates(op, &with_inputs, &with_outputs, r);
   r.states = op.states;
   for (int i = 0; i < n; ++i) {
     r.states[i].description = r.state_coordinates.descriptions[i];
     r.states[i].rotating_frame = false;
   }
-
-  const int K = op.size();
-  LtiSystem& mean = r.average;
-  for (int k = 0; k < K; ++k) {
-    const double psi = op.azimuths[k];
-    const double omega =
-        options.speed_from_operating_point ? op.operating_speeds[k] : op.rotor_speeds[k];
-    const double omega_dot =
-        options.speed_from_operating_point ? op.operating_accelerations[k] : 0.0;
-    const MbcStateTransform t =
-        MbcStateTransformAt(r.state_coordinates, rate_of, psi, omega, omega_dot);
-    const Eigen::PartialPivLU<MatrixXd> lu(t.T);
-    const LtiSystem& s = op.samples[k];
-    LtiSystem x;
-    x.A = lu.solve(s.A * t.T - t.T_dot);  // Bir (2008) eq. 29
-    if (with_inputs) x.B = lu.solve(s.B * MbcChannelTransformAt(r.input_coordinates, psi));
-    if (with_outputs) {
-      const Eigen::PartialPivLU<MatrixXd> out(MbcChannelTransformAt(r.output_coordinates, psi));
-      x.C = out.solve(s.C * t.T);
-      if (with_inputs && s.D.size() > 0)
-        x.D = out.solve(s.D * MbcChannelTransformAt(r.input_coordinates, psi));
-    }
-    auto add = [K](MatrixXd& sum, const MatrixXd& m) {
-      if (m.size() == 0) return;
-      if (sum.size() == 0) sum = MatrixXd::Zero(m.rows(), m.cols());
-      sum += m / K;
-    };
-    add(mean.A, x.A);
-    add(mean.B, x.B);
-    add(mean.C, x.C);
-    add(mean.D, x.D);
-    r.transformed.push_back(std::move(x));
-  }
-  const double norm = mean.A.norm();
-  for (const LtiSystem& x : r.transformed)
-    r.periodic_part = std::max(r.periodic_part, (x.A - mean.A).norm() / std::max(norm, 1e-300));
-
-  // Eigen-analysis of the averaged state matrix.
-  const Eigen::EigenSolver<MatrixXd> eig(mean.A);
-  if (eig.info() != Eigen::Success) {
-    r.diagnostics.push_back("the eigenvalue solver did not converge on the averaged matrix");
-    return r;
-  }
-  const Eigen::VectorXcd values = eig.eigenvalues();
-  const Eigen::MatrixXcd vectors = eig.eigenvectors();
-  for (int k = 0; k < n; ++k) {
-    const std::complex<double> lambda = values[k];
-    if (lambda.imag() < 0) continue;  // the conjugate of a listed mode
-    MbcMode m;
-    m.eigenvalue = lambda;
-    const double magnitude = std::abs(lambda);
-    m.natural_frequency_hz = magnitude / (2 * pi);
-    m.damped_frequency_hz = lambda.imag() / (2 * pi);
-    m.damping_ratio = magnitude > 0 ? -lambda.real() / magnitude : 0;
-    m.kind = lambda.imag() > 0 ? "oscillatory" : "real";
-    m.eigenvector = vectors.col(k);
-    // Shares over displacements and first-order states (a rate is λ times its displacement).
-    double total = 0;
-    for (int i = 0; i < n; ++i)
-      if (rate_of[i] < 0) total += std::norm(m.eigenvector[i]);
-    std::vector<MbcMode::Share> shares;
-    for (int i = 0; i < n; ++i)
-      if (rate_of[i] < 0 && total > 0) shares.push_back({i, std::norm(m.eigenvector[i]) / total});
-    std::sort(shares.begin(), shares.end(),
-              [](const MbcMode::Share& a, const MbcMode::Share& b) { return a.share > b.share; });
-    for (const auto& s : shares) {
-      if (static_cast<int>(m.dominant.size()) >= options.max_dominant_states) break;
-      if (s.share < options.dominant_share && !m.dominant.empty()) break;
-      m.dominant.push_back(s);
-    }
-    r.modes.push_back(std::move(m));
-  }
-  // The rigid rotation: the real mode nearest 0 led by the azimuth state; or an exact zero.
-  int rigid = -1;
-  for (int k = 0; k < static_cast<int>(r.modes.size()); ++k) {
-    const MbcMode& m = r.modes[k];
-    if (m.kind != "real" || m.dominant.empty() || !op.azimuth_state ||
-        m.dominant.front().state != *op.azimuth_state)
-      continue;
-    if (rigid < 0 || std::abs(m.eigenvalue) < std::abs(r.modes[rigid].eigenvalue)) rigid = k;
-  }
-  for (int k = 0; k < static_cast<int>(r.modes.size()); ++k) {
-    MbcMode& m = r.modes[k];
-    if (k == rigid || std::abs(m.eigenvalue) <= 1e-9 * std::max(norm, 1.0)) {
-      m.rigid_body = true;
-      m.kind = "rigid-body";
-      ++r.rigid_body_modes;
-    }
-  }
+  TransformSamples(op, options, rate_of, with_inputs, with_outputs, r);
+  if (!ModesOfTheAverage(rate_of, options, r)) return r;
+  MarkRigidBodyModes(op, r);
   std::stable_sort(r.modes.begin(), r.modes.end(), [](const MbcMode& a, const MbcMode& b) {
     if (a.natural_frequency_hz != b.natural_frequency_hz)
       return a.natural_frequency_hz < b.natural_frequency_hz;
@@ -450,17 +476,15 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
     DescribeMode(r.state_coordinates, rate_of, r.states, options, m);
     if (!m.rigid_body) r.max_real_part = std::max(r.max_real_part, m.eigenvalue.real());
   }
-  if (r.rigid_body_modes > 0) {
-    for (const MbcMode& m : r.modes)
-      if (m.rigid_body) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf,
-                      "rigid-body mode λ = %.3g 1/s: the rotor's rigid rotation, exactly 0 for the "
-                      "periodic system; its distance from 0 is the error of sampling and averaging",
-                      m.eigenvalue.real());
-        r.diagnostics.push_back(buf);
-      }
-  }
+  for (const MbcMode& m : r.modes)
+    if (m.rigid_body) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "rigid-body mode λ = %.3g 1/s: the rotor's rigid rotation, exactly 0 for the "
+                    "periodic system; its distance from 0 is the error of sampling and averaging",
+                    m.eigenvalue.real());
+      r.diagnostics.push_back(buf);
+    }
   return r;
 }
 

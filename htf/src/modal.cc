@@ -1,4 +1,4 @@
-// Route 1: Floquet modal partial FRFs (paper eq. 42–46, DESIGN.md "Independent routes").
+// Route 1: Floquet modal partial FRFs (paper eq. 42–46, docs/conventions.md, "Independent routes").
 // With x = Ξ(t) q the modal coordinates obey q' = Λ q + Ξ⁻¹B u, so for u = U e^{jωt}
 //   q_k = Σ_u [B̂_u]_k U e^{j(ω+uΩp)t} / (j(ω+uΩp) − λ_k),   y = CΞ q + D u
 // and grouping u + v = z gives H_z(ω) = Σ_{u+v=z} Ĉ_v (j(ω+uΩp)I − Λ)⁻¹ B̂_u + D_z.

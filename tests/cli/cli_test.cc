@@ -68,9 +68,9 @@ TEST(Cli, InfoMathieu) {
   EXPECT_EQ(Ltp("info mathieu --set q=2").code, 0);
 }
 
-// The JSON object of issue 3, with a value checked against GSL-independent physics: for
-// a = 1.5, q = 2 (inside the first Mathieu tongue, a_1(2) ≈ 1.859 > 1.5 > b_1(2) ≈ -0.110),
-// the undamped system is unstable with multipliers ρ, 1/ρ real negative.
+// The JSON object of `ltp floquet --json`, with a value checked against GSL-independent physics:
+// for a = 1.5, q = 2 (inside the first Mathieu tongue, a_1(2) ≈ 1.859 > 1.5 > b_1(2) ≈ -0.110), the
+// undamped system is unstable with multipliers ρ, 1/ρ real negative.
 TEST(Cli, FloquetJsonHasTheDocumentedKeys) {
   const Outcome r = Ltp("floquet mathieu --set a=1.5 --set q=2 --set c=0 --json");
   ASSERT_EQ(r.code, 0) << r.err;

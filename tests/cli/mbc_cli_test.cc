@@ -19,7 +19,7 @@ Outcome Ltp(const std::string& args) { return test::RunLtp(args); }
 
 const std::string kData = std::string(LTP_SOURCE_DIR) + "/tests/data/openfast/nrel5mw-rotating";
 
-// Keys of issue 8's JSON; the first four oscillatory modes against OpenFAST's published
+// Keys of `ltp mbc --json`; the first four oscillatory modes against OpenFAST's published
 // numbers for these files (openfast_toolbox ex2a_MultiLinFiles_OneOP.py, 3 decimals).
 TEST(MbcCli, JsonCampbellTable) {
   const Outcome r = Ltp("mbc " + kData + "/Main.1.lin " + kData + "/Main.12.lin " + kData +

@@ -1,4 +1,4 @@
-// Tests of FourierMatrix and of the FFT fit (fourier_fit.h). Convention (DESIGN.md):
+// Tests of FourierMatrix and of the FFT fit (fourier_fit.h). Convention (docs/conventions.md):
 //   A(t) = Σ_w A_w e^{j w Ωp t},  A_w = (1/T) ∫_0^T A(t) e^{-j w Ωp t} dt.
 #include <gtest/gtest.h>
 

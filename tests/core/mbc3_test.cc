@@ -135,7 +135,7 @@ TEST(Mbc3, LeavesAFixedFrameOnlyModelUnchanged) {
   EXPECT_LT(MaxMatchedDistance(AllEigenvalues(r), {e.data(), e.data() + e.size()}), 1e-12);
 }
 
-// Round trip of issue 8: the rotor scene written as .lin files at K azimuths, read back, and
+// Round trip: the rotor scene written as .lin files at K azimuths, read back, and
 // MBC3 must give the exact constant MBC system of core/mbc.h, which transforms the
 // second-order matrices M, D, K (a different route from the first-order T⁻¹(AT − Ṫ) here).
 TEST(Mbc3, RotorRoundTripGivesTheExactMultiBladeSystem) {

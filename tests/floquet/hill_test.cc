@@ -69,7 +69,7 @@ std::vector<cd> MeissnerExponents(double a, double b, double c) {
 // --- Hill matrix ---------------------------------------------------------------------------
 
 TEST(HillMatrix, BlocksFollowTheConvention) {
-  // DESIGN.md: block (v,u) = A_{v−u} − j v Ωp δ_vu I, v,u = −N..N.
+  // docs/conventions.md: block (v,u) = A_{v−u} − j v Ωp δ_vu I, v,u = −N..N.
   const PeriodicSystem s = test::Mathieu(2, 0.7, 0.1);
   const FourierMatrix& A = *s.fourier_A();
   const int N = 3, n = 2;

@@ -140,7 +140,7 @@ TEST(PartialFrf, RoutesAgreeOnJeffcott) {
 }
 
 TEST(PartialFrf, RealSystemSymmetry) {
-  // H_{−z}(−ω) = conj(H_z(ω)) for real systems (DESIGN.md conventions).
+  // H_{−z}(−ω) = conj(H_z(ω)) for real systems (docs/conventions.md).
   const PeriodicSystem sys = test::MathieuIo(2.0, 0.3, 0.1);
   const FloquetResult fl = AnalyzeFloquet(sys);
   const ModalModel model = BuildModalModel(sys, fl);

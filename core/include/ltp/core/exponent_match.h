@@ -1,5 +1,5 @@
 #pragma once
-// Comparing Floquet exponents as solutions. λ is defined modulo jΩp (DESIGN.md), so two
+// Comparing Floquet exponents as solutions. λ is defined modulo jΩp (docs/conventions.md), so two
 // exponents describe the same solution when their real parts agree and their imaginary parts
 // differ by a multiple of Ωp. Every comparison of exponents in ltp — between routes, against
 // references, across sweep points — goes through these functions.

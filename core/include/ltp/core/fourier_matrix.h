@@ -1,7 +1,7 @@
 #pragma once
 // A real matrix-valued T-periodic function given by a finite Fourier series,
 //   M(t) = Σ_{w=-H..H} M_w e^{j w Ωp t},   M_w = (1/T) ∫_0^T M(t) e^{-j w Ωp t} dt,
-// with M_{-w} = conj(M_w) because M(t) is real (DESIGN.md conventions).
+// with M_{-w} = conj(M_w) because M(t) is real (docs/conventions.md).
 #include <Eigen/Dense>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Second-order periodic systems  M(t) p'' + D(t) p' + K(t) p = F(t) u,
 //   y = Cd(t) p + Cv(t) p'
-// converted to first order (DESIGN.md):  x = [p; p'],
+// converted to first order (docs/conventions.md):  x = [p; p'],
 //   A = [[0, I], [-M⁻¹K, -M⁻¹D]],  B = [[0], [M⁻¹F]],  C = [Cd, Cv],  D = 0.
 // M must be invertible for all t: it is checked on a grid (and at every breakpoint); a
 // singular, ill-conditioned or non-finite M throws SingularMassError naming the time.

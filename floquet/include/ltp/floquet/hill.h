@@ -1,6 +1,6 @@
 #pragma once
 // Hill's method: Floquet exponents as eigenvalues of the truncated Hill matrix
-//   block (v,u) = A_{v−u} − j v Ωp δ_vu I,   v, u = −N..N,   size (2N+1)n   (DESIGN.md),
+//   block (v,u) = A_{v−u} − j v Ωp δ_vu I,   v, u = −N..N,   size (2N+1)n   (docs/conventions.md),
 // whose spectrum approximates λ_k + j m Ωp for every k and m. Only n eigenvalues are the
 // physical ones: they are selected by where the eigenvector's energy sits over the harmonic
 // blocks (centred on block 0), with a selection margin, a tail weight and a truncation error

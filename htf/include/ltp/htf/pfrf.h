@@ -1,5 +1,5 @@
 #pragma once
-// Partial frequency response functions H_z(ω) of a linear T-periodic system (DESIGN.md,
+// Partial frequency response functions H_z(ω) of a linear T-periodic system (docs/conventions.md,
 // "Partial FRF"): for u(t) = U e^{jωt} the steady-state output is
 //   y(t) = Σ_z Y_z e^{j(ω + zΩp)t},   Y_z = H_z(ω) U,
 // with H_z indexed by the *excitation* frequency ω. Four independent routes:

@@ -1,5 +1,5 @@
 #pragma once
-// Failure map (issue 9): every method in every hard regime, with one of three verdicts —
+// Failure map: every method in every hard regime, with one of three verdicts —
 //   works           accurate (error ≤ 1e-6 relative) and the reported error estimate covers
 //                   the true error (or the error is at round-off, ≤ 1e-12 relative);
 //   fails, says so  not accurate (or not computed), but ltp says so: ok = false, a non-finite
