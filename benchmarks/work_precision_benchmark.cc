@@ -33,7 +33,7 @@
 #include "ltp/htf/pfrf.h"
 #include "support/failure_map.h"
 #include "support/systems.h"
-#include "work_precision_common.h"
+#include "support/work_precision_common.h"
 
 namespace {
 

@@ -29,7 +29,7 @@
 #include "ltp/floquet/hill.h"
 #include "ltp/htf/pfrf.h"
 #include "support/systems.h"
-#include "work_precision_common.h"
+#include "support/work_precision_common.h"
 
 namespace ltp::wp {
 

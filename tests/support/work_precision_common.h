@@ -1,6 +1,7 @@
 #pragma once
 // Shared pieces of the work–precision study (benchmarks/work_precision_benchmark.cc) and the
-// failure map (tests/support/failure_map.h, also run by tests/htf/failure_map_test.cc):
+// failure map (tests/support/failure_map.h, also run by tests/htf/failure_map_test.cc); kept
+// with the test support, which the benchmarks include as well:
 // exponent errors modulo jΩp, and median CPU / wall timing of repeated runs.
 #include <time.h>
 
