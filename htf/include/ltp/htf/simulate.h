@@ -31,7 +31,9 @@ struct SimulateOptions {
   /// +inf = none. Each record draws from the generator seeded with seed + record index.
   double noise_snr_db = std::numeric_limits<double>::infinity();
   std::uint64_t seed = 1;
-  double rel_tol = 1e-10;  ///< RKF78 tolerance (absolute: rel_tol · amplitude · 1e-3)
+  /// RKF78 tolerance; absolute: rel_tol · 1e-3 · the largest state in a pilot over the first
+  /// period (the states' own scale, whatever their units).
+  double rel_tol = 1e-10;
   /// Multisine (SimulateMultisine): realisations to record, each exciting every frequency at
   /// once with its own random phases (seed + record); ≥ the number of orders to identify.
   int records = 10;
