@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "ltp/core/error.h"
+#include "ltp/core/periodic_system.h"
 #include "ltp/core/scene.h"
 #include "ltp/htf/pfrf.h"
 #include "ltp/htf/simulate.h"
@@ -57,6 +58,33 @@ TEST(IdentifyStepSine, NoiseFreeEstimatesEqualTheModel) {
       EXPECT_LT(id.frequencies[f].bound[z],
                 1e-6 * scale);  // noise-free: the bins off the lines are empty
     }
+  }
+}
+
+TEST(IdentifyStepSine, StatesOfAnyScaleAreIntegratedToTheRelativeTolerance) {
+  // The damped Mathieu oscillator with its input scaled by 1e-9 (units in which the states are
+  // nanometres): the simulation's absolute tolerance must follow the states, or the estimates
+  // carry an integration error of 1e-4 of |H|. Reference: the model's routes, as above.
+  const PeriodicSystem base = Mathieu();
+  const PeriodicSystem system = PeriodicSystem::FromFourier(
+      base.period(), *base.fourier_A(),
+      FourierMatrix::Constant((Eigen::MatrixXd(2, 1) << 0, 1e-9).finished()),
+      FourierMatrix::Constant((Eigen::MatrixXd(1, 2) << 1, 0).finished()));
+  SimulateOptions s;
+  s.frequencies_hz = {0.13, 0.4};
+  s.periods = 16;
+  const SimulationResult sim = SimulateStepSine(system, s);
+  IdentifyOptions o;
+  o.min_order = -1;
+  o.max_order = 1;
+  const IdentifyResult id = IdentifyStepSine(sim.data, o);
+  const auto model = ModelFrf(system, sim.data, -1, 1);
+  for (size_t f = 0; f < id.frequencies.size(); ++f) {
+    double scale = 0;
+    for (const auto& h : model[f]) scale = std::max(scale, std::abs(h));
+    for (size_t z = 0; z < 3; ++z)
+      EXPECT_LT(std::abs(id.frequencies[f].h[z] - model[f][z]), 1e-8 * scale)
+          << "f = " << id.frequencies[f].excitation_hz << ", z = " << int(z) - 1;
   }
 }
 
