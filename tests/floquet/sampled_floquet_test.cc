@@ -43,6 +43,22 @@ std::vector<complex<double>> Exponents(const FloquetResult& r) {
   return e;
 }
 
+// The hold route's monodromy formed directly: each transformed sample's matrix exponential
+// over the half-way points to its neighbours' azimuths, multiplied in azimuth order.
+MatrixXd HoldMonodromy(const LinOperatingPoint& op, const Mbc3Result& mbc) {
+  const double omega = op.rotor_speed;
+  const int K = op.size();
+  const Eigen::Index n = mbc.transformed.front().A.rows();
+  MatrixXd phi = MatrixXd::Identity(n, n);
+  for (int k = 0; k < K; ++k) {
+    const double prev = k > 0 ? op.azimuths[k - 1] : op.azimuths[K - 1] - 2 * pi;
+    const double next = k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi;
+    const double dt = (next - prev) / 2 / omega;
+    phi = MatrixXd((mbc.transformed[k].A * dt).exp()) * phi;
+  }
+  return phi;
+}
+
 RotorParameters Rotor(int blades) {
   RotorParameters r;
   r.blades = blades;
@@ -120,15 +136,7 @@ TEST(LinSampledFloquet, FiveMwHoldRouteIsTheProductOfExponentials) {
   const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
   ASSERT_TRUE(r.ok);
   const double omega = op.rotor_speed, T = 2 * pi / omega;
-  const int K = op.size();
-  MatrixXd phi = MatrixXd::Identity(20, 20);
-  for (int k = 0; k < K; ++k) {
-    const double prev = k > 0 ? op.azimuths[k - 1] : op.azimuths[K - 1] - 2 * pi;
-    const double next = k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi;
-    const double dt = (next - prev) / 2 / omega;
-    phi = MatrixXd((mbc.transformed[k].A * dt).exp()) * phi;
-  }
-  const Eigen::VectorXcd rho = phi.eigenvalues();
+  const Eigen::VectorXcd rho = HoldMonodromy(op, mbc).eigenvalues();
   std::vector<complex<double>> direct;
   for (int i = 0; i < rho.size(); ++i) direct.push_back(std::log(rho[i]) / T);
   EXPECT_LT(MaxDistanceModulo(Exponents(r.hold), direct, omega), 1e-9);
@@ -168,15 +176,7 @@ TEST(LinSampledFloquet, SixtyStatesEveryModeShapeSatisfiesItsCyclicRelation) {
   EXPECT_LT(r.hold.mode_condition, 1e8);
 
   const double omega = op.rotor_speed, T = 2 * pi / omega;
-  const int K = op.size();
-  MatrixXd phi = MatrixXd::Identity(60, 60);
-  for (int k = 0; k < K; ++k) {
-    const double prev = k > 0 ? op.azimuths[k - 1] : op.azimuths[K - 1] - 2 * pi;
-    const double next = k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi;
-    const double dt = (next - prev) / 2 / omega;
-    phi = MatrixXd((mbc.transformed[k].A * dt).exp()) * phi;
-  }
-  const Eigen::VectorXcd rho = phi.eigenvalues();
+  const Eigen::VectorXcd rho = HoldMonodromy(op, mbc).eigenvalues();
   double top = -1e300;
   for (int i = 0; i < rho.size(); ++i) top = std::max(top, std::log(std::abs(rho[i])));
   int compared = 0;
