@@ -32,7 +32,7 @@ struct IdentifyArgs {
   std::string method = "auto";
   double period = 0, rotor_speed = 0;
   std::string input = "0", output = "0", orders = "-2:2";
-  std::string compare, csv, plot;
+  std::string compare, csv, plot, convergence;
   std::vector<std::string> set;  ///< parameters of the --compare scene
   bool json = false;
 };
@@ -98,6 +98,57 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
   RunGnuplot(file, g.str());
 }
 
+// Broadband estimates from the first R records, R = 1 … all: the share of H_z the records
+// determine, the median 95 % bound and (with a model) the median and largest error, each
+// relative to the largest |H_z| at its frequency — how many records a test needs.
+void PlotConvergence(const std::string& file, const TimeData& data, const IdentifyOptions& o,
+                     const std::vector<std::vector<cd>>& model) {
+  std::ostringstream rows;
+  for (size_t R = 1; R <= data.records.size(); ++R) {
+    TimeData part = data;
+    part.records.resize(R);
+    const IdentifyResult r = IdentifyBroadband(part, o);
+    std::vector<double> bounds, errors;
+    size_t determined = 0, total = 0;
+    for (size_t f = 0; f < r.frequencies.size(); ++f) {
+      const IdentifiedFrequency& e = r.frequencies[f];
+      double scale = 0;
+      for (size_t z = 0; z < e.h.size(); ++z)
+        scale = std::max(scale, model.empty() ? std::abs(e.h[z]) : std::abs(model[f][z]));
+      for (size_t z = 0; z < e.h.size(); ++z) {
+        ++total;
+        if (!std::isfinite(std::abs(e.h[z])) || !(scale > 0)) continue;
+        ++determined;
+        if (std::isfinite(e.bound[z])) bounds.push_back(e.bound[z] / scale);
+        if (!model.empty()) errors.push_back(std::abs(e.h[z] - model[f][z]) / scale);
+      }
+    }
+    const auto median = [](std::vector<double> v) {
+      if (v.empty()) return std::nan("");
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    const double largest =
+        errors.empty() ? std::nan("") : *std::max_element(errors.begin(), errors.end());
+    rows << R << " " << 100.0 * static_cast<double>(determined) / static_cast<double>(total) << " "
+         << median(bounds) << " " << median(errors) << " " << largest << "\n";
+  }
+  std::ostringstream g;
+  g << GnuplotTerminal(file, 900, 550) << "set output '" << file << "'\n$C << EOD\n"
+    << rows.str() << "EOD\n"
+    << "set title 'Broadband estimate against the number of records (relative to the largest "
+       "|H_z| at each frequency)'\nset xlabel 'records'\nset ylabel 'relative to max |H_z|'\n"
+    << "set logscale y\nset format y '10^{%L}'\nset y2label 'H_z determined  [%]'\n"
+    << "set y2range [0:105]\nset y2tics\nset grid\nset key outside bottom center horizontal\n"
+    << "set datafile missing 'nan'\n"
+    << "plot $C using 1:3 with linespoints pt 7 lw 2 lc rgb '#1f77b4' title 'median 95 % bound'";
+  if (!model.empty())
+    g << ", $C using 1:4 with linespoints pt 5 lw 2 lc rgb '#d62728' title 'median error', "
+         "$C using 1:5 with linespoints pt 9 lw 1.5 lc rgb '#ff7f0e' title 'largest error'";
+  g << ", $C using 1:2 axes x1y2 with steps lw 1.5 lc rgb '#808080' title 'H_z determined (%)'\n";
+  RunGnuplot(file, g.str());
+}
+
 int RunIdentify(const IdentifyArgs& args) {
   if (args.period < 0 || args.rotor_speed < 0)
     throw InputError("--period and --rotor-speed must be > 0");
@@ -153,6 +204,11 @@ int RunIdentify(const IdentifyArgs& args) {
   }
   if (!args.plot.empty())
     PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data, method);
+  if (!args.convergence.empty()) {
+    if (method != "broadband")
+      throw InputError("--convergence: needs broadband records (it adds them one by one)");
+    PlotConvergence(args.convergence, data, o, model);
+  }
   if (args.json) {
     json freqs = json::array();
     for (size_t f = 0; f < r.frequencies.size(); ++f) {
@@ -218,6 +274,7 @@ int RunIdentify(const IdentifyArgs& args) {
   for (const std::string& d : r.diagnostics) std::cout << "  note: " << d << "\n";
   if (!args.csv.empty()) std::cout << "  wrote " << args.csv << "\n";
   if (!args.plot.empty()) std::cout << "  wrote " << args.plot << "\n";
+  if (!args.convergence.empty()) std::cout << "  wrote " << args.convergence << "\n";
   return 0;
 }
 
@@ -245,6 +302,9 @@ Command AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--csv", args.csv, "one row per frequency and order");
   cmd->add_option("--plot", args.plot,
                   "|H_z| with 95 % bounds (and the model) against frequency (FILE.svg|.png)");
+  cmd->add_option("--convergence", args.convergence,
+                  "broadband: bounds (and errors against --compare) as records are added "
+                  "(FILE.svg|.png)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   return {cmd, [] { return RunIdentify(args); }};
 }

@@ -25,6 +25,7 @@ py::dict RouteDict(const RouteRun& run) {
                   py::arg("values") =
                       ComplexTable(run.values, run.values.empty() ? 0 : run.values.front().size()),
                   py::arg("deviation") = RealArray(run.deviation),
+                  py::arg("own_error") = RealArray(run.own_error),
                   py::arg("max_deviation_from_primary") = worst, py::arg("failures") = run.failures,
                   py::arg("setup_s") = run.setup_s, py::arg("elapsed_s") = run.elapsed_s,
                   py::arg("diagnostics") = run.diagnostics);
@@ -103,7 +104,8 @@ estimate for every value from the independent routes' disagreement.
             for (const RouteRun& run : r.routes) out.append(RouteDict(run));
             return out;
           },
-          "every route run, primary first: route, points, values, deviation, timings, diagnostics")
+          "every route run, primary first: route, points, values, deviation, own_error, timings, "
+          "diagnostics")
       .def_readonly("modal_cross_check_failed", &PfrfResult::modal_cross_check_failed,
                     "route auto found the modal route wrong by its check and used htf/shooting")
       .def_readonly("max_disagreement", &PfrfResult::max_disagreement,
