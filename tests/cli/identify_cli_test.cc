@@ -2,6 +2,7 @@
 // model's partial FRFs (--compare, modal route checked by htf), noise bounds, and refused data.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -66,6 +67,14 @@ TEST(IdentifyCli, SimulatedMultisineIdentifiesTheModelByLeastSquares) {
   EXPECT_GE(compared, 12);
   EXPECT_GE(inside, compared - 2) << inside << " of " << compared;  // 95 % bounds
   EXPECT_EQ(RunLtp("identify " + csv + " --method stepsine").code, 2);
+  // The convergence plot adds the records one by one (gnuplot draws it, or its script is
+  // written when gnuplot is missing); step-sine data have nothing to add.
+  const std::string plot = Tmp("identify_convergence.svg");
+  std::remove(plot.c_str());
+  std::remove((plot + ".gp").c_str());
+  const auto conv = RunLtp("identify " + csv + " --orders -1:1 --convergence " + plot);
+  ASSERT_EQ(conv.code, 0) << conv.err;
+  EXPECT_TRUE(std::ifstream(plot).good() || std::ifstream(plot + ".gp").good());
 }
 
 TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
