@@ -45,6 +45,10 @@ std::pair<std::string, std::vector<double>> Excitation(const std::string& text) 
     return {"step-sine", ParseFrequencyRange(rest, "--excitation stepsine:F0:F1:DF")};
   if (kind == "multisine")
     return {"multisine", ParseFrequencyRange(rest, "--excitation multisine:F0:F1:DF")};
+  if (kind == "noise") {  // every line of the record's grid in the band (see RunSimulate)
+    const auto [f0, f1] = ParseFrequencyBand(rest, "--excitation noise:F0:F1");
+    return {"noise", {f0, f1}};
+  }
   throw InputError(
       "--excitation must be sine:F, stepsine:F0:F1:DF or multisine:F0:F1:DF (Hz), got '" + text +
       "'");
@@ -57,6 +61,20 @@ int RunSimulate(const SimulateArgs& args) {
       ResolveChannel(args.input, l.system.labels().inputs, l.system.inputs(), "--input", "input");
   const auto [kind, frequencies] = Excitation(args.excitation);
   o.frequencies_hz = frequencies;
+  if (kind == "noise") {
+    // Periodic Gaussian noise: every line 1/(periods·T) apart in [F0, F1], Rayleigh amplitudes.
+    const double step = 1.0 / (args.periods * l.system.period());
+    const double f0 = frequencies.front(), f1 = frequencies.back();
+    if ((f1 - f0) / step > 1e5)
+      throw InputError("--excitation noise: more than 10^5 lines in the band on the record's grid");
+    o.frequencies_hz.clear();
+    for (double f = std::ceil(f0 / step) * step; f <= f1 * (1 + 1e-12); f += step)
+      if (f > 0) o.frequencies_hz.push_back(f);
+    if (o.frequencies_hz.empty())
+      throw InputError("--excitation noise: no line of the record's grid (" + Num(step, 6) +
+                       " Hz apart) in the band");
+    o.random_amplitudes = true;
+  }
   o.records = args.records;
   o.periods = args.periods;
   o.samples_per_period = args.samples_per_period;
@@ -64,7 +82,7 @@ int RunSimulate(const SimulateArgs& args) {
   o.noise_snr_db = args.noise_db;
   o.seed = args.seed;
   const SimulationResult r =
-      kind == "multisine" ? SimulateMultisine(l.system, o) : SimulateStepSine(l.system, o);
+      kind == "step-sine" ? SimulateStepSine(l.system, o) : SimulateMultisine(l.system, o);
   std::string comment = "ltp simulate " + l.scene.name;
   if (!l.parameters.empty()) comment += " (" + ParameterList(l.parameters) + ")";
   comment +=
@@ -114,8 +132,9 @@ Command AddSimulateCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--input", args.input, "excited input (index or name)")->capture_default_str();
   cmd->add_option("--excitation", args.excitation,
-                  "sine:F, stepsine:F0:F1:DF (one record per frequency) or multisine:F0:F1:DF "
-                  "(all at once, --records realisations) (Hz)")
+                  "sine:F, stepsine:F0:F1:DF (one record per frequency), multisine:F0:F1:DF "
+                  "(all at once, --records realisations) or noise:F0:F1 (periodic Gaussian "
+                  "noise on every line of the record's grid) (Hz)")
       ->required();
   cmd->add_option("--records", args.records,
                   "multisine: records with random phases (at least the orders to identify)")

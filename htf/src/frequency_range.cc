@@ -75,4 +75,13 @@ std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& 
   return {a, b};
 }
 
+std::pair<double, double> ParseFrequencyBand(const std::string& text, const std::string& option) {
+  const std::vector<std::string> parts = Split(text, ':');
+  if (parts.size() != 2) throw InputError(option + ": expected F0:F1 (Hz), got '" + text + "'");
+  const double f0 = ParseNumber(parts[0], option), f1 = ParseNumber(parts[1], option);
+  if (!(f0 >= 0 && f1 > f0))
+    throw InputError(option + ": the band needs 0 <= F0 < F1, got '" + text + "'");
+  return {f0, f1};
+}
+
 }  // namespace ltp

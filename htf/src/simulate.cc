@@ -253,8 +253,15 @@ SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateO
   for (int k = 0; k < options.records; ++k) {
     std::mt19937_64 rng(options.seed + 1000003 * static_cast<std::uint64_t>(k + 1));
     std::uniform_real_distribution<double> phase(-std::numbers::pi, std::numbers::pi);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
     Excitation u{kTwoPi / plan.length, {}};
-    for (double f : grid) u.Add(std::lround(f * plan.length), amplitude, phase(rng));
+    for (double f : grid) {
+      // Rayleigh with E a² = amplitude²: the lines of a periodic Gaussian noise.
+      const double a = options.random_amplitudes
+                           ? amplitude * std::sqrt(-std::log(1.0 - uniform(rng)))
+                           : amplitude;
+      u.Add(std::lround(f * plan.length), a, phase(rng));
+    }
     r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
     r.data.records.back().excitation_hz = 0;  // broadband
   }

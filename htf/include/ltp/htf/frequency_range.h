@@ -13,6 +13,9 @@ namespace ltp {
 /// @throws InputError (not three finite numbers, F1 < F0, DF <= 0, over a million points).
 std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option);
 
+/// "F0:F1" (Hz) → (F0, F1) with 0 <= F0 < F1. @throws InputError.
+std::pair<double, double> ParseFrequencyBand(const std::string& text, const std::string& option);
+
 /// "ZMIN:ZMAX" or "Z" → (min, max), |z| <= 1000. @throws InputError.
 std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& option);
 

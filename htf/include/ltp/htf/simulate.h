@@ -37,6 +37,9 @@ struct SimulateOptions {
   /// Multisine (SimulateMultisine): realisations to record, each exciting every frequency at
   /// once with its own random phases (seed + record); ≥ the number of orders to identify.
   int records = 10;
+  /// Multisine: Rayleigh-distributed line amplitudes (rms `amplitude`) instead of equal ones —
+  /// band-limited Gaussian noise that repeats with the record, so no line leaks (noise:F0:F1).
+  bool random_amplitudes = false;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
