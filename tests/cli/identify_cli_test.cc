@@ -75,6 +75,10 @@ TEST(IdentifyCli, SimulatedMultisineIdentifiesTheModelByLeastSquares) {
   const auto conv = RunLtp("identify " + csv + " --orders -1:1 --convergence " + plot);
   ASSERT_EQ(conv.code, 0) << conv.err;
   EXPECT_TRUE(std::ifstream(plot).good() || std::ifstream(plot + ".gp").good());
+  const std::string steps = Tmp("identify_convergence_steps.csv");
+  ASSERT_EQ(
+      RunLtp("simulate " + kScene + " --excitation sine:0.13 --periods 8 --out " + steps).code, 0);
+  EXPECT_EQ(RunLtp("identify " + steps + " --convergence " + plot).code, 2);
 }
 
 // Periodic Gaussian noise on every line of the record's grid (noise:F0:F1): noise-free output,
