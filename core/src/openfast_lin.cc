@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "ltp/core/error.h"
@@ -634,7 +635,10 @@ double LinOperatingPoint::SpacingDeviation() const {
   return worst;
 }
 
-LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
+namespace {
+
+// Every file must give the rotor speed, its azimuth and a state matrix.
+void CheckHeaders(const std::vector<LinFile>& files) {
   if (files.empty()) throw InputError("no .lin files given");
   for (const LinFile& f : files) {
     if (!f.rotor_speed)
@@ -645,6 +649,146 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
                        std::to_string(f.continuous_states) +
                        " continuous states): nothing to analyse");
   }
+}
+
+// One model at one operating point: sizes, rotor speed and wind speed as the reference file's.
+void CheckSameOperatingPoint(const LinFile& f, const LinFile& ref) {
+  if (f.continuous_states != ref.continuous_states || f.inputs != ref.inputs ||
+      f.outputs != ref.outputs)
+    throw InputError(f.path + ": " + std::to_string(f.continuous_states) + " states, " +
+                     std::to_string(f.inputs) + " inputs, " + std::to_string(f.outputs) +
+                     " outputs, but " + ref.path + " has " + std::to_string(ref.continuous_states) +
+                     ", " + std::to_string(ref.inputs) + ", " + std::to_string(ref.outputs) +
+                     ": not one model");
+  const double speed = *f.rotor_speed, ref_speed = *ref.rotor_speed;
+  if (std::abs(speed - ref_speed) > 1e-3 * std::max(std::abs(ref_speed), 1e-12) &&
+      std::abs(speed - ref_speed) > 1e-12)
+    throw InputError(f.path + ": rotor speed " + FormatNumber(speed, "%.6g") + " rad/s but " +
+                     ref.path + " has " + FormatNumber(ref_speed, "%.6g") +
+                     " rad/s: the files are not one operating point");
+  if (f.wind_speed && ref.wind_speed &&
+      std::abs(*f.wind_speed - *ref.wind_speed) > 1e-3 * std::max(std::abs(*ref.wind_speed), 1.0))
+    throw InputError(f.path + ": wind speed " + FormatNumber(*f.wind_speed, "%.6g") + " m/s but " +
+                     ref.path + " has " + FormatNumber(*ref.wind_speed, "%.6g") +
+                     " m/s: the files are not one operating point");
+}
+
+// File f's matrices with its states, inputs and outputs in the reference file's order (B, C,
+// D only where every file has them).
+LtiSystem SampleInReferenceOrder(const LinFile& f, const LinFile& ref, bool with_b, bool with_c,
+                                 bool with_d) {
+  std::string missing;
+  const auto s = MatchChannels(ref.states, f.states, &missing);
+  if (!s)
+    throw InputError(f.path + ": has no state '" + missing + "' (found in " + ref.path +
+                     "): the files are not one model");
+  auto io = [&](const std::vector<LinChannel>& a, const std::vector<LinChannel>& b, int count,
+                const char* what) {
+    if (a.empty() || b.empty()) {  // tables not written: keep the order
+      std::vector<int> identity(count);
+      for (int i = 0; i < count; ++i) identity[i] = i;
+      return identity;
+    }
+    const auto m = MatchChannels(a, b, &missing);
+    if (!m)
+      throw InputError(f.path + ": has no " + what + " '" + missing + "' (found in " + ref.path +
+                       "): the files are not one model");
+    return *m;
+  };
+  const std::vector<int> u = io(ref.input_channels, f.input_channels, f.inputs, "input");
+  const std::vector<int> y = io(ref.output_channels, f.output_channels, f.outputs, "output");
+  const int n = f.continuous_states;
+  LtiSystem sample;
+  sample.A.resize(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) sample.A(i, j) = f.A((*s)[i], (*s)[j]);
+  if (with_b) {
+    sample.B.resize(n, f.inputs);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < f.inputs; ++j) sample.B(i, j) = f.B((*s)[i], u[j]);
+  }
+  if (with_c) {
+    sample.C.resize(f.outputs, n);
+    for (int i = 0; i < f.outputs; ++i)
+      for (int j = 0; j < n; ++j) sample.C(i, j) = f.C(y[i], (*s)[j]);
+  }
+  if (with_d) {
+    sample.D.resize(f.outputs, f.inputs);
+    for (int i = 0; i < f.outputs; ++i)
+      for (int j = 0; j < f.inputs; ++j) sample.D(i, j) = f.D(y[i], u[j]);
+  }
+  return sample;
+}
+
+// Rotor speed and acceleration from the operating point, as OpenFAST's MBC3 does: the
+// derivatives of the generator azimuth (plus the drivetrain twist) and of its rate; the
+// header's speed and 0 without them.
+std::pair<double, double> OperatingSpeed(const LinFile& f) {
+  const int n = f.continuous_states;
+  double omega = *f.rotor_speed, omega_dot = 0;
+  if (static_cast<int>(f.state_derivatives.size()) != n) return {omega, omega_dot};
+  const std::vector<int> rate = RateOf(f.states);
+  auto find = [&](const char* dof) -> std::pair<int, int> {  // displacement, rate
+    for (int i = 0; i < n; ++i)
+      if (rate[i] < 0 && f.states[i].description.find(dof) != std::string::npos)
+        for (int j = 0; j < n; ++j)
+          if (rate[j] == i) return {i, j};
+    return {-1, -1};
+  };
+  const auto [g, g_rate] = find("DOF_GeAz");
+  const auto [d, d_rate] = find("DOF_DrTr");
+  if (g >= 0) {
+    omega = f.state_derivatives[g].operating_point;
+    omega_dot = f.state_derivatives[g_rate].operating_point;
+    if (d >= 0) {
+      omega += f.state_derivatives[d].operating_point;
+      omega_dot += f.state_derivatives[d_rate].operating_point;
+    }
+  }
+  return {omega, omega_dot};
+}
+
+// The rigid rotation: the generator azimuth (ElastoDyn), or another fixed-frame angle DOF
+// named after the azimuth.
+std::optional<int> FindAzimuthState(const std::vector<LinChannel>& states) {
+  const std::vector<int> rate = RateOf(states);
+  for (int i = 0; i < static_cast<int>(states.size()); ++i) {
+    const LinChannel& c = states[i];
+    const std::string d = Lower(c.description);
+    if (rate[i] < 0 && !c.rotating_frame &&
+        (c.description.find("DOF_GeAz") != std::string::npos ||
+         d.find("gearbox_rot") != std::string::npos || d.find("azimuth") != std::string::npos))
+      return i;
+  }
+  return std::nullopt;
+}
+
+// Notes on uneven azimuths and on rotor speeds that differ between the files.
+void NoteSpacingAndSpeeds(LinOperatingPoint& op) {
+  const int K = op.size();
+  if (K > 1 && op.SpacingDeviation() > 1e-3) {
+    double lo = 1e300, hi = 0;
+    for (int k = 0; k < K; ++k) {
+      const double d = (k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi) - op.azimuths[k];
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+    op.diagnostics.push_back("the " + std::to_string(K) +
+                             " azimuths are unevenly spaced: " + Degrees(lo) + "° to " +
+                             Degrees(hi) + "° apart (even: " + Degrees(2 * pi / K) + "°)");
+  }
+  double spread = 0;
+  for (double w : op.rotor_speeds) spread = std::max(spread, std::abs(w - op.rotor_speed));
+  if (spread > 1e-12 * std::abs(op.rotor_speed))  // not the rounding of their mean
+    op.diagnostics.push_back("rotor speeds differ by up to " + FormatNumber(spread, "%.3g") +
+                             " rad/s between files; the period "
+                             "uses their mean");
+}
+
+}  // namespace
+
+LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
+  CheckHeaders(files);
   std::stable_sort(files.begin(), files.end(), [](const LinFile& a, const LinFile& b) {
     return WrapAzimuth(*a.azimuth) < WrapAzimuth(*b.azimuth);
   });
@@ -666,92 +810,12 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   const bool all_b = in_all("B", &LinFile::B), all_c = in_all("C", &LinFile::C),
              all_d = in_all("D", &LinFile::D);
   for (const LinFile& f : files) {
-    if (f.continuous_states != ref.continuous_states || f.inputs != ref.inputs ||
-        f.outputs != ref.outputs)
-      throw InputError(f.path + ": " + std::to_string(f.continuous_states) + " states, " +
-                       std::to_string(f.inputs) + " inputs, " + std::to_string(f.outputs) +
-                       " outputs, but " + ref.path + " has " +
-                       std::to_string(ref.continuous_states) + ", " + std::to_string(ref.inputs) +
-                       ", " + std::to_string(ref.outputs) + ": not one model");
-    const double speed = *f.rotor_speed, ref_speed = *ref.rotor_speed;
-    if (std::abs(speed - ref_speed) > 1e-3 * std::max(std::abs(ref_speed), 1e-12) &&
-        std::abs(speed - ref_speed) > 1e-12)
-      throw InputError(f.path + ": rotor speed " + FormatNumber(speed, "%.6g") + " rad/s but " +
-                       ref.path + " has " + FormatNumber(ref_speed, "%.6g") +
-                       " rad/s: the files are not one operating point");
-    if (f.wind_speed && ref.wind_speed &&
-        std::abs(*f.wind_speed - *ref.wind_speed) > 1e-3 * std::max(std::abs(*ref.wind_speed), 1.0))
-      throw InputError(f.path + ": wind speed " + FormatNumber(*f.wind_speed, "%.6g") +
-                       " m/s but " + ref.path + " has " + FormatNumber(*ref.wind_speed, "%.6g") +
-                       " m/s: the files are not one operating point");
-    std::string missing;
-    const auto s = MatchChannels(ref.states, f.states, &missing);
-    if (!s)
-      throw InputError(f.path + ": has no state '" + missing + "' (found in " + ref.path +
-                       "): the files are not one model");
-    auto io = [&](const std::vector<LinChannel>& a, const std::vector<LinChannel>& b, int count,
-                  const char* what) {
-      if (a.empty() || b.empty()) {  // tables not written: keep the order
-        std::vector<int> identity(count);
-        for (int i = 0; i < count; ++i) identity[i] = i;
-        return identity;
-      }
-      const auto m = MatchChannels(a, b, &missing);
-      if (!m)
-        throw InputError(f.path + ": has no " + what + " '" + missing + "' (found in " + ref.path +
-                         "): the files are not one model");
-      return *m;
-    };
-    const std::vector<int> u = io(ref.input_channels, f.input_channels, f.inputs, "input");
-    const std::vector<int> y = io(ref.output_channels, f.output_channels, f.outputs, "output");
-    const int n = f.continuous_states;
-    LtiSystem sample;
-    sample.A.resize(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) sample.A(i, j) = f.A((*s)[i], (*s)[j]);
-    if (all_b) {
-      sample.B.resize(n, f.inputs);
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < f.inputs; ++j) sample.B(i, j) = f.B((*s)[i], u[j]);
-    }
-    if (all_c) {
-      sample.C.resize(f.outputs, n);
-      for (int i = 0; i < f.outputs; ++i)
-        for (int j = 0; j < n; ++j) sample.C(i, j) = f.C(y[i], (*s)[j]);
-    }
-    if (all_d) {
-      sample.D.resize(f.outputs, f.inputs);
-      for (int i = 0; i < f.outputs; ++i)
-        for (int j = 0; j < f.inputs; ++j) sample.D(i, j) = f.D(y[i], u[j]);
-    }
-    op.samples.push_back(std::move(sample));
+    CheckSameOperatingPoint(f, ref);
+    op.samples.push_back(SampleInReferenceOrder(f, ref, all_b, all_c, all_d));
     op.files.push_back(f.path);
     op.azimuths.push_back(WrapAzimuth(*f.azimuth));
-    op.rotor_speeds.push_back(speed);
-
-    // Rotor speed and acceleration from the operating point, as OpenFAST's MBC3 does: the
-    // derivatives of the generator azimuth (plus the drivetrain twist) and of its rate.
-    double omega = speed, omega_dot = 0;
-    if (static_cast<int>(f.state_derivatives.size()) == n) {
-      const std::vector<int> rate = RateOf(f.states);
-      auto find = [&](const char* dof) -> std::pair<int, int> {  // displacement, rate
-        for (int i = 0; i < n; ++i)
-          if (rate[i] < 0 && f.states[i].description.find(dof) != std::string::npos)
-            for (int j = 0; j < n; ++j)
-              if (rate[j] == i) return {i, j};
-        return {-1, -1};
-      };
-      const auto [g, g_rate] = find("DOF_GeAz");
-      const auto [d, d_rate] = find("DOF_DrTr");
-      if (g >= 0) {
-        omega = f.state_derivatives[g].operating_point;
-        omega_dot = f.state_derivatives[g_rate].operating_point;
-        if (d >= 0) {
-          omega += f.state_derivatives[d].operating_point;
-          omega_dot += f.state_derivatives[d_rate].operating_point;
-        }
-      }
-    }
+    op.rotor_speeds.push_back(*f.rotor_speed);
+    const auto [omega, omega_dot] = OperatingSpeed(f);
     op.operating_speeds.push_back(omega);
     op.operating_accelerations.push_back(omega_dot);
   }
@@ -763,37 +827,8 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   double sum = 0;
   for (double w : op.rotor_speeds) sum += w;
   op.rotor_speed = sum / static_cast<double>(op.rotor_speeds.size());
-
-  // The rigid rotation: the generator azimuth (ElastoDyn), or another fixed-frame angle DOF
-  // named after the azimuth.
-  const std::vector<int> rate = RateOf(op.states);
-  for (int i = 0; i < static_cast<int>(op.states.size()) && !op.azimuth_state; ++i) {
-    const LinChannel& c = op.states[i];
-    const std::string d = Lower(c.description);
-    if (rate[i] < 0 && !c.rotating_frame &&
-        (c.description.find("DOF_GeAz") != std::string::npos ||
-         d.find("gearbox_rot") != std::string::npos || d.find("azimuth") != std::string::npos))
-      op.azimuth_state = i;
-  }
-
-  const int K = op.size();
-  if (K > 1 && op.SpacingDeviation() > 1e-3) {
-    double lo = 1e300, hi = 0;
-    for (int k = 0; k < K; ++k) {
-      const double d = (k + 1 < K ? op.azimuths[k + 1] : op.azimuths[0] + 2 * pi) - op.azimuths[k];
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-    op.diagnostics.push_back("the " + std::to_string(K) +
-                             " azimuths are unevenly spaced: " + Degrees(lo) + "° to " +
-                             Degrees(hi) + "° apart (even: " + Degrees(2 * pi / K) + "°)");
-  }
-  double spread = 0;
-  for (double w : op.rotor_speeds) spread = std::max(spread, std::abs(w - op.rotor_speed));
-  if (spread > 1e-12 * std::abs(op.rotor_speed))  // not the rounding of their mean
-    op.diagnostics.push_back("rotor speeds differ by up to " + FormatNumber(spread, "%.3g") +
-                             " rad/s between files; the period "
-                             "uses their mean");
+  op.azimuth_state = FindAzimuthState(op.states);
+  NoteSpacingAndSpeeds(op);
   return op;
 }
 
