@@ -31,7 +31,7 @@ struct IdentifyArgs {
   std::string data;
   std::string method = "auto";
   double period = 0, rotor_speed = 0;
-  std::string input = "0", output = "0", orders = "-2:2";
+  std::string input = "0", output = "0", orders = "-2:2", plot_orders;
   std::string compare, csv, plot, convergence;
   std::vector<std::string> set;  ///< parameters of the --compare scene
   bool json = false;
@@ -43,8 +43,11 @@ struct IdentifyArgs {
 // round-off are left out).
 void PlotIdentified(const std::string& file, const IdentifyResult& r,
                     const std::vector<std::vector<cd>>& model, const std::string& title,
-                    const std::string& method) {
+                    const std::string& method, std::pair<int, int> shown) {
   const int Z = r.max_order - r.min_order + 1;
+  const auto hidden = [&](int z) {
+    return z + r.min_order < shown.first || z + r.min_order > shown.second;
+  };
   std::ostringstream g;
   g << GnuplotTerminal(file, 1000, 650) << "set output '" << file << "'\n";
   double model_max = 0;
@@ -55,6 +58,7 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
   for (const auto& f : r.frequencies)
     for (int z = 0; z < Z; ++z) {
       const double h = std::abs(f.h[static_cast<size_t>(z)]);
+      if (hidden(z)) continue;
       if (f.separable && h > 0 && std::isfinite(h) && !(f.bound[static_cast<size_t>(z)] < h))
         g << f.excitation_hz << " " << h << "\n";
     }
@@ -87,6 +91,7 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
   g << "plot $U using 1:2 with points pt 7 ps 0.25 lc rgb '#c0c0c0' title 'within the 95 % bound "
        "of 0'";
   for (int z = 0; z < Z; ++z) {
+    if (hidden(z)) continue;
     const std::string color = colors[z % 9];
     g << ", \\\n     $E" << z << " using 1:2:3 with yerrorbars pt 7 ps 0.5 lc rgb '" << color
       << "' title 'z = " << z + r.min_order << " (" << method << ", 95 % bound)'";
@@ -203,7 +208,9 @@ int RunIdentify(const IdentifyArgs& args) {
     if (!out) throw InputError("cannot write '" + args.csv + "'");
   }
   if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data, method);
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data, method,
+                   args.plot_orders.empty() ? std::make_pair(o.min_order, o.max_order)
+                                            : ParseOrderRange(args.plot_orders, "--plot-orders"));
   if (!args.convergence.empty()) {
     if (method != "broadband")
       throw InputError("--convergence: needs broadband records (it adds them one by one)");
@@ -302,6 +309,8 @@ Command AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--csv", args.csv, "one row per frequency and order");
   cmd->add_option("--plot", args.plot,
                   "|H_z| with 95 % bounds (and the model) against frequency (FILE.svg|.png)");
+  cmd->add_option("--plot-orders", args.plot_orders,
+                  "ZMIN:ZMAX: the orders --plot draws (default: all estimated)");
   cmd->add_option("--convergence", args.convergence,
                   "broadband: bounds (and errors against --compare) as records are added "
                   "(FILE.svg|.png)");
