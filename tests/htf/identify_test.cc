@@ -22,14 +22,14 @@ PeriodicSystem Mathieu() {
   return LoadScene("mathieu").Build({{"a", "2"}, {"c", "0.2"}, {"q", "0.3"}});
 }
 
-// The model's H_z at the records' frequencies (after ltp simulate moved them to the grid).
-std::vector<std::vector<std::complex<double>>> ModelFrf(const PeriodicSystem& system,
-                                                        const TimeData& data, int min_order,
-                                                        int max_order) {
+// The model's H_z at the identified frequencies (after ltp simulate moved them to the grid):
+// the routes of ComputePartialFrf (modal checked by htf).
+std::vector<std::vector<std::complex<double>>> ModelAt(const PeriodicSystem& system,
+                                                       const IdentifyResult& id) {
   PfrfOptions o;
-  for (const TimeRecord& r : data.records) o.frequencies_hz.push_back(r.excitation_hz);
-  o.min_order = min_order;
-  o.max_order = max_order;
+  for (const IdentifiedFrequency& f : id.frequencies) o.frequencies_hz.push_back(f.excitation_hz);
+  o.min_order = id.min_order;
+  o.max_order = id.max_order;
   const PfrfResult r = ComputePartialFrf(system, o);
   EXPECT_TRUE(r.ok);
   return r.values;
@@ -47,7 +47,7 @@ TEST(IdentifyStepSine, NoiseFreeEstimatesEqualTheModel) {
   o.min_order = -2;
   o.max_order = 2;
   const IdentifyResult id = IdentifyStepSine(sim.data, o);
-  const auto model = ModelFrf(system, sim.data, -2, 2);
+  const auto model = ModelAt(system, id);
   ASSERT_EQ(id.frequencies.size(), 4u);
   for (size_t f = 0; f < 4; ++f) {
     double scale = 0;
@@ -78,7 +78,7 @@ TEST(IdentifyStepSine, StatesOfAnyScaleAreIntegratedToTheRelativeTolerance) {
   o.min_order = -1;
   o.max_order = 1;
   const IdentifyResult id = IdentifyStepSine(sim.data, o);
-  const auto model = ModelFrf(system, sim.data, -1, 1);
+  const auto model = ModelAt(system, id);
   for (size_t f = 0; f < id.frequencies.size(); ++f) {
     double scale = 0;
     for (const auto& h : model[f]) scale = std::max(scale, std::abs(h));
@@ -103,8 +103,8 @@ TEST(IdentifyStepSine, NinetyFivePercentBoundsCoverTheTruthUnderNoise) {
   for (std::uint64_t seed = 1; seed <= 60; ++seed) {
     s.seed = 1000 * seed;
     const SimulationResult sim = SimulateStepSine(system, s);
-    if (truth.empty()) truth = ModelFrf(system, sim.data, -1, 1);
     const IdentifyResult id = IdentifyStepSine(sim.data, o);
+    if (truth.empty()) truth = ModelAt(system, id);
     for (size_t f = 0; f < id.frequencies.size(); ++f)
       for (size_t z = 0; z < 3; ++z) {
         ASSERT_TRUE(id.frequencies[f].separable);
@@ -178,17 +178,6 @@ TEST(IdentifyStepSine, AMultipleOfHalfTheParametricFrequencyIsNotSeparable) {
 }
 
 // Broadband (multisine) records, least squares across records per response line (§4.2).
-// Reference: the model's own routes at the excited frequencies, as above.
-std::vector<std::vector<std::complex<double>>> ModelAt(const PeriodicSystem& system,
-                                                       const IdentifyResult& id) {
-  PfrfOptions o;
-  for (const IdentifiedFrequency& f : id.frequencies) o.frequencies_hz.push_back(f.excitation_hz);
-  o.min_order = id.min_order;
-  o.max_order = id.max_order;
-  const PfrfResult r = ComputePartialFrf(system, o);
-  EXPECT_TRUE(r.ok);
-  return r.values;
-}
 
 TEST(IdentifyBroadband, NoiseFreeEstimatesEqualTheModel) {
   // 11 lines from 0.05 to 0.45 Hz excited at once, 12 records of random phases, orders −4..4:
