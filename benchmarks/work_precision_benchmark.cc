@@ -287,7 +287,8 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
       row.ok = r.ok;
       row.error_abs = r.ok ? ExponentError(Exponents(r.modes), sc.ref_for_mono, s.omega()) : kInf;
       if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front();
-      if (line.type == IntegratorType::kAuto) row.note = "picked " + r.integrator;
+      if (line.type == IntegratorType::kAuto)
+        row.note = "picked " + std::string(ToString(r.integrator));
       // The analysis a user gets (modes, branch, error estimate by the refined run): honesty.
       // Its refined run is 100× tighter and computes the modes on K ≥ 32 segments, so it is
       // skipped where one plain run already took over 0.3 s (the study has to fit in 10 min).

@@ -119,9 +119,9 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"states", r.states},
           {"period", r.period},
           {"method", "monodromy"},
-          {"integrator", r.integrator},
+          {"integrator", std::string(ToString(r.integrator))},
           {"tolerance", args.options.integrator.rel_tol},
-          {"multiplier_method", r.multiplier_method},
+          {"multiplier_method", std::string(ToString(r.multiplier_method))},
           {"segments", r.segments},
           {"branch_rule", "energy centroid of the periodic mode shape on harmonic 0"},
           {"exponents", exps},
@@ -215,10 +215,10 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
 }
 
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
-  std::cout << "  monodromy by " << r.integrator
+  std::cout << "  monodromy by " << ToString(r.integrator)
             << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (") << "rel tol "
             << args.options.integrator.rel_tol << ") over K = " << r.segments
-            << " segments; multipliers by " << r.multiplier_method << "\n";
+            << " segments; multipliers by " << ToString(r.multiplier_method) << "\n";
   if (r.modes.empty()) {
     std::cout << "\n  FAILED\n";
     PrintDiagnostics(r.diagnostics);

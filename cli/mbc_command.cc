@@ -174,8 +174,9 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
             << (f.samples == 1 ? " sample (" : " samples (") << f.coordinates << ", not averaged)\n"
             << "  hold: each sample held over the nearest azimuths (exact product of exponentials, "
             << f.hold.segments << " segments)\n"
-            << "  trig: trigonometric interpolation through the samples (" << f.trig.integrator
-            << ", error estimate " << Num(f.trig.error_estimate, 2) << " 1/s)\n";
+            << "  trig: trigonometric interpolation through the samples ("
+            << ToString(f.trig.integrator) << ", error estimate " << Num(f.trig.error_estimate, 2)
+            << " 1/s)\n";
   if (!f.ok) {
     std::cout << "  FAILED\n";
     for (const auto& d : f.hold.diagnostics) std::cout << "    - hold: " << d << "\n";

@@ -68,7 +68,7 @@ void PlotFloquet(const FloquetResult& r, const std::string& title, const std::st
   std::ostringstream s;
   s << GnuplotTerminal(file, 1100, 520) << "set output '" << file << "'\n"
     << "set multiplot layout 1,2 title \"Floquet analysis: " << title << "  (K = " << r.segments
-    << ", " << r.integrator << ")\"\n";
+    << ", " << ToString(r.integrator) << ")\"\n";
   // Exponents.
   s << "$EXP << EOD\n";
   for (const auto& m : r.modes) s << m.exponent.real() << " " << m.frequency_hz << "\n";

@@ -444,8 +444,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   const double T = system.period();
   r.states = n;
   r.period = T;
-  r.integrator = std::string(ToString(options.integrator.type));
-  r.multiplier_method = std::string(ToString(options.multipliers));
+  r.integrator = options.integrator.type;
+  r.multiplier_method = options.multipliers;
 
   // 1. Segment factors on a grid refined where factors grow or decay too fast.
   const int samples = options.compute_modes ? (options.mode_samples > 0 ? options.mode_samples

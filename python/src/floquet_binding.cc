@@ -51,9 +51,13 @@ formula beyond the error estimate): the diagnostics say why.)doc");
   r.def_readonly("ok", &FloquetResult::ok, "the analysis succeeded and passed its own checks")
       .def_readonly("states", &FloquetResult::states, "n")
       .def_readonly("period", &FloquetResult::period, "T (s)")
-      .def_readonly("integrator", &FloquetResult::integrator, "the integrator used (auto resolved)")
-      .def_readonly("multiplier_method", &FloquetResult::multiplier_method,
-                    "'periodic-schur' or 'single-shot'")
+      .def_property_readonly(
+          "integrator", [](const FloquetResult& r) { return std::string(ToString(r.integrator)); },
+          "the integrator used (auto resolved)")
+      .def_property_readonly(
+          "multiplier_method",
+          [](const FloquetResult& r) { return std::string(ToString(r.multiplier_method)); },
+          "'periodic-schur' or 'single-shot'")
       .def_readonly("segments", &FloquetResult::segments, "K, the number of segments used")
       .def_property_readonly(
           "segment_times", [](const FloquetResult& f) { return RealArray(f.segment_times); },

@@ -91,7 +91,7 @@ TEST(MethodChoice, AutoMonodromyOnMeissnerIsExactAndSaysWhy) {
   o.integrator.type = IntegratorType::kAuto;
   const FloquetResult r = AnalyzeFloquet(s, o);
   ASSERT_TRUE(r.ok);
-  EXPECT_EQ(r.integrator, "expm");
+  EXPECT_EQ(r.integrator, IntegratorType::kExpm);
   EXPECT_TRUE(
       Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
   const double err = MatchedDistance(r.modes, exact, s.omega());
@@ -108,7 +108,7 @@ TEST(MethodChoice, AutoMonodromyIsTheChosenIntegratorsRun) {
   o.integrator.type = IntegratorType::kBulirschStoer;
   const FloquetResult b = AnalyzeFloquet(s, o);
   ASSERT_TRUE(a.ok && b.ok);
-  EXPECT_EQ(a.integrator, "bs");
+  EXPECT_EQ(a.integrator, IntegratorType::kBulirschStoer);
   ASSERT_EQ(a.modes.size(), b.modes.size());
   for (size_t k = 0; k < a.modes.size(); ++k) EXPECT_EQ(a.modes[k].exponent, b.modes[k].exponent);
   EXPECT_EQ(a.error_estimate, b.error_estimate);
@@ -124,7 +124,7 @@ TEST(MethodChoice, AutoOnAStiffNonTriangularSystemMeetsTheClosedForm) {
   o.integrator.type = IntegratorType::kAuto;
   const FloquetResult r = AnalyzeFloquet(s, o);
   ASSERT_TRUE(r.ok) << r.BriefReport();
-  EXPECT_EQ(r.integrator, "magnus6");
+  EXPECT_EQ(r.integrator, IntegratorType::kMagnus6);
   const double err = MatchedDistance(r.modes, {-800.0, 150.0, -3.0, -0.5}, s.omega());
   EXPECT_LT(err, 1e-8 * 800);
   EXPECT_GE(r.error_estimate, err);

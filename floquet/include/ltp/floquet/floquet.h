@@ -83,8 +83,8 @@ struct FloquetResult {
   bool ok = false;
   int states = 0;
   double period = 0;
-  std::string integrator;
-  std::string multiplier_method;
+  IntegratorType integrator = IntegratorType::kAuto;  ///< the one used (auto resolved)
+  MultiplierMethod multiplier_method = MultiplierMethod::kPeriodicSchur;
   int segments = 0;                   ///< K actually used
   std::vector<double> segment_times;  ///< t_0 = 0 < t_1 < … < t_K = T
   std::vector<FloquetMode> modes;     ///< sorted by frequency (|Im λ|), then Re λ
