@@ -63,6 +63,8 @@ int RunSimulate(const SimulateArgs& args) {
   o.frequencies_hz = frequencies;
   if (kind == "noise") {
     // Periodic Gaussian noise: every line 1/(periods·T) apart in [F0, F1], Rayleigh amplitudes.
+    if (args.periods < 1 || args.periods > 100000)
+      throw InputError("--periods must be in 1..100000, got " + std::to_string(args.periods));
     const double step = 1.0 / (args.periods * l.system.period());
     const double f0 = frequencies.front(), f1 = frequencies.back();
     if ((f1 - f0) / step > 1e5)

@@ -20,22 +20,47 @@ using State = std::vector<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
 // u(t) = Σ_k a_k cos(c_k ω0 t + φ_k) with whole multiples c_k of the record's base frequency
-// ω0 = 2π/L (every excitation lies on the record's grid) = Re P(e^{jω0 t}), P(z) = Σ_c P_c z^c:
-// one polynomial by Horner's rule (backward stable on |z| = 1) instead of one cosine per line,
-// ~10× cheaper for a multisine of hundreds of lines.
-struct Excitation {
-  double omega0 = 0;
-  std::vector<std::complex<double>> coefficients;  // P_c, c = 0 … max c_k
+// ω0 = 2π/L (every excitation lies on the record's grid) = Re Σ_k P_k z^{c_k}, z = e^{jω0 t}.
+// A dense band of lines is one polynomial z^{c_min} Σ_c P_c z^{c − c_min} by Horner's rule
+// (backward stable on |z| = 1; ~10× cheaper than a cosine per line for hundreds of lines); a
+// few lines spread far apart (a step-sine) keep one phasor each.
+class Excitation {
+ public:
+  explicit Excitation(double omega0) : omega0_(omega0) {}
   void Add(long cycles, double amplitude, double phase) {
-    if (static_cast<long>(coefficients.size()) <= cycles) coefficients.resize(cycles + 1);
-    coefficients[static_cast<size_t>(cycles)] += std::polar(amplitude, phase);
+    lines_.emplace_back(cycles, std::polar(amplitude, phase));
+  }
+  /// After the last Add: chooses the evaluation.
+  void Finish() {
+    if (lines_.empty()) return;
+    long lo = lines_.front().first, hi = lo;
+    for (const auto& [c, p] : lines_) {
+      lo = std::min(lo, c);
+      hi = std::max(hi, c);
+    }
+    if (hi - lo + 1 > 8 * static_cast<long>(lines_.size()) + 8) return;  // sparse: per line
+    lowest_ = lo;
+    dense_.assign(static_cast<size_t>(hi - lo + 1), 0.0);
+    for (const auto& [c, p] : lines_) dense_[static_cast<size_t>(c - lo)] += p;
   }
   double operator()(double t) const {
-    const std::complex<double> z = std::polar(1.0, omega0 * t);
-    std::complex<double> p = 0;
-    for (auto c = coefficients.rbegin(); c != coefficients.rend(); ++c) p = p * z + *c;
-    return p.real();
+    if (dense_.empty()) {
+      double u = 0;
+      for (const auto& [c, p] : lines_)
+        u += (p * std::polar(1.0, omega0_ * static_cast<double>(c) * t)).real();
+      return u;
+    }
+    const std::complex<double> z = std::polar(1.0, omega0_ * t);
+    std::complex<double> sum = 0;
+    for (auto c = dense_.rbegin(); c != dense_.rend(); ++c) sum = sum * z + *c;
+    return (sum * std::polar(1.0, omega0_ * static_cast<double>(lowest_) * t)).real();
   }
+
+ private:
+  double omega0_;
+  std::vector<std::pair<long, std::complex<double>>> lines_;
+  std::vector<std::complex<double>> dense_;  // P_c for c = lowest_ … (empty: sparse)
+  long lowest_ = 0;
 };
 
 struct ForcedRealRhs {
@@ -232,8 +257,9 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
       PlanRecords(system, options, static_cast<double>(options.frequencies_hz.size()), r);
   const std::vector<double> grid = GridFrequencies(options, system.period(), r);
   for (size_t k = 0; k < grid.size(); ++k) {
-    Excitation u{kTwoPi / plan.length, {}};
+    Excitation u(kTwoPi / plan.length);
     u.Add(std::lround(grid[k] * plan.length), options.amplitude, 0.0);
+    u.Finish();
     try {
       r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
     } catch (const InputError& e) {
@@ -254,7 +280,7 @@ SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateO
     std::mt19937_64 rng(options.seed + 1000003 * static_cast<std::uint64_t>(k + 1));
     std::uniform_real_distribution<double> phase(-std::numbers::pi, std::numbers::pi);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    Excitation u{kTwoPi / plan.length, {}};
+    Excitation u(kTwoPi / plan.length);
     for (double f : grid) {
       // Rayleigh with E a² = amplitude²: the lines of a periodic Gaussian noise.
       const double a = options.random_amplitudes
@@ -262,6 +288,7 @@ SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateO
                            : amplitude;
       u.Add(std::lround(f * plan.length), a, phase(rng));
     }
+    u.Finish();
     r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
     r.data.records.back().excitation_hz = 0;  // broadband
   }
