@@ -71,10 +71,20 @@ bool TooMuchWork(const std::vector<std::string>& args) {
         if (std::atof(v->c_str()) > 64) return true;
       if (const std::string* v = ValueOf(args, i, "--samples-per-period", scratch))
         if (std::atof(v->c_str()) > 256) return true;
-      if (const std::string* v = ValueOf(args, i, "--excitation", scratch))
+      if (const std::string* v = ValueOf(args, i, "--excitation", scratch)) {
         if (StartsWith(*v, "stepsine:") &&
             ltp::ParseFrequencyRange(v->substr(9), "--excitation").size() > 20)
           return true;
+        if (StartsWith(*v, "multisine:") &&
+            ltp::ParseFrequencyRange(v->substr(10), "--excitation").size() > kMaxPoints)
+          return true;
+        if (StartsWith(*v, "noise:")) {
+          const auto [f0, f1] = ltp::ParseFrequencyBand(v->substr(6), "--excitation");
+          if (f1 - f0 > 5) return true;  // every grid line of the band: thousands of lines
+        }
+      }
+      if (const std::string* v = ValueOf(args, i, "--records", scratch))
+        if (std::atof(v->c_str()) > 12) return true;
       for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})
         if (const std::string* v = ValueOf(args, i, h, scratch))
           if (std::atof(v->c_str()) > kMaxHarmonics) return true;
