@@ -46,11 +46,12 @@ int AutoModeSamples(const PeriodicSystem& system) {
 }
 
 // Uniform segments to start from when the mode shapes are wanted. One per mode sample gives the
-// samples directly from the periodic eigenvectors, which cost one sparse LU of the (K·n)²
-// block-cyclic matrix per mode, O(K n³) in all: fine for tens of states, 18 s for a 60-state
-// OpenFAST set at K = 256. Larger systems start from fewer segments (still refined wherever a
-// factor's condition demands) and get the remaining samples by propagation within a segment,
-// which stays accurate because every factor is well conditioned.
+// samples directly from the periodic eigenvectors. Larger systems start from fewer segments
+// (still refined wherever a factor's condition demands) and get the remaining samples by
+// propagation within a segment, which stays accurate because every factor is well
+// conditioned. (The rule dates from when each eigenvector cost a sparse LU of the (K·n)²
+// block-cyclic matrix — 18 s for a 60-state set at K = 256; the periodic Schur route is O(K n³)
+// for all modes, and whether more segments now pay has not been measured.)
 int ModeSegments(int samples, int states) {
   const int shrink = NextPowerOfTwo(std::max(1, (states + 23) / 24));
   return std::max(std::min(samples, 8), samples / shrink);

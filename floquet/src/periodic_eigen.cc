@@ -437,9 +437,8 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
   std::vector<bool> done(log_rho.size(), false);
   {
-    std::string schur_message;
     const std::vector<Eigen::VectorXcd> schur =
-        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, &schur_message);
+        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated);
     std::vector<Complex> sigma(k);
     for (std::size_t m = 0; m < log_rho.size(); ++m) {
       if (schur[m].size() == 0) continue;

@@ -31,7 +31,7 @@ using Complex = std::complex<double>;
 /// quasi-triangular, the others upper triangular. SLICOT's product is A_1 ⋯ A_K with
 /// A_j = Φ_{K−j} and Q_jᵀ A_j Q_{j+1} = S_j, so R_i = S_{K−i} and U_i = Q_{(K−i) mod K + 1}.
 bool RealPeriodicSchur(const std::vector<Eigen::MatrixXd>& factors, std::vector<Eigen::MatrixXd>& r,
-                       std::vector<Eigen::MatrixXd>& u, std::string* message) {
+                       std::vector<Eigen::MatrixXd>& u) {
   const int n = static_cast<int>(factors[0].rows());
   const int k = static_cast<int>(factors.size());
   const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
@@ -43,18 +43,12 @@ bool RealPeriodicSchur(const std::vector<Eigen::MatrixXd>& factors, std::vector<
   std::vector<double> dwork(static_cast<std::size_t>(std::max(1, n)) * 32);
   int info = 0;
   mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &info);
-  if (info != 0) {
-    *message = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
-    return false;
-  }
+  if (info != 0) return false;
   std::vector<double> q = a;
   const int ldwork_vy = static_cast<int>(dwork.size());
   mb03vy_(&n, &k, &ilo, &ihi, q.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &ldwork_vy,
           &info);
-  if (info != 0) {
-    *message = "SLICOT MB03VY failed, INFO = " + std::to_string(info);
-    return false;
-  }
+  if (info != 0) return false;
   for (int j = 0; j < k; ++j) {  // MB03BD wants zeros where MB03VD left its reflectors
     Eigen::Map<Eigen::MatrixXd> aj(a.data() + j * block, n, n);
     for (int c = 0; c < n; ++c)
@@ -72,11 +66,7 @@ bool RealPeriodicSchur(const std::vector<Eigen::MatrixXd>& factors, std::vector<
   mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
           &lda, &lda, q.data(), &lda, &lda, alphar.data(), alphai.data(), beta.data(), scal.data(),
           iwork.data(), &liwork, work.data(), &ldwork, &iwarn, &info, 1, 1, 1);
-  if (info != 0) {
-    *message = "SLICOT MB03BD (periodic QZ with Schur vectors) did not converge, INFO = " +
-               std::to_string(info);
-    return false;
-  }
+  if (info != 0) return false;
   r.resize(k);
   u.resize(k);
   for (int i = 0; i < k; ++i) {
@@ -96,7 +86,7 @@ struct ComplexSchurForm {
 /// W_{i+1}ᴴ B_i W_i upper triangular. The w_i are propagated, not the product formed: the two
 /// eigenvectors of a conjugate pair grow alike, so the propagation is stable.
 bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::MatrixXd>& u,
-                ComplexSchurForm& s, std::string* message) {
+                ComplexSchurForm& s) {
   const int k = static_cast<int>(r.size());
   const int n = static_cast<int>(r[0].rows());
   s.t.resize(k);
@@ -112,17 +102,11 @@ bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::
     for (int i = 0; i < k; ++i) {
       product = (r[i].block<2, 2>(p, p) * product).eval();
       const double norm = product.norm();
-      if (!(norm > 0) || !std::isfinite(norm)) {
-        *message = "a 2x2 block of the periodic Schur form has a singular or non-finite product";
-        return false;
-      }
+      if (!(norm > 0) || !std::isfinite(norm)) return false;
       product /= norm;
     }
     Eigen::ComplexEigenSolver<Eigen::Matrix2cd> eig(product.cast<Complex>());
-    if (eig.info() != Eigen::Success) {
-      *message = "the eigenvectors of a 2x2 block product failed";
-      return false;
-    }
+    if (eig.info() != Eigen::Success) return false;
     const int pick = eig.eigenvalues()(0).imag() >= eig.eigenvalues()(1).imag() ? 0 : 1;
     Eigen::Vector2cd x = eig.eigenvectors().col(pick).normalized();
     for (int i = 0; i < k; ++i) {
@@ -218,8 +202,7 @@ double LogDistance(Complex a, Complex b) {
 std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
                                                         const std::vector<double>& dt,
                                                         const std::vector<Complex>& log_rho,
-                                                        const std::vector<bool>& wanted,
-                                                        std::string* message) {
+                                                        const std::vector<bool>& wanted) {
   std::vector<Eigen::VectorXcd> out(log_rho.size());
   if (factors.empty() || factors[0].rows() == 0 ||
       std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
@@ -230,7 +213,7 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
   for (double d : dt) period += d;
   std::vector<Eigen::MatrixXd> r, u;
   ComplexSchurForm s;
-  if (!RealPeriodicSchur(factors, r, u, message) || !Complexify(r, u, s, message)) return out;
+  if (!RealPeriodicSchur(factors, r, u) || !Complexify(r, u, s)) return out;
   std::vector<Complex> log_diag(n, 0.0);
   for (int i = 0; i < k; ++i)
     for (int l = 0; l < n; ++l) log_diag[l] += std::log(s.t[i](l, l));

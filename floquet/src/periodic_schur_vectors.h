@@ -3,7 +3,6 @@
 
 #include <Eigen/Dense>
 #include <complex>
-#include <string>
 #include <vector>
 
 namespace ltp::internal {
@@ -13,10 +12,9 @@ namespace ltp::internal {
 /// ||v_i|| is about 1. Empty for a mode the Schur route could not deliver (no converged
 /// Schur form, no diagonal entry matching log_rho[m], a repeated multiplier, or non-finite
 /// numbers): the caller falls back to another method, and checks every returned vector's
-/// cyclic residual itself. `message` says why the whole route failed, if it did.
+/// cyclic residual itself.
 std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted,
-    std::string* message);
+    const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted);
 
 }  // namespace ltp::internal
