@@ -11,6 +11,9 @@
 //                        floor of this route at rel_tol 1e-10 with this integrator
 // PfrfModal / PfrfAuto   `ltp pfrf tower-rotor --freq 0:450:0.6 --orders -4:4` (751 × 9 values),
 //                        Floquet analysis and checks included; route modal, and auto
+// HtfPoint/0 and /1      one HTF evaluation at the automatic truncation: banded LU (0) against
+//                        the Hessenberg solve after one reduction (1); HtfReduction the
+//                        reduction itself (what a sweep pays once per truncation)
 #include <benchmark/benchmark.h>
 
 #include "ltp/core/scene.h"
@@ -74,6 +77,42 @@ void Pfrf(benchmark::State& state, PfrfRoute route) {
 }
 BENCHMARK_CAPTURE(Pfrf, Modal, PfrfRoute::kModal)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Pfrf, Auto, PfrfRoute::kAuto)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+std::vector<double> SweepOmegas() {
+  std::vector<double> w;
+  for (int i = 0; i <= 750; ++i) w.push_back(2 * 3.141592653589793 * 0.6 * i);
+  return w;
+}
+
+HtfSolver TowerRotorHtf() {
+  HtfSolver htf(TowerRotor());
+  const std::vector<double> w = SweepOmegas();
+  htf.ChooseTruncation(-4, 4, {w.front(), w[w.size() / 2], w.back()});
+  return htf;
+}
+
+void HtfPoint(benchmark::State& state) {
+  HtfSolver htf = TowerRotorHtf();
+  if (state.range(0) == 1 && !htf.PrepareSweep(1000)) state.SkipWithError("not reduced");
+  const std::vector<double> w = SweepOmegas();
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(htf.Evaluate(w[i], -4, 4));
+    i = (i + 37) % w.size();
+  }
+  state.counters["N"] = htf.harmonics();
+}
+BENCHMARK(HtfPoint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void HtfReduction(benchmark::State& state) {
+  for (auto _ : state) {
+    state.PauseTiming();
+    HtfSolver htf = TowerRotorHtf();
+    state.ResumeTiming();
+    if (!htf.PrepareSweep(1000)) state.SkipWithError("not reduced");
+  }
+}
+BENCHMARK(HtfReduction)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 

@@ -124,8 +124,9 @@ RouteRun RunRoute(PfrfRoute route, const std::vector<int>& points, const Periodi
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<internal::PfrfRouteSolver> solver =
       internal::MakeRouteSolver(route, system, options, r);
-  run.setup_s = internal::SecondsSince(start);
   const int n_points = static_cast<int>(points.size());
+  solver->Prepare(n_points);
+  run.setup_s = internal::SecondsSince(start);
   at.assign(points.size(), {});
 #pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0)) if (solver->concurrent())
   for (int q = 0; q < n_points; ++q) {

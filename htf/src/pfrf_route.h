@@ -28,6 +28,9 @@ struct RoutePoint {
 class PfrfRouteSolver {
  public:
   virtual ~PfrfRouteSolver() = default;
+  /// Called once before the points run, with how many there will be (a route may spend
+  /// set-up work that pays over that many).
+  virtual void Prepare(int /*points*/) {}
   virtual RoutePoint Evaluate(double omega) = 0;
   /// Whether Evaluate may run on several threads at once.
   virtual bool concurrent() const { return false; }

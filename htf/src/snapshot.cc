@@ -114,8 +114,9 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
       HtfSolver htf(system, options.htf);
       htf.ChooseTruncation(zmin, zmax, {e0, 0.5 * (e0 + e1), e1});
       const int P = options.check_points;
+      htf.PrepareSweep(P);
       std::vector<double> disagreement(P, 0.0);
-#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0))  // independent banded solves
+#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0))  // independent solves
       for (int q = 0; q < P; ++q) {
         const double w = P == 1 ? 0.5 * (e0 + e1) : e0 + (e1 - e0) * q / (P - 1);
         const PartialFrfs h = htf.Evaluate(w, zmin, zmax);

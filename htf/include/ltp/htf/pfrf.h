@@ -14,6 +14,8 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <functional>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +27,10 @@
 #include "ltp/floquet/integrator.h"
 
 namespace ltp {
+
+namespace internal {
+class ShiftedHessenbergSolver;
+}
 
 enum class PfrfRoute {
   kModal,
@@ -108,13 +114,15 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
 // --- Route 2: truncated harmonic transfer function -------------------------------------------
 
 struct HtfOptions {
-  /// Truncation N (harmonics −N..N of the state); 0 = automatic: from max(2·max|z|, |z|+2H_A, 8)
-  /// grown ×1.5 until the N vs N+Δ change at the probe frequencies is below `tol`.
+  /// Truncation N (harmonics −N..N of the state); 0 = automatic: from max(2·max|z|, max|z| +
+  /// min(H_A, 8), 8) grown ×1.5 until the N vs N+Δ change at the probe frequencies is below `tol`.
   int harmonics = 0;
   /// Δ of the truncation check (0 = automatic: max(2, N/4)).
   int delta = 0;
-  double tol = 1e-11;         ///< relative truncation target of the automatic choice
-  int max_harmonics = 128;    ///< upper bound of the automatic choice
+  double tol = 1e-11;       ///< relative truncation target of the automatic choice
+  int max_harmonics = 128;  ///< upper bound of the automatic choice
+  /// Largest Hill matrix (rows) that HtfSolver::PrepareSweep reduces densely (4096: 256 MB).
+  int max_dense_size = 4096;
   FourierFitOptions fourier;  ///< for systems not in Fourier form
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
@@ -131,8 +139,14 @@ class HtfSolver {
   /// Chooses N automatically (when options.harmonics == 0) for these orders, probing at the
   /// given excitation frequencies (rad/s). Returns the N chosen.
   int ChooseTruncation(int min_order, int max_order, const std::vector<double>& probe_omegas);
+  /// Prepares `frequencies` evaluations at truncation N (0 = the current one): when that pays
+  /// and the matrix has at most options.max_dense_size rows, the Hill matrix is reduced once
+  /// to Hessenberg form and Evaluate at that N costs O(size²) per frequency instead of a
+  /// banded factorization (docs/speed-notes.md, "HTF sweeps"). Returns whether it reduced.
+  /// Not thread-safe; Evaluate stays safe to call concurrently afterwards.
+  bool PrepareSweep(int frequencies, int harmonics = 0);
   /// H_z(ω) at truncation N (0 = the current one). Never throws for a singular matrix: the
-  /// entries are then NaN and `last_ok()` is false.
+  /// entries are then NaN.
   PartialFrfs Evaluate(double omega, int min_order, int max_order, int harmonics = 0) const;
 
   int harmonics() const { return harmonics_; }
@@ -149,6 +163,10 @@ class HtfSolver {
   double fourier_tail_ = 0;
   SystemFourier fourier_;
   std::vector<std::string> diagnostics_;
+  std::map<int, std::shared_ptr<const internal::ShiftedHessenbergSolver>> reduced_;  ///< by N
+
+  PartialFrfs EvaluateBanded(double omega, int min_order, int max_order, int N) const;
+  Eigen::MatrixXcd HillRhs(int N) const;
 };
 
 // --- Routes 3 and 4: shooting and time simulation --------------------------------------------
