@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
 #include "shifted_hessenberg.h"
 
@@ -128,9 +129,7 @@ Eigen::MatrixXcd HtfSolver::HillRhs(int N) const {
   return rhs;
 }
 
-bool HtfSolver::PrepareSweep(int frequencies, int harmonics) {
-  const int N = harmonics > 0 ? harmonics : harmonics_;
-  if (reduced_.count(N)) return true;
+bool HtfSolver::PaysToReduce(int frequencies, int N) const {
   const int size = (2 * N + 1) * n_, ha = std::min(ha_, N);
   const double kl = std::min((ha + 1) * n_ - 1, size - 1), s = size;
   // Banded LU ≈ 2·size·kl² complex operations per frequency at BLAS-3 speed; the reduction
@@ -138,7 +137,11 @@ bool HtfSolver::PrepareSweep(int frequencies, int harmonics) {
   // tower-rotor, docs/speed-notes.md).
   const double banded = frequencies * 2 * s * kl * kl;
   const double reduced = 2 * (10.0 / 3) * s * s * s + frequencies * 4 * s * s;
-  if (size > options_.max_dense_size || reduced >= banded) return false;
+  return size <= options_.max_dense_size && reduced < banded;
+}
+
+std::shared_ptr<const internal::ShiftedHessenbergSolver> HtfSolver::Reduce(int N) const {
+  const int size = (2 * N + 1) * n_, ha = std::min(ha_, N);
   Eigen::MatrixXcd h = Eigen::MatrixXcd::Zero(size, size);
   VisitHillOperator(fourier_.A.series, n_, N, ha, omega_p_,
                     [&](int i, int j, cd value) { h(i, j) += value; });
@@ -151,9 +154,31 @@ bool HtfSolver::PrepareSweep(int frequencies, int harmonics) {
       g.block((z + zr) * p_, (u + N) * n_, p_, n_) = C[z - u];
   auto solver =
       std::make_shared<const internal::ShiftedHessenbergSolver>(std::move(h), HillRhs(N), g);
-  if (!solver->ok()) return false;
-  reduced_[N] = std::move(solver);
-  return true;
+  return solver->ok() ? solver : nullptr;
+}
+
+bool HtfSolver::PrepareSweep(int frequencies, const std::vector<int>& truncations) {
+  std::vector<int> todo;
+  bool all = true;
+  for (int N : truncations.empty() ? std::vector<int>{harmonics_} : truncations) {
+    if (reduced_.count(N)) continue;
+    if (PaysToReduce(frequencies, N))
+      todo.push_back(N);
+    else
+      all = false;
+  }
+  // Each reduction on its own core (OpenBLAS runs single-threaded under ltp's threads).
+  std::vector<std::shared_ptr<const internal::ShiftedHessenbergSolver>> built(todo.size());
+  const int jobs = static_cast<int>(todo.size());
+#pragma omp parallel for num_threads(std::max(1, std::min(jobs, ThreadsFor(0))))
+  for (int q = 0; q < jobs; ++q) built[q] = Reduce(todo[q]);
+  for (size_t q = 0; q < todo.size(); ++q) {
+    if (built[q])
+      reduced_[todo[q]] = std::move(built[q]);
+    else
+      all = false;
+  }
+  return all;
 }
 
 PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int harmonics) const {

@@ -154,24 +154,30 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
     const double previous_tail = r.tail;
     r.tail = PerModeTail(c_hat, b_hat, n);
     if (r.tail <= options.tail_tol || 2 * S > options.max_samples) break;
-    // Noise plateau: the mode samples carry the integration error (~ the Floquet tolerance),
-    // white across harmonics, so once a doubling no longer shrinks a small tail fourfold more
-    // samples only resolve noise (tower-rotor: 1.4e-11 at 64 … 4096 samples, and 2047
-    // harmonics kept, each evaluation 30× slower, for nothing).
-    if (S > static_cast<int>(floquet.mode_samples.size()) && r.tail <= 0.1 * options.max_tail &&
-        r.tail > 0.25 * previous_tail) {
+    // Noise level: the mode samples carry the integration error (~ its rel_tol), white
+    // across harmonics. A tail within 10× of it is what the samples can resolve (tower-rotor:
+    // 2.4e-10 at 512 samples, 1e-10 at 1024 and on); and once a doubling no longer shrinks a
+    // small tail fourfold, more samples only resolve noise (2047 harmonics were once kept,
+    // each evaluation 30× slower, for nothing).
+    const double noise = std::min(10 * options.integrator.rel_tol, 0.1 * options.max_tail);
+    const bool at_noise = r.tail <= noise;
+    const bool stalled = S > static_cast<int>(floquet.mode_samples.size()) &&
+                         r.tail <= 0.1 * options.max_tail && r.tail > 0.25 * previous_tail;
+    if (at_noise || stalled) {
       r.noise_floor = true;
       break;
     }
-    // Refine: ξ_k(t_s + h) = Φ(t_s + h, t_s) ξ_k(t_s) e^{−λ_k h}, h = T/(2S).
-    const double h = T / (2 * S);
+    // Refine by f: ξ_k(t_s + qh) = Φ(t_s + qh, t_s) ξ_k(t_s) e^{−λ_k qh}, h = T/(fS), q < f.
+    // One refinement integrates the period once whatever f is, so a tail far above its
+    // target is refined fourfold in one pass.
+    const int f =
+        r.tail > 10 * std::max(options.tail_tol, noise) && 4 * S <= options.max_samples ? 4 : 2;
+    const double h = T / (f * S);
     Eigen::VectorXcd decay(n);
     for (int k = 0; k < n; ++k) decay(k) = std::exp(-r.exponents[k] * h);
-    std::vector<Eigen::MatrixXcd> finer(2 * S);
-    // Chains over the fine grid on the cores (the step size carries across the samples); the
-    // factors over [t_s, t_s + h] are every other one.
-    std::vector<std::pair<double, double>> fine(2 * S);
-    for (int q = 0; q < 2 * S; ++q) fine[q] = {T * q / (2 * S), T * (q + 1) / (2 * S)};
+    // Chains over the fine grid on the cores (the step size carries across the samples).
+    std::vector<std::pair<double, double>> fine(f * S);
+    for (int q = 0; q < f * S; ++q) fine[q] = {T * q / (f * S), T * (q + 1) / (f * S)};
     const std::vector<TransitionResult> steps =
         IntervalTransitions(system, fine, options.integrator, ThreadsFor(0));
     bool ok = true;
@@ -179,14 +185,17 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
       r.rhs_evals += tr.rhs_evals;
       ok = ok && tr.ok;
     }
-    for (int s = 0; s < S && ok; ++s) {
-      finer[2 * s] = xi[s];
-      finer[2 * s + 1] = steps[2 * s].phi.cast<cd>() * xi[s] * decay.asDiagonal();
-    }
     if (!ok) {
       r.diagnostics.push_back("modal: propagating mode samples failed; kept " + std::to_string(S) +
                               " samples");
       break;
+    }
+    std::vector<Eigen::MatrixXcd> finer(f * S);
+    for (int s = 0; s < S; ++s) {
+      finer[f * s] = xi[s];
+      for (int q = 1; q < f; ++q)
+        finer[f * s + q] =
+            steps[f * s + q - 1].phi.cast<cd>() * finer[f * s + q - 1] * decay.asDiagonal();
     }
     xi = std::move(finer);
   }

@@ -26,8 +26,7 @@ class HtfRoute : public PfrfRouteSolver {
 
   void Prepare(int points) override {
     const int N = solver_.harmonics();
-    reduced_ = solver_.PrepareSweep(points, N);
-    reduced_ = solver_.PrepareSweep(points, N + solver_.delta()) && reduced_;
+    reduced_ = solver_.PrepareSweep(points, {N, N + solver_.delta()});
   }
 
   RoutePoint Evaluate(double omega) override {

@@ -52,9 +52,10 @@ using PartialFrfs = std::vector<Eigen::MatrixXcd>;
 // --- Route 1: Floquet modal ------------------------------------------------------------------
 
 struct ModalOptions {
-  /// Uniform samples of C(t)Ξ(t) and Ξ(t)⁻¹B(t) are doubled (new ones propagated from the
-  /// existing mode samples with StateTransition) until the Fourier amplitude in the upper half
-  /// of the harmonics is below tail_tol relative to the largest one, per mode.
+  /// Uniform samples of C(t)Ξ(t) and Ξ(t)⁻¹B(t) are refined ×2 or ×4 (new ones propagated from
+  /// the existing mode samples over the fine grid) until the Fourier amplitude in the upper
+  /// half of the harmonics is below tail_tol relative to the largest one, per mode, or at the
+  /// noise level of the samples (within 10× of integrator.rel_tol, or no longer shrinking).
   double tail_tol = 1e-12;
   int max_samples = 4096;  ///< power of two
   /// The route counts as reliable only if the final tail is below this (systems with jumps
@@ -82,8 +83,9 @@ struct ModalModel {
   std::vector<Eigen::MatrixXcd> d_hat;          ///< D_w (outputs × inputs), index w + V
   int samples = 0;                              ///< uniform samples per period finally used
   double tail = 0;  ///< worst relative Fourier amplitude in the upper half (per mode)
-  /// The tail stopped shrinking when the samples were doubled: it is the noise level of the
-  /// integrated mode samples, and harmonics below it were dropped.
+  /// The tail reached the noise level of the integrated mode samples (within 10× of their
+  /// integration tolerance, or it stopped shrinking when the samples were doubled); harmonics
+  /// below it were dropped.
   bool noise_floor = false;
   double condition = 0;  ///< max(mode_condition, max_t cond Ξ(t)); information only
   /// The Floquet analysis succeeded and tail <= max_tail. A sweep with route auto can still
@@ -139,12 +141,13 @@ class HtfSolver {
   /// Chooses N automatically (when options.harmonics == 0) for these orders, probing at the
   /// given excitation frequencies (rad/s). Returns the N chosen.
   int ChooseTruncation(int min_order, int max_order, const std::vector<double>& probe_omegas);
-  /// Prepares `frequencies` evaluations at truncation N (0 = the current one): when that pays
-  /// and the matrix has at most options.max_dense_size rows, the Hill matrix is reduced once
-  /// to Hessenberg form and Evaluate at that N costs O(size²) per frequency instead of a
-  /// banded factorization (docs/speed-notes.md, "HTF sweeps"). Returns whether it reduced.
+  /// Prepares `frequencies` evaluations at each truncation N of `truncations` (empty: the
+  /// current one): where that pays and the matrix has at most options.max_dense_size rows,
+  /// the Hill matrix is reduced once to Hessenberg form (the truncations in parallel) and
+  /// Evaluate at that N costs O(size²) per frequency instead of a banded factorization
+  /// (docs/speed-notes.md, "HTF sweeps"). Returns whether every one was reduced.
   /// Not thread-safe; Evaluate stays safe to call concurrently afterwards.
-  bool PrepareSweep(int frequencies, int harmonics = 0);
+  bool PrepareSweep(int frequencies, const std::vector<int>& truncations = {});
   /// H_z(ω) at truncation N (0 = the current one). Never throws for a singular matrix: the
   /// entries are then NaN.
   PartialFrfs Evaluate(double omega, int min_order, int max_order, int harmonics = 0) const;
@@ -166,6 +169,8 @@ class HtfSolver {
   std::map<int, std::shared_ptr<const internal::ShiftedHessenbergSolver>> reduced_;  ///< by N
 
   PartialFrfs EvaluateBanded(double omega, int min_order, int max_order, int N) const;
+  bool PaysToReduce(int frequencies, int N) const;
+  std::shared_ptr<const internal::ShiftedHessenbergSolver> Reduce(int N) const;
   Eigen::MatrixXcd HillRhs(int N) const;
 };
 
