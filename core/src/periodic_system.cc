@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/core/real_fourier_series.h"
 
 namespace ltp {
 
@@ -14,13 +15,9 @@ struct PeriodicSystem::Impl {
   double period = 0;
   int n = 0, m = 0, p = 0;
   FourierMatrix fa, fb, fc, fd;  // Fourier form
-  // A's series as real matrices, A(t) = A_0 + Σ_w (C_w cos wΩt + S_w sin wΩt), stored flat
-  // [A_0 | C_1 | S_1 | C_2 | S_2 | ...] for the integrators' inner loop: one sincos per
-  // evaluation, no complex arithmetic, no expression-template overhead for small n.
-  std::vector<double> a_series;
-  int a_harmonics = 0;
-  Functions fn;               // function form
-  std::vector<double> times;  // sampled form
+  RealFourierSeries a_real;      // A in real form: what EvalA and the integrators' inner loops read
+  Functions fn;                  // function form
+  std::vector<double> times;     // sampled form
   std::vector<LtiSystem> samples;
   std::vector<double> breakpoints;
   SystemLabels labels;
@@ -81,20 +78,7 @@ PeriodicSystem PeriodicSystem::FromFourier(double period, FourierMatrix A, Fouri
   CheckFinite(B, "B");
   CheckFinite(C, "C");
   CheckFinite(D, "D");
-  {
-    // Trailing zero harmonics cost evaluations and change nothing.
-    int top = A.max_harmonic();
-    while (top > 0 && A[top].isZero(0) && A[-top].isZero(0)) --top;
-    const Eigen::Index nn = static_cast<Eigen::Index>(impl->n) * impl->n;
-    impl->a_harmonics = top;
-    impl->a_series.resize(static_cast<size_t>(nn) * (2 * top + 1));
-    Eigen::Map<Eigen::MatrixXd>(impl->a_series.data(), impl->n, impl->n) = A[0].real();
-    for (int w = 1; w <= top; ++w) {
-      double* at = impl->a_series.data() + nn * (2 * w - 1);
-      Eigen::Map<Eigen::MatrixXd>(at, impl->n, impl->n) = A[w].real() + A[-w].real();
-      Eigen::Map<Eigen::MatrixXd>(at + nn, impl->n, impl->n) = A[-w].imag() - A[w].imag();
-    }
-  }
+  impl->a_real = RealFourierSeries(A);
   impl->fa = std::move(A);
   impl->fb = std::move(B);
   impl->fc = std::move(C);
@@ -172,29 +156,9 @@ PeriodicSystem::Form PeriodicSystem::form() const { return impl_->form; }
 
 void PeriodicSystem::EvalA(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   switch (impl_->form) {
-    case Form::kFourier: {
-      const int n = impl_->n;
-      const double* mean = impl_->a_series.data();
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) out(i, j) = mean[i + j * n];
-      if (impl_->a_harmonics == 0) break;
-      // cos/sin of wΩt by rotation from those of Ωt: error grows like w·eps, far below
-      // anything an integrator resolves for the harmonic counts a system carries.
-      const double theta = omega() * t;
-      const double c1 = std::cos(theta), s1 = std::sin(theta);
-      double c = c1, s = s1;
-      const size_t nn = static_cast<size_t>(n) * n;
-      for (int w = 1; w <= impl_->a_harmonics; ++w) {
-        const double* cw = mean + nn * (2 * w - 1);
-        const double* sw = cw + nn;
-        for (int j = 0; j < n; ++j)
-          for (int i = 0; i < n; ++i) out(i, j) += c * cw[i + j * n] + s * sw[i + j * n];
-        const double next_c = c * c1 - s * s1;
-        s = s * c1 + c * s1;
-        c = next_c;
-      }
+    case Form::kFourier:
+      impl_->a_real.Evaluate(t, omega(), out);
       break;
-    }
     case Form::kFunction:
       impl_->fn.A(t, out);
       break;
@@ -291,8 +255,8 @@ LtiSystem PeriodicSystem::SnapshotAtAngle(double angle_rad) const {
 const std::vector<double>& PeriodicSystem::breakpoints() const { return impl_->breakpoints; }
 const double* PeriodicSystem::RealSeriesA(int* harmonics) const {
   if (impl_->form != Form::kFourier) return nullptr;
-  if (harmonics) *harmonics = impl_->a_harmonics;
-  return impl_->a_series.data();
+  if (harmonics) *harmonics = impl_->a_real.harmonics();
+  return impl_->a_real.data();
 }
 
 const FourierMatrix* PeriodicSystem::fourier_A() const {

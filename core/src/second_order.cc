@@ -76,22 +76,27 @@ PeriodicSystem FromSecondOrder(const SecondOrderSystem& system, const SecondOrde
   if (p > 0) CheckFinite(system.Cd, "Cd", p, q, 0);
   if (p > 0) CheckFinite(system.Cv, "Cv", p, q, 0);
 
-  // Shared, immutable: every evaluation factorises M afresh, so calls may run in parallel.
+  // Shared, immutable: every evaluation factorises M afresh, so calls may run in parallel
+  // (the work matrices are per thread, kept across calls: no allocation per evaluation).
   auto s = std::make_shared<const SecondOrderSystem>(system);
   PeriodicSystem::Functions functions;
   functions.A = [s](double t, Eigen::Ref<MatrixXd> out) {
     const int n = s->dofs;
-    MatrixXd mass(n, n), other(n, n);
+    thread_local MatrixXd mass, stiffness_damping, solved;
+    thread_local Eigen::PartialPivLU<MatrixXd> lu;
+    mass.resize(n, n);
+    stiffness_damping.resize(n, 2 * n);
     s->M(t, mass);
-    const Eigen::PartialPivLU<MatrixXd> lu(mass);
-    out.setZero();
+    lu.compute(mass);
+    s->K(t, stiffness_damping.leftCols(n));
+    if (s->D)
+      s->D(t, stiffness_damping.rightCols(n));
+    else
+      stiffness_damping.rightCols(n).setZero();
+    solved.noalias() = lu.solve(stiffness_damping);  // M⁻¹[K D] in one solve
+    out.topLeftCorner(n, n).setZero();
     out.topRightCorner(n, n).setIdentity();
-    s->K(t, other);
-    out.bottomLeftCorner(n, n) = -lu.solve(other);
-    if (s->D) {
-      s->D(t, other);
-      out.bottomRightCorner(n, n) = -lu.solve(other);
-    }
+    out.bottomRows(n) = -solved;
   };
   if (m > 0) {
     functions.B = [s](double t, Eigen::Ref<MatrixXd> out) {

@@ -84,6 +84,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/core/real_fourier_series.h"
 #include "ltp/core/second_order.h"
 #include "tower_rotor_fe.h"
 
@@ -582,15 +583,15 @@ PeriodicSystem BuildSystem(const ParameterMap& values) {
   so.dofs = model->dofs;
   so.inputs = 2;
   so.outputs = 2;
-  so.M = [model, omega_p](double t, Eigen::Ref<MatrixXd> out) {
-    model->M.Evaluate(t, omega_p, out);
+  // M, D, K in real form: evaluated at every A(t) of every integration.
+  struct RealForm {
+    RealFourierSeries M, D, K;
   };
-  so.D = [model, omega_p](double t, Eigen::Ref<MatrixXd> out) {
-    model->D.Evaluate(t, omega_p, out);
-  };
-  so.K = [model, omega_p](double t, Eigen::Ref<MatrixXd> out) {
-    model->K.Evaluate(t, omega_p, out);
-  };
+  auto real = std::make_shared<const RealForm>(RealForm{
+      RealFourierSeries(model->M), RealFourierSeries(model->D), RealFourierSeries(model->K)});
+  so.M = [real, omega_p](double t, Eigen::Ref<MatrixXd> out) { real->M.Evaluate(t, omega_p, out); };
+  so.D = [real, omega_p](double t, Eigen::Ref<MatrixXd> out) { real->D.Evaluate(t, omega_p, out); };
+  so.K = [real, omega_p](double t, Eigen::Ref<MatrixXd> out) { real->K.Evaluate(t, omega_p, out); };
   so.F = [model](double, Eigen::Ref<MatrixXd> out) { out = model->F; };
   so.Cd = [model](double, Eigen::Ref<MatrixXd> out) { out = model->Cd; };
   SystemLabels labels;
