@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ltp/core/elapsed.h"
 #include "ltp/core/scene.h"
 #include "ltp/floquet/sweep.h"
 
@@ -56,7 +57,7 @@ double RunMap(const Map& m, const std::vector<size_t>& indices, int threads,
                   std::lock_guard<std::mutex> lock(mutex);
                   (*values)[position[p.index]] = p.max_log_multiplier;
                 });
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return ltp::SecondsSince(start);
 }
 
 void BM_MathieuMap400(benchmark::State& state) {

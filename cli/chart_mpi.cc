@@ -6,6 +6,7 @@
 #include <string>
 
 #include "chart_record.h"
+#include "ltp/core/elapsed.h"
 
 #ifdef LTP_WITH_MPI
 #include <mpi.h>
@@ -104,8 +105,7 @@ size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterM
     }
     // Grow the rounds until one takes about two seconds: frequent enough that little is lost
     // to a killed job, rare enough that the gathers cost nothing.
-    double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double elapsed = SecondsSince(start);
     MPI_Allreduce(MPI_IN_PLACE, &elapsed, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     if (elapsed < 1.0) round *= 2;
     next = end;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "floquet_modes.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
@@ -210,10 +211,6 @@ void CheckPeriodScale(const PeriodicSystem& system, double limit) {
 }
 
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Step 1: the starting grid: one segment per mode sample (fewer for large systems), refined
 // automatically unless the user fixed K.

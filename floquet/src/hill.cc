@@ -10,6 +10,7 @@
 
 #include "condition_number.h"
 #include "hill_internal.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/method_choice.h"
@@ -365,7 +366,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   if (r.verdict == StabilityVerdict::kMarginal)
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error estimate");
-  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 
@@ -516,7 +517,7 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   }
   if (fit && !fit->converged && !r.modes.empty()) FitErrorEstimate(system, options, *fit, r);
   r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
-  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/hill.h"
 
@@ -16,8 +17,7 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   auto finish = [&](HillResult r, bool met, const std::string& why) {
     r.tolerance_met = met;
     r.diagnostics.push_back(why);
-    r.elapsed_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    r.elapsed_s = SecondsSince(start_time);
     return r;
   };
   options.harmonics = std::clamp(options.harmonics, 1, std::max(1, max_harmonics));

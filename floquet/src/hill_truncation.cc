@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "hill_internal.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
@@ -306,7 +307,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       << "): expect algebraic convergence of the exponents, and no exponential a-priori bound";
     study.diagnostics.push_back(s.str());
   }
-  study.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  study.elapsed_s = SecondsSince(start);
   return study;
 }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 
 namespace ltp {
@@ -52,7 +53,7 @@ SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors, con
   r.rhs_evals = phi.rhs_evals;
   if (!phi.ok) {
     r.message = phi.message;
-    r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.elapsed_s = SecondsSince(start);
     return r;
   }
   r.sector_map = shift * phi.phi;
@@ -70,7 +71,7 @@ SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors, con
     r.max_real_exponent = std::max(r.max_real_exponent, r.exponents.back().real());
   }
   r.ok = true;
-  r.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 

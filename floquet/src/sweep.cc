@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
 
@@ -277,7 +278,7 @@ SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const
                point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
   point.verdict = ClassifyStability(point.ok, point.max_log_multiplier, band);
   if (!point.ok) point.modes.clear();
-  point.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  point.elapsed_s = SecondsSince(start);
   return point;
 }
 

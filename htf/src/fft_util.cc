@@ -38,8 +38,4 @@ int NextPowerOfTwo(int x) {
   return p;
 }
 
-double SecondsSince(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace ltp::internal

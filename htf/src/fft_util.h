@@ -18,7 +18,4 @@ double UpperHalfRatio(const std::vector<Eigen::MatrixXcd>& coef);
 /// Smallest power of two >= x (x >= 1).
 int NextPowerOfTwo(int x);
 
-/// Seconds since `start` (steady clock).
-double SecondsSince(const std::chrono::steady_clock::time_point& start);
-
 }  // namespace ltp::internal

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "fft_util.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/threads.h"
@@ -252,7 +253,7 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
          "accuracy; only a cross-check against another route tells which";
     r.diagnostics.push_back(s.str());
   }
-  r.elapsed_s = internal::SecondsSince(start);
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 

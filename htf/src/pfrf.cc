@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "fft_util.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
 #include "pfrf_route.h"
@@ -126,7 +127,7 @@ RouteRun RunRoute(PfrfRoute route, const std::vector<int>& points, const Periodi
       internal::MakeRouteSolver(route, system, options, r);
   const int n_points = static_cast<int>(points.size());
   solver->Prepare(n_points);
-  run.setup_s = internal::SecondsSince(start);
+  run.setup_s = SecondsSince(start);
   at.assign(points.size(), {});
 #pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0)) if (solver->concurrent())
   for (int q = 0; q < n_points; ++q) {
@@ -135,7 +136,7 @@ RouteRun RunRoute(PfrfRoute route, const std::vector<int>& points, const Periodi
     tick();
   }
   run.diagnostics = solver->Finish(at);
-  run.elapsed_s = internal::SecondsSince(start);
+  run.elapsed_s = SecondsSince(start);
   for (const internal::RoutePoint& p : at) {
     run.values.push_back(p.values);
     run.own_error.push_back(p.measured_error + p.assumed_error);
@@ -353,11 +354,11 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       fallback.route_choice = s.str();
       fallback.modal_cross_check_failed = true;
       fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
-      fallback.elapsed_s = internal::SecondsSince(start);
+      fallback.elapsed_s = SecondsSince(start);
       return fallback;
     }
   }
-  r.elapsed_s = internal::SecondsSince(start);
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 

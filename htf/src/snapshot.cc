@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "fft_util.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
 
@@ -141,7 +142,7 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
       r.diagnostics.push_back(s.str());
     }
   }
-  r.elapsed_s = internal::SecondsSince(start);
+  r.elapsed_s = SecondsSince(start);
   return r;
 }
 

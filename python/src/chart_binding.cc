@@ -6,6 +6,7 @@
 #include <map>
 
 #include "binding.h"
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/campbell.h"
 #include "ltp/floquet/chart_options.h"
@@ -87,7 +88,7 @@ ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes,
   // Distinct indices: no two threads write one element.
   RunSweep(scene, system.parameters, r.grid, todo, r.options,
            [&r](SweepPoint&& p) { r.points[p.index] = std::move(p); });
-  r.sweep_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.sweep_s = SecondsSince(start);
   const auto refine_start = std::chrono::steady_clock::now();
   const BoundaryOptions boundary = ChartBoundaryOptions(chart);
   if (!map) {
@@ -99,8 +100,7 @@ ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes,
     r.boundary =
         RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
   }
-  r.refine_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
+  r.refine_s = SecondsSince(refine_start);
   return r;
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "support/compare.h"
@@ -374,8 +375,7 @@ TEST(HillJumps, AutomaticTruncationSaysItStoppedShortAndStaysHonest) {
     o.harmonics = 4;
     const auto t0 = std::chrono::steady_clock::now();
     const HillResult h = AnalyzeHillAuto(system, o, 1e-10, 256);
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall = SecondsSince(t0);
     ASSERT_TRUE(h.ok) << h.BriefReport();
     ASSERT_TRUE(h.tolerance_met.has_value());
     EXPECT_FALSE(*h.tolerance_met);
