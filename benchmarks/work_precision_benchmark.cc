@@ -401,7 +401,8 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
     row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, s.omega()) : kInf;
     row.estimate = h.ok ? HillEstimate(h) : -1;
     row.estimate_error = h.ok ? row.error_abs : -1;
-    if (row.note.empty()) row.note = "picked N = " + std::to_string(h.harmonics) + " " + h.solver;
+    if (row.note.empty())
+      row.note = "picked N = " + std::to_string(h.harmonics) + " " + h.SolverDescription();
     Finish(row, sc);
     rows.push_back(row);
     std::cerr << "  " << sc.name << " " << row.method << " tol=" << tol << " err "

@@ -156,7 +156,7 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"method", "hill"},
           {"harmonics", h.harmonics},
           {"matrix_size", h.matrix_size},
-          {"solver", h.solver},
+          {"solver", h.SolverDescription()},
           {"selection_rule", h.selection_rule},
           {"exponents", exps},
           {"multipliers", mults},
@@ -168,7 +168,8 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"truncation_estimate", JsonNumber(h.truncation_estimate)},
           {"apriori_bound", JsonNumber(h.apriori_bound)},
           {"koopman_discrepancy", JsonNumber(h.koopman_discrepancy)},
-          {"coefficient_decay", {{"kind", h.decay.kind}, {"rate", JsonNumber(h.decay.rate)}}},
+          {"coefficient_decay",
+           {{"kind", std::string(ToString(h.decay.kind))}, {"rate", JsonNumber(h.decay.rate)}}},
           {"error_estimate", JsonNumber(h.error_estimate)},
           {"fourier_fit_error", JsonNumber(h.fourier_fit_error)},
           {"tolerance_met", h.tolerance_met ? json(*h.tolerance_met) : json(nullptr)},
@@ -243,8 +244,8 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
 
 void PrintHill(const HillResult& h) {
   std::cout << "  Hill's method: N = " << h.harmonics << " harmonics (matrix " << h.matrix_size
-            << "×" << h.matrix_size << ", " << h.solver << " solver, " << h.selection_rule
-            << " selection)\n";
+            << "×" << h.matrix_size << ", " << h.SolverDescription() << " solver, "
+            << h.selection_rule << " selection)\n";
   if (h.modes.empty()) {
     std::cout << "\n  FAILED\n";
     PrintDiagnostics(h.diagnostics);
@@ -258,9 +259,11 @@ void PrintHill(const HillResult& h) {
             << "  truncation estimate (N vs N+" << h.delta_harmonics << ") "
             << Num(h.truncation_estimate, 2) << " 1/s, Koopman–Hill disagreement "
             << Num(h.koopman_discrepancy, 2) << ", a-priori bound " << Num(h.apriori_bound, 2)
-            << "\n  coefficients of A: " << h.decay.kind << " decay";
-  if (h.decay.kind == "exponential") std::cout << " (rate " << Num(h.decay.rate, 3) << ")";
-  if (h.decay.kind == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(h.decay.rate, 3) << ")";
+            << "\n  coefficients of A: " << ToString(h.decay.kind) << " decay";
+  if (h.decay.kind == FourierDecay::kExponential)
+    std::cout << " (rate " << Num(h.decay.rate, 3) << ")";
+  if (h.decay.kind == FourierDecay::kAlgebraic)
+    std::cout << " (|A_w| ~ |w|^-" << Num(h.decay.rate, 3) << ")";
   std::cout << ", " << Num(h.elapsed_s * 1e3, 3) << " ms\n"
             << "  error estimate " << Num(h.error_estimate, 2) << " 1/s on every exponent";
   if (h.fourier_fit_error > 0)

@@ -149,7 +149,7 @@ int RunHill(HillArgs& args) {
               {"solver", std::string(ToString(options.solver))},
               {"selection_rule", std::string(ToString(options.selection))},
               {"coefficient_decay",
-               {{"kind", s.decay.kind},
+               {{"kind", std::string(ToString(s.decay.kind))},
                 {"rate", JsonNumber(s.decay.rate)},
                 {"harmonics", s.decay.harmonics},
                 {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
@@ -174,9 +174,10 @@ int RunHill(HillArgs& args) {
   std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
             << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s); solver " << ToString(options.solver)
             << ", selection by " << ToString(options.selection)
-            << "\n  coefficients of A: " << s.decay.kind;
-  if (s.decay.kind == "exponential") std::cout << " decay (b = " << Num(s.decay.rate, 3) << ")";
-  if (s.decay.kind == "algebraic")
+            << "\n  coefficients of A: " << ToString(s.decay.kind);
+  if (s.decay.kind == FourierDecay::kExponential)
+    std::cout << " decay (b = " << Num(s.decay.rate, 3) << ")";
+  if (s.decay.kind == FourierDecay::kAlgebraic)
     std::cout << " decay (|A_w| ~ |w|^-" << Num(s.decay.rate, 3) << ", discontinuous A(t))";
   std::cout << ", " << s.decay.harmonics << " harmonics";
   if (s.decay.fourier_tail > 0) std::cout << ", fit tail " << Num(s.decay.fourier_tail, 2);

@@ -46,7 +46,7 @@ int RunInfo(const InfoArgs& args) {
     return json{{"harmonics", f.series.max_harmonic()},
                 {"converged", f.converged},
                 {"tail", JsonNumber(f.tail)},
-                {"decay", f.decay},
+                {"decay", std::string(ToString(f.decay))},
                 {"decay_rate", JsonNumber(f.decay_rate)}};
   };
   if (args.json) {
@@ -89,10 +89,11 @@ int RunInfo(const InfoArgs& args) {
   std::cout << "\nharmonics   (to relative tolerance " << fit_options.tol << ")\n";
   auto row = [](const char* name, const FourierFit& f) {
     std::cout << "    " << name << ": " << f.series.max_harmonic() << " harmonics, decay "
-              << f.decay;
-    if (f.decay == "exponential")
+              << ToString(f.decay);
+    if (f.decay == FourierDecay::kExponential)
       std::cout << " (rate " << Num(f.decay_rate, 3) << " per harmonic)";
-    if (f.decay == "algebraic") std::cout << " (|A_w| ~ |w|^-" << Num(f.decay_rate, 3) << ")";
+    if (f.decay == FourierDecay::kAlgebraic)
+      std::cout << " (|A_w| ~ |w|^-" << Num(f.decay_rate, 3) << ")";
     std::cout << (f.converged ? "" : ", NOT converged: dropped tail " + Num(f.tail, 2)) << "\n";
   };
   row("A", fourier.A);

@@ -56,7 +56,7 @@ json ModeJson(const MbcMode& m, const Mbc3Result& r) {
           {"damping_ratio", m.rigid_body ? json(nullptr) : JsonNumber(m.damping_ratio)},
           {"re", JsonNumber(m.eigenvalue.real())},
           {"im", JsonNumber(m.eigenvalue.imag())},
-          {"kind", m.kind},
+          {"kind", std::string(ToString(m.kind))},
           {"rigid_body", m.rigid_body},
           {"whirl", m.whirl.empty() ? json(nullptr) : json(m.whirl)},
           {"description", m.description},
@@ -113,7 +113,8 @@ void WriteCsv(const std::string& file, const Mbc3Result& r, const SampledFloquet
       if (c == '"') c = '\'';
     csv << k + 1 << "," << m.natural_frequency_hz << "," << m.damped_frequency_hz << ","
         << m.damping_ratio << "," << m.eigenvalue.real() << "," << m.eigenvalue.imag() << ","
-        << m.kind << "," << (m.rigid_body ? 1 : 0) << "," << m.whirl << ",\"" << d << "\"";
+        << ToString(m.kind) << "," << (m.rigid_body ? 1 : 0) << "," << m.whirl << ",\"" << d
+        << "\"";
     if (f) {
       const SampledFloquetMode* match = nullptr;
       for (const auto& fm : f->modes)
@@ -158,7 +159,7 @@ void PrintTable(const Mbc3Result& r) {
               << Num(m.damped_frequency_hz, 6, 13)
               << (m.rigid_body ? std::string("  rigid body") : Num(m.damping_ratio, 5, 12))
               << Num(m.eigenvalue.real(), 5, 14) << "   " << m.description
-              << (m.kind == "real" ? "  [real eigenvalue]" : "") << "\n";
+              << (m.kind == MbcMode::Kind::kReal ? "  [real eigenvalue]" : "") << "\n";
   }
   std::cout << "\n  max Re λ = " << Num(r.max_real_part, 6) << " 1/s"
             << (r.rigid_body_modes ? " (rigid-body mode excluded)" : "") << "  →  "

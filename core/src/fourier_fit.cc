@@ -20,6 +20,18 @@
 // with p <= 1/2 gives an infinite (unbounded) tail estimate.
 
 namespace ltp {
+
+std::string_view ToString(FourierDecay decay) {
+  switch (decay) {
+    case FourierDecay::kFinite:
+      return "finite";
+    case FourierDecay::kExponential:
+      return "exponential";
+    case FourierDecay::kAlgebraic:
+      return "algebraic";
+  }
+  return "?";
+}
 namespace {
 
 constexpr int kMinSamples = 16;
@@ -119,7 +131,7 @@ Spectrum Sample(const PeriodicSystem::MatrixFunction& f, int rows, int cols, dou
 
 // What one spectrum says about the decay of the coefficients and the harmonics to keep.
 struct Analysis {
-  std::string decay;
+  FourierDecay decay = FourierDecay::kFinite;
   double rate = 0;
   // Extrapolated Σ_{w >= S/2} ||M_w||² (one side); infinite when the fit does not converge.
   double beyond = 0;
@@ -169,18 +181,18 @@ Analysis Analyse(const Spectrum& sp) {
   const bool vanished = last < half / 2;
   if (vanished &&
       (!have_fit || last <= 2 || predicted_log(last + 1) > std::log(kFiniteGap * sp.floor))) {
-    a.decay = "finite";
+    a.decay = FourierDecay::kFinite;
     a.rate = 0;
     a.beyond = 0;
   } else if (!have_fit) {
     // Defensive (half >= 8 leaves a fit range whenever `last` reaches S/4): tail unknown.
-    a.decay = "exponential";
+    a.decay = FourierDecay::kExponential;
     a.rate = 0;
     a.beyond = std::numeric_limits<double>::infinity();
   } else if (exponential) {
     // Σ_{w >= S/2} (e^{alpha} e^{-b w})².
     const double b = -exp_fit.beta;
-    a.decay = "exponential";
+    a.decay = FourierDecay::kExponential;
     a.rate = b;
     a.beyond = b > 0 ? std::exp(2 * exp_fit(half)) / (1 - std::exp(-2 * b))
                      : std::numeric_limits<double>::infinity();
@@ -188,7 +200,7 @@ Analysis Analyse(const Spectrum& sp) {
     // Σ_{w >= S/2} e^{2 alpha} w^{-2p} ≈ e^{2 alpha} ∫_{S/2-1/2}^∞ w^{-2p} dw (midpoint rule),
     // finite only for p > 1/2.
     const double p = -alg_fit.beta;
-    a.decay = "algebraic";
+    a.decay = FourierDecay::kAlgebraic;
     a.rate = p;
     a.beyond = p > 0.5 ? std::exp(2 * alg_fit.alpha) * std::pow(half - 0.5, 1 - 2 * p) / (2 * p - 1)
                        : std::numeric_limits<double>::infinity();
@@ -197,7 +209,7 @@ Analysis Analyse(const Spectrum& sp) {
   // dropped[H]² = 2 (Σ_{H<w<S/2} ||c_w||² + beyond): both signs of w. For algebraic decay,
   // aliasing can also shrink the coefficients above S/8 (alternating alias sums), so there the
   // trend is used when larger.
-  const bool use_trend = a.decay == "algebraic";
+  const bool use_trend = a.decay == FourierDecay::kAlgebraic;
   a.dropped.assign(half, 0);
   double sum = a.beyond;
   for (int h = half - 1; h >= 0; --h) {
@@ -215,7 +227,7 @@ FourierFit ExactFit(const FourierMatrix& m) {
   FourierFit fit;
   fit.series = m;
   fit.converged = true;
-  fit.decay = "finite";
+  fit.decay = FourierDecay::kFinite;
   return fit;
 }
 

@@ -14,6 +14,18 @@
 #include "ltp/core/mbc.h"
 
 namespace ltp {
+
+std::string_view ToString(MbcMode::Kind kind) {
+  switch (kind) {
+    case MbcMode::Kind::kOscillatory:
+      return "oscillatory";
+    case MbcMode::Kind::kReal:
+      return "real";
+    case MbcMode::Kind::kRigidBody:
+      return "rigid-body";
+  }
+  return "?";
+}
 namespace {
 
 using Eigen::MatrixXd;
@@ -391,7 +403,7 @@ bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& optio
     m.natural_frequency_hz = magnitude / (2 * pi);
     m.damped_frequency_hz = lambda.imag() / (2 * pi);
     m.damping_ratio = magnitude > 0 ? -lambda.real() / magnitude : 0;
-    m.kind = lambda.imag() > 0 ? "oscillatory" : "real";
+    m.kind = lambda.imag() > 0 ? MbcMode::Kind::kOscillatory : MbcMode::Kind::kReal;
     m.eigenvector = vectors.col(k);
     double total = 0;
     for (int i = 0; i < n; ++i)
@@ -417,7 +429,7 @@ void MarkRigidBodyModes(const LinOperatingPoint& op, Mbc3Result& r) {
   int rigid = -1;
   for (int k = 0; k < static_cast<int>(r.modes.size()); ++k) {
     const MbcMode& m = r.modes[k];
-    if (m.kind != "real" || m.dominant.empty() || !op.azimuth_state ||
+    if (m.kind != MbcMode::Kind::kReal || m.dominant.empty() || !op.azimuth_state ||
         m.dominant.front().state != *op.azimuth_state)
       continue;
     if (rigid < 0 || std::abs(m.eigenvalue) < std::abs(r.modes[rigid].eigenvalue)) rigid = k;
@@ -426,7 +438,7 @@ void MarkRigidBodyModes(const LinOperatingPoint& op, Mbc3Result& r) {
     MbcMode& m = r.modes[k];
     if (k == rigid || std::abs(m.eigenvalue) <= 1e-9 * std::max(norm, 1.0)) {
       m.rigid_body = true;
-      m.kind = "rigid-body";
+      m.kind = MbcMode::Kind::kRigidBody;
       ++r.rigid_body_modes;
     }
   }

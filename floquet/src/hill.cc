@@ -76,14 +76,14 @@ FloquetMode MakeMode(cd mu, double T, double omega, bool tie) {
 // Eigenpairs with the requested solver; the structured one falls back to dense when it misses
 // exponents and the dense matrix fits.
 Eigenpairs Solve(const FourierMatrix& A, double omega, int N, const HillOptions& o,
-                 const std::vector<cd>& shifts, std::string& solver_used,
+                 const std::vector<cd>& shifts, HillSolver& solver_used,
                  std::vector<std::string>& diagnostics) {
   if (o.solver == HillSolver::kDense) {
     hill_internal::CheckDenseMemory(A.rows(), N, o.max_dense_bytes);
-    solver_used = "dense";
+    solver_used = HillSolver::kDense;
     return hill_internal::SolveDense(A, omega, N);
   }
-  solver_used = "structured";
+  solver_used = HillSolver::kStructured;
   Eigenpairs p = hill_internal::SolveStructured(A, omega, N, shifts);
   for (const std::string& s : p.notes) diagnostics.push_back(s);
   return p;
@@ -120,7 +120,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       HillOptions dense = o;
       dense.solver = HillSolver::kDense;
       pairs = Solve(A, omega, N, dense, shifts, r.solver, r.diagnostics);
-      r.solver = "structured→dense";
+      r.dense_fallback = true;
       if (pairs.ok)
         sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
     }
@@ -205,7 +205,7 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       // With algebraic decay e(N) ∝ N^−p the change e(N) − e(N+Δ) is only the fraction
       // 1 − (N/(N+Δ))^p of e(N) (30 % short for Meissner's p = 3 at Δ = N/2). Scale by the
       // p = 1 factor (N+Δ)/Δ, the slowest rate seen, so the estimate stays above the error.
-      if (r.decay.kind == "algebraic") {
+      if (r.decay.kind == FourierDecay::kAlgebraic) {
         const double factor = double(N + r.delta_harmonics) / r.delta_harmonics;
         r.truncation_estimate *= factor;
         for (auto& i : r.info) i.truncation_change *= factor;
@@ -485,9 +485,9 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     A = fit->series;
     std::ostringstream s;
     s << "A(t) fitted by FFT: " << A.max_harmonic() << " harmonics from " << fit->samples
-      << " samples, relative tail " << fit->tail << ", decay " << fit->decay;
-    if (fit->decay == "exponential") s << " (b = " << fit->decay_rate << ")";
-    if (fit->decay == "algebraic")
+      << " samples, relative tail " << fit->tail << ", decay " << ToString(fit->decay);
+    if (fit->decay == FourierDecay::kExponential) s << " (b = " << fit->decay_rate << ")";
+    if (fit->decay == FourierDecay::kAlgebraic)
       s << " (|A_w| ~ |w|^-" << fit->decay_rate
         << ": discontinuous A(t), expect algebraic convergence in N)";
     notes.push_back(s.str());
@@ -512,7 +512,7 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     notes.push_back("structured solver's exponents failed their checks (" +
                     (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +
                     "); replaced by the dense solver's");
-    d.solver = "structured→dense";
+    d.dense_fallback = true;
     r = std::move(d);
   }
   if (fit && !fit->converged && !r.modes.empty()) FitErrorEstimate(system, options, *fit, r);
@@ -521,9 +521,13 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   return r;
 }
 
+std::string HillResult::SolverDescription() const {
+  return dense_fallback ? "structured→dense" : std::string(ToString(solver));
+}
+
 std::string HillResult::BriefReport() const {
   std::ostringstream s;
-  s << "Hill N = " << harmonics << " (" << solver << ", size " << matrix_size
+  s << "Hill N = " << harmonics << " (" << SolverDescription() << ", size " << matrix_size
     << "): max Re λ = " << max_real_exponent << " (" << (stable ? "stable" : "unstable")
     << "), N vs N+" << delta_harmonics << ": " << truncation_estimate
     << ", a-priori bound: " << apriori_bound << ", Koopman–Hill gap: " << koopman_discrepancy

@@ -110,7 +110,7 @@ namespace {
 // (≥ 8 harmonics) may still be the truncation of an algebraically decaying series (a
 // discontinuous A(t) written as its Fourier series). Fit log||A_w|| against w and against
 // log w over the significant harmonics and keep the better fit.
-std::string ClassifyGivenCoefficients(const std::vector<double>& norms, double* rate) {
+FourierDecay ClassifyGivenCoefficients(const std::vector<double>& norms, double* rate) {
   *rate = 0;
   const double top = *std::max_element(norms.begin(), norms.end());
   std::vector<double> w, y;
@@ -119,7 +119,7 @@ std::string ClassifyGivenCoefficients(const std::vector<double>& norms, double* 
       w.push_back(static_cast<double>(k));
       y.push_back(std::log(norms[k]));
     }
-  if (w.size() < 8) return "finite";
+  if (w.size() < 8) return FourierDecay::kFinite;
   auto fit = [&](const std::vector<double>& x, double* slope) {
     const double n = static_cast<double>(x.size());
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -141,10 +141,10 @@ std::string ClassifyGivenCoefficients(const std::vector<double>& norms, double* 
   const double res_exp = fit(w, &b), res_alg = fit(logw, &p);
   if (res_alg < res_exp) {
     *rate = -p;
-    return "algebraic";
+    return FourierDecay::kAlgebraic;
   }
   *rate = -b;
-  return "exponential";
+  return FourierDecay::kExponential;
 }
 
 }  // namespace
@@ -162,7 +162,9 @@ HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmon
   } else {
     d.kind = ClassifyGivenCoefficients(d.norms, &d.rate);
   }
-  const double b_max = d.kind == "finite" ? kMaxB : d.kind == "exponential" ? d.rate : 0;
+  const double b_max = d.kind == FourierDecay::kFinite        ? kMaxB
+                       : d.kind == FourierDecay::kExponential ? d.rate
+                                                              : 0;
   const Envelope e = BestEnvelope(d.norms, b_max, harmonics, period);
   d.a = e.a;
   d.b = e.b;
@@ -170,8 +172,8 @@ HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmon
 }
 
 double KoopmanHillBound(const HillDecay& decay, int harmonics, double period) {
-  if (decay.kind == "algebraic") return std::numeric_limits<double>::infinity();
-  const double b_max = decay.kind == "finite" ? kMaxB : decay.rate;
+  if (decay.kind == FourierDecay::kAlgebraic) return std::numeric_limits<double>::infinity();
+  const double b_max = decay.kind == FourierDecay::kFinite ? kMaxB : decay.rate;
   const Envelope e = BestEnvelope(decay.norms, b_max, harmonics, period);
   return e.log_bound > 700 ? std::numeric_limits<double>::infinity() : std::exp(e.log_bound);
 }
@@ -259,7 +261,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       row.truncation_estimate = 0;
       for (double d : MatchExponents(exponents(r), exponents(r2), std::min(omega, omega2)))
         row.truncation_estimate = std::max(row.truncation_estimate, d);
-      if (r.decay.kind == "algebraic")  // see AnalyzeHill: algebraic convergence, scale up
+      if (r.decay.kind ==
+          FourierDecay::kAlgebraic)  // see AnalyzeHill: algebraic convergence, scale up
         row.truncation_estimate *= double(N + delta) / delta;
     } else {
       row.truncation_estimate = -1;
@@ -301,7 +304,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   } else {
     study.diagnostics.push_back("too few points above round-off to fit a convergence rate");
   }
-  if (study.decay.kind == "algebraic") {
+  if (study.decay.kind == FourierDecay::kAlgebraic) {
     std::ostringstream s;
     s << "A(t) is discontinuous (coefficients decay like |w|^-" << study.decay.rate
       << "): expect algebraic convergence of the exponents, and no exponential a-priori bound";

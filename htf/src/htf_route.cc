@@ -54,7 +54,7 @@ HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
       !fourier_.D.converged) {
     std::ostringstream s;
     s << "htf: Fourier fit of the coefficients not converged (tail " << fourier_tail_ << ", decay "
-      << fourier_.A.decay << "): the truncated HTF carries that error";
+      << ToString(fourier_.A.decay) << "): the truncated HTF carries that error";
     diagnostics_.push_back(s.str());
   }
   harmonics_ = options.harmonics > 0 ? options.harmonics : 8;

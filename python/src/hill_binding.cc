@@ -45,7 +45,9 @@ Koopman–Hill cross-check.)doc");
       .def_readonly("harmonics", &HillResult::harmonics, "N actually used (harmonics -N..N)")
       .def_readonly("matrix_size", &HillResult::matrix_size, "(2N+1) n")
       .def_readonly("period", &HillResult::period, "T (s)")
-      .def_readonly("solver", &HillResult::solver, "'dense' or 'structured' (auto resolved)")
+      .def_property_readonly(
+          "solver", [](const HillResult& h) { return h.SolverDescription(); },
+          "'dense', 'structured' (auto resolved) or 'structured→dense' after a fallback")
       .def_readonly("selection_rule", &HillResult::selection_rule,
                     "how the physical eigenvalues were picked")
       .def_property_readonly("centroids",
@@ -85,7 +87,8 @@ Koopman–Hill cross-check.)doc");
       .def_property_readonly(
           "coefficient_decay",
           [](const HillResult& h) {
-            return py::dict(py::arg("kind") = h.decay.kind, py::arg("rate") = h.decay.rate,
+            return py::dict(py::arg("kind") = std::string(ToString(h.decay.kind)),
+                            py::arg("rate") = h.decay.rate,
                             py::arg("harmonics") = h.decay.harmonics,
                             py::arg("fourier_tail") = h.decay.fourier_tail,
                             py::arg("norms") = RealArray(h.decay.norms));
@@ -148,7 +151,7 @@ at N = max_harmonics (`last`).)doc")
       .def_property_readonly(
           "coefficient_decay",
           [](const HillStudyRun& r) {
-            return py::dict(py::arg("kind") = r.study.decay.kind,
+            return py::dict(py::arg("kind") = std::string(ToString(r.study.decay.kind)),
                             py::arg("rate") = r.study.decay.rate,
                             py::arg("harmonics") = r.study.decay.harmonics,
                             py::arg("fourier_tail") = r.study.decay.fourier_tail);

@@ -97,7 +97,7 @@ TEST(FourierFit, RecoversFiniteSeriesExactly) {
   const FourierFit fit = FitFourier(fn, 2, 3, period);
   ASSERT_EQ(fit.series.max_harmonic(), 5);  // exactly the harmonics that are there
   for (int w = -5; w <= 5; ++w) EXPECT_LT((fit.series[w] - known[w]).norm(), 1e-13) << "w = " << w;
-  EXPECT_EQ(fit.decay, "finite");
+  EXPECT_EQ(fit.decay, FourierDecay::kFinite);
   EXPECT_TRUE(fit.converged);
   EXPECT_LE(fit.tail, 1e-12);
   EXPECT_EQ(fit.series.HermitianDefect(), 0.0);  // symmetry and real M_0 enforced exactly
@@ -113,7 +113,7 @@ TEST(FourierFit, BesselCoefficientsOfExpCos) {
   const FourierFit fit = FitFourier(fn, 1, 1, period);
   EXPECT_TRUE(fit.converged);
   EXPECT_LE(fit.tail, 1e-12);
-  EXPECT_EQ(fit.decay, "exponential");
+  EXPECT_EQ(fit.decay, FourierDecay::kExponential);
   EXPECT_GT(fit.decay_rate, 0.5);
   // I_w(2.5) falls below 1e-12 · I_0(2.5) ≈ 3.3e-12 near w = 15 (I_15(2.5) ≈ 5e-13).
   EXPECT_GE(fit.series.max_harmonic(), 13);
@@ -159,7 +159,7 @@ TEST(FourierFit, SquareWaveHasAlgebraicTail) {
     EXPECT_NEAR(fit.series[w](0, 0).real(), coefficient(w), 1e-6) << "w = " << w;
     EXPECT_NEAR(fit.series[w](0, 0).imag(), 0.0, 1e-6) << "w = " << w;
   }
-  EXPECT_EQ(fit.decay, "algebraic");
+  EXPECT_EQ(fit.decay, FourierDecay::kAlgebraic);
   EXPECT_NEAR(fit.decay_rate, 1.0, 0.1);  // |A_w| ~ 1/w
   EXPECT_FALSE(fit.converged);
   EXPECT_EQ(fit.samples, options.max_samples);
@@ -180,7 +180,7 @@ TEST(FourierFit, ZeroAndEmptyFunctions) {
   EXPECT_EQ(z.series.max_harmonic(), 0);
   EXPECT_EQ(z.series[0].norm(), 0.0);
   EXPECT_TRUE(z.converged);
-  EXPECT_EQ(z.decay, "finite");
+  EXPECT_EQ(z.decay, FourierDecay::kFinite);
   const FourierFit e = FitFourier(zero, 3, 0, 1.0);
   EXPECT_EQ(e.series.rows(), 3);
   EXPECT_EQ(e.series.cols(), 0);
@@ -231,7 +231,7 @@ TEST(FourierFit, ToFourierCopiesFourierFormExactly) {
   for (const FourierFit* fit : {&f.A, &f.B, &f.C, &f.D}) {
     EXPECT_TRUE(fit->converged);
     EXPECT_EQ(fit->tail, 0.0);
-    EXPECT_EQ(fit->decay, "finite");
+    EXPECT_EQ(fit->decay, FourierDecay::kFinite);
   }
   EXPECT_EQ(f.C.series.rows(), 0);  // no outputs
   EXPECT_EQ(f.C.series.cols(), 2);
@@ -255,7 +255,7 @@ TEST(FourierFit, ToFourierOfPiecewiseConstantSystem) {
     const cd expected = w % 2 ? cd(3.0) / (cd(0, 1) * (kPi * w)) : cd(0.0);
     EXPECT_LT(std::abs(f.A.series[w](0, 0) - expected), 1e-5) << "w = " << w;
   }
-  EXPECT_EQ(f.A.decay, "algebraic");
+  EXPECT_EQ(f.A.decay, FourierDecay::kAlgebraic);
   EXPECT_FALSE(f.A.converged);
   EXPECT_EQ(f.B.series.rows(), 1);  // no inputs: empty of the right shape
   EXPECT_EQ(f.B.series.cols(), 0);

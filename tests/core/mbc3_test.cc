@@ -225,7 +225,7 @@ TEST(Mbc3, FiveMwCampbellTableMatchesOpenFast) {
   ASSERT_EQ(r.modes.size(), 11u);                    // 9 complex pairs + 2 real eigenvalues
   std::vector<const MbcMode*> oscillatory;
   for (const MbcMode& m : r.modes)
-    if (m.kind == "oscillatory") oscillatory.push_back(&m);
+    if (m.kind == MbcMode::Kind::kOscillatory) oscillatory.push_back(&m);
   ASSERT_EQ(oscillatory.size(), 9u);
   const double freq[] = {0.588, 0.722, 0.842, 0.937}, damp[] = {63.106, 52.529, 44.01, 1.634};
   for (int k = 0; k < 4; ++k) {

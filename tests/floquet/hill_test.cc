@@ -135,7 +135,7 @@ TEST(HillSmooth, ConvergesExponentially) {
   EXPECT_EQ(study.rate_kind, "exponential");
   EXPECT_GT(study.rate, 1.0);
   EXPECT_LT(study.rows.back().max_error, 1e-11);
-  EXPECT_EQ(study.decay.kind, "finite");
+  EXPECT_EQ(study.decay.kind, FourierDecay::kFinite);
 }
 
 // --- Discontinuous coefficients -----------------------------------------------------------
@@ -174,7 +174,7 @@ TEST(HillMeissner, TruncationEstimateCoversTrueError) {
     o.harmonics = N;
     const HillResult r = AnalyzeHill(s, o);
     ASSERT_TRUE(r.ok);
-    ASSERT_EQ(r.decay.kind, "algebraic") << "N=" << N;
+    ASSERT_EQ(r.decay.kind, FourierDecay::kAlgebraic) << "N=" << N;
     const double err = MaxDistanceModulo(Exponents(r.modes), ref, 1.0);
     EXPECT_GE(r.truncation_estimate, err) << "N=" << N;
     EXPECT_LT(r.truncation_estimate, 10 * err) << "N=" << N;  // and stays informative
@@ -187,7 +187,7 @@ TEST(HillMeissner, FittedCoefficientsReportAlgebraicDecay) {
   o.harmonics = 16;
   const HillResult r = AnalyzeHill(s, o);
   ASSERT_TRUE(r.ok);
-  EXPECT_EQ(r.decay.kind, "algebraic");
+  EXPECT_EQ(r.decay.kind, FourierDecay::kAlgebraic);
   EXPECT_NEAR(r.decay.rate, 1.0, 0.3);
   EXPECT_TRUE(std::isinf(r.apriori_phi_bound));
   bool said = false;
@@ -460,7 +460,8 @@ TEST(HillSolvers, DenseAndStructuredAgree) {
     o.solver = HillSolver::kStructured;
     const HillResult structured = AnalyzeHill(systems[i], o);
     ASSERT_TRUE(dense.ok && structured.ok) << i;
-    EXPECT_EQ(structured.solver, "structured") << i;
+    EXPECT_EQ(structured.solver, HillSolver::kStructured) << i;
+    EXPECT_FALSE(structured.dense_fallback) << i;
     EXPECT_LT(
         MaxDistanceModulo(Exponents(dense.modes), Exponents(structured.modes), systems[i].omega()),
         1e-10)

@@ -2,11 +2,21 @@
 // Time function → Fourier coefficients by FFT, with the number of harmonics chosen
 // automatically to a tolerance and the truncated tail reported.
 #include <string>
+#include <string_view>
 
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/core/periodic_system.h"
 
 namespace ltp {
+
+/// How fast the Fourier coefficients ||M_w|| fall off.
+enum class FourierDecay {
+  kFinite,       ///< they vanish beyond some harmonic (a trigonometric polynomial)
+  kExponential,  ///< ~ a e^{−b|w|}: a smooth (analytic) function
+  kAlgebraic,    ///< ~ |w|^{−p}: a jump or kink somewhere in the period
+};
+/// "finite", "exponential", "algebraic" (the words of the CLI's and Python's output).
+std::string_view ToString(FourierDecay decay);
 
 struct FourierFitOptions {
   /// Keep harmonics until the norm of everything dropped is below tol · max_w ||M_w||.
@@ -23,8 +33,8 @@ struct FourierFit {
   int samples = 0;         ///< FFT length that was finally used
   double tail = 0;         ///< estimated norm of the dropped harmonics, relative to max ||M_w||
   bool converged = false;  ///< tail <= tol
-  std::string decay;       ///< "exponential", "algebraic" or "finite" (coefficients vanish)
-  double decay_rate = 0;   ///< b in ||M_w|| ~ a e^{-b|w|} (exponential) or p in ~ |w|^{-p}
+  FourierDecay decay = FourierDecay::kFinite;
+  double decay_rate = 0;  ///< b in ||M_w|| ~ a e^{-b|w|} (exponential) or p in ~ |w|^{-p}
 };
 
 /// FFT fit of a T-periodic rows×cols function.

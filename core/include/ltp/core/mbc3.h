@@ -39,6 +39,7 @@
 #include <complex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ltp/core/openfast_lin.h"
@@ -103,9 +104,12 @@ struct MbcMode {
   double natural_frequency_hz = 0;  ///< |λ|/2π
   double damped_frequency_hz = 0;   ///< Im λ/2π
   double damping_ratio = 0;         ///< −Re λ/|λ| (0 when λ = 0)
-  /// "oscillatory" (a complex pair, listed once), "real" (a real eigenvalue: overdamped or
-  /// first-order motion) or "rigid-body".
-  std::string kind;
+  enum class Kind {
+    kOscillatory,  ///< a complex pair, listed once
+    kReal,         ///< a real eigenvalue: overdamped or first-order motion
+    kRigidBody,    ///< the rigid rotation of the rotor (see rigid_body)
+  };
+  Kind kind = Kind::kOscillatory;
   /// The rigid rotation of the rotor: exactly 0 for the true periodic system (the orbit's own
   /// tangent is a Floquet solution with multiplier 1); its value here is the error of
   /// sampling and averaging. Recognised as the real eigenvalue nearest 0 among the modes led
@@ -124,6 +128,9 @@ struct MbcMode {
   std::string whirl;
   Eigen::VectorXcd eigenvector;  ///< in MBC coordinates (all states)
 };
+
+/// "oscillatory", "real", "rigid-body" (the words of the CLI's output).
+std::string_view ToString(MbcMode::Kind kind);
 
 struct Mbc3Result {
   /// False when MBC does not apply (1 or 2 blades): `reason` says why, and the matrices and

@@ -106,7 +106,7 @@ struct HillModeInfo {
 /// ||A_w|| <= a e^{−b|w|} envelope of the Fourier coefficients of A (Frobenius norms), or an
 /// algebraic decay ~ |w|^{−p} for which no exponential envelope exists.
 struct HillDecay {
-  std::string kind;         ///< "finite", "exponential" or "algebraic"
+  FourierDecay kind = FourierDecay::kFinite;
   int harmonics = 0;        ///< H: largest harmonic of A used
   double fourier_tail = 0;  ///< relative norm of the dropped harmonics of A (0 when exact)
   /// Fitted rate: b of ||A_w|| ~ e^{−b|w|} (exponential; caps the envelope's b) or p of
@@ -121,10 +121,13 @@ struct HillResult {
   /// the Liouville check (then modes are kept for inspection and error_estimate is +inf).
   bool ok = false;
   int states = 0;
-  int harmonics = 0;    ///< N actually used
-  int matrix_size = 0;  ///< (2N+1)n
-  double period = 0;    ///< T of the system
-  std::string solver;
+  int harmonics = 0;                       ///< N actually used
+  int matrix_size = 0;                     ///< (2N+1)n
+  double period = 0;                       ///< T of the system
+  HillSolver solver = HillSolver::kDense;  ///< the one that produced the exponents
+  /// The structured solver found fewer than n exponents (or failed the Liouville check) and
+  /// the dense one gave them.
+  bool dense_fallback = false;
   std::string selection_rule;
   /// The n physical exponents (same struct and order as AnalyzeFloquet: by |frequency|,
   /// positive first, then Re λ). branch_margin = 0.5 − |centroid|.
@@ -173,6 +176,8 @@ struct HillResult {
 
   /// One line: N, size, max Re λ, error estimates, time.
   std::string BriefReport() const;
+  /// "dense", "structured", or "structured→dense" after a fallback.
+  std::string SolverDescription() const;
 };
 
 /// Hill analysis of x' = A(t) x. Fourier-form systems use their exact coefficients; others are
