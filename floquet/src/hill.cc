@@ -89,19 +89,20 @@ Eigenpairs Solve(const FourierMatrix& A, double omega, int N, const HillOptions&
   return p;
 }
 
-// One Hill analysis at fixed period and N (no period doubling).
 HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T, int N,
-                        const HillOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
-  const int n = A.rows();
-  const double omega = 2 * kPi / T;
-  HillResult r;
-  r.states = n;
-  r.harmonics = N;
-  r.matrix_size = (2 * N + 1) * n;
-  r.period = T;
-  r.selection_rule = std::string(ToString(o.selection));
+                        const HillOptions& o);
 
+// AnalyzeFixed's steps, in order.
+
+// Eigenpairs by the requested solver and the n physical ones among them; the structured solver
+// falls back to the dense one when it found too few and the dense matrix fits.
+struct Solved {
+  Eigenpairs pairs;
+  hill_internal::Selection sel;
+};
+Solved SolveAndSelect(const FourierMatrix& A, double omega, int N, const HillOptions& o,
+                      HillResult& r) {
+  const int n = A.rows();
   std::vector<cd> shifts = o.expected;
   if (shifts.empty()) {
     const Eigen::VectorXcd e = Eigen::ComplexEigenSolver<Eigen::MatrixXcd>(A[0]).eigenvalues();
@@ -128,22 +129,29 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   for (const std::string& s : pairs.notes) r.diagnostics.push_back(s);
   for (const std::string& s : sel.diagnostics) r.diagnostics.push_back(s);
   r.eigenvalues = pairs.values;
-  if (!pairs.ok) return r;
+  return {std::move(pairs), std::move(sel)};
+}
 
+// The selected modes in the monodromy route's order, with their eigen-residuals, and a note
+// when the eigenvectors reach the truncation edge. Returns the eigenvalue condition numbers in
+// that order.
+std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T, int N,
+                                 const Solved& solved, double norm_h, HillResult& r) {
+  const int n = A.rows();
   // Modes, sorted as AnalyzeFloquet sorts them: |frequency|, positive first, then Re λ.
-  const double norm_h = hill_internal::HillNormEstimate(A, omega, N);
   std::vector<FloquetMode> modes;
   std::vector<HillModeInfo> infos;
-  Eigen::MatrixXcd xi0 = Eigen::MatrixXcd::Zero(n, static_cast<Eigen::Index>(sel.chosen.size()));
-  for (size_t k = 0; k < sel.chosen.size(); ++k) {
-    const int i = sel.chosen[k];
-    const Eigen::VectorXcd x = pairs.vectors.col(i);
+  Eigen::MatrixXcd xi0 =
+      Eigen::MatrixXcd::Zero(n, static_cast<Eigen::Index>(solved.sel.chosen.size()));
+  for (size_t k = 0; k < solved.sel.chosen.size(); ++k) {
+    const int i = solved.sel.chosen[k];
+    const Eigen::VectorXcd x = solved.pairs.vectors.col(i);
     for (int v = 0; v <= 2 * N; ++v) xi0.col(k) += x.segment(static_cast<Eigen::Index>(v) * n, n);
-    HillModeInfo info = sel.info[k];
+    HillModeInfo info = solved.sel.info[k];
     // A tie between λ and its neighbour λ ± jΩp (centroid ±1/2: the strip edge of a negative
     // real multiplier) is one exponent; report the member with the larger Im λ, as the
     // monodromy route does, so both routes print +Ωp/2 for a 2:1 parametric resonance.
-    cd value = pairs.values[i];
+    cd value = solved.pairs.values[i];
     int shift = 0;  // blocks: member λ + jΩp is centred one block up
     if (info.ambiguous && info.centroid > 0 && N > 0) {
       value += cd(0, omega);
@@ -154,8 +162,9 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     const std::vector<double> e = hill_internal::BlockEnergies(x, n, N);
     m.central_weight = e[N + shift];
     m.branch_margin = 0.5 - std::min(0.5, std::abs(info.centroid));
-    info.residual = (hill_internal::HillMultiply(A, omega, N, x) - pairs.values[i] * x).norm() /
-                    (norm_h * x.norm());
+    info.residual =
+        (hill_internal::HillMultiply(A, omega, N, x) - solved.pairs.values[i] * x).norm() /
+        (norm_h * x.norm());
     m.eigvec_residual = info.residual;
     modes.push_back(m);
     infos.push_back(info);
@@ -165,7 +174,6 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     r.modes.push_back(modes[k]);
     r.info.push_back(infos[k]);
   }
-  const std::vector<double> kappa = EigenvalueConditions(xi0, order);
   r.ok = static_cast<int>(r.modes.size()) == n;
   r.max_real_exponent = n > 0 ? -std::numeric_limits<double>::infinity() : 0;
   for (const FloquetMode& m : r.modes)
@@ -180,8 +188,14 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     r.diagnostics.push_back(s.str());
   }
 
-  r.decay = FitHillDecay(A, fit, N, T);  // also tells the truncation estimate the decay kind
+  return EigenvalueConditions(xi0, order);
+}
 
+// The truncation estimate: the same analysis at N + Δ, and at N + 2Δ before the asymptotic
+// regime. Returns whether that third solve measured the convergence rate.
+bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T, int N,
+                        const HillOptions& o, HillResult& r) {
+  const double omega = 2 * kPi / T;
   // Truncation estimate: the same analysis at N + Δ (shifts from this solve).
   bool rate_checked = false;  // a third solve measured the convergence rate
   if (o.delta_harmonics >= 0 && r.ok) {
@@ -244,6 +258,11 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
     }
   }
 
+  return rate_checked;
+}
+
+void CheckResolution(const FourierMatrix& A, double omega, int N, bool rate_checked,
+                     HillResult& r) {
   // Resolution: below N·Ωp ≈ the frozen-eigenvalue spread the truncation may not have started
   // to converge, and a small N vs N+Δ change alone proves nothing. (A third solve that measured
   // geometric convergence is evidence: stiff.yaml's exponents converge at N = 16 although its
@@ -259,7 +278,11 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
       r.truncation_estimate = std::numeric_limits<double>::infinity();
     }
   }
+}
 
+// Returns Koopman–Hill's own exponent error bound (infinite when the check did not run).
+double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, const HillOptions& o,
+                        double norm_h, HillResult& r) {
   // Koopman–Hill cross-check and the a-priori bound (which needs its eigenvectors).
   r.apriori_phi_bound = KoopmanHillBound(r.decay, N, T);
   double kh_own = std::numeric_limits<double>::infinity();  // KH's own exponent error bound
@@ -299,6 +322,14 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
         "Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
         std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
   }
+  return kh_own;
+}
+
+// The error estimate from the truncation change, the Koopman–Hill gap, the Liouville deficit
+// and the round-off floor; the verdict from it.
+void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, double norm_h,
+                    double kh_own, HillResult& r) {
+  const int n = A.rows();
   // The error estimate: the N vs N+Δ change (no convergence evidence without it: the
   // Koopman–Hill gap then stands in).
   double estimate = r.truncation_estimate;
@@ -366,6 +397,31 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   if (r.verdict == StabilityVerdict::kMarginal)
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error estimate");
+}
+
+// One Hill analysis at fixed period and N (no period doubling).
+HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T, int N,
+                        const HillOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const double omega = 2 * kPi / T;
+  HillResult r;
+  r.states = A.rows();
+  r.harmonics = N;
+  r.matrix_size = (2 * N + 1) * A.rows();
+  r.period = T;
+  r.selection_rule = std::string(ToString(o.selection));
+  const Solved solved = SolveAndSelect(A, omega, N, o, r);
+  if (!solved.pairs.ok) {
+    r.elapsed_s = SecondsSince(start);
+    return r;
+  }
+  const double norm_h = hill_internal::HillNormEstimate(A, omega, N);
+  const std::vector<double> kappa = CollectModes(A, omega, T, N, solved, norm_h, r);
+  r.decay = FitHillDecay(A, fit, N, T);  // also tells the truncation estimate the decay kind
+  const bool rate_checked = EstimateTruncation(A, fit, T, N, o, r);
+  CheckResolution(A, omega, N, rate_checked, r);
+  const double kh_own = KoopmanHillCheck(A, omega, T, N, o, norm_h, r);
+  FinishEstimate(A, kappa, norm_h, kh_own, r);
   r.elapsed_s = SecondsSince(start);
   return r;
 }
