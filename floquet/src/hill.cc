@@ -288,6 +288,13 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
   double kh_own = std::numeric_limits<double>::infinity();  // KH's own exponent error bound
   if (o.koopman_check && r.ok && r.matrix_size <= o.koopman_max_size) {
     const Eigen::MatrixXcd phi = KoopmanHillTransition(A, omega, N, T);
+    if (!phi.allFinite()) {  // Eigen's eigensolver reads past its arrays on inf/NaN input
+      r.apriori_phi_bound = std::numeric_limits<double>::infinity();
+      r.diagnostics.push_back(
+          "Koopman–Hill check skipped: its transition matrix overflows (multipliers beyond "
+          "the range of doubles); no a-priori exponent bound");
+      return kh_own;
+    }
     // The bound holds in exact arithmetic; the computed expm adds round-off ~ eps ||H T|| ||Φ||.
     r.apriori_phi_bound +=
         16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) * std::max(1.0, phi.norm());

@@ -423,6 +423,13 @@ TEST(HillAuto, UnresolvedTruncationClaimsNoBound) {
   const double err = MaxDistanceModulo(Exponents(h.modes), Exponents(ref.modes), s.omega());
   EXPECT_GE(h.error_estimate, err);
   EXPECT_NE(h.verdict, StabilityVerdict::kStable);
+  // |ρ| = e^535 overflows the Koopman–Hill transition matrix: the check says so and stops
+  // (its eigensolver read past its arrays on the inf entries, found by AddressSanitizer).
+  bool said = false;
+  for (const std::string& d : h.diagnostics)
+    said = said || d.find("overflows") != std::string::npos;
+  EXPECT_TRUE(said);
+  EXPECT_EQ(h.apriori_phi_bound, std::numeric_limits<double>::infinity());
 }
 
 TEST(HillSelection, StripRuleDiffersFromCentroidAboveHalfOmega) {
