@@ -76,16 +76,20 @@ int HtfSolver::ChooseTruncation(int min_order, int max_order,
   N = std::min(N, std::max(options_.max_harmonics, Z));
   for (;;) {
     harmonics_ = N;
-    double change = 0, scale = 0;
-    for (double w : probe_omegas) {
-      const PartialFrfs a = Evaluate(w, min_order, max_order, N);
-      const PartialFrfs b = Evaluate(w, min_order, max_order, N + delta());
+    const int probes = static_cast<int>(probe_omegas.size());
+    std::vector<double> changes(probes, 0.0), scales(probes, 0.0);
+#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0))  // independent solves
+    for (int q = 0; q < probes; ++q) {
+      const PartialFrfs a = Evaluate(probe_omegas[q], min_order, max_order, N);
+      const PartialFrfs b = Evaluate(probe_omegas[q], min_order, max_order, N + delta());
       for (size_t z = 0; z < a.size(); ++z) {
         const double d = (a[z] - b[z]).cwiseAbs().maxCoeff();
-        change = std::max(change, std::isfinite(d) ? d : 0.0);
-        scale = std::max(scale, b[z].cwiseAbs().maxCoeff());
+        changes[q] = std::max(changes[q], std::isfinite(d) ? d : 0.0);
+        scales[q] = std::max(scales[q], b[z].cwiseAbs().maxCoeff());
       }
     }
+    const double change = probes ? *std::max_element(changes.begin(), changes.end()) : 0.0;
+    const double scale = probes ? *std::max_element(scales.begin(), scales.end()) : 0.0;
     if (change <= options_.tol * scale) break;
     if (N >= options_.max_harmonics) {
       std::ostringstream s;

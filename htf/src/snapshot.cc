@@ -112,14 +112,19 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
       // relative disagreement δ of every H_z carries to G as δ Σ_z |H_z|.
       const double e0 = kTwoPi * options.frequencies_hz.front() - zmax * wp;
       const double e1 = kTwoPi * options.frequencies_hz.back() - zmin * wp;
-      HtfSolver htf(system, options.htf);
-      htf.ChooseTruncation(zmin, zmax, {e0, 0.5 * (e0 + e1), e1});
       const int P = options.check_points;
+      std::vector<double> check(P);
+      for (int q = 0; q < P; ++q)
+        check[q] = P == 1 ? 0.5 * (e0 + e1) : e0 + (e1 - e0) * q / (P - 1);
+      // The truncation is chosen at the check frequencies themselves: its own error there must
+      // not pass for the modal route's.
+      HtfSolver htf(system, options.htf);
+      htf.ChooseTruncation(zmin, zmax, check);
       htf.PrepareSweep(P);
       std::vector<double> disagreement(P, 0.0);
 #pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0))  // independent solves
       for (int q = 0; q < P; ++q) {
-        const double w = P == 1 ? 0.5 * (e0 + e1) : e0 + (e1 - e0) * q / (P - 1);
+        const double w = check[q];
         const PartialFrfs h = htf.Evaluate(w, zmin, zmax);
         double largest = 0, diff = 0;
         for (int z = zmin; z <= zmax; ++z) {
