@@ -50,9 +50,10 @@ class HtfRoute : public PfrfRouteSolver {
     result_.htf_truncation_change = worst;
     std::ostringstream s;
     s << "htf: truncation N = " << solver_.harmonics() << " (A has "
-      << solver_.coefficient_harmonics() << " harmonics; banded solve), check against N + "
-      << solver_.delta() << ": max change " << worst
-      << (reduced_ ? "; Hill matrices reduced once to Hessenberg form for the sweep" : "");
+      << solver_.coefficient_harmonics() << " harmonics; "
+      << (reduced_ ? "Hill matrices reduced once to Hessenberg form, a Hessenberg solve per point"
+                   : "banded solve per point")
+      << "), check against N + " << solver_.delta() << ": max change " << worst;
     d.push_back(s.str());
     return d;
   }
