@@ -15,9 +15,10 @@ struct PeriodicSystem::Impl {
   double period = 0;
   int n = 0, m = 0, p = 0;
   FourierMatrix fa, fb, fc, fd;  // Fourier form
-  RealFourierSeries a_real;      // A in real form: what EvalA and the integrators' inner loops read
-  Functions fn;                  // function form
-  std::vector<double> times;     // sampled form
+  // The same in real form: what EvalA…EvalD and the integrators' inner loops read.
+  RealFourierSeries a_real, b_real, c_real, d_real;
+  Functions fn;               // function form
+  std::vector<double> times;  // sampled form
   std::vector<LtiSystem> samples;
   std::vector<double> breakpoints;
   SystemLabels labels;
@@ -79,6 +80,9 @@ PeriodicSystem PeriodicSystem::FromFourier(double period, FourierMatrix A, Fouri
   CheckFinite(C, "C");
   CheckFinite(D, "D");
   impl->a_real = RealFourierSeries(A);
+  impl->b_real = RealFourierSeries(B);
+  impl->c_real = RealFourierSeries(C);
+  impl->d_real = RealFourierSeries(D);
   impl->fa = std::move(A);
   impl->fb = std::move(B);
   impl->fc = std::move(C);
@@ -172,7 +176,7 @@ void PeriodicSystem::EvalB(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->m == 0) return;
   switch (impl_->form) {
     case Form::kFourier:
-      impl_->fb.Evaluate(t, omega(), out);
+      impl_->b_real.Evaluate(t, omega(), out);
       break;
     case Form::kFunction:
       impl_->fn.B(t, out);
@@ -187,7 +191,7 @@ void PeriodicSystem::EvalC(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->p == 0) return;
   switch (impl_->form) {
     case Form::kFourier:
-      impl_->fc.Evaluate(t, omega(), out);
+      impl_->c_real.Evaluate(t, omega(), out);
       break;
     case Form::kFunction:
       impl_->fn.C(t, out);
@@ -202,7 +206,7 @@ void PeriodicSystem::EvalD(double t, Eigen::Ref<Eigen::MatrixXd> out) const {
   if (impl_->p == 0 || impl_->m == 0) return;
   switch (impl_->form) {
     case Form::kFourier:
-      impl_->fd.Evaluate(t, omega(), out);
+      impl_->d_real.Evaluate(t, omega(), out);
       break;
     case Form::kFunction:
       if (impl_->fn.D) {

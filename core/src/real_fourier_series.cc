@@ -5,6 +5,7 @@
 namespace ltp {
 
 RealFourierSeries::RealFourierSeries(const FourierMatrix& m) : rows_(m.rows()), cols_(m.cols()) {
+  if (rows_ == 0 || cols_ == 0) return;  // nothing to evaluate (a system without inputs)
   // Trailing zero harmonics cost evaluations and change nothing.
   int top = m.max_harmonic();
   while (top > 0 && m[top].isZero(0) && m[-top].isZero(0)) --top;

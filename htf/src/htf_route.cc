@@ -109,6 +109,12 @@ namespace {
 // add(row, column, value). Harmonics of A beyond N are dropped with the truncation (they would
 // only couple X_u and X_v with |v − u| > N; for algebraically decaying A this keeps the band at
 // ~2N + 1 blocks).
+// Scalar half-bandwidth of the Hill matrix at truncation N: A couples blocks up to
+// min(H_A, N) apart.
+int HillBandwidth(int n, int N, int ha) {
+  return std::min((std::min(ha, N) + 1) * n - 1, (2 * N + 1) * n - 1);
+}
+
 template <class Add>
 void VisitHillOperator(const FourierMatrix& A, int n, int N, int ha, double omega_p, Add add) {
   for (int v = -N; v <= N; ++v)
@@ -134,14 +140,13 @@ Eigen::MatrixXcd HtfSolver::HillRhs(int N) const {
 }
 
 bool HtfSolver::PaysToReduce(int frequencies, int N) const {
-  const int size = (2 * N + 1) * n_, ha = std::min(ha_, N);
-  const double kl = std::min((ha + 1) * n_ - 1, size - 1), s = size;
+  const double s = (2 * N + 1) * n_, kl = HillBandwidth(n_, N, ha_);
   // Banded LU ≈ 2·size·kl² complex operations per frequency at BLAS-3 speed; the reduction
   // ≈ 10/3·size³ at about half that speed, then ~4·size² per frequency (measured on
   // tower-rotor, docs/speed-notes.md).
   const double banded = frequencies * 2 * s * kl * kl;
   const double reduced = 2 * (10.0 / 3) * s * s * s + frequencies * 4 * s * s;
-  return size <= options_.max_dense_size && reduced < banded;
+  return s <= options_.max_dense_size && reduced < banded;
 }
 
 std::shared_ptr<const internal::ShiftedHessenbergSolver> HtfSolver::Reduce(int N) const {
@@ -211,7 +216,7 @@ PartialFrfs HtfSolver::EvaluateBanded(double omega, int min_order, int max_order
   const int n = n_;
   const int size = (2 * N + 1) * n;
   const int ha = std::min(ha_, N);
-  const int kl = std::min((ha + 1) * n - 1, size - 1), ku = kl;
+  const int kl = HillBandwidth(n, N, ha_), ku = kl;
   const int ldab = 2 * kl + ku + 1;
   std::vector<cd> ab(static_cast<size_t>(ldab) * size, cd(0));
   VisitHillOperator(fourier_.A.series, n, N, ha, omega_p_, [&](int i, int j, cd value) {
