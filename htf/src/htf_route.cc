@@ -35,6 +35,7 @@ void HtfOptions::Validate() const {
   if (delta < 0) fail("delta must be >= 0 (0 = automatic)");
   if (!(tol > 0) || !std::isfinite(tol)) fail("tol must be a positive number");
   if (max_harmonics < 1) fail("max_harmonics must be >= 1");
+  if (max_dense_size < 0) fail("max_dense_size must be >= 0 (0 = never reduce densely)");
 }
 
 HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
