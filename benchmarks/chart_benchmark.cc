@@ -17,8 +17,8 @@
 #include <string>
 
 #include "ltp/core/elapsed.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/sweep.h"
+#include "ltp/models/scene.h"
 
 namespace {
 

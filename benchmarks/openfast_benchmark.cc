@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/mbc3.h"
-#include "ltp/core/openfast_lin.h"
 #include "ltp/floquet/sampled_floquet.h"
 #include "ltp/floquet/threads.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
 
 namespace {
 

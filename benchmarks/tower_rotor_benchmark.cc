@@ -16,10 +16,10 @@
 //                        reduction itself (what a sweep pays once per truncation)
 #include <benchmark/benchmark.h>
 
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/models/scene.h"
 
 namespace {
 

@@ -29,8 +29,8 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_fit.h"
-#include "ltp/core/scene.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/models/scene.h"
 #include "support/failure_map.h"
 #include "support/systems.h"
 #include "support/work_precision_common.h"

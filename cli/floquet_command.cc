@@ -11,10 +11,10 @@
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/core/mbc.h"
-#include "ltp/core/rotor.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/models/rotor.h"
+#include "ltp/models/rotor_mbc.h"
 #include "plot.h"
 #include "scene_args.h"
 

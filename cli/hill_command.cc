@@ -38,9 +38,9 @@ struct HillArgs {
 
 std::string RateText(const HillStudy& s) {
   std::ostringstream t;
-  if (s.rate_kind == "exponential")
+  if (s.rate_kind == HillConvergence::kExponential)
     t << "error ∝ e^{-" << Num(s.rate, 3) << " N}";
-  else if (s.rate_kind == "algebraic")
+  else if (s.rate_kind == HillConvergence::kAlgebraic)
     t << "error ∝ N^{-" << Num(s.rate, 3) << "}";
   else
     t << "rate not fitted";
@@ -76,7 +76,7 @@ void Plot(const HillStudy& s, const std::string& title, const std::string& file)
     << "set title \"Hill convergence: " << title << "  (" << RateText(s) << ")\"\n"
     << "set xlabel 'harmonics N'\nset ylabel 'exponent error  [1/s]'\n"
     << "set logscale y\nset format y '10^{%L}'\nset grid\nset key top right\n";
-  if (s.rate_kind == "algebraic") g << "set logscale x\n";
+  if (s.rate_kind == HillConvergence::kAlgebraic) g << "set logscale x\n";
   g << "plot $D using 1:2 with linespoints pt 7 lc rgb '#1f77b4' title 'error vs monodromy', "
        "$D using 1:3 with linespoints pt 5 dt 2 lc rgb '#d62728' title 'a-priori bound', "
        "$D using 1:4 with linespoints pt 9 dt 3 lc rgb '#2ca02c' title 'N vs N+Δ estimate'\n";
@@ -153,7 +153,8 @@ int RunHill(HillArgs& args) {
                 {"rate", JsonNumber(s.decay.rate)},
                 {"harmonics", s.decay.harmonics},
                 {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
-              {"convergence", {{"kind", s.rate_kind}, {"rate", JsonNumber(s.rate)}}},
+              {"convergence",
+               {{"kind", std::string(ToString(s.rate_kind))}, {"rate", JsonNumber(s.rate)}}},
               {"reference", ref},
               {"rows", rows},
               {"exponents", exps},

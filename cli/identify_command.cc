@@ -13,10 +13,10 @@
 #include "frf_args.h"
 #include "ltp/core/channel.h"
 #include "ltp/core/error.h"
-#include "ltp/core/scene_input.h"
 #include "ltp/htf/frequency_range.h"
 #include "ltp/htf/identify.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/models/scene_input.h"
 #include "plot.h"
 #include "time_data_csv.h"
 

@@ -9,7 +9,7 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/fourier_fit.h"
-#include "ltp/core/tower_rotor.h"
+#include "ltp/models/tower_rotor.h"
 #include "scene_args.h"
 
 namespace ltp::cli {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/scene.h"
-#include "ltp/core/scene_input.h"
+#include "ltp/models/scene.h"
+#include "ltp/models/scene_input.h"
 
 namespace ltp::cli {
 

@@ -4,7 +4,7 @@
 
 #include "command.h"
 #include "format.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 namespace ltp::cli {
 

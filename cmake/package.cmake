@@ -1,5 +1,7 @@
-# The installed CMake package: find_package(ltp) gives ltp::core, ltp::floquet and ltp::htf.
-# The targets install themselves into the export set ltpTargets (see core/, floquet/, htf/).
+# The installed CMake package: find_package(ltp) gives ltp::core, ltp::openfast, ltp::models,
+# ltp::floquet and ltp::htf.
+# The targets install themselves into the export set ltpTargets (see core/, openfast/, models/,
+# floquet/, htf/).
 include(CMakePackageConfigHelpers)
 set(LTP_CONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/ltp)
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fuzz_target.h"
-#include "ltp/core/openfast_lin.h"
+#include "ltp/openfast/linearization.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

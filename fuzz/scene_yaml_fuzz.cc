@@ -11,7 +11,7 @@
 
 #include "fuzz_target.h"
 #include "ltp/core/fourier_fit.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

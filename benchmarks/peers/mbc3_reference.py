@@ -21,7 +21,7 @@ with "(internal DOF index = ...)" removed, differs only in the digit after "blad
 Usage:  /usr/bin/python3 benchmarks/peers/mbc3_reference.py FILE.lin ... [--json | --eigenvalues]
 (needs python3-numpy: Debian's /usr/bin/python3, not a pyenv python without numpy).
 --eigenvalues prints "re im" (17 digits) per mode with Im >= 0, sorted by natural frequency:
-tests/core/mbc3_test.cc runs it on tests/data/openfast/nrel5mw-rotating/*.lin and compares
+tests/openfast/mbc3_test.cc runs it on tests/data/openfast/nrel5mw-rotating/*.lin and compares
 ltp's Campbell table with it.
 
 Checked against OpenFAST's own published numbers: on those files openfast_toolbox's example

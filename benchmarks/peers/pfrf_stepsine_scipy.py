@@ -44,7 +44,7 @@ RECORD_PERIODS = 4  # M: whole system periods projected (ltp's ShootingOptions::
 
 
 # --- scenes (the study's parameters: benchmarks/work_precision_benchmark.cc; models:
-#     core/src/builtin_scenes.cc). State x = (y, y'), input u on y'', output y. ---------------
+#     models/src/builtin_scenes.cc). State x = (y, y'), input u on y'', output y. ---------------
 
 def mathieu():
     a, q, c = 1.5, 0.5, 0.05

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mbc3.h"
+#include "ltp/core/multiblade.h"
 
 namespace ltp {
 

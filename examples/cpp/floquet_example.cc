@@ -1,8 +1,8 @@
 // Floquet exponents of the built-in damped Mathieu oscillator y'' + c y' + (a - 2q cos 2t) y = u.
 #include <iostream>
 
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/scene.h"
 
 int main() {
   const ltp::PeriodicSystem system =

@@ -475,6 +475,11 @@ void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options,
 
 }  // namespace
 
+std::string_view ToString(std::optional<HillConvergence> convergence) {
+  if (!convergence) return "";
+  return *convergence == HillConvergence::kExponential ? "exponential" : "algebraic";
+}
+
 std::string_view ToString(HillSolver solver) {
   switch (solver) {
     case HillSolver::kDense:

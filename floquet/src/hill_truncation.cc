@@ -295,10 +295,10 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   if (y.size() >= 3) {
     const Line ex = FitLine(n_lin, y), al = FitLine(n_log, y);
     if (ex.rss <= al.rss) {
-      study.rate_kind = "exponential";
+      study.rate_kind = HillConvergence::kExponential;
       study.rate = -ex.beta;
     } else {
-      study.rate_kind = "algebraic";
+      study.rate_kind = HillConvergence::kAlgebraic;
       study.rate = -al.beta;
     }
   } else {

@@ -1,5 +1,5 @@
 // Full-period Floquet multipliers from one sector of a cyclically symmetric system
-// (derivation in ltp/floquet/rotor_floquet.h and ltp/core/rotor.h).
+// (derivation in ltp/floquet/rotor_floquet.h and ltp/models/rotor.h).
 #include "ltp/floquet/rotor_floquet.h"
 
 #include <algorithm>

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/integrator.h"
+#include "ltp/models/scene.h"
 
 namespace ltp::python {
 

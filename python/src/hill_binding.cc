@@ -145,7 +145,8 @@ at N = max_harmonics (`last`).)doc")
       .def_property_readonly(
           "convergence",
           [](const HillStudyRun& r) {
-            return py::dict(py::arg("kind") = r.study.rate_kind, py::arg("rate") = r.study.rate);
+            return py::dict(py::arg("kind") = std::string(ToString(r.study.rate_kind)),
+                            py::arg("rate") = r.study.rate);
           },
           "fitted law: kind 'exponential' (error ~ e^{-rate N}), 'algebraic' (~ N^{-rate}) or ''")
       .def_property_readonly(
@@ -167,7 +168,7 @@ at N = max_harmonics (`last`).)doc")
                     "what the study noticed, one line each")
       .def("__repr__", [](const HillStudyRun& r) {
         return "<ltp.HillStudy: " + std::to_string(r.study.rows.size()) + " truncations, " +
-               (r.study.rate_kind.empty() ? std::string("rate not fitted") : r.study.rate_kind) +
+               (r.study.rate_kind ? std::string(ToString(r.study.rate_kind)) : "rate not fitted") +
                ">";
       });
 

@@ -5,7 +5,7 @@
 #include "binding.h"
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
-#include "ltp/core/scene_input.h"
+#include "ltp/models/scene_input.h"
 
 namespace ltp::python {
 

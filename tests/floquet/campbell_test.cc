@@ -11,8 +11,8 @@
 #include <numbers>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/chart_options.h"
+#include "ltp/models/scene.h"
 #include "support/rotor_lin.h"
 
 namespace ltp {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 namespace {

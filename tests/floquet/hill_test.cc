@@ -132,7 +132,7 @@ TEST(HillSmooth, ConvergesExponentially) {
   const PeriodicSystem s = test::Mathieu(2.5, 1.0, 0.2);
   const FloquetResult ref = Reference(s);
   const HillStudy study = HillConvergenceStudy(s, 16, ref);
-  EXPECT_EQ(study.rate_kind, "exponential");
+  EXPECT_EQ(study.rate_kind, HillConvergence::kExponential);
   EXPECT_GT(study.rate, 1.0);
   EXPECT_LT(study.rows.back().max_error, 1e-11);
   EXPECT_EQ(study.decay.kind, FourierDecay::kFinite);

@@ -13,8 +13,8 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/core/rotor.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/rotor.h"
 #include "support/rotor_lin.h"
 
 namespace ltp {

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "ltp/core/exponent_match.h"
-#include "ltp/core/rotor.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/models/rotor.h"
+#include "ltp/models/scene.h"
 #include "support/rotor_lin.h"
 #include "support/systems.h"
 

@@ -17,10 +17,10 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/core/mbc.h"
-#include "ltp/core/rotor.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/rotor.h"
+#include "ltp/models/rotor_mbc.h"
+#include "ltp/models/scene.h"
 #include "support/compare.h"
 
 namespace ltp {

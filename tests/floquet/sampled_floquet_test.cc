@@ -16,10 +16,10 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/core/mbc.h"
-#include "ltp/core/openfast_lin.h"
-#include "ltp/core/rotor.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/rotor.h"
+#include "ltp/models/rotor_mbc.h"
+#include "ltp/openfast/linearization.h"
 #include "support/rotor_lin.h"
 
 namespace ltp {

@@ -10,9 +10,9 @@
 #include <mutex>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "ltp/core/scene.h"
-#include "ltp/core/tower_rotor.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/scene.h"
+#include "ltp/models/tower_rotor.h"
 
 namespace ltp {
 namespace {

@@ -10,9 +10,9 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
 #include "ltp/htf/pfrf.h"
 #include "ltp/htf/simulate.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 namespace {

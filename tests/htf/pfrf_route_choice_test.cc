@@ -9,9 +9,9 @@
 #include <limits>
 #include <string>
 
-#include "ltp/core/scene.h"
 #include "ltp/floquet/integrator.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/models/scene.h"
 #include "support/systems.h"
 
 namespace ltp {

@@ -10,9 +10,9 @@
 #include <numbers>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/htf/snapshot.h"
+#include "ltp/models/scene.h"
 #include "support/systems.h"
 
 namespace ltp {

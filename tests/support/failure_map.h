@@ -24,10 +24,10 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_fit.h"
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/models/scene.h"
 #include "support/systems.h"
 #include "support/work_precision_common.h"
 

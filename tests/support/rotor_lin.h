@@ -1,5 +1,5 @@
 #pragma once
-// The built-in `rotor` scene (ltp/core/rotor.h) written as OpenFAST `.lin` files at chosen
+// The built-in `rotor` scene (ltp/models/rotor.h) written as OpenFAST `.lin` files at chosen
 // azimuths, the way OpenFAST would write a linearisation: one file per azimuth, blade lag
 // angles in the rotating frame ("... of blade b"), hub displacements in the fixed frame,
 // displacements first and then their rates (second-order states), inputs f_x, f_y and
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/openfast_lin.h"
-#include "ltp/core/rotor.h"
+#include "ltp/models/rotor.h"
+#include "ltp/openfast/linearization.h"
 
 namespace ltp::test {
 

@@ -202,13 +202,21 @@ struct HillStudyRow {
   double elapsed_s = 0;
 };
 
+/// How the error of Hill's exponents falls with the truncation N.
+enum class HillConvergence {
+  kExponential,  ///< error ~ e^{−rate N}
+  kAlgebraic,    ///< error ~ N^{−rate}
+};
+/// "exponential", "algebraic", "" for nullopt (not fitted): the words of the CLI's and
+/// Python's output.
+std::string_view ToString(std::optional<HillConvergence> convergence);
+
 struct HillStudy {
   std::vector<HillStudyRow> rows;
   HillDecay decay;  ///< of A's coefficients
-  /// Fitted convergence law of the error (of the N vs N+Δ estimate without a reference):
-  /// "exponential" (error ~ e^{−rate N}) or "algebraic" (error ~ N^{−rate}); "" = too few
-  /// points above round-off.
-  std::string rate_kind;
+  /// Fitted convergence law of the error (of the N vs N+Δ estimate without a reference);
+  /// nullopt: too few points above round-off (then rate = 0).
+  std::optional<HillConvergence> rate_kind;
   double rate = 0;
   std::vector<std::complex<double>> reference;  ///< reference exponents used
   double elapsed_s = 0;

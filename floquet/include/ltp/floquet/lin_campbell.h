@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/mbc3.h"
-#include "ltp/core/openfast_lin.h"
 #include "ltp/floquet/campbell.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/sweep.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
 
 namespace ltp {
 

@@ -2,7 +2,7 @@
 // Floquet multipliers of a system with cyclic symmetry from 1/N of its period.
 //
 // If P A(t + τ) P⁻¹ = A(t) with τ = T/N and P^N = I (a rotor with N identical blades and P the
-// blade relabelling, see ltp/core/rotor.h), then w(t) = P z(t + τ) solves the same equation as
+// blade relabelling, see ltp/models/rotor.h), then w(t) = P z(t + τ) solves the same equation as
 // z(t), which gives
 //
 //   Φ(T, 0) = G^N,   G = P Φ(τ, 0).
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/rotor.h"
 #include "ltp/floquet/integrator.h"
+#include "ltp/models/rotor.h"
 
 namespace ltp {
 
@@ -46,7 +46,7 @@ SectorFloquetResult CyclicFloquet(const PeriodicSystem& system, int sectors,
                                   const Eigen::MatrixXd& shift,
                                   const IntegratorOptions& options = {});
 
-/// The rotor of ltp/core/rotor.h integrated over 1/N revolution.
+/// The rotor of ltp/models/rotor.h integrated over 1/N revolution.
 /// @throws InputError when the blades are not identical (mistune_k or mistune_c != 1: the
 /// coefficients then repeat only after a full revolution; use AnalyzeFloquet).
 SectorFloquetResult RotorSectorFloquet(const RotorParameters& rotor,

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/mbc3.h"
-#include "ltp/core/openfast_lin.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
 
 namespace ltp {
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "ltp/core/scene.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 

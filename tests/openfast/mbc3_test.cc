@@ -1,4 +1,4 @@
-#include "ltp/core/mbc3.h"
+#include "ltp/openfast/mbc3.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mbc.h"
+#include "ltp/models/rotor_mbc.h"
 #include "support/rotor_lin.h"
 #include "support/throws.h"
 

@@ -71,7 +71,7 @@
 //
 // All of G, Ġ, G̈, r̈0, ρ' are trigonometric polynomials of degree 1 in ψ, so M, D, K have
 // harmonics |w| <= 2 only. They are sampled at 8 angles and transformed exactly.
-#include "ltp/core/tower_rotor.h"
+#include "ltp/models/tower_rotor.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The rotor (ground resonance) and flap scenes, multi-blade coordinates and sampled scene files.
-#include "ltp/core/rotor.h"
+#include "ltp/models/rotor.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <string>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mbc.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/rotor_mbc.h"
+#include "ltp/models/scene.h"
 #include "support/compare.h"
 
 namespace ltp {

@@ -1,7 +1,7 @@
 #pragma once
 // Built-in scenes defined in their own files and registered in BuiltinScenes()
 // (builtin_scenes.cc). Internal to ltp_core. Append new declarations; do not reorder.
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 #include "scene_builders.h"
 
 namespace ltp {

@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
 
 namespace ltp {
 
@@ -137,10 +136,5 @@ PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation i
 /// What K samples can and cannot resolve, and how the rigid rotation shows: one sentence per
 /// item, for printing beside any analysis of these files.
 std::vector<std::string> LinCaveats(const LinOperatingPoint& op);
-
-/// A scene over the files: name "openfast: <files>", parameters `trig` (0: nearest-sample
-/// hold, 1: trigonometric interpolation) and `mbc` (0: the files' coordinates, 1: multi-blade
-/// coordinates, see mbc3.h). @throws InputError as MakeLinOperatingPoint.
-Scene MakeLinScene(const LinOperatingPoint& op);
 
 }  // namespace ltp

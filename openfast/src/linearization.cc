@@ -1,6 +1,6 @@
 // OpenFAST `.lin` files: reader, writer, operating-point sets and the sampled system
-// (format and conventions in ltp/core/openfast_lin.h).
-#include "ltp/core/openfast_lin.h"
+// (format and conventions in ltp/openfast/linearization.h).
+#include "ltp/openfast/linearization.h"
 
 #include <glob.h>
 
@@ -19,7 +19,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
-#include "ltp/core/mbc3.h"
+#include "ltp/openfast/mbc3.h"
 
 namespace ltp {
 namespace {
@@ -404,10 +404,6 @@ class Parser {
   std::string source_;
   std::vector<std::string> lines_;
 };
-
-std::string BaseName(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
 
 bool HasLinExtension(const std::string& path) {
   const std::string ext = Lower(std::filesystem::path(path).extension().string());
@@ -952,42 +948,6 @@ std::vector<std::string> LinCaveats(const LinOperatingPoint& op) {
                     "from a fixed-frame Campbell table (multi-blade coordinates: `--set mbc=1`, "
                     "or `ltp mbc`)");
   return notes;
-}
-
-Scene MakeLinScene(const LinOperatingPoint& op) {
-  Scene scene;
-  std::string names, paths;
-  for (const std::string& f : op.files) {
-    names += (names.empty() ? "" : ", ") + BaseName(f);
-    paths += (paths.empty() ? "" : ", ") + f;
-  }
-  scene.name = "openfast: " + names;
-  scene.source = paths;
-  scene.description = "OpenFAST linearisation: " + std::to_string(op.states.size()) + " states, " +
-                      std::to_string(op.inputs.size()) + " inputs, " +
-                      std::to_string(op.outputs.size()) + " outputs at " +
-                      std::to_string(op.size()) + " azimuths, rotor speed " +
-                      FormatNumber(op.rotor_speed, "%.6g") + " rad/s";
-  scene.parameters = {
-      {"trig", 0,
-       "0: each sample held over the azimuths nearest to it (exact product of exponentials); "
-       "1: trigonometric interpolation through the samples"},
-      {"mbc", 0, "0: the files' coordinates; 1: multi-blade coordinates (MBC3, N >= 3 blades)"}};
-  scene.build = [op](const ParameterMap& p) {
-    auto flag = [&](const char* name) {
-      const double v = p.at(name);
-      if (v != 0 && v != 1)
-        throw InputError(std::string("parameter '") + name + "' must be 0 or 1, got " +
-                         FormatNumber(v, "%.6g"));
-      return v == 1;
-    };
-    const SampleInterpolation interpolation =
-        flag("trig") ? SampleInterpolation::kTrigonometric : SampleInterpolation::kNearestConstant;
-    if (!flag("mbc")) return BuildLinSystem(op, interpolation);
-    const Mbc3Result mbc = Mbc3(op);
-    return BuildLinSystem(InMultiBladeCoordinates(op, mbc), interpolation);
-  };
-  return scene;
 }
 
 }  // namespace ltp

@@ -23,7 +23,7 @@
 
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 

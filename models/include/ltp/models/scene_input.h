@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 

@@ -1,4 +1,4 @@
-#include "ltp/core/tower_rotor.h"
+#include "ltp/models/tower_rotor.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 #include "support/throws.h"
 
 namespace ltp {

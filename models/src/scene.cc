@@ -1,4 +1,4 @@
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 #include <cmath>
 #include <filesystem>

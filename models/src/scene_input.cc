@@ -1,10 +1,11 @@
-#include "ltp/core/scene_input.h"
+#include "ltp/models/scene_input.h"
 
 #include <optional>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mbc3.h"
-#include "ltp/core/openfast_lin.h"
+#include "ltp/models/lin_scene.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
 
 namespace ltp {
 

@@ -16,8 +16,8 @@
 #include "expression.h"
 #include "expression_matrix.h"
 #include "ltp/core/error.h"
-#include "ltp/core/scene.h"
 #include "ltp/core/second_order.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 namespace {

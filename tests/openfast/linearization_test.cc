@@ -1,4 +1,4 @@
-#include "ltp/core/openfast_lin.h"
+#include "ltp/openfast/linearization.h"
 
 #include <gtest/gtest.h>
 
@@ -326,27 +326,6 @@ TEST(OpenFastLin, NearestSampleHold) {
   EXPECT_EQ(hold.form(), PeriodicSystem::Form::kPiecewiseConstant);
   EXPECT_THROW(BuildAzimuthSampledSystem(0.0, psi, samples, SampleInterpolation::kNearestConstant),
                InputError);
-}
-
-TEST(OpenFastLin, SceneOverTheFiles) {
-  const LinOperatingPoint op = ReadLinOperatingPoint({FiveMwDir()});
-  const Scene scene = MakeLinScene(op);
-  EXPECT_EQ(scene.name, "openfast: Main.1.lin, Main.12.lin, Main.24.lin");
-  const PeriodicSystem hold = scene.Build();
-  EXPECT_EQ(hold.states(), 20);
-  EXPECT_DOUBLE_EQ(hold.period(), 2 * pi / 0.9425);
-  ASSERT_TRUE(hold.rotor_speed().has_value());
-  // At each sample azimuth the system is that file's A (Main.12.lin at ψ = 1.9224).
-  EXPECT_EQ(hold.A(1.9224 / 0.9425), ReadLinFile(FiveMwDir() + "/Main.12.lin").A);
-  const PeriodicSystem trig = scene.Build({{"trig", "1"}});
-  EXPECT_EQ(trig.form(), PeriodicSystem::Form::kFourier);
-  const MatrixXd a24 = ReadLinFile(FiveMwDir() + "/Main.24.lin").A;
-  EXPECT_LT((trig.A(4.0147 / 0.9425) - a24).norm(), 1e-13 * a24.norm());
-  EXPECT_THROW(scene.Build({{"trig", "2"}}), InputError);
-  const std::vector<std::string> notes = LinCaveats(op);
-  ASSERT_FALSE(notes.empty());
-  EXPECT_NE(notes[0].find("3 azimuths hold only harmonics 0 and ±1"), std::string::npos)
-      << notes[0];
 }
 
 }  // namespace

@@ -40,7 +40,7 @@
 #include <string>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/core/scene.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 

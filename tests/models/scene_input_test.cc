@@ -1,6 +1,6 @@
 // What a user names as the system (built-in, YAML file, .lin files) with --set style
 // assignments: the one loader of the CLI and the Python module.
-#include "ltp/core/scene_input.h"
+#include "ltp/models/scene_input.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The `rotor` scene: N lead-lag blades on a flexible support (ground resonance). Equations and
-// sources are in ltp/core/rotor.h.
+// sources are in ltp/models/rotor.h.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-#include "ltp/core/rotor.h"
 #include "ltp/core/second_order.h"
+#include "ltp/models/rotor.h"
 #include "scene_builders.h"
 
 namespace ltp {

@@ -4,7 +4,7 @@
 // to Wind Turbine Analysis", NREL/CP-500-42553 (2008), and its user's guide NREL/TP-500-44327
 // (2010) — the formulation of OpenFAST's MBC3 (matlab-toolbox MBC/Source/fx_mbc3.m) and of
 // openfast_toolbox's linearization/mbc.py, generalised from 3 to N >= 3 blades with the
-// Coleman transform of ltp/core/mbc.h.
+// Coleman transform of ltp/core/multiblade.h.
 //
 // Blade b of N sits at ψ_b = ψ + 2π(b−1)/N. A rotating-frame quantity q_b of every blade is
 // written in MBC coordinates z = (q_0, q_1c, q_1s, …[, q_d]) as q_b = Σ_c t̃_bc(ψ) z_c with
@@ -42,8 +42,8 @@
 #include <string_view>
 #include <vector>
 
-#include "ltp/core/openfast_lin.h"
 #include "ltp/core/periodic_system.h"
+#include "ltp/openfast/linearization.h"
 
 namespace ltp {
 
@@ -60,11 +60,6 @@ struct BladeCoordinates {
   /// "ED 1st flapwise bending-mode DOF of blade (cosine), m".
   std::vector<std::string> descriptions;
 };
-
-/// Position of the blade number (one digit) in a channel description, by OpenFAST's patterns
-/// in its order (matlab-toolbox findBladeTriplets.m, openfast_toolbox linfile.py): "blade N",
-/// "blade root N", "BD_N", "bN", "bladeN", "PitchBearingN", else the first digit.
-std::optional<size_t> BladeDigit(const std::string& description);
 
 /// Groups rotating-frame channels into blade N-tuples by description.
 /// @throws InputError naming a rotating-frame channel without a blade number or whose group

@@ -1,5 +1,5 @@
-// Multi-blade coordinates for the rotor (equations in ltp/core/mbc.h).
-#include "ltp/core/mbc.h"
+// The rotor in multi-blade coordinates (equations in ltp/models/rotor_mbc.h).
+#include "ltp/models/rotor_mbc.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,49 +45,6 @@ double RelativeChange(const MatrixXd& a, const MatrixXd& b) {
 }
 
 }  // namespace
-
-MatrixXd MbcTransform(int blades, double psi, int dpsi_order) {
-  if (blades < 3)
-    throw InputError("multi-blade coordinates need at least 3 blades, got " +
-                     std::to_string(blades));
-  if (dpsi_order < 0 || dpsi_order > 2) throw InputError("MbcTransform: derivative order 0..2");
-  const int n = blades, cyclics = (n - 1) / 2;
-  MatrixXd t = MatrixXd::Zero(n, n);
-  for (int i = 0; i < n; ++i) {
-    const double psi_i = psi + 2 * pi * i / n;
-    t(i, 0) = dpsi_order == 0 ? 1.0 : 0.0;
-    for (int h = 1; h <= cyclics; ++h) {
-      const double c = std::cos(h * psi_i), s = std::sin(h * psi_i);
-      switch (dpsi_order) {
-        case 0:
-          t(i, 2 * h - 1) = c;
-          t(i, 2 * h) = s;
-          break;
-        case 1:
-          t(i, 2 * h - 1) = -h * s;
-          t(i, 2 * h) = h * c;
-          break;
-        default:
-          t(i, 2 * h - 1) = -h * h * c;
-          t(i, 2 * h) = -h * h * s;
-          break;
-      }
-    }
-    // Differential (−1)^i with blades numbered from 1: blade 1 gets −1.
-    if (n % 2 == 0) t(i, n - 1) = dpsi_order == 0 ? (i % 2 == 0 ? -1.0 : 1.0) : 0.0;
-  }
-  return t;
-}
-
-std::vector<std::string> MbcCoordinateNames(int blades) {
-  std::vector<std::string> names{"zeta_0"};
-  for (int h = 1; h <= (blades - 1) / 2; ++h) {
-    names.push_back("zeta_" + std::to_string(h) + "c");
-    names.push_back("zeta_" + std::to_string(h) + "s");
-  }
-  if (blades % 2 == 0) names.push_back("zeta_d");
-  return names;
-}
 
 std::optional<std::string> MbcNotApplicable(const RotorParameters& rotor) {
   std::ostringstream why;

@@ -1,6 +1,6 @@
 // MBC3: multi-blade coordinates with azimuth averaging for OpenFAST linearisations
-// (formulation and sources in ltp/core/mbc3.h).
-#include "ltp/core/mbc3.h"
+// (formulation and sources in ltp/openfast/mbc3.h).
+#include "ltp/openfast/mbc3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <regex>
 
 #include "ltp/core/error.h"
-#include "ltp/core/mbc.h"
+#include "ltp/core/multiblade.h"
 
 namespace ltp {
 
@@ -161,22 +161,6 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
 }
 
 }  // namespace
-
-std::optional<size_t> BladeDigit(const std::string& description) {
-  static const std::vector<std::regex> patterns = [] {
-    std::vector<std::regex> p;
-    for (const char* s : {"[Bb]lade \\d", "[Bb]lade [Rr]oot \\d", "BD_\\d", "[Bb]\\d",
-                          "[Bb]lade\\d", "PitchBearing\\d", "\\d"})
-      p.emplace_back(s);
-    return p;
-  }();
-  for (const std::regex& r : patterns) {
-    std::smatch m;
-    if (std::regex_search(description, m, r))
-      return static_cast<size_t>(m.position(0) + m.length(0) - 1);
-  }
-  return std::nullopt;
-}
 
 BladeCoordinates FindBladeCoordinates(const std::vector<LinChannel>& channels) {
   BladeCoordinates c;
