@@ -17,8 +17,7 @@ json CampbellJson(const CampbellDiagram& d) {
     const CampbellLine& line = d.lines[k];
     json j = {{"mode", k + 1}, {"description", line.description}};
     if (line.description_end != line.description) j["description_end"] = line.description_end;
-    if (line.lost_after >= 0)
-      j["lost_after"] = JsonNumber(d.parameter[static_cast<size_t>(line.lost_after)]);
+    if (line.lost_after) j["lost_after"] = JsonNumber(d.parameter[*line.lost_after]);
     lines.push_back(j);
   }
   for (const CampbellCrossing& c : d.crossings)

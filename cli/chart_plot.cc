@@ -94,12 +94,12 @@ CampbellExtras CampbellData(const ChartPlotInput& in, std::ostringstream& g) {
     for (const auto& c : d.crossings) g << V(c.parameter) << " " << V(c.frequency_hz) << "\n";
     g << "EOD\n";
   }
-  for (const CampbellLine& line : d.lines) x.lost = x.lost || line.lost_after >= 0;
+  for (const CampbellLine& line : d.lines) x.lost = x.lost || line.lost_after.has_value();
   if (x.lost) {
     g << "$L << EOD\n";
     for (const CampbellLine& line : d.lines)
-      if (line.lost_after >= 0) {
-        const size_t p = static_cast<size_t>(line.lost_after);
+      if (line.lost_after) {
+        const size_t p = *line.lost_after;
         g << V(d.parameter[p]) << " " << V(line.frequency_hz[p]) << " " << V(line.real_part[p])
           << "\n";
       }

@@ -74,11 +74,11 @@ json ExponentJson(std::complex<double> l) {
 json FloquetJson(const SampledFloquetResult& f) {
   json modes = json::array();
   for (const SampledFloquetMode& m : f.modes)
-    modes.push_back({{"mbc_mode", m.mbc_mode >= 0 ? json(m.mbc_mode) : json(nullptr)},
+    modes.push_back({{"mbc_mode", m.mbc_mode ? json(*m.mbc_mode) : json(nullptr)},
                      {"hold", ExponentJson(m.hold)},
                      {"trig", ExponentJson(m.trig)},
                      {"difference", JsonNumber(m.difference)},
-                     {"to_mbc", m.mbc_mode >= 0 ? JsonNumber(m.to_reference) : json(nullptr)},
+                     {"to_mbc", m.mbc_mode ? JsonNumber(m.to_reference) : json(nullptr)},
                      {"rigid_body", m.rigid_body}});
   return {{"ok", f.ok},
           {"coordinates", f.coordinates},
@@ -118,7 +118,7 @@ void WriteCsv(const std::string& file, const Mbc3Result& r, const SampledFloquet
     if (f) {
       const SampledFloquetMode* match = nullptr;
       for (const auto& fm : f->modes)
-        if (fm.mbc_mode == static_cast<int>(k)) match = &fm;
+        if (fm.mbc_mode == k) match = &fm;
       if (match)
         csv << "," << match->hold.real() << "," << match->hold.imag() << "," << match->trig.real()
             << "," << match->trig.imag();
@@ -184,7 +184,7 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
     for (const auto& d : f.trig.diagnostics) std::cout << "    - trig: " << d << "\n";
     return;
   }
-  const bool with_mbc = !f.modes.empty() && f.modes.front().mbc_mode >= 0;
+  const bool with_mbc = !f.modes.empty() && f.modes.front().mbc_mode.has_value();
   std::cout << "\n  mode" << (with_mbc ? "   MBC f_n [Hz]    MBC ζ" : "")
             << "   hold f_n [Hz]   hold ζ   trig f_n [Hz]   trig ζ   |hold−trig| [1/s]"
             << (with_mbc ? "   to MBC [1/s]" : "") << "\n";
@@ -194,7 +194,7 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
   };
   for (size_t k = 0; k < f.modes.size(); ++k) {
     const SampledFloquetMode& m = f.modes[k];
-    std::cout << "  " << std::setw(4) << (with_mbc ? m.mbc_mode + 1 : static_cast<int>(k) + 1);
+    std::cout << "  " << std::setw(4) << (with_mbc ? *m.mbc_mode + 1 : k + 1);
     if (with_mbc)
       std::cout << Num(freq(m.reference), 6, 15)
                 << (m.rigid_body ? std::string("  rigid") : Num(zeta(m.reference), 4, 9));

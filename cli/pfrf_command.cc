@@ -132,7 +132,7 @@ json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
                    {"f_exc_hz", p.f_exc_hz},
                    {"f_resp_hz", p.f_resp_hz},
                    {"abs", JsonNumber(p.magnitude)},
-                   {"mode", p.mode + 1},
+                   {"mode", p.mode ? json(*p.mode + 1) : json(nullptr)},
                    {"harmonic", p.harmonic},
                    {"mode_line_hz", JsonNumber(p.mode_line_hz)},
                    {"share", JsonNumber(p.share)}});
@@ -233,7 +233,7 @@ void PrintValues(const PfrfResult& r, bool csv_written) {
   for (const Resonance& p : r.resonances)
     std::cout << std::setw(5) << p.order << Num(p.f_exc_hz, 6, 14) << Num(p.f_resp_hz, 6, 14)
               << Num(p.magnitude, 4, 14) << std::setw(7)
-              << (p.mode >= 0 ? std::to_string(p.mode + 1) : "?") << std::setw(3) << p.harmonic
+              << (p.mode ? std::to_string(*p.mode + 1) : "?") << std::setw(3) << p.harmonic
               << Num(p.mode_line_hz, 6, 12) << Num(p.share, 2, 8) << "\n";
 }
 

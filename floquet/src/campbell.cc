@@ -104,11 +104,12 @@ CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking
     line.damping_ratio[p] = magnitude > 0 ? -re / magnitude : 0;
     if (first < 0)
       first = static_cast<long>(p);
-    else if (last != static_cast<long>(p) - 1 && line.lost_after < 0)
-      line.lost_after = last;
+    else if (last != static_cast<long>(p) - 1 && !line.lost_after)
+      line.lost_after = static_cast<size_t>(last);
     last = static_cast<long>(p);
   }
-  if (last >= 0 && last < static_cast<long>(P) - 1 && line.lost_after < 0) line.lost_after = last;
+  if (last >= 0 && last < static_cast<long>(P) - 1 && !line.lost_after)
+    line.lost_after = static_cast<size_t>(last);
   if (first >= 0) {
     const auto mode_at = [&](long p) {
       return tracking.labels[static_cast<size_t>(p)][static_cast<size_t>(label)];
@@ -321,8 +322,8 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     const std::string name = "mode " + std::to_string(d.lines.size());
     if (line.description.empty()) line.description = name;
     if (line.description_end.empty()) line.description_end = line.description;
-    if (line.lost_after >= 0) {
-      const size_t at = static_cast<size_t>(line.lost_after);
+    if (line.lost_after) {
+      const size_t at = *line.lost_after;
       std::string why = "its mode count changed";
       for (size_t p = at + 1; p < points.size(); ++p)
         if (!points[p].ok) {

@@ -123,7 +123,7 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
     }
     if (ref_mode[i] < 0) continue;
     SampledFloquetMode m;
-    m.mbc_mode = with_mbc ? ref_mode[i] : -1;
+    if (with_mbc) m.mbc_mode = static_cast<size_t>(ref_mode[i]);
     m.reference = refs[i];
     m.hold = h;
     m.trig = t;
@@ -136,7 +136,7 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   }
   std::stable_sort(r.modes.begin(), r.modes.end(),
                    [](const SampledFloquetMode& a, const SampledFloquetMode& b) {
-                     if (a.mbc_mode >= 0 && b.mbc_mode >= 0) return a.mbc_mode < b.mbc_mode;
+                     if (a.mbc_mode && b.mbc_mode) return *a.mbc_mode < *b.mbc_mode;
                      return std::abs(a.hold) < std::abs(b.hold);
                    });
   r.stable = r.max_real_hold < 0 && r.max_real_trig < 0;

@@ -432,13 +432,12 @@ std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel
             if (distance < best) {
               best = distance;
               best_term = t;
-              p.mode = k;
+              p.mode = static_cast<size_t>(k);
               p.harmonic = z - u;
             }
           }
         p.share = sum > 0 ? best_term / sum : 0;
-        if (p.mode >= 0)
-          p.mode_line_hz = modal->exponents[p.mode].imag() / kTwoPi + p.harmonic * fp;
+        if (p.mode) p.mode_line_hz = modal->exponents[*p.mode].imag() / kTwoPi + p.harmonic * fp;
       } else if (!result.floquet.modes.empty()) {
         double best = std::numeric_limits<double>::infinity();
         for (size_t k = 0; k < result.floquet.modes.size(); ++k)
@@ -446,7 +445,7 @@ std::vector<Resonance> FindResonances(const PfrfResult& result, const ModalModel
             const double line = result.floquet.modes[k].frequency_hz + v * fp;
             if (std::abs(line - p.f_resp_hz) < best) {
               best = std::abs(line - p.f_resp_hz);
-              p.mode = static_cast<int>(k);
+              p.mode = k;
               p.harmonic = v;
               p.mode_line_hz = line;
             }

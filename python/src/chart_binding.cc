@@ -320,7 +320,8 @@ members of each conjugate pair).)doc")
                                   py::arg("frequency_hz") = RealArray(line.frequency_hz),
                                   py::arg("real_part") = RealArray(line.real_part),
                                   py::arg("damping_ratio") = RealArray(line.damping_ratio),
-                                  py::arg("lost_after") = line.lost_after));
+                                  py::arg("lost_after") =
+                                      line.lost_after ? static_cast<long>(*line.lost_after) : -1L));
             return out;
           },
           "1-D: one Campbell line per physical mode: description (states carrying it), per-point "

@@ -142,11 +142,12 @@ estimate for every value from the independent routes' disagreement.
           [](const PfrfResult& r) {
             py::list out;
             for (const Resonance& p : r.resonances)
-              out.append(py::dict(py::arg("z") = p.order, py::arg("f_exc_hz") = p.f_exc_hz,
-                                  py::arg("f_resp_hz") = p.f_resp_hz, py::arg("abs") = p.magnitude,
-                                  py::arg("mode") = p.mode, py::arg("harmonic") = p.harmonic,
-                                  py::arg("mode_line_hz") = p.mode_line_hz,
-                                  py::arg("share") = p.share));
+              out.append(
+                  py::dict(py::arg("z") = p.order, py::arg("f_exc_hz") = p.f_exc_hz,
+                           py::arg("f_resp_hz") = p.f_resp_hz, py::arg("abs") = p.magnitude,
+                           py::arg("mode") = p.mode ? py::object(py::int_(*p.mode)) : py::none(),
+                           py::arg("harmonic") = p.harmonic,
+                           py::arg("mode_line_hz") = p.mode_line_hz, py::arg("share") = p.share));
             return out;
           },
           "peaks of |H_z|, each attributed to Floquet mode `mode` (index into floquet.exponents, "

@@ -64,7 +64,7 @@ TEST(Campbell, GyroscopicRotorWhirlLinesAndCrossingsMatchTheClosedForm) {
   ASSERT_EQ(d.lines.size(), 2u);
   EXPECT_EQ(d.per_rev, (std::vector<int>{1, 2, 3}));
   for (const CampbellLine& line : d.lines) {
-    EXPECT_EQ(line.lost_after, -1);
+    EXPECT_FALSE(line.lost_after.has_value());
     EXPECT_EQ(line.description, "theta 50%, phi 50%");  // circular whirl: equal tilt energy
   }
   // Which line is forward: the one whose frequency grows with speed.
@@ -131,7 +131,7 @@ TEST(Campbell, AFailedPointEndsTheLineWithADiagnostic) {
   const CampbellDiagram d = MakeCampbellDiagram(c.points, c.tracking, c.labels);
   ASSERT_EQ(d.lines.size(), 2u);
   for (const CampbellLine& line : d.lines) {
-    EXPECT_EQ(line.lost_after, 2);
+    EXPECT_EQ(line.lost_after, 2u);
     EXPECT_TRUE(std::isnan(line.frequency_hz[3]));
     EXPECT_TRUE(std::isfinite(line.frequency_hz[4]));
   }

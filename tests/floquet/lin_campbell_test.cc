@@ -79,7 +79,7 @@ TEST(LinCampbell, RotorSetsRoundTripToTheScenesFloquetExponents) {
   }
   for (const CampbellLine& line : r.diagram.lines) {
     EXPECT_FALSE(line.description.empty());
-    EXPECT_EQ(line.lost_after, -1);
+    EXPECT_FALSE(line.lost_after.has_value());
   }
 }
 

@@ -12,7 +12,9 @@
 // the quadratic through three neighbouring points; its error estimate is its distance to the
 // root of the straight line through the two bracketing points (the size of the curvature term
 // the quadratic corrects), and the half step when no third point exists.
+#include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,9 +47,9 @@ struct CampbellLine {
   /// Per point (NaN where the mode is not tracked): |frequency| on the tracked branch (Hz; a
   /// branch below zero is shown by its conjugate), Re λ (1/s) and damping ratio −Re λ/|λ|.
   std::vector<double> frequency_hz, real_part, damping_ratio;
-  /// Index of the last point before the line is first lost (a failed point); −1 when the
-  /// line runs through the whole sweep.
-  long lost_after = -1;
+  /// Index of the last point before the line is first lost (a failed point); nullopt when
+  /// the line runs through the whole sweep.
+  std::optional<size_t> lost_after;
 };
 
 struct CampbellCrossing {

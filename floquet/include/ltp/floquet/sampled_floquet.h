@@ -15,6 +15,8 @@
 // Floquet exponents are defined modulo jΩ: each is matched to the MBC eigenvalue nearest to it
 // modulo jΩ and reported on that branch.
 #include <complex>
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,9 +36,9 @@ struct SampledFloquetOptions {
 
 /// One mode: a Floquet exponent of each route on the branch of the mode it is matched to.
 struct SampledFloquetMode {
-  /// Index into Mbc3Result::modes, or −1 when MBC does not apply (the modes are then those of
-  /// the nearest-sample route with Im λ >= 0, on its own branch).
-  int mbc_mode = -1;
+  /// Index into Mbc3Result::modes; nullopt when MBC does not apply (the modes are then those
+  /// of the nearest-sample route with Im λ >= 0, on its own branch).
+  std::optional<size_t> mbc_mode;
   std::complex<double> reference;   ///< the MBC eigenvalue (or the hold route's exponent)
   std::complex<double> hold, trig;  ///< exponents (1/s) of the two routes
   double difference = 0;            ///< |hold − trig| (1/s)

@@ -290,14 +290,14 @@ struct RouteRun {
 };
 
 struct Resonance {
-  int order = 0;            ///< z
-  double f_exc_hz = 0;      ///< excitation frequency of the peak
-  double f_resp_hz = 0;     ///< f_exc + z fp
-  double magnitude = 0;     ///< |H_z| at the peak
-  int mode = -1;            ///< Floquet mode k (index into FloquetResult::modes), -1 unknown
-  int harmonic = 0;         ///< v: the response line f_k + v fp of that mode
-  double mode_line_hz = 0;  ///< Im λ_k/2π + v fp
-  double share = 0;         ///< |dominant modal term| / Σ |terms| at the peak
+  int order = 0;               ///< z
+  double f_exc_hz = 0;         ///< excitation frequency of the peak
+  double f_resp_hz = 0;        ///< f_exc + z fp
+  double magnitude = 0;        ///< |H_z| at the peak
+  std::optional<size_t> mode;  ///< Floquet mode k (index into FloquetResult::modes)
+  int harmonic = 0;            ///< v: the response line f_k + v fp of that mode
+  double mode_line_hz = 0;     ///< Im λ_k/2π + v fp
+  double share = 0;            ///< |dominant modal term| / Σ |terms| at the peak
 };
 
 struct PfrfResult {
