@@ -5,6 +5,7 @@
 #include <mutex>
 #include <string>
 
+#include "chart_journal.h"
 #include "chart_record.h"
 #include "ltp/core/elapsed.h"
 
@@ -66,15 +67,15 @@ size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterM
     const auto start = std::chrono::steady_clock::now();
     std::string payload;
     std::mutex payload_mutex;
+    PointWriter writer;  // a fresh one per round: rank 0 reads each round's records afresh
     done += RunSweep(
         scene, base, grid, mine, options,
         [&](SweepPoint&& p) {
           if (ranks.rank == 0) {
             on_point(std::move(p));
           } else {
-            const std::string line = PointToJson(p).dump() + "\n";
             std::lock_guard<std::mutex> lock(payload_mutex);
-            payload += line;
+            payload += writer.Records(p, true);
           }
         },
         cancel);
@@ -95,12 +96,17 @@ size_t DistributedSweep(const Ranks& ranks, const Scene& scene, const ParameterM
     MPI_Gatherv(payload.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
                 MPI_CHAR, 0, MPI_COMM_WORLD);
     if (ranks.rank == 0) {
-      size_t from = 0;
-      while (from < all.size()) {
-        const size_t nl = all.find('\n', from);
-        on_point(PointFromJson(nlohmann::json::parse(all.substr(from, nl - from))));
-        ++done;
-        from = nl + 1;
+      // Each rank's records in turn: its diagnostic texts precede the points that use them.
+      for (int r = 1; r < ranks.size; ++r) {
+        const size_t from = static_cast<size_t>(offsets[static_cast<size_t>(r)]);
+        const std::string part =
+            all.substr(from, static_cast<size_t>(lengths[static_cast<size_t>(r)]));
+        PointReader reader;
+        for (const std::string& record : FramedPayloads(part))
+          if (std::optional<SweepPoint> p = reader.Read(record)) {
+            on_point(std::move(*p));
+            ++done;
+          }
       }
     }
     // Grow the rounds until one takes about two seconds: frequent enough that little is lost

@@ -22,26 +22,6 @@ namespace {
 
 using nlohmann::json;
 
-// JSON has no NaN or infinity: those travel as strings.
-json Number(double x) {
-  if (std::isfinite(x)) return x;
-  return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
-}
-double FromNumber(const json& j) {
-  if (j.is_number()) return j.get<double>();
-  const std::string s = j.get<std::string>();
-  if (s == "inf") return INFINITY;
-  if (s == "-inf") return -INFINITY;
-  return NAN;
-}
-
-StabilityVerdict VerdictFrom(const std::string& s) {
-  if (s == "stable") return StabilityVerdict::kStable;
-  if (s == "marginal") return StabilityVerdict::kMarginal;
-  if (s == "unstable") return StabilityVerdict::kUnstable;
-  return StabilityVerdict::kFailed;
-}
-
 std::string CsvText(std::string s) {
   for (char& c : s)
     if (c == '"' || c == '\n') c = '\'';
@@ -55,118 +35,7 @@ std::string Full(double x) {
   return s.str();
 }
 
-// FNV-1a (64 bit) of a journal line: detects a forged or damaged record, not an adversary.
-std::string Checksum(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  std::ostringstream s;
-  s << std::hex << std::setw(16) << std::setfill('0') << h;
-  return s.str();
-}
-
-std::string JournalLine(const json& j) {
-  const std::string text = j.dump();
-  return text + "\t" + Checksum(text) + "\n";
-}
-
-// The JSON of a journal line whose checksum matches; nullopt for a torn or altered line.
-std::optional<json> ParseJournalLine(const std::string& line) {
-  const size_t tab = line.rfind('\t');
-  if (tab == std::string::npos) return std::nullopt;
-  const std::string text = line.substr(0, tab);
-  if (Checksum(text) != line.substr(tab + 1)) return std::nullopt;
-  try {
-    return json::parse(text);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
 }  // namespace
-
-json PointToJson(const SweepPoint& p, bool with_shapes) {
-  json j = {{"index", p.index},
-            {"values", json::array()},
-            {"ok", p.ok},
-            {"verdict", std::string(ToString(p.verdict))},
-            {"period", Number(p.period)},
-            {"max_real_exponent", Number(p.max_real_exponent)},
-            {"max_log_multiplier", Number(p.max_log_multiplier)},
-            {"error_estimate", Number(p.error_estimate)},
-            {"elapsed_s", p.elapsed_s}};
-  for (double v : p.values) j["values"].push_back(Number(v));
-  if (!p.failure.empty()) j["failure"] = p.failure;
-  if (std::isfinite(p.rotor_speed)) j["rotor_speed"] = Number(p.rotor_speed);
-  if (!p.modes.empty()) {
-    json& modes = j["modes"];
-    for (const FloquetMode& m : p.modes)
-      modes.push_back({Number(m.exponent.real()), Number(m.exponent.imag()), Number(m.frequency_hz),
-                       Number(m.damping_ratio), Number(m.log_multiplier.real()),
-                       Number(m.log_multiplier.imag()), m.branch});
-  }
-  if (with_shapes && p.shapes.size()) {
-    json& shapes = j["shapes"];
-    for (Eigen::Index k = 0; k < p.shapes.cols(); ++k) {
-      json col = json::array();
-      for (Eigen::Index i = 0; i < p.shapes.rows(); ++i)
-        col.push_back({Number(p.shapes(i, k).real()), Number(p.shapes(i, k).imag())});
-      shapes.push_back(col);
-    }
-  }
-  auto eigenvalues = [](const std::vector<std::complex<double>>& e) {
-    json a = json::array();
-    for (const auto& x : e) a.push_back({Number(x.real()), Number(x.imag())});
-    return a;
-  };
-  if (!p.snapshot_eigenvalues.empty()) j["snapshot"] = eigenvalues(p.snapshot_eigenvalues);
-  if (!p.averaged_eigenvalues.empty()) j["averaged"] = eigenvalues(p.averaged_eigenvalues);
-  if (!p.diagnostics.empty()) j["diagnostics"] = p.diagnostics;
-  return j;
-}
-
-SweepPoint PointFromJson(const json& j) {
-  SweepPoint p;
-  const json empty = json::array();
-  auto field = [&](const char* key) -> const json& { return j.contains(key) ? j.at(key) : empty; };
-  p.index = j.at("index").get<size_t>();
-  for (const auto& v : j.at("values")) p.values.push_back(FromNumber(v));
-  p.ok = j.at("ok").get<bool>();
-  p.failure = j.value("failure", std::string());
-  p.verdict = VerdictFrom(j.at("verdict").get<std::string>());
-  p.period = FromNumber(j.at("period"));
-  if (j.contains("rotor_speed")) p.rotor_speed = FromNumber(j.at("rotor_speed"));
-  p.max_real_exponent = FromNumber(j.at("max_real_exponent"));
-  p.max_log_multiplier = FromNumber(j.at("max_log_multiplier"));
-  p.error_estimate = FromNumber(j.at("error_estimate"));
-  for (const auto& m : field("modes")) {
-    FloquetMode mode;
-    mode.exponent = {FromNumber(m.at(0)), FromNumber(m.at(1))};
-    mode.frequency_hz = FromNumber(m.at(2));
-    mode.damping_ratio = FromNumber(m.at(3));
-    mode.log_multiplier = {FromNumber(m.at(4)), FromNumber(m.at(5))};
-    mode.branch = m.at(6).get<int>();
-    p.modes.push_back(mode);
-  }
-  const json& shapes = field("shapes");
-  if (!shapes.empty()) {
-    p.shapes.resize(static_cast<Eigen::Index>(shapes.at(0).size()),
-                    static_cast<Eigen::Index>(shapes.size()));
-    for (size_t k = 0; k < shapes.size(); ++k)
-      for (size_t i = 0; i < shapes[k].size(); ++i)
-        p.shapes(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = {
-            FromNumber(shapes[k][i].at(0)), FromNumber(shapes[k][i].at(1))};
-  }
-  for (const auto& x : field("snapshot"))
-    p.snapshot_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
-  for (const auto& x : field("averaged"))
-    p.averaged_eigenvalues.emplace_back(FromNumber(x.at(0)), FromNumber(x.at(1)));
-  for (const auto& d : field("diagnostics")) p.diagnostics.push_back(d.get<std::string>());
-  p.elapsed_s = j.at("elapsed_s").get<double>();
-  return p;
-}
 
 ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, const json& identity,
                          bool resume)
@@ -177,56 +46,45 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, co
   }
   const std::string journal = journal_path();
   if (resume) {
-    std::ifstream in(journal);
+    std::ifstream in(journal, std::ios::binary);
     if (!in)
       throw InputError("--resume: no journal '" + journal + "' (the sweep of '" + path_ +
                        "' completed, or never started); run without --resume");
-    std::string line;
-    if (!std::getline(in, line)) throw InputError("--resume: journal '" + journal + "' is empty");
-    const std::optional<json> header = ParseJournalLine(line);
-    if (!header) throw InputError("--resume: '" + journal + "' line 1 is not a journal header");
-    if (header->value("identity", json()) != identity)
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    in.close();
+    const size_t magic = sizeof(kJournalMagic) - 1;
+    if (bytes.compare(0, magic, kJournalMagic) != 0)
+      throw InputError("--resume: '" + journal +
+                       "' is not a journal of this version of ltp; run without --resume");
+    const std::vector<std::string> payloads = FramedPayloads(bytes, magic);
+    const std::optional<std::string> header =
+        payloads.empty() ? std::nullopt : DecodeHeader(payloads.front());
+    if (!header) throw InputError("--resume: '" + journal + "' has no intact header record");
+    if (json::parse(*header, nullptr, false) != identity)
       throw InputError(
           "--resume: '" + journal +
           "' belongs to a different sweep (scene, "
           "parameters, sweep ranges or method differ); run without --resume to start over");
     Lock();
-    // A line cut short by a kill, altered after the fact, or naming an index this grid does
+    // A record cut short by a kill, altered after the fact, or naming an index this grid does
     // not have (or a second time) is not a point: it is simply computed again.
     std::set<size_t> seen;
-    std::map<int, std::string> diagnostic_texts;
-    while (std::getline(in, line)) {
-      const std::optional<json> j = ParseJournalLine(line);
-      if (!j) continue;
-      try {
-        if (j->contains("diagnostic")) {
-          diagnostic_texts[j->at("diagnostic").get<int>()] = j->at("text").get<std::string>();
-          continue;
-        }
-        json point = *j;
-        if (point.contains("diagnostics")) {  // ids → texts; an unknown id drops the point
-          json texts = json::array();
-          for (const json& id : point.at("diagnostics"))
-            texts.push_back(diagnostic_texts.at(id.get<int>()));
-          point["diagnostics"] = texts;
-        }
-        SweepPoint p = PointFromJson(point);
-        if (p.index >= grid_.size() || p.values != grid_.PointValues(p.index) ||
-            !seen.insert(p.index).second)
-          continue;
-        resumed_.push_back(std::move(p));
-      } catch (const std::exception&) {
-      }
+    PointReader reader;
+    for (size_t k = 1; k < payloads.size(); ++k) {
+      std::optional<SweepPoint> p = reader.Read(payloads[k]);
+      if (!p || p->index >= grid_.size() || p->values != grid_.PointValues(p->index) ||
+          !seen.insert(p->index).second)
+        continue;
+      resumed_.push_back(std::move(*p));
     }
-    in.close();
     // Rewrite the journal with only the good records, then append to it.
     {
-      std::ofstream out(journal, std::ios::trunc);
-      out << JournalLine(*header);
+      std::ofstream out(journal, std::ios::binary | std::ios::trunc);
+      out << kJournalMagic << JournalFrame(EncodeHeader(*header));
       for (const SweepPoint& p : resumed_) out << JournalRecord(p);
       if (!out) throw InputError("cannot write '" + journal + "'");
     }
-    journal_.open(journal, std::ios::app);
+    journal_.open(journal, std::ios::binary | std::ios::app);
     csv_.open(path_, std::ios::trunc);
     if (!csv_) throw InputError("cannot write '" + path_ + "'");
     csv_ << Header(states_);
@@ -234,9 +92,9 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, co
     csv_.flush();
   } else {
     Lock();
-    journal_.open(journal, std::ios::trunc);
+    journal_.open(journal, std::ios::binary | std::ios::trunc);
     if (!journal_) throw InputError("cannot write '" + journal + "'");
-    journal_ << JournalLine(json{{"identity", identity}});
+    journal_ << kJournalMagic << JournalFrame(EncodeHeader(identity.dump()));
     journal_.flush();
     csv_.open(path_, std::ios::trunc);
     if (!csv_) throw InputError("cannot write '" + path_ + "'");
@@ -316,16 +174,7 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const CampbellDi
 }
 
 std::string ChartRecord::JournalRecord(const SweepPoint& point) {
-  std::string definitions;
-  json ids = json::array();
-  for (const std::string& d : point.diagnostics) {
-    auto [it, added] = diagnostic_ids_.emplace(d, static_cast<int>(diagnostic_ids_.size()));
-    if (added) definitions += JournalLine(json{{"diagnostic", it->second}, {"text", d}});
-    ids.push_back(it->second);
-  }
-  json j = PointToJson(point, grid_.axes.size() == 1);  // only 1-D sweeps track by shapes
-  if (!ids.empty()) j["diagnostics"] = ids;
-  return definitions + JournalLine(j);
+  return writer_.Records(point, grid_.axes.size() == 1);  // only 1-D sweeps track by shapes
 }
 
 // One writer per FILE: the lock file holds the writer's pid; a lock whose process is gone

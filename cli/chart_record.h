@@ -5,21 +5,20 @@
 //                        (completion order, modes in each point's own order) and rewritten
 //                        sorted by grid index with one column set per Campbell line when the sweep
 //                        ends;
-//   FILE.points.jsonl    the journal: every completed point as one JSON line followed by a
-//                        tab and its FNV-1a checksum, flushed; `--resume` reads it and
-//                        computes only the missing points. A line that is torn, forged
-//                        (checksum), or names a grid index the sweep does not have (or has
-//                        twice) is dropped and its point computed again. Removed when the
-//                        sweep completes. Compact: a diagnostic text is written once, as its
-//                        own record {"diagnostic": k, "text": ...}, and points refer to k (a
-//                        point whose k is unknown is recomputed); mode shapes are kept only
-//                        where they are used (1-D sweeps track modes by them); empty fields
-//                        are left out.
+//   FILE.journal         every completed point as one checksummed binary record (format in
+//                        chart_journal.h), flushed; `--resume` reads it and computes only the
+//                        missing points. A record that is torn, forged (checksum), or names a
+//                        grid index the sweep does not have (or has twice) is dropped and its
+//                        point computed again. Removed when the sweep completes. Compact: a
+//                        diagnostic text is written once and points refer to it by id (a point
+//                        whose id is unknown is recomputed); mode shapes are kept only where
+//                        they are used (1-D sweeps track modes by them).
 //   FILE.lock            held while a sweep writes FILE (with the writer's process id): a
 //                        second `ltp chart` on the same FILE is refused, a stale lock left by a
 //                        killed process is taken over.
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -27,16 +26,11 @@
 #include <string>
 #include <vector>
 
+#include "chart_journal.h"
 #include "ltp/floquet/campbell.h"
 #include "ltp/floquet/sweep.h"
 
 namespace ltp::cli {
-
-/// A point as one JSON object (doubles to 17 digits, so a resumed sweep reproduces the
-/// uninterrupted one exactly) and back. Empty fields are left out; `with_shapes` false leaves
-/// out the mode shapes.
-nlohmann::json PointToJson(const SweepPoint& point, bool with_shapes = true);
-SweepPoint PointFromJson(const nlohmann::json& j);
 
 class ChartRecord {
  public:
@@ -60,7 +54,7 @@ class ChartRecord {
   /// as in its legend), and removes the journal.
   void Finish(const std::vector<SweepPoint>& sorted, const CampbellDiagram* campbell);
   const std::string& path() const { return path_; }
-  std::string journal_path() const { return path_ + ".points.jsonl"; }
+  std::string journal_path() const { return path_ + ".journal"; }
 
  private:
   /// Per-mode columns for `modes` modes (1-D sweeps).
@@ -70,12 +64,10 @@ class ChartRecord {
   std::string Row(const SweepPoint& point, const CampbellDiagram* campbell, size_t i) const;
 
   void Lock();
-  /// The journal record of a point: diagnostics as ids, definitions of new ids written to the
-  /// journal first. Call with mutex_ held.
+  /// The journal records of a point (its new diagnostic texts first). Call with mutex_ held.
   std::string JournalRecord(const SweepPoint& point);
 
-  /// Ids of the diagnostic texts written to this journal.
-  std::map<std::string, int> diagnostic_ids_;
+  PointWriter writer_;
   std::string path_;
   bool locked_ = false;
   const SweepGrid& grid_;

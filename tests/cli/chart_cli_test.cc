@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "support/ltp_cli.h"
@@ -33,8 +36,8 @@ TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "Omega,max_real_exponent,stable,verdict,error_estimate,freq_hz_1,real_1,damping_1,"
             "freq_hz_2,real_2,damping_2,failure");  // one column set per conjugate pair (2 modes)
-  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);     // header + 13 rows
-  EXPECT_FALSE(std::filesystem::exists(csv + ".points.jsonl"));  // journal gone when complete
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 14);  // header + 13 rows
+  EXPECT_FALSE(std::filesystem::exists(csv + ".journal"));    // journal gone when complete
 }
 
 // Gyroscopic rotor (tests/data/gyroscopic-rotor.yaml): whirl lines cross nΩ at
@@ -141,7 +144,7 @@ TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
   const auto first = RunLtp(sweep + "--csv " + cut + " --stop-after 40");
   EXPECT_EQ(first.code, 130) << first.err;
   EXPECT_NE(first.err.find("--resume"), std::string::npos) << first.err;
-  ASSERT_TRUE(std::filesystem::exists(cut + ".points.jsonl"));
+  ASSERT_TRUE(std::filesystem::exists(cut + ".journal"));
   const std::string partial = ReadFile(cut);
   const long rows = std::count(partial.begin(), partial.end(), '\n') - 1;
   EXPECT_GE(rows, 40);
@@ -158,47 +161,71 @@ TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
   EXPECT_NE(other.err.find("different sweep"), std::string::npos) << other.err;
 }
 
-// The journal survives damage: a forged value (checksum mismatch), a torn last line, a record
+// The journal survives damage: a forged value (checksum mismatch), a torn last record, a record
 // with an index the grid does not have, and a duplicate are each dropped and recomputed, and
 // the resumed file still equals the uninterrupted one. (A torn line plus a bad index used to
-// hang --resume.)
+// hang --resume.) The records are walked by the framing documented in cli/chart_journal.h:
+// u32 length, u64 checksum, payload ('H' header, 'D' diagnostic text, 'P' point whose first
+// field is its u64 grid index).
 TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   const std::string sweep = "chart mathieu --sweep a=-1:3:0.25 --sweep2 q=0:2:0.25 --threads 2 ";
   const std::string whole = Tmp("chart_whole2.csv"), cut = Tmp("chart_damaged.csv");
   ASSERT_EQ(RunLtp(sweep + "--csv " + whole).code, 0);
   ASSERT_EQ(RunLtp(sweep + "--csv " + cut + " --stop-after 40").code, 130);
-  const std::string journal = cut + ".points.jsonl";
-  std::vector<std::string> lines;
-  {
-    std::ifstream in(journal);
-    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  const std::string journal = cut + ".journal";
+  const std::string bytes = ReadFile(journal);
+  const std::string magic = "ltp-journal 2\n";
+  ASSERT_EQ(bytes.compare(0, magic.size(), magic), 0);
+  std::vector<std::string> records;  // whole frames, in order
+  for (size_t at = magic.size(); at + 12 <= bytes.size();) {
+    std::uint32_t size = 0;
+    std::memcpy(&size, bytes.data() + at, 4);
+    ASSERT_LE(at + 12 + size, bytes.size());
+    records.push_back(bytes.substr(at, 12 + size));
+    at += 12 + size;
   }
-  // Point records (the others are the header and diagnostic texts, written once each).
-  std::vector<size_t> points;
-  for (size_t i = 1; i < lines.size(); ++i)
-    if (lines[i].rfind("{\"diagnostic\"", 0) != 0) points.push_back(i);
+  std::vector<size_t> points;  // the others are the header and diagnostic texts
+  for (size_t i = 0; i < records.size(); ++i)
+    if (records[i][12] == 'P') points.push_back(i);
   ASSERT_GE(points.size(), 5u);
-  ASSERT_EQ(points.back(), lines.size() - 1);              // the last line, torn below, is a point
+  ASSERT_EQ(points.back(), records.size() - 1);  // the last record, torn below, is a point
   const long good = static_cast<long>(points.size()) - 2;  // two records damaged below
-  // Forge a record: change a digit of its JSON but keep the old checksum.
-  std::string& forged = lines[points[0]];
-  const size_t digit = forged.find_first_of("123456789", forged.find("max_real_exponent"));
-  forged[digit] = forged[digit] == '9' ? '1' : static_cast<char>(forged[digit] + 1);
-  const std::string duplicate = lines[points[1]];
-  std::string bad_index = lines[points[2]];
-  bad_index.replace(bad_index.find("\"index\":"), 8,
-                    "\"index\":9");              // index 9… out of range, bad sum
-  lines.back().resize(lines.back().size() / 2);  // torn
+  // Forge a record: change a byte of its max Re λ (after type, index, ok, verdict, period and
+  // rotor speed) but keep the old checksum.
+  std::string& forged = records[points[0]];
+  forged[12 + 1 + 8 + 1 + 4 + 8 + 8 + 3] ^= 0x10;
+  const std::string duplicate = records[points[1]];
+  std::string bad_index = records[points[2]];
+  bad_index[12 + 1 + 6] = 0x7f;  // index far out of range; checksum recomputed below
   {
-    std::ofstream out(journal, std::ios::trunc);
-    for (const std::string& l : lines) out << l << "\n";
-    out << duplicate << "\n" << bad_index;  // no final newline either
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a of the payload, as the journal does
+    for (size_t k = 12; k < bad_index.size(); ++k) {
+      h ^= static_cast<unsigned char>(bad_index[k]);
+      h *= 1099511628211ull;
+    }
+    std::memcpy(bad_index.data() + 4, &h, 8);
+  }
+  records.back().resize(records.back().size() / 2);  // torn
+  {
+    std::ofstream out(journal, std::ios::binary | std::ios::trunc);
+    out << magic;
+    for (size_t i = 0; i + 1 < records.size(); ++i) out << records[i];
+    out << duplicate << bad_index << records.back();  // the torn record last
   }
   const auto resumed = RunLtp(sweep + "--csv " + cut + " --resume --json");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
   EXPECT_EQ(json::parse(resumed.out)["resumed_points"].get<long>(),
             good);  // forged, torn, bad, duplicate out
   EXPECT_EQ(ReadFile(cut), ReadFile(whole));
+  // A file that is not a journal (e.g. one of an older ltp) is refused with a reason.
+  RunLtp(sweep + "--csv " + cut + " --stop-after 5");
+  {
+    std::ofstream out(journal, std::ios::trunc);
+    out << "{\"identity\":{}}\t0123456789abcdef\n";
+  }
+  const auto old = RunLtp(sweep + "--csv " + cut + " --resume");
+  EXPECT_EQ(old.code, 2);
+  EXPECT_NE(old.err.find("not a journal"), std::string::npos) << old.err;
 }
 
 // One writer per CSV: a live writer's lock refuses a second run; a lock left by a killed
