@@ -161,6 +161,21 @@ TEST(ChartCli, ResumeAfterInterruptionEqualsUninterrupted) {
   EXPECT_NE(other.err.find("different sweep"), std::string::npos) << other.err;
 }
 
+// A 1-D sweep journals mode shapes (the Campbell lines are tracked by them) and snapshot
+// eigenvalues: resumed, it still writes the uninterrupted file and the same Campbell lines.
+TEST(ChartCli, ResumeOfA1DSweepKeepsShapesAndSnapshots) {
+  const std::string sweep = "chart jeffcott --set k2=1.5 --sweep Omega=0.8:1.4:0.05 --compare ";
+  const std::string whole = Tmp("chart_whole1d.csv"), cut = Tmp("chart_cut1d.csv");
+  const auto full = RunLtp(sweep + "--csv " + whole + " --json");
+  ASSERT_EQ(full.code, 0) << full.err;
+  ASSERT_EQ(RunLtp(sweep + "--csv " + cut + " --stop-after 5 --threads 1").code, 130);
+  const auto resumed = RunLtp(sweep + "--csv " + cut + " --resume --json");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_GE(json::parse(resumed.out)["resumed_points"].get<long>(), 5);
+  EXPECT_EQ(ReadFile(cut), ReadFile(whole));
+  EXPECT_EQ(json::parse(resumed.out)["campbell"], json::parse(full.out)["campbell"]);
+}
+
 // The journal survives damage: a forged value (checksum mismatch), a torn last record, a record
 // with an index the grid does not have, and a duplicate are each dropped and recomputed, and
 // the resumed file still equals the uninterrupted one. (A torn line plus a bad index used to
