@@ -12,6 +12,7 @@
 
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 #include "ltp/floquet/threads.h"
 
 namespace ltp {
@@ -19,12 +20,6 @@ namespace ltp {
 namespace {
 
 using cd = std::complex<double>;
-
-std::string Trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  const auto e = s.find_last_not_of(" \t");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
 
 // Stability only (maps): Φ(T, 0) in one integration and the eigenvalues of the 2..n matrix.
 // The largest multiplier keeps its relative accuracy in the formed product however small the

@@ -5,16 +5,10 @@
 
 #include "expression.h"
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 
 namespace ltp {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  const auto last = s.find_last_not_of(" \t\r\n");
-  return s.substr(first, last - first + 1);
-}
 
 std::string ParameterList(const Scene& scene) {
   std::string list;

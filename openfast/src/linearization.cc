@@ -19,6 +19,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
+#include "ltp/core/text.h"
 #include "ltp/openfast/mbc3.h"
 
 namespace ltp {
@@ -26,13 +27,6 @@ namespace {
 
 using Eigen::MatrixXd;
 using std::numbers::pi;
-
-std::string Trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  const auto last = s.find_last_not_of(" \t\r\n");
-  return s.substr(first, last - first + 1);
-}
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
