@@ -97,7 +97,7 @@ void BM_Chain40FullAnalysis(benchmark::State& state) {
   ltp::FloquetResult r;
   for (auto _ : state) benchmark::DoNotOptimize(r = ltp::AnalyzeFloquet(sys, o));
   state.counters["segments"] = r.segments;
-  state.counters["error_estimate"] = r.error_estimate;
+  state.counters["error_estimate"] = r.error_estimate.value_or(std::nan(""));
 }
 
 }  // namespace

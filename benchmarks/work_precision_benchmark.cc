@@ -297,7 +297,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
         e.estimate_error = true;
         e.compute_modes = true;
         const FloquetResult re = AnalyzeFloquet(s, e);
-        row.estimate = re.ok ? re.error_estimate : -1;
+        row.estimate = re.ok ? re.error_estimate.value_or(-1) : -1;
         row.estimate_error =
             re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
       }
@@ -325,7 +325,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
     e.estimate_error = true;
     e.compute_modes = true;
     const FloquetResult re = AnalyzeFloquet(s, e);
-    row.estimate = re.ok ? re.error_estimate : -1;
+    row.estimate = re.ok ? re.error_estimate.value_or(-1) : -1;
     row.estimate_error =
         re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
     if (re.ok && !re.diagnostics.empty() && row.note.empty()) row.note = re.diagnostics.front();

@@ -145,10 +145,7 @@ ChartOptions MakeOptions(const ChartArgs& args) {
 // Everything one chart computed, for the writers.
 struct ChartOutcome {
   explicit ChartOutcome(LoadedScene loaded) : scene(std::move(loaded)) {}
-  size_t count(StabilityVerdict v) const {
-    const auto it = counts.find(v);
-    return it == counts.end() ? 0 : it->second;
-  }
+  size_t count(StabilityVerdict v) const { return tally.counts.at(v); }
   LoadedScene scene;
   SweepGrid grid;
   bool map = false;
@@ -161,9 +158,7 @@ struct ChartOutcome {
   CampbellDiagram campbell;                 ///< 1-D
   std::vector<UnstableInterval> intervals;  ///< 1-D
   std::vector<BoundaryPoint> boundary;      ///< maps
-  std::map<StabilityVerdict, size_t> counts;
-  double max_error = -1;  ///< over the checked points
-  size_t checked = 0;
+  SweepTally tally;
   std::string title;  ///< the scene and what the user set
   std::string plot_note;
 };
@@ -238,13 +233,7 @@ void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) 
     c.boundary =
         RefineBoundaryPoints(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
   c.refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
-  for (const SweepPoint& p : c.points) {
-    ++c.counts[p.verdict];
-    if (p.ok && p.error_estimate >= 0) {
-      ++c.checked;
-      c.max_error = std::max(c.max_error, p.error_estimate);
-    }
-  }
+  c.tally = TallySweep(c.points);
   c.title = c.scene.scene.name;
   if (!args.scene.set.empty()) {
     c.title += " (";
@@ -281,8 +270,8 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
             {"marginal", c.count(StabilityVerdict::kMarginal)},
             {"unstable", c.count(StabilityVerdict::kUnstable)},
             {"failed", c.count(StabilityVerdict::kFailed)},
-            {"checked_points", c.checked},
-            {"max_error_estimate", JsonNumber(c.max_error)},
+            {"checked_points", c.tally.checked},
+            {"max_error_estimate", JsonNumber(c.tally.max_error)},
             {"threads", c.threads},
             {"ranks", ranks.size},
             {"sweep_s", c.sweep_s},
@@ -345,8 +334,8 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
             << c.count(StabilityVerdict::kMarginal) << " marginal, "
             << c.count(StabilityVerdict::kUnstable) << " unstable, "
             << c.count(StabilityVerdict::kFailed) << " failed\n  error estimate: ";
-  if (c.checked)
-    std::cout << "max " << Num(c.max_error, 2) << " 1/s over " << c.checked
+  if (c.tally.max_error)
+    std::cout << "max " << Num(*c.tally.max_error, 2) << " 1/s over " << c.tally.checked
               << " checked points (tighter rerun)\n";
   else
     std::cout << "not computed (--check-every 0)\n";

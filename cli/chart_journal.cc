@@ -127,8 +127,9 @@ std::string EncodePoint(const SweepPoint& p, const std::vector<std::uint32_t>& d
   w.Put(static_cast<std::uint64_t>(p.index));
   w.Put(static_cast<std::uint8_t>(p.ok));
   w.Put(static_cast<std::int32_t>(p.verdict));
+  // An unchecked point's estimate is stored as -1 (estimates are never negative).
   for (double x : {p.period, p.rotor_speed, p.max_real_exponent, p.max_log_multiplier,
-                   p.error_estimate, p.elapsed_s})
+                   p.error_estimate.value_or(-1.0), p.elapsed_s})
     w.Put(x);
   w.Put(static_cast<std::uint32_t>(p.values.size()));
   for (double v : p.values) w.Put(v);
@@ -170,9 +171,11 @@ std::optional<DecodedPoint> DecodePoint(const std::string& payload) {
   const auto verdict = r.Get<std::int32_t>();
   if (verdict < 0 || verdict > static_cast<std::int32_t>(StabilityVerdict::kFailed)) return {};
   p.verdict = static_cast<StabilityVerdict>(verdict);
+  double estimate = -1;
   for (double* x : {&p.period, &p.rotor_speed, &p.max_real_exponent, &p.max_log_multiplier,
-                    &p.error_estimate, &p.elapsed_s})
+                    &estimate, &p.elapsed_s})
     *x = r.Get<double>();
+  if (estimate >= 0) p.error_estimate = estimate;
   p.values.resize(r.Count(sizeof(double)));
   for (double& v : p.values) v = r.Get<double>();
   p.failure = r.Text();

@@ -118,7 +118,8 @@ std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbel
   for (double v : p.values) r << Full(v) << ",";
   r << Full(p.max_real_exponent) << ","
     << (p.ok ? (p.verdict == StabilityVerdict::kUnstable ? "0" : "1") : "") << ","
-    << ToString(p.verdict) << "," << Full(p.error_estimate);
+    << ToString(p.verdict) << ","
+    << (p.error_estimate ? Full(*p.error_estimate) : "");  // empty: not checked
   const auto cells = [&](double f, double re, double zeta) {
     if (std::isfinite(f))
       r << "," << Full(f) << "," << Full(re) << "," << Full(zeta);

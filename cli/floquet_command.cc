@@ -372,7 +372,10 @@ int RunFloquet(FloquetArgs& args) {
            {"monodromy", MonodromyJson(l, args, r)},
            {"hill", HillJson(l, h)},
            {"disagreement", JsonNumber(Disagreement(r.modes, h.modes, 2 * kPi / h.period))},
-           {"combined_error_estimate", JsonNumber(std::max(r.error_estimate, h.error_estimate))}};
+           {"combined_error_estimate",
+            r.error_estimate && h.error_estimate
+                ? JsonNumber(std::max(*r.error_estimate, *h.error_estimate))
+                : nullptr}};
     }
     std::cout << j.dump(2) << "\n";
     return ok || args.keep_going ? 0 : 1;

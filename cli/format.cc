@@ -18,6 +18,15 @@ std::string Num(double x, int precision, int width) {
   return buf;
 }
 
+std::string Num(std::optional<double> x, int precision, int width) {
+  if (x) return Num(*x, precision, width);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%*s", width, "n/a");
+  return buf;
+}
+
+nlohmann::json JsonNumber(std::optional<double> x) { return x ? JsonNumber(*x) : nullptr; }
+
 nlohmann::json JsonNumber(double x) {
   if (std::isfinite(x)) return x;
   if (std::isnan(x)) return "nan";

@@ -2,14 +2,19 @@
 // Number formatting shared by the command writers: never prints "nan" silently, keeps columns.
 #include <complex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace ltp::cli {
 
 /// Fixed-width number for tables: "%.*g", with non-finite values spelled out.
 std::string Num(double x, int precision = 6, int width = 0);
+/// A quantity that may not have been computed: "n/a" (padded to `width`) when empty.
+std::string Num(std::optional<double> x, int precision = 6, int width = 0);
 /// A JSON value for a double: the number if finite, else the string "inf", "-inf" or "nan".
 nlohmann::json JsonNumber(double x);
+/// null when the quantity was not computed.
+nlohmann::json JsonNumber(std::optional<double> x);
 /// exp(log_abs) as a number that under- or overflows to 0 or inf on purpose.
 double ExpClamped(double log_abs);
 

@@ -55,10 +55,16 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
          "tail_weight,ambiguous,elapsed_s";
   for (size_t i = 0; i < k; ++i) csv << ",error_" << i;
   csv << "\n" << std::setprecision(12);
+  // A quantity that was not computed is an empty cell.
+  const auto cell = [](std::optional<double> x) {
+    std::ostringstream c;
+    if (x) c << std::setprecision(12) << *x;
+    return c.str();
+  };
   for (const HillStudyRow& r : s.rows) {
-    csv << r.harmonics << "," << r.matrix_size << "," << r.max_error << "," << r.apriori_bound
-        << "," << r.truncation_estimate << "," << r.selection_margin << "," << r.tail_weight << ","
-        << r.ambiguous << "," << r.elapsed_s;
+    csv << r.harmonics << "," << r.matrix_size << "," << cell(r.max_error) << "," << r.apriori_bound
+        << "," << cell(r.truncation_estimate) << "," << r.selection_margin << "," << r.tail_weight
+        << "," << r.ambiguous << "," << r.elapsed_s;
     for (double e : r.errors) csv << "," << e;
     csv << "\n";
   }
@@ -66,7 +72,9 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
 
 void Plot(const HillStudy& s, const std::string& title, const std::string& file) {
   // Zero or infinite values cannot sit on a log axis: gnuplot skips NaN points.
-  auto val = [](double x) { return std::isfinite(x) && x > 0 ? Num(x, 6) : std::string("NaN"); };
+  auto val = [](std::optional<double> x) {
+    return x && std::isfinite(*x) && *x > 0 ? Num(*x, 6) : std::string("NaN");
+  };
   std::ostringstream g;
   g << GnuplotTerminal(file, 900, 560) << "set output '" << file << "'\n$D << EOD\n";
   for (const HillStudyRow& r : s.rows)

@@ -11,7 +11,8 @@ int main() {
   std::cout.precision(12);
   for (const ltp::FloquetMode& mode : result.modes)
     std::cout << "exponent " << mode.exponent << " 1/s\n";  // (Re λ, Im λ)
-  std::cout << "error estimate " << result.error_estimate << " 1/s\n"
-            << "verdict " << ltp::ToString(result.verdict) << '\n';
+  if (result.error_estimate)  // the defaults estimate it; empty when not asked for
+    std::cout << "error estimate " << *result.error_estimate << " 1/s\n";
+  std::cout << "verdict " << ltp::ToString(result.verdict) << '\n';
   return result.ok ? 0 : 1;
 }

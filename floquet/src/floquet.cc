@@ -78,11 +78,12 @@ std::string_view ToString(StabilityVerdict verdict) {
   return "failed";
 }
 
-StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, double band) {
-  if (!ok || std::isnan(max_real_exponent) || std::isnan(band)) return StabilityVerdict::kFailed;
-  band = std::max(band, 0.0);
-  if (max_real_exponent > band) return StabilityVerdict::kUnstable;
-  if (max_real_exponent < -band) return StabilityVerdict::kStable;
+StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, std::optional<double> band) {
+  if (!ok || std::isnan(max_real_exponent) || (band && std::isnan(*band)))
+    return StabilityVerdict::kFailed;
+  const double b = std::max(band.value_or(0.0), 0.0);
+  if (max_real_exponent > b) return StabilityVerdict::kUnstable;
+  if (max_real_exponent < -b) return StabilityVerdict::kStable;
   return StabilityVerdict::kMarginal;
 }
 
@@ -182,8 +183,12 @@ Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
 std::string FloquetResult::BriefReport() const {
   std::ostringstream s;
   s << (ok ? "" : "FAILED: ") << "K = " << segments << ", max Re λ = " << max_real_exponent
-    << " 1/s (" << (stable ? "stable" : "unstable") << "), error ≈ " << error_estimate << ", "
-    << elapsed_s << " s";
+    << " 1/s (" << (stable ? "stable" : "unstable") << "), ";
+  if (error_estimate)
+    s << "error ≈ " << *error_estimate;
+  else
+    s << "error not estimated";
+  s << ", " << elapsed_s << " s";
   return s.str();
 }
 
@@ -394,7 +399,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
   for (int k = 0; k < n; ++k)
     floor = std::max(floor, std::min(kappa[k] * backward, 2 * std::sqrt(backward)) / T);
   floor = std::max(floor, backward * max_abs_log / T);
-  r.error_estimate = options.estimate_error ? integration_error + floor : -1;
+  if (options.estimate_error) r.error_estimate = integration_error + floor;
   // Liouville: Σ log|ρ_k| = ∫ tr A exactly, and every exponent is within the estimate, so the
   // sum is within n·T·estimate of it. Beyond that some exponents are wrong — e.g. forced
   // settings: one segment with single-shot multipliers loses every |ρ| below eps·max|ρ| — and
@@ -405,7 +410,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
       std::max(1e-6, 1e4 * options.integrator.rel_tol) * std::max(1.0, std::abs(trace_integral));
   const double liouville_allowance =
       options.estimate_error
-          ? std::max(n * T * r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
+          ? std::max(n * T * *r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
           : gross;
   r.ok = std::abs(sum_log_abs - trace_integral) <= liouville_allowance;
   if (!r.ok) {
@@ -419,7 +424,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
   }
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
-  if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate >= 0)
+  if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate)
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error "
         "estimate (a conservative system, or one on a stability boundary)");

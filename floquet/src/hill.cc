@@ -211,19 +211,21 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
       for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
       for (const FloquetMode& m : r2.modes) b.push_back(m.exponent);
       const std::vector<double> d = MatchExponents(a, b, omega);
-      r.truncation_estimate = 0;
+      double change = 0;
       for (size_t k = 0; k < d.size(); ++k) {
         r.info[k].truncation_change = d[k];
-        r.truncation_estimate = std::max(r.truncation_estimate, d[k]);
+        change = std::max(change, d[k]);
       }
       // With algebraic decay e(N) ∝ N^−p the change e(N) − e(N+Δ) is only the fraction
       // 1 − (N/(N+Δ))^p of e(N) (30 % short for Meissner's p = 3 at Δ = N/2). Scale by the
       // p = 1 factor (N+Δ)/Δ, the slowest rate seen, so the estimate stays above the error.
       if (r.decay.kind == FourierDecay::kAlgebraic) {
         const double factor = double(N + r.delta_harmonics) / r.delta_harmonics;
-        r.truncation_estimate *= factor;
-        for (auto& i : r.info) i.truncation_change *= factor;
+        change *= factor;
+        for (auto& i : r.info)
+          if (i.truncation_change) *i.truncation_change *= factor;
       }
+      r.truncation_estimate = change;
       // Pre-asymptotic (eigenvectors at the truncation edge, and a change above 1e-6 of the
       // largest exponent or a large edge weight): one more solve at N + 2Δ gives the ratio q of
       // successive changes. Geometric convergence then bounds the error by change/(1 − q); no
@@ -234,7 +236,7 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
       for (const FloquetMode& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
       // A tail above 1e-3 is the truncation edge whatever the size of the change (stiff.yaml,
       // structured solver at N = 16: tail 0.025, change 2.45e-9 for an error of 2.62e-9).
-      if (tail > 1e-8 && (r.truncation_estimate > 1e-6 * scale || tail > 1e-3)) {
+      if (tail > 1e-8 && (change > 1e-6 * scale || tail > 1e-3)) {
         rate_checked = true;
         o2.expected.clear();
         for (const FloquetMode& m : r2.modes) o2.expected.push_back(m.exponent);
@@ -243,14 +245,15 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
         for (const FloquetMode& m : r3.modes) c.push_back(m.exponent);
         double next = 0;
         for (double x : MatchExponents(b, c, omega)) next = std::max(next, x);
-        const double q = r.truncation_estimate > 0 ? next / r.truncation_estimate : 0;
-        r.truncation_estimate = q < 0.5   ? 2 * r.truncation_estimate
-                                : q < 0.9 ? r.truncation_estimate / (1 - q)
-                                          : std::numeric_limits<double>::infinity();
+        const double q = change > 0 ? next / change : 0;
+        change = q < 0.5   ? 2 * change
+                 : q < 0.9 ? change / (1 - q)
+                           : std::numeric_limits<double>::infinity();
         if (q >= 0.9)
           r.diagnostics.push_back("truncation not converging: the change from N + Δ to N + 2Δ is " +
                                   std::to_string(q) + " of the one from N to N + Δ (raise N)");
       }
+      r.truncation_estimate = change;
     } catch (const ResourceError&) {
       r.delta_harmonics = 0;
       r.diagnostics.push_back(
@@ -267,7 +270,7 @@ void CheckResolution(const FourierMatrix& A, double omega, int N, bool rate_chec
   // to converge, and a small N vs N+Δ change alone proves nothing. (A third solve that measured
   // geometric convergence is evidence: stiff.yaml's exponents converge at N = 16 although its
   // frozen eigenvalues swing by ±100.)
-  if (!rate_checked && r.truncation_estimate >= 0 && std::isfinite(r.truncation_estimate)) {
+  if (!rate_checked && r.truncation_estimate && std::isfinite(*r.truncation_estimate)) {
     const double spread = FrozenEigenvalueSpread(A, omega);
     if (N * omega < spread) {
       std::ostringstream s;
@@ -307,9 +310,9 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
     }
     std::vector<cd> hill;
     for (const FloquetMode& m : r.modes) hill.push_back(m.exponent);
-    r.koopman_discrepancy = 0;
-    for (double d : MatchExponents(hill, kh, omega))
-      r.koopman_discrepancy = std::max(r.koopman_discrepancy, d);
+    double gap = 0;
+    for (double d : MatchExponents(hill, kh, omega)) gap = std::max(gap, d);
+    r.koopman_discrepancy = gap;
     // Bauer–Fike: |Δρ| <= κ(V) ||ΔΦ||; |Δ log ρ| <= −log(1 − |Δρ|/|ρ|).
     Eigen::MatrixXcd V = es.eigenvectors();
     for (Eigen::Index k = 0; k < V.cols(); ++k) V.col(k).normalize();
@@ -322,8 +325,7 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
     }
     kh_own = worst;
     // Plus the round-off floor of the eigenvalue solve (backward error ~ eps ||H_N||).
-    r.apriori_bound =
-        worst + r.koopman_discrepancy + 4 * std::numeric_limits<double>::epsilon() * norm_h;
+    r.apriori_bound = worst + gap + 4 * std::numeric_limits<double>::epsilon() * norm_h;
   } else if (o.koopman_check && r.ok) {
     r.diagnostics.push_back(
         "Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
@@ -339,13 +341,14 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
   const int n = A.rows();
   // The error estimate: the N vs N+Δ change (no convergence evidence without it: the
   // Koopman–Hill gap then stands in).
-  double estimate = r.truncation_estimate;
-  if (estimate < 0) estimate = r.koopman_discrepancy;
+  std::optional<double> estimate =
+      r.truncation_estimate ? r.truncation_estimate : r.koopman_discrepancy;
   // The Koopman–Hill projection converges more slowly than Hill's eigenvalues, so its gap
   // mostly measures itself (3.6e-5 on Mathieu at N = 4 where Hill is at 4e-13). Beyond its own
   // a-priori bound, though, it means the selection picked a wrong eigenvalue.
-  if (r.koopman_discrepancy > kh_own + std::max(0.0, r.truncation_estimate)) {
-    estimate = std::max(estimate, r.koopman_discrepancy);
+  if (r.koopman_discrepancy &&
+      *r.koopman_discrepancy > kh_own + r.truncation_estimate.value_or(0.0)) {
+    estimate = std::max(estimate.value_or(0.0), *r.koopman_discrepancy);
     r.diagnostics.push_back(
         "Koopman–Hill disagrees with the selected exponents beyond its own "
         "truncation bound: the selection may have picked a wrong eigenvalue");
@@ -357,7 +360,7 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
   // deficit, so the estimate is never below it (|deficit|/n would be a strict lower bound
   // only; the dense solver's stiff.yaml result missed +150 with a change of 896 against an
   // error of 1045 and a deficit of 1126).
-  if (r.ok && estimate >= 0) {
+  if (r.ok && estimate) {
     double sum = 0, scale = 1;
     for (const FloquetMode& m : r.modes) {
       sum += m.exponent.real();
@@ -365,7 +368,7 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
     }
     const double trace = A[0].trace().real();
     const double deficit = std::abs(sum - trace);
-    if (deficit > n * std::max(estimate, 1e-9 * scale)) {
+    if (deficit > n * std::max(*estimate, 1e-9 * scale)) {
       std::ostringstream s;
       s << "Liouville check failed: Σ Re λ = " << sum << " 1/s but the mean of tr A(t) is " << trace
         << " 1/s, so the selected eigenvalues are not all Floquet exponents (raise N, or use the "
@@ -379,7 +382,7 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
     // One wrong exponent carries the deficit, less what the other n − 1 errors (each within the
     // estimate) cancel of it: deficit + (n − 1)·estimate bounds its error (dense stiff.yaml at
     // N = 12: deficit 879, error 903, where the deficit alone fell 3 % short).
-    if (deficit > estimate) estimate = deficit + (n - 1) * estimate;
+    if (deficit > *estimate) estimate = deficit + (n - 1) * *estimate;
   }
   // Round-off: the eigen-residual ||H x − λ x|| / ||x|| of each selected pair is an a-posteriori
   // bound for a well-conditioned eigenvalue, and it is local (far blocks of x are negligible,
@@ -395,9 +398,8 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
         floor, std::min(kappa_k * backward, 2 * std::sqrt(backward * norm_h)) +
                    2 * std::numeric_limits<double>::epsilon() * std::abs(r.modes[k].exponent));
   }
-  r.error_estimate = r.modes.empty() ? -1
-                     : estimate >= 0 ? estimate + floor
-                                     : std::numeric_limits<double>::infinity();
+  if (!r.modes.empty())
+    r.error_estimate = estimate ? *estimate + floor : std::numeric_limits<double>::infinity();
   // The verdict needs max Re λ beyond the error estimate (as the monodromy route reports it).
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
@@ -463,7 +465,7 @@ void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options,
     for (double d : MatchExponents(fine, other, 2 * kPi / r.period))
       r.fourier_fit_error = std::max(r.fourier_fit_error, d);
   }
-  if (r.error_estimate >= 0) r.error_estimate += r.fourier_fit_error;
+  if (r.error_estimate) *r.error_estimate += r.fourier_fit_error;
   std::ostringstream s;
   s << "Fourier fit of A(t) not converged: its error moves the exponents by about "
     << r.fourier_fit_error << " 1/s whatever N (" << fit.samples << " vs " << coarse.samples
@@ -597,9 +599,17 @@ std::string HillResult::BriefReport() const {
   std::ostringstream s;
   s << "Hill N = " << harmonics << " (" << SolverDescription() << ", size " << matrix_size
     << "): max Re λ = " << max_real_exponent << " (" << (stable ? "stable" : "unstable")
-    << "), N vs N+" << delta_harmonics << ": " << truncation_estimate
-    << ", a-priori bound: " << apriori_bound << ", Koopman–Hill gap: " << koopman_discrepancy
-    << ", " << elapsed_s * 1e3 << " ms";
+    << "), N vs N+" << delta_harmonics << ": ";
+  if (truncation_estimate)
+    s << *truncation_estimate;
+  else
+    s << "not computed";
+  s << ", a-priori bound: " << apriori_bound << ", Koopman–Hill gap: ";
+  if (koopman_discrepancy)
+    s << *koopman_discrepancy;
+  else
+    s << "not computed";
+  s << ", " << elapsed_s * 1e3 << " ms";
   return s.str();
 }
 

@@ -43,7 +43,7 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
     double scale = 1;
     for (const auto& m : r.modes) scale = std::max(scale, std::abs(m.exponent));
     const double goal = tol * scale;
-    const double change = r.truncation_estimate;
+    const double change = r.truncation_estimate.value_or(-1.0);  // -1: not computed
     const bool converged = r.ok && change >= 0 && change <= goal && r.fourier_fit_error <= goal;
     best = std::move(r);
     std::ostringstream s;
@@ -96,7 +96,8 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   }
   std::ostringstream s;
   s << "automatic truncation: N = " << best.harmonics << " (the limit) did not reach the tolerance "
-    << tol << " (N vs N+Δ change " << best.truncation_estimate << ")";
+    << tol;
+  if (best.truncation_estimate) s << " (N vs N+Δ change " << *best.truncation_estimate << ")";
   return finish(std::move(best), false, s.str());
 }
 

@@ -258,19 +258,18 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     if (options.delta_harmonics >= 0) {
       const HillResult& r2 = solve(N + delta);
       const double omega2 = 2 * std::numbers::pi / r2.period;
-      row.truncation_estimate = 0;
+      double change = 0;
       for (double d : MatchExponents(exponents(r), exponents(r2), std::min(omega, omega2)))
-        row.truncation_estimate = std::max(row.truncation_estimate, d);
-      if (r.decay.kind ==
-          FourierDecay::kAlgebraic)  // see AnalyzeHill: algebraic convergence, scale up
-        row.truncation_estimate *= double(N + delta) / delta;
-    } else {
-      row.truncation_estimate = -1;
+        change = std::max(change, d);
+      // See AnalyzeHill: algebraic convergence, scale up.
+      if (r.decay.kind == FourierDecay::kAlgebraic) change *= double(N + delta) / delta;
+      row.truncation_estimate = change;
     }
     if (have_ref) {
       row.errors = MatchExponents(study.reference, exponents(r), omega);
-      row.max_error = 0;
-      for (double e : row.errors) row.max_error = std::max(row.max_error, e);
+      double worst = 0;
+      for (double e : row.errors) worst = std::max(worst, e);
+      row.max_error = worst;
     }
     if (study.rows.empty()) {
       study.decay = r.decay;
@@ -285,11 +284,11 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   for (const cd& l : study.reference) scale = std::max(scale, std::abs(l));
   std::vector<double> n_lin, n_log, y;
   for (const HillStudyRow& row : study.rows) {
-    const double e = have_ref ? row.max_error : row.truncation_estimate;
-    if (e > 1e-12 * scale && std::isfinite(e)) {
+    const std::optional<double> e = have_ref ? row.max_error : row.truncation_estimate;
+    if (e && *e > 1e-12 * scale && std::isfinite(*e)) {
       n_lin.push_back(row.harmonics);
       n_log.push_back(std::log(static_cast<double>(row.harmonics)));
-      y.push_back(std::log(e));
+      y.push_back(std::log(*e));
     }
   }
   if (y.size() >= 3) {

@@ -105,7 +105,7 @@ void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bo
   point.ok = true;
   point.max_real_exponent = r.max_real_exponent;
   point.max_log_multiplier = r.max_real_exponent * system.period();
-  point.error_estimate = check_error ? r.error_estimate : -1;
+  if (check_error) point.error_estimate = r.error_estimate;
   point.modes = std::move(r.modes);
 }
 
@@ -269,8 +269,7 @@ SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const
   // In log|ρ| units: the marginal band is the error estimate over a period, at least
   // marginal_log_multiplier (points without their own check).
   const double band =
-      std::max(options.marginal_log_multiplier,
-               point.error_estimate > 0 ? point.error_estimate * point.period : 0.0);
+      std::max(options.marginal_log_multiplier, point.error_estimate.value_or(0.0) * point.period);
   point.verdict = ClassifyStability(point.ok, point.max_log_multiplier, band);
   if (!point.ok) point.modes.clear();
   point.elapsed_s = SecondsSince(start);
@@ -310,6 +309,21 @@ size_t RunSweep(const Scene& scene, const ParameterMap& base, const SweepGrid& g
   }
   if (callback_error) std::rethrow_exception(callback_error);
   return done;
+}
+
+SweepTally TallySweep(const std::vector<SweepPoint>& points) {
+  SweepTally t;
+  for (StabilityVerdict v : {StabilityVerdict::kStable, StabilityVerdict::kMarginal,
+                             StabilityVerdict::kUnstable, StabilityVerdict::kFailed})
+    t.counts[v] = 0;
+  for (const SweepPoint& p : points) {
+    ++t.counts[p.verdict];
+    if (p.ok && p.error_estimate) {
+      ++t.checked;
+      t.max_error = std::max(t.max_error.value_or(0.0), *p.error_estimate);
+    }
+  }
+  return t;
 }
 
 }  // namespace ltp

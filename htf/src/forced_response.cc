@@ -117,8 +117,9 @@ ForcedResponseSolver::ForcedResponseSolver(const PeriodicSystem& system,
 double ForcedResponseSolver::SettlingTime(const FloquetResult& floquet, double settle_tol) {
   const double re = floquet.max_real_exponent;
   if (!(re < 0)) return std::numeric_limits<double>::infinity();
-  const double cond =
-      std::max(1.0, std::isfinite(floquet.mode_condition) ? floquet.mode_condition : 1.0);
+  // cond Ξ scales how far a transient can rise before it decays; unknown or infinite: 1.
+  const double c = floquet.mode_condition.value_or(1.0);
+  const double cond = std::isfinite(c) ? std::max(1.0, c) : 1.0;
   return std::log(cond / settle_tol) / -re;
 }
 

@@ -228,7 +228,7 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
     r.b_hat.push_back(b_hat[v + H]);
     r.d_hat.push_back(d_hat[v + H]);
   }
-  r.condition = std::max(floquet.mode_condition, sample_condition);
+  r.condition = std::max(floquet.mode_condition.value_or(0.0), sample_condition);
   // cond Ξ alone does not make the numbers wrong: modes of widely different frequency and
   // amplitude scales give 1e4 from scaling alone (tower-rotor: 2e4, and the HTF agrees to
   // 1e-12). It is reported; the sweep's cross-check against another route decides.

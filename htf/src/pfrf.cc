@@ -205,7 +205,7 @@ void FlagExactResonances(const PeriodicSystem& system, PfrfResult& r) {
   const int F = static_cast<int>(r.values.size());
   double scale = 1;
   for (const auto& m : r.floquet.modes) scale = std::max(scale, std::abs(m.exponent));
-  const double dl = std::max(r.floquet.error_estimate, 0.0) + 1e-13 * scale;
+  const double dl = r.floquet.error_estimate.value_or(0.0) + 1e-13 * scale;
   const double wp = kTwoPi / system.period();
   for (int i = 0; i < F; ++i) {
     const double omega = kTwoPi * r.frequencies_hz[i];

@@ -19,7 +19,7 @@ class ForcedResponseRoute : public PfrfRouteSolver {
     result.settle_time = result.floquet.ok ? ForcedResponseSolver::SettlingTime(
                                                  result.floquet, options.shooting.settle_tol)
                                            : std::numeric_limits<double>::infinity();
-    settle_ = result.settle_time;
+    settle_ = *result.settle_time;
     std::ostringstream s;
     s << "time: settling time " << settle_ << " s = ln(cond Ξ / " << options.shooting.settle_tol
       << ") / |max Re λ| (slowest Floquet exponent " << result.floquet.max_real_exponent

@@ -10,6 +10,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/htf/pfrf.h"
 
 namespace ltp {
 
@@ -107,10 +108,8 @@ RecordPlan PlanRecords(const PeriodicSystem& system, const SimulateOptions& opti
     throw InputError("the system is not asymptotically stable (max Re λ = " +
                      MessageNumber(floquet.max_real_exponent, 10) +
                      " 1/s): a sine never reaches a steady state to record");
-  const double cond =
-      std::isfinite(floquet.mode_condition) ? std::max(1.0, floquet.mode_condition) : 1.0;
   const double settle_periods =
-      std::ceil(std::log(cond / options.settle_tol) / -floquet.max_real_exponent / T);
+      std::ceil(ForcedResponseSolver::SettlingTime(floquet, options.settle_tol) / T);
   const double total = records * options.periods * options.samples_per_period;
   if (total > 1e8)
     throw InputError(MessageNumber(total, 10) +

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <complex>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -89,6 +90,11 @@ inline int AnalysisThreads(const System& system, int requested) {
 }
 
 // numpy arrays out (copies: results own their numbers).
+/// An array cell for a quantity that may not have been computed: NaN when it was not (scalars
+/// go out as None instead).
+inline double OrNaN(std::optional<double> x) {
+  return x.value_or(std::numeric_limits<double>::quiet_NaN());
+}
 py::array_t<double> RealArray(const std::vector<double>& v);
 py::array_t<Complex> ComplexArray(const std::vector<Complex>& v);
 /// Matrices of equal size stacked along a first axis: shape (count, rows, cols).

@@ -175,9 +175,9 @@ members of each conjugate pair).)doc")
       .def_property_readonly("max_log_multiplier",
                              PointArray([](const SweepPoint& p) { return p.max_log_multiplier; }),
                              "per point: max log|ρ| = T max Re λ")
-      .def_property_readonly("error_estimate",
-                             PointArray([](const SweepPoint& p) { return p.error_estimate; }),
-                             "per point (1/s); -1 where the point was not checked")
+      .def_property_readonly(
+          "error_estimate", PointArray([](const SweepPoint& p) { return OrNaN(p.error_estimate); }),
+          "per point (1/s); NaN where the point was not checked")
       .def_property_readonly(
           "exponents",
           [](const ChartResult& c) {
@@ -229,29 +229,18 @@ members of each conjugate pair).)doc")
       .def_property_readonly(
           "counts",
           [](const ChartResult& c) {
-            std::map<std::string, size_t> counts{
-                {"stable", 0}, {"marginal", 0}, {"unstable", 0}, {"failed", 0}};
-            for (const SweepPoint& p : c.points) ++counts[std::string(ToString(p.verdict))];
+            std::map<std::string, size_t> counts;
+            for (const auto& [verdict, n] : TallySweep(c.points).counts)
+              counts[std::string(ToString(verdict))] = n;
             return counts;
           },
           "points per verdict")
       .def_property_readonly(
-          "checked_points",
-          [](const ChartResult& c) {
-            size_t n = 0;
-            for (const SweepPoint& p : c.points) n += p.ok && p.error_estimate >= 0;
-            return n;
-          },
+          "checked_points", [](const ChartResult& c) { return TallySweep(c.points).checked; },
           "points with an error estimate")
       .def_property_readonly(
-          "max_error_estimate",
-          [](const ChartResult& c) {
-            double e = -1;
-            for (const SweepPoint& p : c.points)
-              if (p.ok && p.error_estimate >= 0) e = std::max(e, p.error_estimate);
-            return e;
-          },
-          "over the checked points (1/s); -1 when none was checked")
+          "max_error_estimate", [](const ChartResult& c) { return TallySweep(c.points).max_error; },
+          "over the checked points (1/s); None when none was checked")
       .def_property_readonly(
           "failures",
           [](const ChartResult& c) {

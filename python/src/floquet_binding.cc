@@ -73,11 +73,13 @@ formula beyond the error estimate): the diagnostics say why.)doc");
           "'marginal' within it; 'failed'")
       .def_readonly("error_estimate", &FloquetResult::error_estimate,
                     "estimated absolute error of every exponent (1/s): the difference to a second, "
-                    "tighter run; -1 when not computed")
+                    "tighter run; None when not computed")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
-                    "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|)")
+                    "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
+                    "stopped before its multipliers")
       .def_readonly("mode_condition", &FloquetResult::mode_condition,
-                    "cond(Ξ(0)); large = (near-)defective")
+                    "cond Ξ(t), the best of up to 16 sample times; large = (near-)defective; None "
+                    "without mode shapes")
       .def_readonly("monodromy", &FloquetResult::monodromy, "Φ(T, 0), n×n")
       .def_readonly("mode_descriptions", &FloquetResult::mode_descriptions,
                     "what carries each mode: shares of its displacement energy per state at t = 0, "

@@ -115,9 +115,9 @@ estimate for every value from the independent routes' disagreement.
       .def_readonly("htf_harmonics", &PfrfResult::htf_harmonics,
                     "HTF truncation N (0: htf did not run)")
       .def_readonly("htf_truncation_change", &PfrfResult::htf_truncation_change,
-                    "max |H(N) − H(N+Δ)| at the check points; -1 = not computed")
+                    "max |H(N) − H(N+Δ)| where the htf route ran; None when it did not")
       .def_readonly("settle_time", &PfrfResult::settle_time,
-                    "time route: settling time (s); -1 = not run")
+                    "time route: settling time (s); None when it did not run")
       .def_readonly("floquet", &PfrfResult::floquet,
                     "the Floquet decomposition behind the modal route")
       .def_property_readonly(

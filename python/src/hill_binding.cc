@@ -1,5 +1,6 @@
 // ltp.hill: Hill's method, and its result.
 #include <limits>
+#include <type_traits>
 
 #include "binding.h"
 #include "floquet_modes.h"
@@ -26,7 +27,12 @@ template <class Member>
 auto StudyColumn(Member HillStudyRow::*member) {
   return [member](const HillStudyRun& r) {
     std::vector<double> v;
-    for (const HillStudyRow& row : r.study.rows) v.push_back(static_cast<double>(row.*member));
+    for (const HillStudyRow& row : r.study.rows) {
+      if constexpr (std::is_same_v<Member, std::optional<double>>)
+        v.push_back(OrNaN(row.*member));
+      else
+        v.push_back(static_cast<double>(row.*member));
+    }
     return RealArray(v);
   };
 }
@@ -61,9 +67,9 @@ Koopman–Hill cross-check.)doc");
           "tail_weights", InfoColumn<double>([](const HillModeInfo& i) { return i.tail_weight; }),
           "energy on the outermost blocks ±N (large: N too small for the mode)")
       .def_property_readonly("truncation_changes", InfoColumn<double>([](const HillModeInfo& i) {
-                               return i.truncation_change;
+                               return OrNaN(i.truncation_change);
                              }),
-                             "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); -1 when not computed")
+                             "|λ_N − λ_{N+Δ}| mod jΩp per mode (1/s); NaN when not computed")
       .def_property_readonly("residuals",
                              InfoColumn<double>([](const HillModeInfo& i) { return i.residual; }),
                              "relative eigen-residual of each selected eigenvalue")
@@ -81,7 +87,7 @@ Koopman–Hill cross-check.)doc");
       .def_readonly("delta_harmonics", &HillResult::delta_harmonics,
                     "Δ of the N vs N+Δ estimate (0: not computed)")
       .def_readonly("truncation_estimate", &HillResult::truncation_estimate,
-                    "max_k |λ_k(N) − λ_k(N+Δ)| mod jΩp (1/s); -1 = not computed")
+                    "max_k |λ_k(N) − λ_k(N+Δ)| mod jΩp (1/s); None when not computed")
       .def_readonly("apriori_bound", &HillResult::apriori_bound,
                     "a-priori bound on the exponent error (inf: none)")
       .def_property_readonly(
@@ -101,12 +107,14 @@ Koopman–Hill cross-check.)doc");
                     "harmonics='auto': whether tol was met; else None")
       .def_readonly(
           "error_estimate", &HillResult::error_estimate,
-          "the error estimate of every exponent (1/s); see the C++ HillResult for its parts")
+          "the error estimate of every exponent (1/s); see the C++ HillResult for its parts; "
+          "None when no exponents were found")
       .def_property_readonly(
           "koopman_log_multipliers",
           [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); },
           "log eig of the Koopman–Hill transition (sorting-free cross-check)")
-      .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy, "-1 = skipped")
+      .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy,
+                    "max gap to the Koopman–Hill exponents (1/s); None when skipped")
       .def_property_readonly(
           "eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
           "every eigenvalue of the Hill matrix found")
@@ -133,11 +141,11 @@ at N = max_harmonics (`last`).)doc")
           },
           "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
       .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error),
-                             "per row; -1 without a reference")
+                             "per row; NaN without a reference")
       .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound),
                              "a-priori error bound per row (inf: none)")
       .def_property_readonly("truncation_estimate", StudyColumn(&HillStudyRow::truncation_estimate),
-                             "N vs N+Δ estimate per row")
+                             "N vs N+Δ estimate per row (NaN when not computed)")
       .def_property_readonly("selection_margin", StudyColumn(&HillStudyRow::selection_margin),
                              "smallest selection margin per row")
       .def_property_readonly("tail_weight", StudyColumn(&HillStudyRow::tail_weight),

@@ -32,7 +32,7 @@ TEST(TowerRotorFloquet, UndampedExponentsOnImaginaryAxis) {
   for (const FloquetMode& mode : result.modes) {
     EXPECT_LT(std::abs(mode.exponent.real()), 1e-6) << "mode at " << mode.frequency_hz << " Hz";
   }
-  EXPECT_LT(std::abs(result.liouville_residual), 1e-7);
+  EXPECT_LT(std::abs(result.liouville_residual.value()), 1e-7);
 }
 
 // Damped default: stable; the slowest decay is the first cantilever mode, Re λ ≈ −ζ ω_1; the

@@ -314,7 +314,7 @@ TEST(PartialFrf, SweepAllRoutes) {
   const PfrfResult r = ComputePartialFrf(sys, o);
   ASSERT_TRUE(r.ok);
   ASSERT_EQ(r.routes.size(), 4u);
-  EXPECT_GT(r.settle_time, 0);
+  EXPECT_GT(r.settle_time.value(), 0);
   for (const RouteRun& run : r.routes) EXPECT_EQ(run.failures, 0) << ToString(run.route);
   EXPECT_LT(r.max_relative_disagreement, 1e-6);  // the time route dominates
 }

@@ -16,6 +16,7 @@
 #include <iomanip>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -157,12 +158,12 @@ inline bool Warns(const std::vector<std::string>& diagnostics, std::string* whic
 }
 
 /// Verdict from what the method claimed and what it got.
-inline Cell Judge(bool ok, double err, double estimate, double scale,
+inline Cell Judge(bool ok, double err, std::optional<double> estimate, double scale,
                   const std::vector<std::string>& diagnostics, const std::string& failure = "") {
   Cell c;
   c.error_rel = std::isfinite(err) ? err / scale : kInf;
-  c.estimate_rel = estimate >= 0 ? estimate / scale : -1;
-  const bool covers = estimate >= 0 && estimate >= err;  // +inf estimate covers: "unknown"
+  c.estimate_rel = estimate ? *estimate / scale : -1;
+  const bool covers = estimate && *estimate >= err;  // +inf estimate covers: "unknown"
   std::string warning;
   const bool warns = Warns(diagnostics, &warning);
   if (ok && std::isfinite(err) && c.error_rel <= 1e-6 && (covers || c.error_rel <= 1e-12)) {
@@ -357,7 +358,7 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
         const double err = h.ok ? ExponentError(Exponents(h.modes), ref_for_hill, s.omega()) : kInf;
         c = Judge(h.ok, err, HillEstimate(h), scale, h.diagnostics);
       } catch (const Error& e) {
-        c = Judge(false, kInf, -1, scale, {}, e.what());
+        c = Judge(false, kInf, std::nullopt, scale, {}, e.what());
       }
       c.elapsed_s = WallNow() - t0;
       row.push_back(c);
@@ -367,8 +368,8 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       Cell c;
       const HillResult& h = hill_auto;
       if (h.koopman_log_multipliers.empty()) {
-        c = Judge(false, kInf, -1, scale, {},
-                  h.koopman_discrepancy < 0 ? "skipped (matrix too large), says so" : "no result");
+        c = Judge(false, kInf, std::nullopt, scale, {},
+                  h.koopman_discrepancy ? "no result" : "skipped (matrix too large), says so");
       } else {
         const auto e = FromLogMultipliers(h.koopman_log_multipliers, h.period);
         const double err = ExponentError(e, ref_for_hill, s.omega());
@@ -521,7 +522,7 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
           }
         }
       } catch (const Error& e) {
-        c = Judge(false, kInf, -1, 1, {}, std::string(e.what()).substr(0, 90));
+        c = Judge(false, kInf, std::nullopt, 1, {}, std::string(e.what()).substr(0, 90));
       }
       c.elapsed_s = WallNow() - t0;
       row.push_back(c);

@@ -49,9 +49,7 @@ inline std::vector<cd> FromLogMultipliers(const std::vector<cd>& logs, double pe
 }
 
 /// Hill's error estimate as `ltp floquet --method hill` reports it (+inf when none was computed).
-inline double HillEstimate(const HillResult& h) {
-  return h.error_estimate < 0 ? kInf : h.error_estimate;
-}
+inline double HillEstimate(const HillResult& h) { return h.error_estimate.value_or(kInf); }
 
 inline double CpuNow() {
   timespec ts{};

@@ -23,8 +23,8 @@ namespace ltp {
 /// stability boundaries); failed when the result's own checks failed.
 enum class StabilityVerdict { kStable, kMarginal, kUnstable, kFailed };
 std::string_view ToString(StabilityVerdict verdict);
-/// The verdict for max Re λ with the absolute error `band` (1/s; < 0 = unknown, sign only).
-StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, double band);
+/// The verdict for max Re λ with the absolute error `band` (1/s; empty = unknown, sign only).
+StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, std::optional<double> band);
 
 enum class MultiplierMethod {
   kPeriodicSchur,  ///< eigenvalues of the product of segment factors (SLICOT MB03BD)
@@ -93,12 +93,15 @@ struct FloquetResult {
   bool stable = false;                ///< verdict == kStable
   StabilityVerdict verdict = StabilityVerdict::kFailed;
   /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
-  /// second run at a tighter tolerance, plus the round-off floor. -1 when not computed.
-  double error_estimate = -1;
-  /// |Σ log|ρ_k| − ∫_0^T tr A dt| / max(1, |∫ tr A|) (Liouville: det Φ = exp ∫ tr A).
-  double liouville_residual = -1;
-  /// 2-norm condition number of the normalised mode matrix Ξ(0); large = (near-)defective.
-  double mode_condition = -1;
+  /// second run at a tighter tolerance, plus the round-off floor. Empty when not asked for.
+  std::optional<double> error_estimate;
+  /// |Σ log|ρ_k| − ∫_0^T tr A dt| / max(1, |∫ tr A|) (Liouville: det Φ = exp ∫ tr A). Empty
+  /// when the analysis stopped before its multipliers.
+  std::optional<double> liouville_residual;
+  /// 2-norm condition number of the normalised mode matrix Ξ(t), the best of up to 16 sample
+  /// times (a shape may be tiny at one t; a defective Ξ is ill-conditioned at every t); large
+  /// = (near-)defective; +inf when no shape could be computed. Empty without mode shapes.
+  std::optional<double> mode_condition;
   /// Monodromy Φ(T, 0) as the formed product (entries may under/overflow for stiff systems).
   Eigen::MatrixXd monodromy;
   /// Periodic mode shapes at `sample_times` (uniform, t_s = s T/S): column k of

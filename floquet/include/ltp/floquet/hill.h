@@ -95,8 +95,8 @@ struct HillModeInfo {
   /// Fraction of the eigenvector's energy on the outermost blocks ±N: large = truncation too
   /// small for this mode.
   double tail_weight = 0;
-  /// |λ_N − λ_{N+Δ}| modulo jΩp (1/s); -1 when not computed.
-  double truncation_change = -1;
+  /// |λ_N − λ_{N+Δ}| modulo jΩp (1/s); empty when not computed.
+  std::optional<double> truncation_change;
   /// Relative eigen-residual ||H x − λ x|| / (||H|| ||x||).
   double residual = 0;
   bool passed = false;     ///< met the rule's pass condition (see HillSelectionRule)
@@ -138,8 +138,9 @@ struct HillResult {
   StabilityVerdict verdict = StabilityVerdict::kFailed;
 
   // Truncation error (exponents, 1/s).
-  int delta_harmonics = 0;          ///< Δ of the N vs N+Δ estimate (0: not computed)
-  double truncation_estimate = -1;  ///< max_k |λ_k(N) − λ_k(N+Δ)| (mod jΩp); -1 = not computed
+  int delta_harmonics = 0;  ///< Δ of the N vs N+Δ estimate (0: not computed)
+  /// max_k |λ_k(N) − λ_k(N+Δ)| (mod jΩp); empty when not computed.
+  std::optional<double> truncation_estimate;
   /// A-priori bound on the exponent error: Bayer–Leine bound on ||Φ(T) − C e^{H_N T} W||,
   /// carried to the multipliers by Bauer–Fike and added to the Hill vs Koopman–Hill gap.
   /// +inf when not available (algebraic decay, bound not yet below |ρ|, no Koopman check).
@@ -162,12 +163,13 @@ struct HillResult {
   /// (+inf when that check fails), the Koopman–Hill gap where it exceeds that projection's own
   /// bound (a suspect selection), plus the round-off floor of the eigen-residuals and
   /// fourier_fit_error; the Koopman–Hill gap alone when there is no N+Δ run; +inf when neither
-  /// check ran; -1 when no exponents were found.
-  double error_estimate = -1;
+  /// check ran; empty when no exponents were found.
+  std::optional<double> error_estimate;
 
   // Koopman–Hill cross-check (sorting-free).
   std::vector<std::complex<double>> koopman_log_multipliers;  ///< log eig(C e^{H T} W)
-  double koopman_discrepancy = -1;  ///< max_k |λ_k,Hill − log ρ_k,KH / T| (mod jΩp); -1 = skipped
+  /// max_k |λ_k,Hill − log ρ_k,KH / T| (mod jΩp); empty when the check was skipped.
+  std::optional<double> koopman_discrepancy;
 
   /// All eigenvalues of the Hill matrix (dense solver) or those found (structured).
   std::vector<std::complex<double>> eigenvalues;
@@ -193,11 +195,11 @@ struct HillStudyRow {
   /// Per physical exponent (in the order of the reference): |λ_Hill − λ_ref| modulo jΩp of
   /// the analysed period; empty without a reference.
   std::vector<double> errors;
-  double max_error = -1;           ///< max of errors; -1 without a reference
-  double apriori_bound = 0;        ///< HillResult::apriori_bound
-  double truncation_estimate = 0;  ///< N vs N+Δ (HillResult::truncation_estimate)
-  double selection_margin = 0;     ///< min over modes
-  double tail_weight = 0;          ///< max over modes
+  std::optional<double> max_error;            ///< max of errors; empty without a reference
+  double apriori_bound = 0;                   ///< HillResult::apriori_bound
+  std::optional<double> truncation_estimate;  ///< N vs N+Δ (HillResult::truncation_estimate)
+  double selection_margin = 0;                ///< min over modes
+  double tail_weight = 0;                     ///< max over modes
   bool ambiguous = false;
   double elapsed_s = 0;
 };

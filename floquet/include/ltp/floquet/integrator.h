@@ -54,10 +54,11 @@ struct TransitionResult {
   Eigen::MatrixXd phi;  ///< Φ(t1, t0), n×n
   bool ok = false;      ///< false: integrator failed; `message` says why
   std::string message;
-  long steps = 0;              ///< accepted steps (fixed-step: steps taken)
-  long rhs_evals = 0;          ///< evaluations of A(t)
-  int steps_per_period = 0;    ///< fixed-step methods: the resolution used (after auto choice)
-  double error_estimate = -1;  ///< fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; else -1
+  long steps = 0;            ///< accepted steps (fixed-step: steps taken)
+  long rhs_evals = 0;        ///< evaluations of A(t)
+  int steps_per_period = 0;  ///< fixed-step methods: the resolution used (after auto choice)
+  /// Fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; empty for other integrators.
+  std::optional<double> error_estimate;
 };
 
 /// Φ(t1, t0) for t1 >= t0. Integration restarts at every breakpoint of the system inside

@@ -11,6 +11,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -77,7 +78,7 @@ struct SweepPoint {
   double rotor_speed = std::numeric_limits<double>::quiet_NaN();
   double max_real_exponent = std::numeric_limits<double>::quiet_NaN();   ///< 1/s
   double max_log_multiplier = std::numeric_limits<double>::quiet_NaN();  ///< T · max Re λ
-  double error_estimate = -1;  ///< exponents (1/s); -1 when this point was not checked
+  std::optional<double> error_estimate;  ///< exponents (1/s); empty when not checked
   /// Exponents on the chosen branch, in ModeDisplayOrder (principal branch without modes).
   std::vector<FloquetMode> modes;
   /// Column k: mode k's shape ξ_k(0), unit norm (monodromy route with modes; else empty).
@@ -113,5 +114,13 @@ size_t RunSweep(const Scene& scene, const ParameterMap& base, const SweepGrid& g
                 const std::vector<size_t>& indices, const SweepOptions& options,
                 const std::function<void(SweepPoint&&)>& on_point,
                 const std::atomic<bool>* cancel = nullptr);
+
+/// What a sweep's points say together.
+struct SweepTally {
+  std::map<StabilityVerdict, size_t> counts;  ///< points per verdict (every verdict present)
+  size_t checked = 0;                         ///< ok points with an error estimate
+  std::optional<double> max_error;            ///< largest of those (1/s); empty when none
+};
+SweepTally TallySweep(const std::vector<SweepPoint>& points);
 
 }  // namespace ltp

@@ -322,11 +322,12 @@ struct PfrfResult {
   double max_disagreement = 0;           ///< max over check points and orders (absolute)
   double max_relative_disagreement = 0;  ///< divided by max |H_z| of the sweep
   int htf_harmonics = 0;                 ///< N, when the htf route ran
-  double htf_truncation_change = -1;     ///< max |H(N) − H(N+Δ)| at the check points
-  double settle_time = -1;               ///< time route: settling time (s)
-  FloquetResult floquet;                 ///< the decomposition (modes sorted as reported)
-  std::optional<ModalModel> modal;       ///< when the modal route ran
-  std::vector<double> order_max;         ///< max_f |H_z| per order
+  /// max |H(N) − H(N+Δ)| at the points the htf route ran (empty when it did not).
+  std::optional<double> htf_truncation_change;
+  std::optional<double> settle_time;  ///< time route: settling time (s); else empty
+  FloquetResult floquet;              ///< the decomposition (modes sorted as reported)
+  std::optional<ModalModel> modal;    ///< when the modal route ran
+  std::vector<double> order_max;      ///< max_f |H_z| per order
   std::vector<Resonance> resonances;
   double elapsed_s = 0;
   std::vector<std::string> diagnostics;
