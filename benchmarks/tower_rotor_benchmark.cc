@@ -18,6 +18,7 @@
 
 #include <cmath>
 
+#include "ltp/core/channel.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
@@ -105,6 +106,22 @@ void HtfPoint(benchmark::State& state) {
   state.counters["N"] = htf.harmonics();
 }
 BENCHMARK(HtfPoint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The modal route's sweep alone, after the model is built: 751 frequencies × orders −4…4 of
+// the demo's channel (Fz_tip → z_tip), one thread.
+void ModalSweep(benchmark::State& state) {
+  const ModalModel model = BuildModalModel(TowerRotor(), AnalyzeFloquet(TowerRotor()));
+  const auto& labels = TowerRotor().labels();
+  const int n_in = TowerRotor().inputs(), n_out = TowerRotor().outputs();
+  const int input = ResolveChannel("Fz_tip", labels.inputs, n_in, "input", "input");
+  const int output = ResolveChannel("z_tip", labels.outputs, n_out, "output", "output");
+  const std::vector<double> w = SweepOmegas();
+  const ModalChannel channel(model, output, input);
+  for (auto _ : state)
+    for (double x : w) benchmark::DoNotOptimize(channel.Evaluate(x, -4, 4));
+  state.counters["V"] = model.harmonics;
+}
+BENCHMARK(ModalSweep)->Unit(benchmark::kMillisecond);
 
 void HtfReduction(benchmark::State& state) {
   for (auto _ : state) {

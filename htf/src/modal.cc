@@ -288,36 +288,57 @@ std::complex<double> ModalModel::Evaluate(double omega, int z, int output, int i
   return sum;
 }
 
-std::vector<std::complex<double>> ModalModel::EvaluateChannel(double omega, int min_order,
-                                                              int max_order, int output,
-                                                              int input) const {
-  const int V = harmonics;
-  std::vector<cd> h(max_order - min_order + 1, cd(0));
-  std::vector<cd> scaled(states);
-  for (int u = -V; u <= V; ++u) {
-    // [R_u]_k = [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k), reused for every z.
-    const cd s(0, omega + u * omega_p);
-    for (int k = 0; k < states; ++k) scaled[k] = b_hat[u + V](k, input) / (s - exponents[k]);
-    for (int z = min_order; z <= max_order; ++z) {
-      const int v = z - u;
-      if (std::abs(v) > V) continue;
-      const Eigen::MatrixXcd& c = c_hat[v + V];
-      cd sum = 0;
-      for (int k = 0; k < states; ++k) sum += c(output, k) * scaled[k];
-      h[z - min_order] += sum;
-    }
-  }
-  for (int z = min_order; z <= max_order; ++z)
-    if (std::abs(z) <= V) h[z - min_order] += d_hat[z + V](output, input);
-  return h;
-}
-
 std::complex<double> ModalModel::Term(double omega, int k, int u, int v, int output,
                                       int input) const {
   const int V = harmonics;
   if (std::abs(u) > V || std::abs(v) > V) return 0;
   return c_hat[v + V](output, k) * b_hat[u + V](k, input) /
          (cd(0, omega + u * omega_p) - exponents[k]);
+}
+
+ModalChannel::ModalChannel(const ModalModel& model, int output, int input)
+    : harmonics_(model.harmonics), omega_p_(model.omega_p) {
+  const int V = harmonics_, n = model.states;
+  decay_.resize(n);
+  frequency_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    decay_(k) = -model.exponents[k].real();
+    frequency_(k) = model.exponents[k].imag();
+  }
+  b_.resize(2 * V + 1, n);
+  c_.resize(2 * V + 1, n);
+  for (int w = 0; w <= 2 * V; ++w) {
+    b_.row(w) = model.b_hat[w].col(input).transpose();
+    c_.row(w) = model.c_hat[w].row(output);
+    d_.push_back(model.d_hat[w](output, input));
+  }
+}
+
+std::vector<std::complex<double>> ModalChannel::Evaluate(double omega, int min_order,
+                                                         int max_order) const {
+  const int V = harmonics_, n = static_cast<int>(decay_.size());
+  Eigen::VectorXcd h = Eigen::VectorXcd::Zero(max_order - min_order + 1);
+  Eigen::ArrayXd detuning(n), denominator(n);
+  Eigen::ArrayXcd resolvent(n);
+  Eigen::VectorXcd scaled(n);
+  const Eigen::ArrayXd decay_squared = decay_.square();
+  for (int u = -V; u <= V; ++u) {
+    // The orders z whose partner v = z − u is kept (|v| <= V).
+    const int z0 = std::max(min_order, u - V), z1 = std::min(max_order, u + V);
+    if (z0 > z1) continue;
+    // 1/(j(ω+uΩp) − λ_k) = (−Re λ_k − j(ω+uΩp − Im λ_k)) / |·|², in real arithmetic (no
+    // complex division per term; an exact resonance, |·| = 0, is flagged by the sweep).
+    detuning = (omega + u * omega_p_) - frequency_;
+    denominator = decay_squared + detuning.square();
+    resolvent.real() = decay_ / denominator;
+    resolvent.imag() = -detuning / denominator;
+    scaled = (b_.row(u + V).transpose().array() * resolvent).matrix();
+    h.segment(z0 - min_order, z1 - z0 + 1).noalias() +=
+        c_.middleRows(z0 - u + V, z1 - z0 + 1) * scaled;
+  }
+  for (int z = min_order; z <= max_order; ++z)
+    if (std::abs(z) <= V) h(z - min_order) += d_[z + V];
+  return {h.data(), h.data() + h.size()};
 }
 
 }  // namespace ltp

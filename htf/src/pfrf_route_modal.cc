@@ -1,6 +1,7 @@
 // The modal route (paper eq. 42–46) as a sweep route: the modal model of the Floquet
 // decomposition, one sum of modal terms per frequency.
 #include <limits>
+#include <optional>
 
 #include "pfrf_route.h"
 
@@ -11,7 +12,9 @@ namespace {
 class ModalRoute : public PfrfRouteSolver {
  public:
   ModalRoute(const PfrfOptions& options, const ModalModel* model)
-      : options_(options), model_(model) {}
+      : options_(options), model_(model) {
+    if (model_) channel_.emplace(*model_, options_.output, options_.input);
+  }
 
   RoutePoint Evaluate(double omega) override {
     RoutePoint p;
@@ -20,8 +23,7 @@ class ModalRoute : public PfrfRouteSolver {
       p.values.assign(orders, std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
       return p;
     }
-    p.values = model_->EvaluateChannel(omega, options_.min_order, options_.max_order,
-                                       options_.output, options_.input);
+    p.values = channel_->Evaluate(omega, options_.min_order, options_.max_order);
     p.ok = true;
     // The Floquet tolerance, or the Fourier tail when larger, relative to the response here.
     p.assumed_error =
@@ -37,6 +39,7 @@ class ModalRoute : public PfrfRouteSolver {
  private:
   const PfrfOptions& options_;
   const ModalModel* model_;
+  std::optional<ModalChannel> channel_;  ///< the sweep's channel, gathered once
 };
 
 }  // namespace

@@ -99,12 +99,29 @@ struct ModalModel {
   PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
   /// Scalar H_z(ω) of one channel.
   std::complex<double> Evaluate(double omega, int z, int output, int input) const;
-  /// One channel, z = min_order..max_order: what a PFRF sweep needs, at 1/(outputs·inputs) of
-  /// the work of the full matrices.
-  std::vector<std::complex<double>> EvaluateChannel(double omega, int min_order, int max_order,
-                                                    int output, int input) const;
   /// The term of mode k, harmonic pair (u, v = z − u): [Ĉ_v]_{o,k} [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k).
   std::complex<double> Term(double omega, int k, int u, int v, int output, int input) const;
+};
+
+/// One input–output channel of a modal model, gathered once into contiguous arrays: what a
+/// PFRF sweep evaluates, at 1/(outputs·inputs) of the work of the full matrices, as one small
+/// complex matrix–vector product per harmonic u.
+class ModalChannel {
+ public:
+  ModalChannel(const ModalModel& model, int output, int input);
+  /// H_z(ω), z = min_order..max_order.
+  std::vector<std::complex<double>> Evaluate(double omega, int min_order, int max_order) const;
+
+ private:
+  using RowMajor =
+      Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  int harmonics_ = 0;
+  double omega_p_ = 0;
+  Eigen::ArrayXd decay_;                 ///< −Re λ_k
+  Eigen::ArrayXd frequency_;             ///< Im λ_k
+  RowMajor b_;                           ///< row u + V: [B̂_u]_{k,input} over k
+  RowMajor c_;                           ///< row v + V: [Ĉ_v]_{output,k} over k
+  std::vector<std::complex<double>> d_;  ///< [D_w]_{output,input}, index w + V
 };
 
 /// Builds the modal model from a Floquet decomposition (with modes) of `system`.
