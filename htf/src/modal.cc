@@ -275,19 +275,6 @@ PartialFrfs ModalModel::Evaluate(double omega, int min_order, int max_order) con
   return h;
 }
 
-std::complex<double> ModalModel::Evaluate(double omega, int z, int output, int input) const {
-  const int V = harmonics;
-  cd sum = std::abs(z) <= V ? d_hat[z + V](output, input) : cd(0);
-  for (int u = -V; u <= V; ++u) {
-    const int v = z - u;
-    if (std::abs(v) > V) continue;
-    const cd s(0, omega + u * omega_p);
-    for (int k = 0; k < states; ++k)
-      sum += c_hat[v + V](output, k) * b_hat[u + V](k, input) / (s - exponents[k]);
-  }
-  return sum;
-}
-
 std::complex<double> ModalModel::Term(double omega, int k, int u, int v, int output,
                                       int input) const {
   const int V = harmonics;

@@ -95,13 +95,14 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
       const ModalModel model = BuildModalModel(system, fl, options.modal);
       r.modal_reliable = model.reliable;
       for (const auto& d : model.diagnostics) r.diagnostics.push_back(d);
+      const ModalChannel channel(model, options.output, options.input);
       const double wp = system.omega();
       std::vector<double> magnitude_sum(F, 0.0);  // Σ_z |H_z(ω − zΩp)| per frequency
       for (int i = 0; i < F; ++i) {
         const double w = kTwoPi * options.frequencies_hz[i];
         cd g = 0;
         for (int z = zmin; z <= zmax; ++z) {
-          const cd h = model.Evaluate(w - z * wp, z, options.output, options.input);
+          const cd h = channel.Evaluate(w - z * wp, z, z).front();
           g += h;
           magnitude_sum[i] += std::abs(h);
         }
@@ -126,12 +127,12 @@ SnapshotResult ComputeSnapshotFrf(const PeriodicSystem& system, const SnapshotOp
       for (int q = 0; q < P; ++q) {
         const double w = check[q];
         const PartialFrfs h = htf.Evaluate(w, zmin, zmax);
+        const std::vector<cd> modal = channel.Evaluate(w, zmin, zmax);
         double largest = 0, diff = 0;
         for (int z = zmin; z <= zmax; ++z) {
           const cd reference = h[z - zmin](options.output, options.input);
           largest = std::max(largest, std::abs(reference));
-          diff = std::max(
-              diff, std::abs(reference - model.Evaluate(w, z, options.output, options.input)));
+          diff = std::max(diff, std::abs(reference - modal[z - zmin]));
         }
         if (largest > 0) disagreement[q] = diff / largest;
       }

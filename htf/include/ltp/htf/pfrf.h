@@ -97,8 +97,6 @@ struct ModalModel {
 
   /// H_z(ω) for z = min_order..max_order.
   PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
-  /// Scalar H_z(ω) of one channel.
-  std::complex<double> Evaluate(double omega, int z, int output, int input) const;
   /// The term of mode k, harmonic pair (u, v = z − u): [Ĉ_v]_{o,k} [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k).
   std::complex<double> Term(double omega, int k, int u, int v, int output, int input) const;
 };
