@@ -11,6 +11,8 @@
 //                        floor of this route at rel_tol 1e-10 with this integrator
 // PfrfModal / PfrfAuto   `ltp pfrf tower-rotor --freq 0:450:0.6 --orders -4:4` (751 × 9 values),
 //                        Floquet analysis and checks included; route modal, and auto
+// ModalSweep             the modal route's sweep alone (751 × 9 values of one channel, one
+//                        thread) after the model is built
 // HtfPoint/0 and /1      one HTF evaluation at the automatic truncation: banded LU (0) against
 //                        the Hessenberg solve after one reduction (1); HtfReduction the
 //                        reduction itself (what a sweep pays once per truncation)
