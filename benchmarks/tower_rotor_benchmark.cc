@@ -9,8 +9,11 @@
 //                        before the samples were demodulated by the averaged system's branch
 // MonodromyOnly          one integration, multipliers only (estimate and modes off): the
 //                        floor of this route at rel_tol 1e-10 with this integrator
-// PfrfModal / PfrfAuto   `ltp pfrf tower-rotor --freq 0:450:0.6 --orders -4:4` (751 × 9 values),
-//                        Floquet analysis and checks included; route modal, and auto
+// Pfrf/Modal, Pfrf/Auto `ltp pfrf tower-rotor --input Fz_tip --output z_tip --freq 0:450:0.6
+//                        --orders -4:4` (751 × 9 values), Floquet analysis and checks
+//                        included; route modal, and auto
+// Pfrf/Htf               the same with the HTF as the primary route (modal as the check)
+// Snapshot               `ltp snapshot tower-rotor --angle 90 --compare --freq 0:450:0.6`
 // ModalSweep             the modal route's sweep alone (751 × 9 values of one channel, one
 //                        thread) after the model is built
 // HtfPoint/0 and /1      one HTF evaluation at the automatic truncation: banded LU (0) against
@@ -19,11 +22,14 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "ltp/core/channel.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/snapshot.h"
 #include "ltp/models/scene.h"
 
 namespace {
@@ -36,6 +42,13 @@ using namespace ltp;
 const PeriodicSystem& TowerRotor() {
   static const PeriodicSystem system = LoadScene("tower-rotor").Build();
   return system;
+}
+
+// The demo's channel: force at the blade tip (Fz_tip) to its displacement (z_tip).
+std::pair<int, int> DemoChannel() {
+  const auto& labels = TowerRotor().labels();
+  return {ResolveChannel("Fz_tip", labels.inputs, TowerRotor().inputs(), "input", "input"),
+          ResolveChannel("z_tip", labels.outputs, TowerRotor().outputs(), "output", "output")};
 }
 
 FloquetOptions CliFloquetOptions() {
@@ -72,6 +85,7 @@ void Pfrf(benchmark::State& state, PfrfRoute route) {
   PfrfOptions o;
   for (int i = 0; i <= 750; ++i) o.frequencies_hz.push_back(0.6 * i);
   o.primary = route;
+  std::tie(o.input, o.output) = DemoChannel();
   o.floquet = CliFloquetOptions();
   o.modal.integrator.type = IntegratorType::kAuto;
   for (auto _ : state) {
@@ -82,6 +96,23 @@ void Pfrf(benchmark::State& state, PfrfRoute route) {
 }
 BENCHMARK_CAPTURE(Pfrf, Modal, PfrfRoute::kModal)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Pfrf, Auto, PfrfRoute::kAuto)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Pfrf, Htf, PfrfRoute::kHtf)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// `ltp snapshot tower-rotor --angle 90 --compare --freq 0:450:0.6` on the demo's channel: the
+// frozen FRF, and the summed partials by the modal route checked by the HTF.
+void Snapshot(benchmark::State& state) {
+  SnapshotOptions o;
+  for (int i = 0; i <= 750; ++i) o.frequencies_hz.push_back(0.6 * i);
+  o.angle_deg = 90;
+  o.compare = true;
+  std::tie(o.input, o.output) = DemoChannel();
+  for (auto _ : state) {
+    const SnapshotResult r = ComputeSnapshotFrf(TowerRotor(), o);
+    benchmark::DoNotOptimize(r.summed.data());
+    state.counters["disagreement"] = r.max_summed_disagreement;
+  }
+}
+BENCHMARK(Snapshot)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 std::vector<double> SweepOmegas() {
   std::vector<double> w;
@@ -113,10 +144,7 @@ BENCHMARK(HtfPoint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 // the demo's channel (Fz_tip → z_tip), one thread.
 void ModalSweep(benchmark::State& state) {
   const ModalModel model = BuildModalModel(TowerRotor(), AnalyzeFloquet(TowerRotor()));
-  const auto& labels = TowerRotor().labels();
-  const int n_in = TowerRotor().inputs(), n_out = TowerRotor().outputs();
-  const int input = ResolveChannel("Fz_tip", labels.inputs, n_in, "input", "input");
-  const int output = ResolveChannel("z_tip", labels.outputs, n_out, "output", "output");
+  const auto [input, output] = DemoChannel();
   const std::vector<double> w = SweepOmegas();
   const ModalChannel channel(model, output, input);
   for (auto _ : state)

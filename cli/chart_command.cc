@@ -54,7 +54,7 @@ struct ChartArgs {
   int threads = ChartOptions{}.threads;
   std::string csv, plot;
   bool json = false, resume = false, compare = false, no_refine = false;
-  int check_every = ChartOptions{}.check_every;  // -1: 1 for 1-D sweeps, 97 for maps
+  std::optional<int> check_every;  // empty: the library's choice (1-D: all, maps: every 97th)
   int refine_lines = ChartOptions{}.refine_lines;
   double refine_tol = ChartOptions{}.refine_tol;
   int sidebands = 1;
@@ -131,6 +131,8 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   if (!(args.tol > 0 && args.tol < 1)) throw InputError("--tol must be in (0, 1)");
   o.tol = args.tol;
   o.compare = args.compare;
+  if (args.check_every && *args.check_every < 0)
+    throw InputError("--check-every must be >= 0 (0 = no error estimates)");
   o.check_every = args.check_every;
   if (args.threads < 0) throw InputError("--threads must be >= 0");
   o.threads = args.threads;
@@ -482,8 +484,8 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_flag("--json", args.json, "one JSON summary on stdout");
   cmd->add_flag("--compare", args.compare,
                 "also snapshot A(0) and averaged-system frequencies (1-D)");
-  cmd->add_option(
-      "--check-every", args.check_every,
+  cmd->add_option_function<int>(
+      "--check-every", [&args](int k) { args.check_every = k; },
       "error estimate on every K-th point (default: all for 1-D, every 97th for maps; 0 = none)");
   cmd->add_flag("--no-refine", args.no_refine, "do not refine boundaries beyond the grid");
   cmd->add_option("--refine-tol", args.refine_tol, "relative tolerance of refined boundaries")

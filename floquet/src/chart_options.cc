@@ -15,6 +15,8 @@ void ChartOptions::Validate() const {
   };
   if (!(tol > 0 && tol < 1)) fail("tol", tol, "0 < tol < 1");
   if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
+  if (check_every && *check_every < 0)
+    fail("check_every", *check_every, ">= 0 (0 = none; empty = automatic)");
   if (!(refine_tol > 0 && refine_tol < 1e-2))
     fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
   campbell.Validate();
@@ -35,7 +37,7 @@ SweepOptions ChartSweepOptions(const ChartOptions& options, bool map) {
   o.hill_tol = options.tol;
   o.modes = !map;
   o.snapshot = options.compare && !map;
-  o.check_every = options.check_every >= 0 ? options.check_every : (map ? 97 : 1);
+  o.check_every = options.check_every.value_or(map ? 97 : 1);
   o.threads = options.threads;
   o.Validate();
   return o;

@@ -359,8 +359,8 @@ members of each conjugate pair).)doc")
       "chart",
       [](const py::object& scene, const py::object& sweep, const py::object& sweep2,
          const std::string& method, std::optional<std::string> integrator, double tol, int threads,
-         bool compare, int check_every, bool refine, double refine_tol, int refine_lines,
-         int per_rev, double weak_damping) {
+         bool compare, std::optional<int> check_every, bool refine, double refine_tol,
+         int refine_lines, int per_rev, double weak_damping) {
         const System system = py::isinstance<py::str>(scene)
                                   ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
                                   : scene.cast<System>();
@@ -403,7 +403,7 @@ defaults (the library's ChartOptions).
   tol           integrator relative tolerance (hill: truncation tolerance)
   threads       threads over points (0 = all cores)
   compare       1-D: also the frozen A(0) and averaged-system eigenvalues
-  check_every   error estimate on every k-th point (negative: 1 for 1-D, 97 for maps; 0 = none)
+  check_every   error estimate on every k-th point (None: 1 for 1-D, 97 for maps; 0 = none)
   refine        refine the stability boundaries beyond the grid
   refine_tol    relative tolerance of refined boundaries
   refine_lines  maps: grid lines per axis along which boundaries are refined (0 = all)

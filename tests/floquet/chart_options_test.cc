@@ -28,6 +28,17 @@ TEST(ChartOptions, MapsAndCampbellSweepsGetTheirOwnDefaults) {
   EXPECT_EQ(line.hill_tol, 1e-10);
 }
 
+TEST(ChartOptions, NegativeCheckEveryIsRefusedWithItsField) {
+  ChartOptions o;
+  o.check_every = -1;
+  try {
+    ChartSweepOptions(o, true);
+    FAIL() << "accepted check_every = -1";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("check_every"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ChartOptions, ChoicesGivenWin) {
   ChartOptions o;
   o.integrator = IntegratorType::kDopri5;

@@ -78,7 +78,7 @@ def test_help_text_on_everything():
     assert "integrator" in ltp.floquet.__doc__ and "tol: float = 1e-10" in ltp.floquet.__doc__
     assert "harmonics='auto'" in ltp.hill.__doc__.replace('"', "'")
     assert "orders: object = '-4:4'" in ltp.pfrf.__doc__ and "check_every: int = 10" in ltp.pfrf.__doc__
-    assert "check_every: int = -1" in ltp.chart.__doc__ and "refine_tol: float = 1e-08" in ltp.chart.__doc__
+    assert "check_every: Optional[int] = None" in ltp.chart.__doc__ and "refine_tol: float = 1e-08" in ltp.chart.__doc__
     assert ltp.__doc__ and "floquet" in ltp.__doc__
 
 

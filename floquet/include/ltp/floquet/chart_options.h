@@ -23,9 +23,9 @@ struct ChartOptions {
   int threads = 0;
   /// 1-D: also the eigenvalues of the frozen A(0) and of the averaged A_0 at every point.
   bool compare = false;
-  /// Error estimate (a tighter rerun) on every k-th point; 0 = none; negative = 1 for a 1-D
-  /// sweep, 97 for a map.
-  int check_every = -1;
+  /// Error estimate (a tighter rerun) on every k-th point; 0 = none; empty = every point of a
+  /// 1-D sweep, every 97th of a map.
+  std::optional<int> check_every;
   /// Refine the stability boundaries beyond the grid (stability_boundary.h).
   bool refine = true;
   /// Relative bracket width of a refined boundary.
