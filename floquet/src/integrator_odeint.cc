@@ -103,32 +103,45 @@ class MatrixRhs {
   }
 
   // cos Ωt, sin Ωt. Bulirsch–Stoer's modified-midpoint sequences evaluate at equally spaced
-  // times (th += h), so the phasor usually is the previous one turned by the same angle: one
-  // complex multiplication instead of a sincos, which otherwise is a third of a small system's
-  // cost. th += h rounds to the grid of t, so successive differences agree only to a few ulps
+  // times t0 + h, t0 + 2h, … (a new h per sequence, each from the step's start t0), so the
+  // phasor usually is the previous one turned by the same angle: one complex multiplication
+  // instead of a sincos, which otherwise is a third of a small system's cost. When the spacing
+  // changes (a new sequence), the phasor is turned from the anchor — the last phasor computed
+  // from t itself, the step's start: a step begins where its predecessor's last sequence
+  // ended — by t − anchor, which is the new spacing: one sincos per sequence instead of two.
+  // Times t0 + kh round to the grid of t, so successive differences agree only to a few ulps
   // of t: turning by the cached angle then evaluates A at a time within those ulps — what
-  // rounding t itself does. A fresh sincos every 32 turns bounds the drift by ~1e-14.
+  // rounding t itself does. At most 32 turns between fresh phasors bound the drift by ~1e-14.
   void BasePhasor(double t, double& c1, double& s1) {
     const double omega = omega_;
+    const double ulps = 4 * std::numeric_limits<double>::epsilon() * std::abs(t);
     const double d = t - last_t_;
-    if (turns_ < 32 &&
-        std::abs(d - turn_d_) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t)) {
-      c1 = last_c_ * turn_c_ - last_s_ * turn_s_;
-      s1 = last_s_ * turn_c_ + last_c_ * turn_s_;
+    if (turns_ < kMaxTurns && std::abs(d - turn_d_) <= ulps) {
+      Turn(last_c_, last_s_, c1, s1);
       ++turns_;
-    } else {
+    } else if (std::abs(d) > ulps && std::isfinite(t - anchor_t_)) {
+      turn_d_ = t - anchor_t_;
+      turn_c_ = std::cos(omega * turn_d_);
+      turn_s_ = std::sin(omega * turn_d_);
+      Turn(anchor_c_, anchor_s_, c1, s1);
+      turns_ = 1;
+    } else {  // the first call, or a step's start (the time of the previous evaluation)
       c1 = std::cos(omega * t);
       s1 = std::sin(omega * t);
       turns_ = 0;
-      if (std::isfinite(d)) {
-        turn_d_ = d;
-        turn_c_ = std::cos(omega * d);
-        turn_s_ = std::sin(omega * d);
-      }
+      turn_d_ = std::numeric_limits<double>::quiet_NaN();
+      anchor_t_ = t;
+      anchor_c_ = c1;
+      anchor_s_ = s1;
     }
     last_t_ = t;
     last_c_ = c1;
     last_s_ = s1;
+  }
+
+  void Turn(double c, double s, double& c1, double& s1) const {
+    c1 = c * turn_c_ - s * turn_s_;
+    s1 = s * turn_c_ + c * turn_s_;
   }
 
   void Multiply(const State& x, State& dxdt) const {
@@ -183,10 +196,13 @@ class MatrixRhs {
   bool cache_stages_ = false;
   const double* series_ = nullptr;  // Fourier form with fixed N: evaluated inline
   int harmonics_ = 0;
-  // BasePhasor's state: last time and phasor, and the last turn.
+  // BasePhasor's state: last time and phasor, the last turn (and how many since a fresh
+  // phasor), the anchor (the last phasor computed from t itself).
+  static constexpr int kMaxTurns = 32;
   double last_t_ = std::numeric_limits<double>::quiet_NaN(), last_c_ = 1, last_s_ = 0;
   double turn_d_ = std::numeric_limits<double>::quiet_NaN(), turn_c_ = 1, turn_s_ = 0;
   int turns_ = 0;
+  double anchor_t_ = std::numeric_limits<double>::quiet_NaN(), anchor_c_ = 1, anchor_s_ = 0;
   double omega_ = 0;
 };
 
