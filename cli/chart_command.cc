@@ -485,7 +485,7 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_flag("--compare", args.compare,
                 "also snapshot A(0) and averaged-system frequencies (1-D)");
   cmd->add_option_function<int>(
-      "--check-every", [&args](int k) { args.check_every = k; },
+      "--check-every", [](int k) { args.check_every = k; },
       "error estimate on every K-th point (default: all for 1-D, every 97th for maps; 0 = none)");
   cmd->add_flag("--no-refine", args.no_refine, "do not refine boundaries beyond the grid");
   cmd->add_option("--refine-tol", args.refine_tol, "relative tolerance of refined boundaries")

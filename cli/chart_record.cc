@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "format.h"
 #include "ltp/core/error.h"
 
 namespace ltp::cli {
@@ -27,17 +27,6 @@ std::string CsvText(std::string s) {
   for (char& c : s)
     if (c == '"' || c == '\n') c = '\'';
   return "\"" + s + "\"";
-}
-
-// 12 significant digits, as "%.12g" (to_chars: a stream per number was a fifth of a map's time).
-void AppendFull(std::string& out, double x) {
-  if (!std::isfinite(x)) {
-    out += std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
-    return;
-  }
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 12).ptr;
-  out.append(buf, end);
 }
 
 }  // namespace
@@ -122,21 +111,21 @@ std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbel
   std::string r;
   r.reserve(128);
   for (double v : p.values) {
-    AppendFull(r, v);
+    AppendCsvNumber(r, v);
     r += ',';
   }
-  AppendFull(r, p.max_real_exponent);
+  AppendCsvNumber(r, p.max_real_exponent);
   r += ',';
   r += p.ok ? (p.verdict == StabilityVerdict::kUnstable ? "0" : "1") : "";
   r += ',';
   r += ToString(p.verdict);
   r += ',';
-  if (p.error_estimate) AppendFull(r, *p.error_estimate);  // empty: not checked
+  if (p.error_estimate) AppendCsvNumber(r, *p.error_estimate);  // empty: not checked
   const auto cells = [&](double f, double re, double zeta) {
     if (std::isfinite(f)) {
       for (double x : {f, re, zeta}) {
         r += ',';
-        AppendFull(r, x);
+        AppendCsvNumber(r, x);
       }
     } else {
       r += ",,,";

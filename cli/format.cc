@@ -1,5 +1,6 @@
 #include "format.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -31,6 +32,22 @@ nlohmann::json JsonNumber(double x) {
   if (std::isfinite(x)) return x;
   if (std::isnan(x)) return "nan";
   return x > 0 ? "inf" : "-inf";
+}
+
+void AppendCsvNumber(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+    return;
+  }
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 12).ptr;
+  out.append(buf, end);
+}
+
+std::string CsvNumber(std::optional<double> x) {
+  std::string s;
+  if (x) AppendCsvNumber(s, *x);
+  return s;
 }
 
 double ExpClamped(double log_abs) {

@@ -55,16 +55,10 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
          "tail_weight,ambiguous,elapsed_s";
   for (size_t i = 0; i < k; ++i) csv << ",error_" << i;
   csv << "\n" << std::setprecision(12);
-  // A quantity that was not computed is an empty cell.
-  const auto cell = [](std::optional<double> x) {
-    std::ostringstream c;
-    if (x) c << std::setprecision(12) << *x;
-    return c.str();
-  };
   for (const HillStudyRow& r : s.rows) {
-    csv << r.harmonics << "," << r.matrix_size << "," << cell(r.max_error) << "," << r.apriori_bound
-        << "," << cell(r.truncation_estimate) << "," << r.selection_margin << "," << r.tail_weight
-        << "," << r.ambiguous << "," << r.elapsed_s;
+    csv << r.harmonics << "," << r.matrix_size << "," << CsvNumber(r.max_error) << ","
+        << r.apriori_bound << "," << CsvNumber(r.truncation_estimate) << "," << r.selection_margin
+        << "," << r.tail_weight << "," << r.ambiguous << "," << r.elapsed_s;
     for (double e : r.errors) csv << "," << e;
     csv << "\n";
   }
