@@ -232,10 +232,12 @@ PieceWindow::PieceWindow(double a, double b) {
   if (lo_ > hi_) lo_ = hi_ = 0.5 * (a + b);  // a sliver piece: its midpoint
 }
 
-double InitialStep(double norm_a, double length, double rel_tol, int order) {
+double InitialStep(double norm_a, double length, double rel_tol, int order, double error_constant) {
   if (!(norm_a > 0) || !std::isfinite(norm_a)) return length;
-  return std::min(length, std::pow(rel_tol, 1.0 / (order + 1)) / norm_a);
+  return std::min(length, std::pow(rel_tol / error_constant, 1.0 / (order + 1)) / norm_a);
 }
+
+double TaylorErrorConstant(int order) { return 1 / std::tgamma(order + 2.0); }
 
 }  // namespace internal
 

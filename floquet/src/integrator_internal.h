@@ -19,8 +19,13 @@ namespace ltp::internal {
 std::vector<double> RestartPoints(const PeriodicSystem& system, double t0, double t1);
 
 /// Initial step for an adaptive method of the given order on a piece of length `length`:
-/// the step whose local error (h·||A||)^(order+1) is about rel_tol.
-double InitialStep(double norm_a, double length, double rel_tol, int order);
+/// the step whose local error error_constant·(h·||A||)^(order+1) is about rel_tol.
+double InitialStep(double norm_a, double length, double rel_tol, int order, double error_constant);
+
+/// 1/(p+1)!: the local error constant of an order-p one-step method on x' = Ax, the Taylor
+/// remainder of e^{hA}. With it the first step is 2.6× (p = 4) to 4.1× (p = 8) longer than with
+/// 1, which the step controller otherwise ramps up to over several steps.
+double TaylorErrorConstant(int order);
 
 /// Where to evaluate A(t) while integrating the smooth piece [a, b]: t moved a few ulps
 /// inside the piece. A(t) exactly at a breakpoint is ambiguous — sign(cos t) at the double

@@ -1,4 +1,5 @@
-// kDopri5 and kRkf78: Boost.Odeint controlled Runge–Kutta steppers on vec(Φ) (n² doubles).
+// kDopri5 and kRkf78: Boost.Odeint controlled Runge–Kutta steppers on vec(Φ) (n² doubles);
+// kBulirschStoer: ltp's allocation-free copy of Boost's Bulirsch–Stoer (bulirsch_stoer.h).
 // We drive try_step ourselves rather than calling integrate_adaptive: that lets us stop
 // exactly at each restart point, count steps, and give up after max_steps without throwing.
 // odeint default-constructs fixed-size Eigen states (uninitialised by design) and copies them
@@ -13,6 +14,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bulirsch_stoer.h"
 #include "integrator_internal.h"
 
 namespace ltp::internal {
@@ -41,6 +43,10 @@ class MatrixRhs {
       a_.setZero();
       series_ = system.RealSeriesA(&harmonics_);
       omega_ = system.omega();
+      if (series_) {
+        a_ = Block(series_);
+        series_second_order_ = SecondOrderForm() && SeriesKeepsSecondOrderForm();
+      }
     }
   }
   MatrixRhs(const MatrixRhs&) = delete;  // passed by std::ref: no copy (and allocation) per step
@@ -84,21 +90,45 @@ class MatrixRhs {
 
   void CacheStages(bool on) { cache_stages_ = on; }
 
+  // A(t) = A₀ + Σ_w (cos wΩt C_w + sin wΩt S_w); in second-order form only the lower rows
+  // change (the upper ones stay [0 I] from A₀).
   void EvalSeries(double t) {
-    using Block = Eigen::Map<
-        const Eigen::Matrix<double, N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>;
-    constexpr int nn = N == Eigen::Dynamic ? 1 : N * N;
-    a_ = Block(series_);
+    if constexpr (N != Eigen::Dynamic && N % 2 == 0) {
+      if (series_second_order_) {
+        AddSeries<N / 2>(t, N / 2);
+        return;
+      }
+    }
+    AddSeries<N>(t, 0);
+  }
+
+  // a_'s last `Rows` rows (from row `first`) from the series.
+  template <int Rows>
+  void AddSeries(double t, int first) {
+    auto rows = a_.template middleRows<Rows>(first);
+    rows = Block(series_).template middleRows<Rows>(first);
     if (harmonics_ == 0) return;
     double c1, s1;
     BasePhasor(t, c1, s1);
     double c = c1, s = s1;
     for (int w = 1; w <= harmonics_; ++w) {
-      const double* cw = series_ + nn * (2 * w - 1);
-      a_ += c * Block(cw) + s * Block(cw + nn);
+      const double* cw = series_ + kBlockSize * (2 * w - 1);
+      rows += c * Block(cw).template middleRows<Rows>(first) +
+              s * Block(cw + kBlockSize).template middleRows<Rows>(first);
       const double next_c = c * c1 - s * s1;
       s = s * c1 + c * s1;
       c = next_c;
+    }
+  }
+
+  // Every harmonic block of the series has zero upper rows, so A(t) keeps A₀'s [0 I] there.
+  bool SeriesKeepsSecondOrderForm() const {
+    if constexpr (N == Eigen::Dynamic || N % 2 != 0) {
+      return false;
+    } else {
+      for (int b = 1; b <= 2 * harmonics_; ++b)
+        if (!Block(series_ + kBlockSize * b).template topRows<N / 2>().isZero(0)) return false;
+      return true;
     }
   }
 
@@ -154,6 +184,12 @@ class MatrixRhs {
         dphi.bottomRows(h).noalias() = a_.bottomRows(h) * phi;
         return;
       }
+    } else if constexpr (N % 2 == 0) {
+      if (series_second_order_) {
+        dphi.template topRows<N / 2>() = phi.template bottomRows<N / 2>();
+        dphi.template bottomRows<N / 2>().noalias() = a_.template bottomRows<N / 2>() * phi;
+        return;
+      }
     }
     dphi.noalias() = a_ * phi;
   }
@@ -194,8 +230,13 @@ class MatrixRhs {
   std::array<Slot, N == Eigen::Dynamic ? 1 : kCacheSlots> cache_{};
   int next_slot_ = 0;
   bool cache_stages_ = false;
-  const double* series_ = nullptr;  // Fourier form with fixed N: evaluated inline
+  // Fourier form with fixed N: evaluated inline, as blocks of N × N column-major doubles.
+  static constexpr int kBlockSize = N == Eigen::Dynamic ? 1 : N * N;
+  using Block = Eigen::Map<
+      const Eigen::Matrix<double, N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>;
+  const double* series_ = nullptr;
   int harmonics_ = 0;
+  bool series_second_order_ = false;  // A = [0 I; A₂₁(t) A₂₂(t)] at every t
   // BasePhasor's state: last time and phasor, the last turn (and how many since a fresh
   // phasor), the anchor (the last phasor computed from t itself).
   static constexpr int kMaxTurns = 32;
@@ -205,6 +246,9 @@ class MatrixRhs {
   double anchor_t_ = std::numeric_limits<double>::quiet_NaN(), anchor_c_ = 1, anchor_s_ = 0;
   double omega_ = 0;
 };
+
+bool Accepted(odeint::controlled_step_result result) { return result == odeint::success; }
+bool Accepted(bool accepted) { return accepted; }
 
 template <class State>
 bool AllFinite(const State& x) {
@@ -265,7 +309,8 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
     rhs.SetPiece(a, b);
     if (piece.restart || dt <= 0) {
       if constexpr (requires { stepper.reset(); }) stepper.reset();
-      dt = InitialStep(rhs.NormA(0.5 * (a + b)), b - a, options.rel_tol, order);
+      dt = InitialStep(rhs.NormA(0.5 * (a + b)), b - a, options.rel_tol, order,
+                       TaylorErrorConstant(order));
     } else if (fsal) {
       if constexpr (requires { stepper.reset(); }) stepper.reset();
     }
@@ -282,7 +327,7 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
       const bool last = dt >= b - t;
       const double proposal = dt;
       double h = last ? b - t : dt;
-      if (stepper.try_step(std::ref(rhs), x, t, h) == odeint::success) {
+      if (Accepted(stepper.try_step(std::ref(rhs), x, t, h))) {
         ++result.steps;
         if (last) {
           t = b;  // land exactly on the restart point
@@ -325,9 +370,10 @@ std::vector<TransitionResult> RunOdeint(const PeriodicSystem& system,
   using Algebra =
       std::conditional_t<N == Eigen::Dynamic, odeint::range_algebra, odeint::vector_space_algebra>;
   if (options.type == IntegratorType::kBulirschStoer) {
-    return Run<State, N>(odeint::bulirsch_stoer<State, double, State, double, Algebra>(
-                             options.abs_tol, options.rel_tol),
-                         8, system, points, options);
+    using BsState = std::conditional_t<N == Eigen::Dynamic, Eigen::VectorXd, State>;
+    const Eigen::Index size = static_cast<Eigen::Index>(system.states()) * system.states();
+    return Run<BsState, N>(BulirschStoer<BsState>(options.abs_tol, options.rel_tol, size), 8,
+                           system, points, options);
   }
   if (options.type == IntegratorType::kRkf78) {
     return Run<State, N>(
