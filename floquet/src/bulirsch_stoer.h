@@ -62,6 +62,9 @@ class BulirschStoer {
       }
       Midpoint(rhs, x, t, dt, stages_[k], table_[k - 1]);
       Extrapolate(k);
+      // The error and step size of an order below k_opt − 2 decide nothing (the order window
+      // below reads the work of k_opt − 2 … k_opt + 1): Boost computes them anyway, a pow each.
+      if (!first_ && k < k_opt_ - 2) continue;
       const double error = ErrorNorm(x, dt);
       h_opt[k] = OptimalStep(dt, error, k);
       work[k] = cost_[k] / h_opt[k];
