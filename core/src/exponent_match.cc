@@ -24,6 +24,18 @@ std::vector<int> MatchExponentIndices(const std::vector<std::complex<double>>& v
     for (size_t j = 0; j < reference.size(); ++j)
       pairs.push_back({ExponentDistance(values[i], reference[j], omega),
                        {static_cast<int>(i), static_cast<int>(j)}});
+  // Distances that differ only by round-off count as equal, and equal ones go in index order.
+  // Exact ties are structural: an exponent on the strip edge (Im λ = Ωp/2, a negative real
+  // multiplier) is exactly as far from a reference as from its conjugate, so without the
+  // quantum the last bit of Im λ — any change of summation order — decided which of the two it
+  // took, and every later choice with it.
+  double scale = 1;
+  for (const auto* set : {&values, &reference})
+    for (const std::complex<double>& z : *set)
+      if (std::isfinite(std::abs(z))) scale = std::max(scale, std::abs(z));
+  const double quantum = 1e-10 * scale;
+  for (auto& pair : pairs)
+    if (std::isfinite(pair.first)) pair.first = std::round(pair.first / quantum);
   std::stable_sort(pairs.begin(), pairs.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<int> match(values.size(), -1);

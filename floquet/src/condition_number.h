@@ -1,7 +1,5 @@
-// 2-norm condition numbers σmax/σmin from the singular values alone (Eigen's divide-and-conquer
-// SVD without U and V: the bidiagonalisation costs what LAPACK's gesdd costs for the 20–200-state
-// mode matrices the analyses meet, and it runs under the sanitizers, where OpenBLAS's zgemv
-// kernels read past the end of gesdd's arrays).
+// 2-norm condition numbers σmax/σmin from the singular values alone (LAPACK's gesvd without U
+// and V; Eigen's BDCSVD in the sanitizer build, see condition_number.cc).
 #pragma once
 
 #include <Eigen/Dense>

@@ -16,6 +16,7 @@
 
 #include "bulirsch_stoer.h"
 #include "integrator_internal.h"
+#include "matrix_product.h"
 
 namespace ltp::internal {
 
@@ -181,9 +182,11 @@ class MatrixRhs {
       if (SecondOrderForm()) {
         const int h = n_ / 2;
         dphi.topRows(h) = phi.bottomRows(h);
-        dphi.bottomRows(h).noalias() = a_.bottomRows(h) * phi;
+        MultiplyInto(a_.bottomRows(h), phi, dphi.bottomRows(h));
         return;
       }
+      MultiplyInto(a_, phi, dphi);
+      return;
     } else if constexpr (N % 2 == 0) {
       if (series_second_order_) {
         dphi.template topRows<N / 2>() = phi.template bottomRows<N / 2>();

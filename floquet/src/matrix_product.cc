@@ -1,0 +1,28 @@
+#include "matrix_product.h"
+
+// BLAS, Fortran interface (OpenBLAS here).
+extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n,
+                       const int* k, const double* alpha, const double* a, const int* lda,
+                       const double* b, const int* ldb, const double* beta, double* c,
+                       const int* ldc);
+
+namespace ltp::internal {
+
+void MultiplyInto(const Eigen::Ref<const Eigen::MatrixXd>& a,
+                  const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> out) {
+#ifndef LTP_EIGEN_ONLY
+  if (b.cols() >= kBlasColumns) {
+    const char no = 'N';
+    const double one = 1, zero = 0;
+    const int m = static_cast<int>(a.rows()), n = static_cast<int>(b.cols());
+    const int k = static_cast<int>(a.cols());
+    const int lda = static_cast<int>(a.outerStride()), ldb = static_cast<int>(b.outerStride());
+    const int ldc = static_cast<int>(out.outerStride());
+    dgemm_(&no, &no, &m, &n, &k, &one, a.data(), &lda, b.data(), &ldb, &zero, out.data(), &ldc);
+    return;
+  }
+#endif
+  out.noalias() = a * b;
+}
+
+}  // namespace ltp::internal

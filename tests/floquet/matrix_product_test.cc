@@ -1,0 +1,32 @@
+// MultiplyInto (floquet/src/matrix_product.h) against Eigen's own product, below and above the
+// size from which it calls BLAS, and on row blocks (the lower half of A(t) in second-order form),
+// whose leading dimension is not their row count.
+#include "matrix_product.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+namespace ltp::internal {
+namespace {
+
+TEST(MatrixProduct, EqualsEigensProductOnEverySize) {
+  for (int n : {2, kBlasColumns - 1, kBlasColumns, 60}) {
+    SCOPED_TRACE(testing::Message() << "n = " << n);
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Random(n, n), b = Eigen::MatrixXd::Random(n, n);
+    Eigen::MatrixXd out(n, n);
+    MultiplyInto(a, b, out);
+    const Eigen::MatrixXd want = a * b;
+    EXPECT_LT((out - want).cwiseAbs().maxCoeff(), 1e-13 * n);
+
+    // Lower half of a times b into the lower half of c (outer stride n on both sides).
+    Eigen::MatrixXd c = Eigen::MatrixXd::Constant(n, n, 7.0);
+    const int h = n / 2;
+    MultiplyInto(a.bottomRows(n - h), b, c.bottomRows(n - h));
+    EXPECT_LT((c.bottomRows(n - h) - a.bottomRows(n - h) * b).cwiseAbs().maxCoeff(), 1e-13 * n);
+    EXPECT_TRUE((c.topRows(h).array() == 7.0).all()) << "rows outside the block were written";
+  }
+}
+
+}  // namespace
+}  // namespace ltp::internal
