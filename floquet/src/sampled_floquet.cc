@@ -71,12 +71,16 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   r.resolved_harmonics = (op.size() - 1) / 2;
   const double omega = op.rotor_speed;
 
+  // The table shows each exponent on the branch of the mode it is matched to (OntoBranch), so
+  // the trigonometric route's periodic mode shapes are never read; the hold route's find the
+  // rigid rotation when MBC does not apply (RigidExponent).
   FloquetOptions hold_options = options.floquet;
   hold_options.integrator.type = IntegratorType::kExpm;  // exact for the held samples
+  FloquetOptions trig_options = options.floquet;
+  trig_options.compute_modes = false;
   r.hold =
       AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
-  r.trig =
-      AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), options.floquet);
+  r.trig = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), trig_options);
   r.ok = r.hold.ok && r.trig.ok;
   r.notes = LinCaveats(used);
   if (!r.ok) {
