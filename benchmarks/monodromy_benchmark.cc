@@ -3,15 +3,23 @@
 // steps) that still reaches 1e-10 is found once, before timing, against an rkf78 reference at
 // rel_tol 1e-14; the counters report the error actually reached.
 //
+// BulirschStoer/{ltp,boost}: the Bulirsch–Stoer stepper alone, ltp's allocation-free copy
+// (floquet/src/bulirsch_stoer.h) against the Boost.Odeint stepper it copies, side by side on the
+// same 2×2 Mathieu monodromy at rel_tol 1e-10 (identical steps and values: the counters say so).
+//
 //   build/benchmarks/monodromy_benchmark --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // odeint's fixed-size Eigen states
 #include <benchmark/benchmark.h>
 
+#include <boost/numeric/odeint.hpp>
+#include <boost/numeric/odeint/external/eigen/eigen.hpp>
 #include <cmath>
 #include <complex>
 #include <map>
 #include <numbers>
 
+#include "bulirsch_stoer.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "support/systems.h"
@@ -100,8 +108,62 @@ void BM_Chain40FullAnalysis(benchmark::State& state) {
   state.counters["error_estimate"] = r.error_estimate.value_or(std::nan(""));
 }
 
+// Φ' = A(t)Φ for y'' + 0.05 y' + (1.5 − 4 cos 2t) y = 0 on vec(Φ).
+struct MathieuRhs {
+  using State = Eigen::Matrix<double, 4, 1>;
+  void operator()(const State& x, State& dxdt, double t) const {
+    const double k = 1.5 - 4.0 * std::cos(2 * t);
+    for (int j = 0; j < 2; ++j) {  // column j of Φ: (y, y')
+      dxdt(2 * j) = x(2 * j + 1);
+      dxdt(2 * j + 1) = -k * x(2 * j) - 0.05 * x(2 * j + 1);
+    }
+  }
+};
+
+bool Accepted(boost::numeric::odeint::controlled_step_result r) {
+  return r == boost::numeric::odeint::success;
+}
+bool Accepted(bool accepted) { return accepted; }
+
+template <class Stepper>
+void BM_BulirschStoer(benchmark::State& state) {
+  using State = MathieuRhs::State;
+  const MathieuRhs rhs;
+  long attempts = 0;
+  State x;
+  for (auto _ : state) {
+    Stepper stepper = [] {
+      if constexpr (std::is_constructible_v<Stepper, double, double, Eigen::Index>)
+        return Stepper(1e-10, 1e-10, 4);
+      else
+        return Stepper(1e-10, 1e-10);
+    }();
+    x << 1, 0, 0, 1;
+    double t = 0, dt = 0.01;
+    const double T = std::numbers::pi;
+    attempts = 0;
+    while (t < T) {
+      const bool last = dt >= T - t;
+      double h = last ? T - t : dt;
+      const bool ok = Accepted(stepper.try_step(rhs, x, t, h));
+      if (ok && last) t = T;
+      dt = h;
+      ++attempts;
+    }
+    benchmark::DoNotOptimize(x);
+  }
+  state.counters["attempts"] = static_cast<double>(attempts);
+  state.counters["phi00"] = x(0);  // the same in both rows: the same algorithm, bit for bit
+}
+using LtpBs = ltp::internal::BulirschStoer<MathieuRhs::State>;
+using BoostBs =
+    boost::numeric::odeint::bulirsch_stoer<MathieuRhs::State, double, MathieuRhs::State, double,
+                                           boost::numeric::odeint::vector_space_algebra>;
+
 }  // namespace
 
+BENCHMARK_TEMPLATE(BM_BulirschStoer, LtpBs)->Name("BulirschStoer/ltp");
+BENCHMARK_TEMPLATE(BM_BulirschStoer, BoostBs)->Name("BulirschStoer/boost");
 BENCHMARK_CAPTURE(BM_MathieuMultipliers, dopri5, IntegratorType::kDopri5)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MathieuMultipliers, rkf78, IntegratorType::kRkf78)

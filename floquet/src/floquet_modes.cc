@@ -8,6 +8,7 @@
 
 #include "condition_number.h"
 #include "ltp/floquet/periodic_eigen.h"
+#include "matrix_product.h"
 
 namespace ltp::internal {
 
@@ -98,7 +99,12 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
     Eigen::MatrixXcd at_grid(n, n);
     for (int k = 0; k < n; ++k)
       at_grid.col(k) = vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
-    xi[s].noalias() = tr.phi.cast<cd>() * at_grid;
+    // Φ real: the real and imaginary parts as two real products (BLAS for large n).
+    Eigen::MatrixXd re(n, n), im(n, n);
+    MultiplyInto(tr.phi, at_grid.real(), re);
+    MultiplyInto(tr.phi, at_grid.imag(), im);
+    xi[s].real() = re;
+    xi[s].imag() = im;
   }
   return xi;
 }

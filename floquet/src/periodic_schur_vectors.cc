@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "slicot.h"
 
@@ -128,14 +129,22 @@ bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::
 /// 1 − e^{d} for Re d ≤ 0, without overflow (e^{d} underflows harmlessly to 0).
 Complex OneMinusExp(Complex d) { return d.real() < -700 ? Complex(1.0) : 1.0 - std::exp(d); }
 
-/// The stacked eigenvector of the multiplier at diagonal position j (see the file comment);
-/// empty when a recurrence is singular (a repeated multiplier) or the numbers are not finite.
-Eigen::VectorXcd BackSubstitute(const ComplexSchurForm& s, int j,
-                                const std::vector<Complex>& log_diag,
-                                const std::vector<Complex>& log_sigma) {
+/// The cyclic recurrences of the multiplier at diagonal position j (see the file comment):
+/// column i of y is y_i in Schur coordinates, and v_i = c_i V_i y_i with log c_i in log_c.
+struct Recurrence {
+  Eigen::MatrixXcd y;
+  std::vector<Complex> log_c;
+};
+
+/// Empty when a recurrence is singular (a repeated multiplier) or the numbers are not finite.
+std::optional<Recurrence> SolveRecurrences(const ComplexSchurForm& s, int j,
+                                           const std::vector<Complex>& log_diag,
+                                           const std::vector<Complex>& log_sigma) {
   const int k = static_cast<int>(s.t.size());
   const int n = static_cast<int>(s.t[0].rows());
-  Eigen::MatrixXcd y = Eigen::MatrixXcd::Zero(n, k);  // column i: y_i in Schur coordinates
+  Recurrence out;
+  Eigen::MatrixXcd& y = out.y;
+  y = Eigen::MatrixXcd::Zero(n, k);
   y.row(j).setOnes();
   std::vector<Complex> tau(k), rhs(k);
   for (int i = 0; i < k; ++i) tau[i] = s.t[i](j, j);
@@ -153,7 +162,7 @@ Eigen::VectorXcd BackSubstitute(const ComplexSchurForm& s, int j,
       Complex x = 0;
       for (int i = 0; i < k; ++i) x = (s.t[i](l, l) * x + rhs[i]) / tau[i];
       const Complex denominator = OneMinusExp(d);
-      if (!(std::abs(denominator) > 1e-13)) return {};
+      if (!(std::abs(denominator) > 1e-13)) return std::nullopt;
       x /= denominator;
       for (int i = 0; i < k; ++i) {
         y(l, i) = x;
@@ -163,7 +172,7 @@ Eigen::VectorXcd BackSubstitute(const ComplexSchurForm& s, int j,
       Complex x = 0;
       for (int i = k - 1; i >= 0; --i) x = (tau[i] * x - rhs[i]) / s.t[i](l, l);
       const Complex denominator = OneMinusExp(-d);
-      if (!(std::abs(denominator) > 1e-13)) return {};
+      if (!(std::abs(denominator) > 1e-13)) return std::nullopt;
       x /= denominator;
       y(l, 0) = x;
       for (int i = k - 1; i >= 1; --i) {
@@ -171,25 +180,45 @@ Eigen::VectorXcd BackSubstitute(const ComplexSchurForm& s, int j,
         y(l, i) = x;
       }
     }
-    if (!y.row(l).allFinite()) return {};
+    if (!y.row(l).allFinite()) return std::nullopt;
   }
-  // v_i = c_i V_i y_i with c_0 = 1, c_{i+1} = c_i τ_i / σ_i, scaled by the largest ||v_i||.
-  std::vector<Complex> log_c(k);
-  std::vector<Eigen::VectorXcd> x(k);
+  // c_0 = 1, c_{i+1} = c_i τ_i / σ_i.
+  out.log_c.resize(k);
   Complex acc = 0;
-  double top = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < k; ++i) {
-    log_c[i] = acc;
+    out.log_c[i] = acc;
     acc += std::log(tau[i]) - log_sigma[i];
-    x[i] = s.v[i] * y.col(i);
-    top = std::max(top, log_c[i].real() + std::log(x[i].norm()));
   }
-  if (!std::isfinite(top)) return {};
-  Eigen::VectorXcd stacked(static_cast<Eigen::Index>(k) * n);
-  for (int i = 0; i < k; ++i)
-    stacked.segment(static_cast<Eigen::Index>(i) * n, n) = x[i] * std::exp(log_c[i] - top);
-  if (!stacked.allFinite()) return {};
-  return stacked;
+  return out;
+}
+
+/// v_i = c_i V_i y_i for every solved mode, stacked and scaled by the largest ||v_i||: one
+/// n × n times n × modes product per segment (what per-mode products would cost, at
+/// matrix–matrix speed).
+void StackEigenvectors(const ComplexSchurForm& s, const std::vector<std::size_t>& modes,
+                       const std::vector<Recurrence>& recurrences,
+                       std::vector<Eigen::VectorXcd>& out) {
+  const int k = static_cast<int>(s.t.size());
+  const int n = static_cast<int>(s.t[0].rows());
+  const int count = static_cast<int>(modes.size());
+  std::vector<double> top(count, -std::numeric_limits<double>::infinity());
+  std::vector<Eigen::VectorXcd> stacked(count, Eigen::VectorXcd(static_cast<Eigen::Index>(k) * n));
+  Eigen::MatrixXcd y(n, count), x(n, count);
+  for (int i = 0; i < k; ++i) {
+    for (int q = 0; q < count; ++q) y.col(q) = recurrences[q].y.col(i);
+    x.noalias() = s.v[i] * y;
+    for (int q = 0; q < count; ++q) {
+      stacked[q].segment(static_cast<Eigen::Index>(i) * n, n) = x.col(q);
+      top[q] = std::max(top[q], recurrences[q].log_c[i].real() + std::log(x.col(q).norm()));
+    }
+  }
+  for (int q = 0; q < count; ++q) {
+    if (!std::isfinite(top[q])) continue;
+    for (int i = 0; i < k; ++i)
+      stacked[q].segment(static_cast<Eigen::Index>(i) * n, n) *=
+          std::exp(recurrences[q].log_c[i] - top[q]);
+    if (stacked[q].allFinite()) out[modes[q]] = std::move(stacked[q]);
+  }
 }
 
 /// Distance of two log multipliers, the imaginary parts compared modulo 2π.
@@ -219,6 +248,8 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
     for (int l = 0; l < n; ++l) log_diag[l] += std::log(s.t[i](l, l));
   std::vector<bool> used(n, false);
   std::vector<Complex> log_sigma(k);
+  std::vector<std::size_t> solved;
+  std::vector<Recurrence> recurrences;
   for (std::size_t m = 0; m < log_rho.size(); ++m) {
     if (!wanted[m] || !std::isfinite(log_rho[m].real())) continue;
     int best = -1;
@@ -234,8 +265,12 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
     if (best < 0 || !(best_distance <= 1e-6 * std::max(1.0, std::abs(log_rho[m])))) continue;
     used[best] = true;
     for (int i = 0; i < k; ++i) log_sigma[i] = log_rho[m] * (dt[i] / period);
-    out[m] = BackSubstitute(s, best, log_diag, log_sigma);
+    if (std::optional<Recurrence> r = SolveRecurrences(s, best, log_diag, log_sigma)) {
+      solved.push_back(m);
+      recurrences.push_back(std::move(*r));
+    }
   }
+  StackEigenvectors(s, solved, recurrences, out);
   return out;
 }
 
