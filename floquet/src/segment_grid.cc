@@ -127,6 +127,9 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
   for (const Piece& p : pieces) {
     grid.times.push_back(p.t0);
     grid.factors.push_back(p.tr.phi);
+    if (p.tr.steps_per_period > 0)
+      grid.fixed_steps += std::max(
+          1L, static_cast<long>(std::ceil(p.tr.steps_per_period * (p.t1 - p.t0) / T - 1e-9)));
   }
   grid.times.push_back(pieces.empty() ? T : pieces.back().t1);
   grid.initial_segments = options.fixed_times.empty()

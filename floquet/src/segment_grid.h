@@ -28,6 +28,9 @@ struct SegmentGrid {
   long rhs_evals = 0;
   int initial_segments = 0;    ///< the uniform grid it started from
   double worst_condition = 1;  ///< max over the factors of σmax/σmin
+  /// Matrix products inside the factors of fixed-step methods (Magnus, expm): their steps,
+  /// each with its own rounding that no error control sees. 0 for adaptive methods.
+  long fixed_steps = 0;
   std::vector<std::string> diagnostics;
 };
 
