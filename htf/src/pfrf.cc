@@ -326,11 +326,15 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
     r.diagnostics.push_back(
         "the modal route reports itself unreliable (see its diagnostics); "
         "compare with --route htf or shooting");
-  if (r.floquet.ok && !r.floquet.stable)
+  if (r.floquet.ok && r.floquet.verdict == StabilityVerdict::kUnstable)
     r.diagnostics.push_back(
         "the system is unstable (max Re λ = " + std::to_string(r.floquet.max_real_exponent) +
         " 1/s): H_z describes the formal periodic solution, which is not "
         "reached from rest");
+  else if (r.floquet.ok && r.floquet.verdict == StabilityVerdict::kMarginal)
+    r.diagnostics.push_back(
+        "stability undecided (marginal): |max Re λ| is within the error estimate, so the "
+        "formal periodic solution H_z describes may not be reached from rest");
   r.resonances = FindResonances(r, r.modal ? &*r.modal : nullptr, options.peak_threshold,
                                 options.max_peaks_per_order);
   if (options.primary == PfrfRoute::kAuto && primary_route == PfrfRoute::kModal && any_checks) {
