@@ -57,9 +57,9 @@ struct Piece {
 /// copies inside it (restart pieces); an interval starting on a breakpoint restarts too.
 std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vector<double>& times);
 
-/// kDopri5 / kRkf78 / kBulirschStoer via Boost.Odeint steppers: one result per output piece
-/// (fewer, the last not ok, when the integration failed); max_steps bounds the attempted steps
-/// over all pieces.
+/// kDopri5 / kRkf78 via Boost.Odeint steppers, kBulirschStoer via bulirsch_stoer.h: one
+/// result per output piece (fewer, the last not ok, when the integration failed); max_steps
+/// bounds the attempted steps over all pieces.
 std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
                                                 const std::vector<Piece>& pieces,
                                                 const IntegratorOptions& options);

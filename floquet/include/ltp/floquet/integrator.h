@@ -15,8 +15,9 @@ namespace ltp {
 enum class IntegratorType {
   kDopri5,  ///< adaptive Dormand–Prince 5(4), Boost.Odeint; smooth non-stiff A(t)
   kRkf78,   ///< adaptive Runge–Kutta–Fehlberg 7(8), Boost.Odeint; tight tolerances
-  /// Bulirsch–Stoer extrapolation with adaptive order, Boost.Odeint: the cheapest per digit
-  /// for smooth small systems at tight tolerances (stability maps); no jumps inside pieces
+  /// Bulirsch–Stoer extrapolation with adaptive order (Boost.Odeint's algorithm, in an
+  /// allocation-free copy that takes the same steps): the cheapest per digit for smooth
+  /// systems at tight tolerances (stability maps); no jumps inside pieces
   kBulirschStoer,
   kCvodeBdf,    ///< SUNDIALS CVODE, BDF (stiff), Newton with an exact block preconditioner
   kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (non-stiff, cheap per step)
