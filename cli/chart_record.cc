@@ -152,10 +152,14 @@ std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbel
 
 void ChartRecord::Add(const SweepPoint& point) {
   if (path_.empty()) return;
-  const std::string row = Row(point, nullptr, 0);
+  std::string row = Row(point, nullptr, 0);
   std::lock_guard<std::mutex> lock(mutex_);
   journal_ << JournalRecord(point);
   csv_ << row;
+  if (grid_.axes.size() == 2 && point.index < grid_.size()) {  // a map's final row is this one
+    if (rows_.empty()) rows_.resize(grid_.size());
+    rows_[point.index] = std::move(row);
+  }
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ > std::chrono::milliseconds(200)) {
     journal_.flush();
@@ -174,7 +178,13 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const CampbellDi
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << Header(campbell ? static_cast<int>(campbell->lines.size()) : states_);
-    for (size_t i = 0; i < sorted.size(); ++i) out << Row(sorted[i], campbell, i);
+    for (size_t i = 0; i < sorted.size(); ++i) {
+      const size_t index = sorted[i].index;
+      if (!campbell && index < rows_.size() && !rows_[index].empty())
+        out << rows_[index];
+      else
+        out << Row(sorted[i], campbell, i);
+    }
     if (!out) throw InputError("cannot write '" + tmp + "'");
   }
   std::filesystem::rename(tmp, path_);

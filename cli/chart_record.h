@@ -74,6 +74,9 @@ class ChartRecord {
   int states_ = 0;
   std::vector<SweepPoint> resumed_;
   std::ofstream csv_, journal_;
+  /// Maps: every streamed row by grid index; the sorted file reuses them (a map's row does not
+  /// depend on the other points, unlike a Campbell diagram's line columns).
+  std::vector<std::string> rows_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
