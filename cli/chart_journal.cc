@@ -231,6 +231,10 @@ std::string PointWriter::Records(const SweepPoint& point, bool with_shapes) {
   return definitions + JournalFrame(EncodePoint(point, ids, with_shapes));
 }
 
+std::string PointWriter::Record(const SweepPoint& point, bool with_shapes) {
+  return JournalFrame(EncodePoint(point, {}, with_shapes));
+}
+
 std::optional<SweepPoint> PointReader::Read(const std::string& payload) {
   if (const auto d = DecodeDiagnostic(payload)) {
     texts_[d->first] = d->second;

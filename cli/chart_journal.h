@@ -37,7 +37,11 @@ std::vector<std::string> FramedPayloads(const std::string& bytes, size_t from = 
 /// to its id. `with_shapes` false leaves out the mode shapes.
 class PointWriter {
  public:
+  /// A point's records, its diagnostic texts not written before first. Not thread-safe: the
+  /// texts' ids are shared.
   std::string Records(const SweepPoint& point, bool with_shapes);
+  /// The record of a point without diagnostics (Records without the shared ids): any thread.
+  static std::string Record(const SweepPoint& point, bool with_shapes);
 
  private:
   std::map<std::string, std::uint32_t> ids_;
