@@ -39,9 +39,10 @@ const LinOperatingPoint& Big() {
   return op;
 }
 
-// Three azimuths of n random damped first-order states, as lin-60-states (see the top).
-const LinOperatingPoint& Synthetic(int n) {
-  static const LinOperatingPoint op = [n] {
+// Three azimuths of 200 random damped states, drawn as lin-60-states (see the top).
+const LinOperatingPoint& Synthetic200() {
+  static const LinOperatingPoint op = [] {
+    const int n = 200;
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("ltp-lin-" + std::to_string(n) + "-states");
     std::filesystem::create_directories(dir);
@@ -55,9 +56,12 @@ const LinOperatingPoint& Synthetic(int n) {
       file.rotor_speed = 1.0;
       file.azimuth = 2 * std::numbers::pi * k / 3;
       file.continuous_states = n;
-      for (int i = 0; i < n; ++i)
-        file.states.push_back(
-            {.derivative_order = 2, .description = "state " + std::to_string(i + 1)});
+      for (int i = 0; i < n; ++i) {
+        LinChannel state;
+        state.derivative_order = 2;
+        state.description = "state " + std::to_string(i + 1);
+        file.states.push_back(std::move(state));
+      }
       file.A.resize(n, n);
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) file.A(i, j) = i == j ? diagonal(random) : normal(random);
@@ -84,7 +88,7 @@ void SampledFloquet(benchmark::State& state) {
 BENCHMARK(SampledFloquet)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void SampledFloquet200(benchmark::State& state) {
-  const LinOperatingPoint& op = Synthetic(200);
+  const LinOperatingPoint& op = Synthetic200();
   const Mbc3Result mbc = Mbc3(op, {});
   for (auto _ : state) {
     const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc, {});

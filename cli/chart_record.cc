@@ -153,11 +153,10 @@ std::string ChartRecord::Row(const SweepPoint& p, const CampbellDiagram* campbel
 void ChartRecord::Add(const SweepPoint& point) {
   if (path_.empty()) return;
   std::string row = Row(point, nullptr, 0);
-  const bool with_shapes = grid_.axes.size() == 1;  // only 1-D sweeps track modes by shapes
   // Most points carry no diagnostics: their record needs no shared state and is encoded before
   // the lock (two threads queued on it for a fifth of a 401 × 401 map's CSV time).
   std::string record;
-  if (point.diagnostics.empty()) record = PointWriter::Record(point, with_shapes);
+  if (point.diagnostics.empty()) record = PointWriter::Record(point, JournalShapes());
   std::lock_guard<std::mutex> lock(mutex_);
   journal_ << (record.empty() ? JournalRecord(point) : record);
   csv_ << row;
@@ -197,7 +196,7 @@ void ChartRecord::Finish(const std::vector<SweepPoint>& sorted, const CampbellDi
 }
 
 std::string ChartRecord::JournalRecord(const SweepPoint& point) {
-  return writer_.Records(point, grid_.axes.size() == 1);  // only 1-D sweeps track by shapes
+  return writer_.Records(point, JournalShapes());
 }
 
 // One writer per FILE: the lock file holds the writer's pid; a lock whose process is gone

@@ -66,6 +66,8 @@ class ChartRecord {
   void Lock();
   /// The journal records of a point (its new diagnostic texts first). Call with mutex_ held.
   std::string JournalRecord(const SweepPoint& point);
+  /// Whether journal records keep mode shapes: only 1-D sweeps track modes by them.
+  bool JournalShapes() const { return grid_.axes.size() == 1; }
 
   PointWriter writer_;
   std::string path_;

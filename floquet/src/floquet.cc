@@ -460,17 +460,14 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   r.multiplier_method = options.multipliers;
 
   // 1. Segment factors on a grid refined where factors grow or decay too fast.
-  const int samples = options.compute_modes ? (options.mode_samples > 0 ? options.mode_samples
-                                                                        : AutoModeSamples(system))
-                                            : 1;
+  const int mode_samples =
+      options.mode_samples > 0 ? options.mode_samples : AutoModeSamples(system);
+  const int samples = options.compute_modes ? mode_samples : 1;
   // Without modes a small system starts from one segment. A large one starts from the grid it
   // would have with modes: one period of it is nearly always beyond the condition limit, and
   // refining from one segment costs extra rounds and ends on more segments (60-state OpenFAST
   // set: K = 48 from 1, 27 from 8).
-  const int grid_samples =
-      options.compute_modes || n <= kSmallSystemStates
-          ? samples
-          : (options.mode_samples > 0 ? options.mode_samples : AutoModeSamples(system));
+  const int grid_samples = n > kSmallSystemStates ? mode_samples : samples;
   const internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
   r.rhs_evals += grid.rhs_evals;

@@ -68,6 +68,10 @@ std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
 TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector<double>& points,
                                  const IntegratorOptions& options);
 
+/// Steps a fixed-step method takes on a piece of length `length`:
+/// max(1, ceil(steps_per_period · length / period)).
+long StepsOnPiece(int steps_per_period, double length, double period);
+
 /// Fixed-step exponential integrators (Magnus 4/6, exponential midpoint rule) with their
 /// workspace allocated once and reused over the passes of the automatic resolution loop.
 class FixedStepIntegrator {

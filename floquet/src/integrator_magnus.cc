@@ -15,14 +15,13 @@
 
 namespace ltp::internal {
 
-namespace {
-
-// Steps on a piece of length `length`: max(1, ceil(steps_per_period · length / T)); the
-// relative slack keeps a whole number of steps from rounding up to one more.
 long StepsOnPiece(int steps_per_period, double length, double period) {
+  // The relative slack keeps a whole number of steps from rounding up to one more.
   const double exact = steps_per_period * (length / period);
   return std::max(1L, static_cast<long>(std::ceil(exact * (1 - 1e-12))));
 }
+
+namespace {
 
 // exp(Ω) of the last few generators seen by this thread. A held-sample system has a handful
 // of distinct matrices, and its segment grid, error-estimate rerun and mode samples cut the

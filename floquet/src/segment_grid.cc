@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "condition_number.h"
+#include "integrator_internal.h"
 
 namespace ltp::internal {
 
@@ -28,7 +29,8 @@ double FactorCondition(const Eigen::MatrixXd& f) {
   return ConditionNumber(b);
 }
 
-struct Piece {
+// One segment of the grid with its transition factor and that factor's condition number.
+struct Segment {
   double t0, t1;
   TransitionResult tr;
   double cond = 1;
@@ -36,7 +38,7 @@ struct Piece {
 
 // Integrates the pieces listed in `todo` (sorted; chains of neighbouring pieces share one
 // integrator pass, see IntervalTransitions) and measures each factor's condition.
-void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
+void Integrate(const PeriodicSystem& system, std::vector<Segment>& pieces,
                const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
   std::vector<std::pair<double, double>> intervals;
   for (size_t i : todo) intervals.emplace_back(pieces[i].t0, pieces[i].t1);
@@ -45,7 +47,7 @@ void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
   const long count = static_cast<long>(todo.size());
 #pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
   for (long j = 0; j < count; ++j) {
-    Piece& p = pieces[todo[j]];
+    Segment& p = pieces[todo[j]];
     p.tr = std::move(results[j]);
     p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
   }
@@ -56,7 +58,7 @@ void Integrate(const PeriodicSystem& system, std::vector<Piece>& pieces,
 SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOptions& options) {
   SegmentGrid grid;
   const double T = system.period();
-  std::vector<Piece> pieces;
+  std::vector<Segment> pieces;
   if (!options.fixed_times.empty()) {
     for (size_t i = 0; i + 1 < options.fixed_times.size(); ++i)
       pieces.push_back({options.fixed_times[i], options.fixed_times[i + 1], {}, 1});
@@ -74,10 +76,10 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
     if (!options.refine) break;
     // Split every piece whose factor is too ill-conditioned into as many equal parts as its
     // condition number asks for (log cond is additive along the segment for a steady rate).
-    std::vector<Piece> next;
+    std::vector<Segment> next;
     std::vector<size_t> next_todo;
     bool split = false;
-    for (Piece& p : pieces) {
+    for (Segment& p : pieces) {
       if (p.cond <= options.max_factor_condition) {
         next.push_back(std::move(p));
         continue;
@@ -107,7 +109,7 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
   grid.ok = true;
   double worst = 1;
   for (size_t i = 0; i < pieces.size(); ++i) {
-    const Piece& p = pieces[i];
+    const Segment& p = pieces[i];
     if (!p.tr.ok) {
       grid.ok = false;
       std::ostringstream s;
@@ -124,12 +126,12 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
     grid.diagnostics.push_back(s.str());
   }
   grid.times.reserve(pieces.size() + 1);
-  for (const Piece& p : pieces) {
+  for (const Segment& p : pieces) {
     grid.times.push_back(p.t0);
     grid.factors.push_back(p.tr.phi);
+    // At least these: a segment cut at breakpoints takes StepsOnPiece on every piece.
     if (p.tr.steps_per_period > 0)
-      grid.fixed_steps += std::max(
-          1L, static_cast<long>(std::ceil(p.tr.steps_per_period * (p.t1 - p.t0) / T - 1e-9)));
+      grid.fixed_steps += StepsOnPiece(p.tr.steps_per_period, p.t1 - p.t0, T);
   }
   grid.times.push_back(pieces.empty() ? T : pieces.back().t1);
   grid.initial_segments = options.fixed_times.empty()
