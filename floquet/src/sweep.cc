@@ -12,8 +12,10 @@
 
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/text.h"
 #include "ltp/floquet/threads.h"
+#include "time_reversal.h"
 
 namespace ltp {
 
@@ -21,26 +23,39 @@ namespace {
 
 using cd = std::complex<double>;
 
-// Stability only (maps): Φ(T, 0) in one integration and the eigenvalues of the 2..n matrix.
+// Log multipliers from Φ(T, 0) formed in one integration — over half a period when the
+// system is time-reversible (docs/time-reversal.md) — and the eigenvalues of the n×n product.
 // The largest multiplier keeps its relative accuracy in the formed product however small the
-// others are, and it is all a map needs; AnalyzeFloquet's segment grid, periodic Schur and
-// bookkeeping would cost a quarter of the point. Returns false (caller falls back to the full
-// analysis) when the integration fails or the product over- or underflows.
+// others are. nullopt when the integration fails or the product over- or underflows.
+std::optional<std::vector<cd>> FormedLogMultipliers(const PeriodicSystem& system,
+                                                    const IntegratorOptions& integrator) {
+  const int n = system.states();
+  if (n == 0) return std::nullopt;
+  const std::optional<internal::TimeReversal> reversal = internal::FindTimeReversal(system);
+  const TransitionResult phi =
+      reversal ? internal::MonodromyFromHalfPeriod(system, *reversal, integrator)
+               : StateTransition(system, 0, system.period(), integrator);
+  if (!phi.ok || !phi.phi.allFinite()) return std::nullopt;
+  const Eigen::VectorXcd rho = phi.phi.eigenvalues();
+  std::vector<cd> logs(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    if (!(std::abs(rho(k)) > 0)) return std::nullopt;  // underflow: the full analysis keeps it
+    logs[static_cast<size_t>(k)] = std::log(rho(k));
+  }
+  return logs;
+}
+
+// Stability only (maps): the formed product's multipliers. AnalyzeFloquet's segment grid,
+// periodic Schur and bookkeeping would cost a quarter of the point. Returns false (caller
+// falls back to the full analysis) when FormedLogMultipliers fails.
 bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& options,
                            SweepPoint& point) {
-  const int n = system.states();
-  if (n == 0) return false;
-  const TransitionResult phi =
-      StateTransition(system, 0, system.period(), options.floquet.integrator);
-  if (!phi.ok || !phi.phi.allFinite()) return false;
-  const Eigen::VectorXcd rho = phi.phi.eigenvalues();
+  const std::optional<std::vector<cd>> logs =
+      FormedLogMultipliers(system, options.floquet.integrator);
+  if (!logs) return false;
   const double T = system.period();
-  point.modes.resize(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    if (!(std::abs(rho(k)) > 0)) return false;  // underflow: the full analysis keeps it
-    const cd log_rho = std::log(rho(k));
-    point.modes[static_cast<size_t>(k)] = MakeFloquetMode(log_rho, 0, T);
-  }
+  point.modes.clear();
+  for (const cd& log_rho : *logs) point.modes.push_back(MakeFloquetMode(log_rho, 0, T));
   const std::vector<int> order = ModeDisplayOrder(point.modes);
   std::vector<FloquetMode> sorted;
   for (int k : order) sorted.push_back(point.modes[static_cast<size_t>(k)]);
@@ -52,6 +67,17 @@ bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& opt
   point.max_log_multiplier = point.max_real_exponent * T;
   point.ok = true;
   return true;
+}
+
+// A checked map point's estimate covers the route its unchecked neighbours take: the formed
+// product at the user's tolerance against the refined run that gives the point's numbers.
+double FormedRouteError(const PeriodicSystem& system, const FloquetOptions& options,
+                        const FloquetResult& refined) {
+  const std::optional<std::vector<cd>> logs = FormedLogMultipliers(system, options.integrator);
+  if (!logs) return std::numeric_limits<double>::infinity();
+  std::vector<cd> reference;
+  for (const FloquetMode& m : refined.modes) reference.push_back(m.exponent * refined.period);
+  return MaxExponentMismatch(*logs, reference, 2 * std::numbers::pi) / refined.period;
 }
 
 // Monodromy route for one point.
@@ -81,6 +107,8 @@ void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& option
   point.max_real_exponent = r.max_real_exponent;
   point.max_log_multiplier = r.max_log_abs_multiplier;
   point.error_estimate = r.error_estimate;
+  if (check_error && !options.modes && r.error_estimate)
+    point.error_estimate = std::max(*r.error_estimate, FormedRouteError(system, o, r));
   point.modes = std::move(r.modes);
   if (options.modes && !r.mode_samples.empty()) {
     point.shapes = r.mode_samples.front();

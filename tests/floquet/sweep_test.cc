@@ -172,6 +172,46 @@ TEST(RunSweep, FailingPointIsRecordedNotFatal) {
   EXPECT_EQ(failed, 3);
 }
 
+// A checked map point's estimate bounds its own value's error against a reference
+// (AnalyzeFloquet, rkf78 at 1e-13 over the full period) and covers the distance to the route
+// its unchecked neighbours take (for the damped Mathieu equation half a period,
+// docs/time-reversal.md), so the map's checked sample measures that route.
+TEST(RunSweep, CheckedEstimateCoversTheUncheckedRoute) {
+  const Scene scene = LoadScene("mathieu");
+  ParameterMap base = scene.Resolve({{"q", "2.5"}, {"c", "0.05"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("a=-1:6:0.25")});
+  SweepOptions o;
+  o.modes = false;
+  o.floquet.integrator.rel_tol = 1e-7;
+  o.check_every = 0;
+  const auto unchecked = Sweep(scene, base, grid, o);
+  o.check_every = 1;
+  const auto checked = Sweep(scene, base, grid, o);
+  FloquetOptions ref;
+  ref.integrator.type = IntegratorType::kRkf78;
+  ref.integrator.rel_tol = 1e-13;
+  ref.compute_modes = false;
+  ref.estimate_error = false;
+  int unstable = 0;
+  for (size_t i = 0; i < grid.size(); ++i) {
+    ParameterMap params = base;
+    params["a"] = grid.values[0][i];
+    const FloquetResult r = AnalyzeFloquet(scene.build(params), ref);
+    ASSERT_TRUE(r.ok && unchecked[i].ok && checked[i].ok && checked[i].error_estimate);
+    EXPECT_FALSE(unchecked[i].error_estimate);
+    const double estimate = *checked[i].error_estimate;
+    EXPECT_LE(std::abs(checked[i].max_real_exponent - r.max_real_exponent), estimate)
+        << "a = " << grid.values[0][i];
+    // (the same difference, once of exponents of size ~1 and once of log multipliers / T: they
+    // round differently by a few 1e-16)
+    EXPECT_LE(std::abs(unchecked[i].max_real_exponent - checked[i].max_real_exponent),
+              estimate + 1e-14)
+        << "a = " << grid.values[0][i];
+    unstable += r.max_real_exponent > 0;
+  }
+  EXPECT_GT(unstable, 3);  // the line crosses tongues
+}
+
 // Two uncoupled oscillators whose frequencies cross: the display order (by frequency) swaps at
 // the crossing, the tracked labels must not (shapes e1 and e2 never change).
 TEST(TrackModes, CrossingKeepsLabels) {
