@@ -103,6 +103,9 @@ void FloquetOptions::Validate() const {
   if (!(max_period_scale > 0)) fail("max_period_scale", max_period_scale, "max_period_scale > 0");
   if (segments > max_segments)
     fail("segments", segments, "segments <= max_segments (" + std::to_string(max_segments) + ")");
+  if (initial_segments < 0 || initial_segments > max_segments)
+    fail("initial_segments", initial_segments,
+         "0 <= initial_segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
     fail("mode_samples", mode_samples, "0 or a power of two >= 4");
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
@@ -225,7 +228,9 @@ namespace {
 internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int samples, int n) {
   internal::SegmentGridOptions grid;
   grid.integrator = options.integrator;
-  grid.uniform_segments = options.segments > 0 ? options.segments : ModeSegments(samples, n);
+  grid.uniform_segments = options.segments > 0           ? options.segments
+                          : options.initial_segments > 0 ? options.initial_segments
+                                                         : ModeSegments(samples, n);
   grid.refine = options.segments == 0;
   grid.max_factor_condition = options.max_factor_condition;
   grid.max_segments = options.max_segments;

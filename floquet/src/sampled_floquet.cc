@@ -80,6 +80,12 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   trig_options.compute_modes = false;
   r.hold =
       AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
+  // Both routes interpolate the same samples, so their factors grow alike: the trigonometric
+  // route starts from the grid the hold route ended on (before its refined run's halving)
+  // instead of refining up to it again (200 states: one integration of the period fewer).
+  if (r.hold.ok && options.floquet.segments == 0 && options.floquet.initial_segments == 0)
+    trig_options.initial_segments =
+        std::max(1, hold_options.estimate_error ? r.hold.segments / 2 : r.hold.segments);
   r.trig = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), trig_options);
   r.ok = r.hold.ok && r.trig.ok;
   r.notes = LinCaveats(used);

@@ -349,6 +349,27 @@ TEST(Options, InvalidOptionsThrowWithFieldName) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("mode_samples"), std::string::npos);
   }
+  o = {};
+  o.initial_segments = -2;
+  EXPECT_THROW(AnalyzeFloquet(test::Mathieu(1, 1), o), InputError);
+}
+
+// A starting grid only saves refinement rounds: the exponents are those of the automatic grid
+// (the automatic grid starts from one segment per mode sample) to within both error estimates.
+TEST(Options, InitialSegmentsStartTheRefinement) {
+  const PeriodicSystem s = test::Mathieu(MathieuA(2, 1.0) + 0.3, 1.0);
+  const FloquetResult automatic = AnalyzeFloquet(s, Tight());
+  FloquetOptions o = Tight();
+  o.initial_segments = 6;
+  const FloquetResult started = AnalyzeFloquet(s, o);
+  ASSERT_TRUE(automatic.ok && started.ok);
+  EXPECT_EQ(started.segments, 12);  // 6 well-conditioned ones, halved in the refined run
+  EXPECT_EQ(automatic.segments, 64);
+  std::vector<std::complex<double>> a, b;
+  for (const FloquetMode& m : automatic.modes) a.push_back(m.exponent);
+  for (const FloquetMode& m : started.modes) b.push_back(m.exponent);
+  EXPECT_LT(MaxExponentMismatch(a, b, s.omega()),
+            automatic.error_estimate.value() + started.error_estimate.value());
 }
 
 }  // namespace

@@ -37,6 +37,10 @@ struct FloquetOptions {
   /// Number of segments K; 0 = automatic: at least `mode_samples`, refined where a factor's
   /// condition number exceeds `max_factor_condition` (fast growth or decay within a segment).
   int segments = 0;
+  /// Automatic mode's starting grid: 0 = from `mode_samples` and the system's size; else this
+  /// many uniform segments, refined as usual. A grid known from a near-identical system (the
+  /// nearest-sample route's for the trigonometric one) saves the rounds that refine up to it.
+  int initial_segments = 0;
   /// Largest condition number σmax/σmin accepted for one segment factor in automatic mode.
   /// A factor loses about log10(cond) digits of its smallest singular directions.
   double max_factor_condition = 1e3;
