@@ -505,8 +505,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers
   const bool with_shapes = options.compute_modes && n > 0;
   if (with_shapes) {
-    internal::ModeShapes shapes =
-        internal::ComputeModeShapes(system, grid, eig.log_values, samples, options.integrator);
+    internal::ModeShapes shapes = internal::ComputeModeShapes(
+        system, grid, eig.log_values, samples, options.integrator, ThreadsFor(options.threads));
     r.rhs_evals += shapes.rhs_evals;
     for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
     modes = std::move(shapes.modes);

@@ -204,7 +204,7 @@ void ModeMatrixCondition(const std::vector<int>& good, ModeShapes& out) {
 
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<cd>& log_rho, int samples,
-                             const IntegratorOptions& integrator) {
+                             const IntegratorOptions& integrator, int threads) {
   const int n = system.states();
   const double T = system.period();
   const double omega = system.omega();
@@ -214,7 +214,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
   std::vector<double> dt(grid.factors.size());
   for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
   const std::vector<PeriodicEigenvector> vecs =
-      ComputePeriodicEigenvectors(grid.factors, dt, log_rho);
+      ComputePeriodicEigenvectors(grid.factors, dt, log_rho, threads);
   out.samples = SampleShapes(system, grid, vecs, log_rho, samples, integrator, out);
   // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
   const std::vector<int> prior = PriorBranches(system, log_rho, out.samples[0]);

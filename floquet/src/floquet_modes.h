@@ -27,9 +27,9 @@ struct ModeShapes {
 
 /// The mode shapes of the multipliers exp(log_rho) of the factors on `grid`, at `samples`
 /// uniform times (grid points where the grid has them, else propagated from the last grid
-/// point with `integrator`).
+/// point with `integrator`). The periodic eigenvectors use `threads` threads.
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<std::complex<double>>& log_rho, int samples,
-                             const IntegratorOptions& integrator);
+                             const IntegratorOptions& integrator, int threads);
 
 }  // namespace ltp::internal

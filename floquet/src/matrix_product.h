@@ -14,5 +14,8 @@ inline constexpr int kBlasColumns = 16;
 /// out = a · b; out must not overlap a or b.
 void MultiplyInto(const Eigen::Ref<const Eigen::MatrixXd>& a,
                   const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> out);
+/// The same for complex matrices (zgemm): the periodic eigenvectors' Schur bases.
+void MultiplyInto(const Eigen::Ref<const Eigen::MatrixXcd>& a,
+                  const Eigen::Ref<const Eigen::MatrixXcd>& b, Eigen::Ref<Eigen::MatrixXcd> out);
 
 }  // namespace ltp::internal

@@ -394,7 +394,7 @@ bool InClusterOf(Complex a, Complex b) {
 
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<Complex>& log_rho) {
+    const std::vector<Complex>& log_rho, int threads) {
   if (std::string problem = CheckFactors(factors); !problem.empty()) {
     throw InputError("ComputePeriodicEigenvectors: " + problem);
   }
@@ -438,18 +438,22 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   std::vector<bool> done(log_rho.size(), false);
   {
     const std::vector<Eigen::VectorXcd> schur =
-        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated);
-    std::vector<Complex> sigma(k);
-    for (std::size_t m = 0; m < log_rho.size(); ++m) {
+        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
+    std::vector<char> accepted(log_rho.size(), 0);  // not vector<bool>: written concurrently
+    const long modes = static_cast<long>(log_rho.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+    for (long m = 0; m < modes; ++m) {
       if (schur[m].size() == 0) continue;
+      std::vector<Complex> sigma(k);
       for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
       PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
       if (v.residual <= kSchurResidual) {
         v.method = PeriodicEigenvectorMethod::kSchur;
         result[m] = std::move(v);
-        done[m] = true;
+        accepted[m] = 1;
       }
     }
+    for (std::size_t m = 0; m < done.size(); ++m) done[m] = accepted[m] != 0;
   }
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;

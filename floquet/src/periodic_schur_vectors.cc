@@ -20,6 +20,7 @@
 #include <numbers>
 #include <optional>
 
+#include "matrix_product.h"
 #include "slicot.h"
 
 namespace ltp::internal {
@@ -206,7 +207,7 @@ void StackEigenvectors(const ComplexSchurForm& s, const std::vector<std::size_t>
   Eigen::MatrixXcd y(n, count), x(n, count);
   for (int i = 0; i < k; ++i) {
     for (int q = 0; q < count; ++q) y.col(q) = recurrences[q].y.col(i);
-    x.noalias() = s.v[i] * y;
+    MultiplyInto(s.v[i], y, x);
     for (int q = 0; q < count; ++q) {
       stacked[q].segment(static_cast<Eigen::Index>(i) * n, n) = x.col(q);
       top[q] = std::max(top[q], recurrences[q].log_c[i].real() + std::log(x.col(q).norm()));
@@ -231,7 +232,8 @@ double LogDistance(Complex a, Complex b) {
 std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
                                                         const std::vector<double>& dt,
                                                         const std::vector<Complex>& log_rho,
-                                                        const std::vector<bool>& wanted) {
+                                                        const std::vector<bool>& wanted,
+                                                        int threads) {
   std::vector<Eigen::VectorXcd> out(log_rho.size());
   if (factors.empty() || factors[0].rows() == 0 ||
       std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
@@ -247,9 +249,7 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
   for (int i = 0; i < k; ++i)
     for (int l = 0; l < n; ++l) log_diag[l] += std::log(s.t[i](l, l));
   std::vector<bool> used(n, false);
-  std::vector<Complex> log_sigma(k);
-  std::vector<std::size_t> solved;
-  std::vector<Recurrence> recurrences;
+  std::vector<std::pair<std::size_t, int>> jobs;  // mode, its diagonal position
   for (std::size_t m = 0; m < log_rho.size(); ++m) {
     if (!wanted[m] || !std::isfinite(log_rho[m].real())) continue;
     int best = -1;
@@ -264,11 +264,23 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
     // The same multiplier as the eigenvalue route's, up to that route's rounding.
     if (best < 0 || !(best_distance <= 1e-6 * std::max(1.0, std::abs(log_rho[m])))) continue;
     used[best] = true;
+    jobs.emplace_back(m, best);
+  }
+  std::vector<std::optional<Recurrence>> solutions(jobs.size());
+  const long count = static_cast<long>(jobs.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+  for (long q = 0; q < count; ++q) {
+    const auto [m, diagonal] = jobs[q];
+    std::vector<Complex> log_sigma(k);
     for (int i = 0; i < k; ++i) log_sigma[i] = log_rho[m] * (dt[i] / period);
-    if (std::optional<Recurrence> r = SolveRecurrences(s, best, log_diag, log_sigma)) {
-      solved.push_back(m);
-      recurrences.push_back(std::move(*r));
-    }
+    solutions[q] = SolveRecurrences(s, diagonal, log_diag, log_sigma);
+  }
+  std::vector<std::size_t> solved;
+  std::vector<Recurrence> recurrences;
+  for (long q = 0; q < count; ++q) {
+    if (!solutions[q]) continue;
+    solved.push_back(jobs[q].first);
+    recurrences.push_back(std::move(*solutions[q]));
   }
   StackEigenvectors(s, solved, recurrences, out);
   return out;

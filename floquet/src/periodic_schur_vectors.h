@@ -12,9 +12,10 @@ namespace ltp::internal {
 /// ||v_i|| is about 1. Empty for a mode the Schur route could not deliver (no converged
 /// Schur form, no diagonal entry matching log_rho[m], a repeated multiplier, or non-finite
 /// numbers): the caller falls back to another method, and checks every returned vector's
-/// cyclic residual itself.
+/// cyclic residual itself. The modes' recurrences run on `threads` threads (OpenMP).
 std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted);
+    const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted,
+    int threads = 1);
 
 }  // namespace ltp::internal

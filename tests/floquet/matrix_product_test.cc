@@ -25,6 +25,14 @@ TEST(MatrixProduct, EqualsEigensProductOnEverySize) {
     MultiplyInto(a.bottomRows(n - h), b, c.bottomRows(n - h));
     EXPECT_LT((c.bottomRows(n - h) - a.bottomRows(n - h) * b).cwiseAbs().maxCoeff(), 1e-13 * n);
     EXPECT_TRUE((c.topRows(h).array() == 7.0).all()) << "rows outside the block were written";
+
+    // Complex (zgemm), n × n times n × (n + 3).
+    const Eigen::MatrixXcd p = Eigen::MatrixXcd::Random(n, n),
+                           q = Eigen::MatrixXcd::Random(n, n + 3);
+    Eigen::MatrixXcd pq(n, n + 3);
+    MultiplyInto(p, q, pq);
+    const Eigen::MatrixXcd want_pq = p * q;
+    EXPECT_LT((pq - want_pq).cwiseAbs().maxCoeff(), 1e-13 * n);
   }
 }
 

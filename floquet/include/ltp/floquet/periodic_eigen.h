@@ -44,8 +44,9 @@ struct PeriodicEigenvector {
   double residual = 0;              ///< max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i|| + |σ_i|)
   PeriodicEigenvectorMethod method = PeriodicEigenvectorMethod::kInverseIteration;
 };
+/// `threads`: OpenMP threads over the modes.
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<std::complex<double>>& log_rho);
+    const std::vector<std::complex<double>>& log_rho, int threads = 1);
 
 }  // namespace ltp
