@@ -92,6 +92,20 @@ bool SecondOrderForm(const double* series, int n, int harmonics, double zero) {
   return true;
 }
 
+// ∫_0^{T/2} tr A(t) dt from the real series: the cosines integrate to 0 over half a period,
+// sin wΩt to (1 − cos wπ)/(wΩ).
+double HalfPeriodTraceIntegral(const PeriodicSystem& system) {
+  int harmonics = 0;
+  const double* series = system.RealSeriesA(&harmonics);
+  const int n = system.states();
+  const auto trace = [&](int b) {
+    return Eigen::Map<const Eigen::MatrixXd>(series + static_cast<size_t>(b) * n * n, n, n).trace();
+  };
+  double integral = trace(0) * system.period() / 2;
+  for (int w = 1; w <= harmonics; w += 2) integral += trace(2 * w) * 2 / (w * system.omega());
+  return integral;
+}
+
 }  // namespace
 
 std::optional<TimeReversal> FindTimeReversal(const PeriodicSystem& system) {
@@ -126,14 +140,29 @@ TransitionResult MonodromyFromHalfPeriod(const PeriodicSystem& system, const Tim
   TransitionResult half = StateTransition(system, 0, 0.5 * T, integrator);
   if (!half.ok) return half;
   const double growth = std::exp(reversal.rate * T);
-  // e^{μT} R Φh⁻¹ R Φh, as R (Φh \ (R Φh)); a 2×2 inverse in closed form.
+  // Φh is about as ill-conditioned as the largest multiplier is large, and an inverse formed
+  // from it loses that factor of accuracy; it is kept only while that rounding (ε·cond Φh,
+  // relative to the largest multiplier) stays below a hundredth of the tolerance.
+  const double eps = std::numeric_limits<double>::epsilon(), allowed = 1e-2 * integrator.rel_tol;
   if (half.phi.rows() == 2) {
+    // adj Φh / det Φh with the adjugate exact. det Φh as ad − bc makes det Φ(T) exact (a
+    // stable pair stays on its circle) but cancels by (|ad| + |bc|) / |ad − bc|; beyond the
+    // allowance Liouville's det Φh = exp ∫ tr A instead.
     const Eigen::Matrix2d h = half.phi, r = reversal.involution;
-    half.phi = growth * (r * (h.inverse() * (r * h)));
-  } else {
-    const Eigen::MatrixXd& r = reversal.involution;
-    half.phi = growth * (r * half.phi.partialPivLu().solve(r * half.phi));
+    Eigen::Matrix2d adjugate;
+    adjugate << h(1, 1), -h(0, 1), -h(1, 0), h(0, 0);
+    const double ad = h(0, 0) * h(1, 1), bc = h(0, 1) * h(1, 0);
+    const double det = eps * (std::abs(ad) + std::abs(bc)) <= allowed * std::abs(ad - bc)
+                           ? ad - bc
+                           : std::exp(HalfPeriodTraceIntegral(system));
+    half.phi = growth / det * (r * adjugate * r * h);
+    return half;
   }
+  // Larger systems: an LU solve within the allowance, else the full period.
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(half.phi);
+  if (!(eps <= allowed * lu.rcond())) return StateTransition(system, 0, T, integrator);
+  const Eigen::MatrixXd& r = reversal.involution;
+  half.phi = growth * (r * lu.solve(r * half.phi));
   return half;
 }
 

@@ -26,7 +26,8 @@ struct TimeReversal {
 /// system (time functions and samples are not inspected).
 std::optional<TimeReversal> FindTimeReversal(const PeriodicSystem& system);
 
-/// Φ(T, 0) from one integration over [0, T/2].
+/// Φ(T, 0) from one integration over [0, T/2] — or over [0, T] for a system of more than two
+/// states whose Φ(T/2) is too ill-conditioned to invert within a hundredth of the tolerance.
 TransitionResult MonodromyFromHalfPeriod(const PeriodicSystem& system, const TimeReversal& reversal,
                                          const IntegratorOptions& integrator);
 

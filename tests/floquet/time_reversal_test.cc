@@ -23,10 +23,11 @@ PeriodicSystem Mathieu(double a, double q, double c) {
 }
 
 // Two coupled Hill equations p'' + c p' + (K_0 + K_1 cos 2t + K_s sin 2t) p = 0, in [p; p'].
-PeriodicSystem CoupledHill(double c, double sine) {
+PeriodicSystem CoupledHill(double c, double sine, double stiffness = 1) {
   FourierMatrix A(4, 4, 1);
   MatrixXd k0(2, 2), k1(2, 2);
   k0 << 3.0, -0.7, -0.7, 1.4;
+  k0 *= stiffness;
   k1 << 0.9, 0.3, 0.3, -0.5;
   A[0].setZero();
   A[0].topRightCorner(2, 2).setIdentity();
@@ -102,6 +103,31 @@ TEST(TimeReversal, HalfPeriodMonodromyEqualsTheFullPeriod) {
     ASSERT_TRUE(half.ok && full.ok);
     EXPECT_LT((half.phi - full.phi).norm(), 1e-9 * full.phi.norm());
   }
+}
+
+// Deep in the instability (a = −100, q = 20: the largest multiplier ~1e13, and Φ(T/2) about as
+// ill-conditioned): the largest multiplier keeps the tolerance's relative accuracy, as in the
+// full-period product. An inverse with det = ad − bc loses that factor (measured: 2e-3 here);
+// the 4-state system with negative stiffness takes the full period instead.
+TEST(TimeReversal, LargestMultiplierStaysAccurateWhenHugelyUnstable) {
+  IntegratorOptions o;
+  o.type = IntegratorType::kRkf78;
+  o.rel_tol = 1e-12;
+  o.abs_tol = 1e-14;
+  const auto largest = [](const Eigen::MatrixXd& m) {
+    return m.eigenvalues().cwiseAbs().maxCoeff();
+  };
+  for (const PeriodicSystem& s : {Mathieu(-100, 20, 0), Mathieu(-100, 20, 0.4), CoupledHill(0.2, 0),
+                                  CoupledHill(0.2, 0, -40)}) {
+    const auto reversal = FindTimeReversal(s);
+    ASSERT_TRUE(reversal);
+    const TransitionResult half = MonodromyFromHalfPeriod(s, *reversal, o);
+    const TransitionResult full = StateTransition(s, 0, s.period(), o);
+    ASSERT_TRUE(half.ok && full.ok);
+    const double rho = largest(full.phi);
+    EXPECT_LT(std::abs(largest(half.phi) - rho), 1e-9 * rho) << "largest multiplier " << rho;
+  }
+  EXPECT_GT(largest(StateTransition(Mathieu(-100, 20, 0), 0, std::numbers::pi, o).phi), 1e12);
 }
 
 // q = 0: y'' + c y' + a y = 0 has multipliers e^{λT}, λ = −c/2 ± j√(a − c²/4) (closed form).
