@@ -23,6 +23,22 @@ namespace {
 
 using cd = std::complex<double>;
 
+// The multipliers of a 2×2 Φ(T) with its determinant known exactly (Liouville): the larger
+// from the trace without cancellation, the smaller as det / larger — where the formed matrix
+// holds only round-off of the larger's size (even an exact 0) — and a complex pair on the
+// circle |ρ|² = det.
+Eigen::VectorXcd MultipliersFromTraceAndDet(double trace, double det) {
+  const double half = trace / 2;
+  if (std::abs(half) > 1e150) return Eigen::Vector2cd(trace, det / trace);  // det ≪ trace²
+  const double discriminant = half * half - det;
+  if (discriminant < 0) {
+    const double im = std::sqrt(-discriminant);
+    return Eigen::Vector2cd(cd(half, im), cd(half, -im));
+  }
+  const double larger = half + std::copysign(std::sqrt(discriminant), half);
+  return Eigen::Vector2cd(larger, det / larger);
+}
+
 // Log multipliers from Φ(T, 0) formed in one integration — over half a period when the
 // system is time-reversible (docs/time-reversal.md) — and the eigenvalues of the n×n product.
 // The largest multiplier keeps its relative accuracy in the formed product however small the
@@ -36,7 +52,12 @@ std::optional<std::vector<cd>> FormedLogMultipliers(const PeriodicSystem& system
       reversal ? internal::MonodromyFromHalfPeriod(system, *reversal, integrator)
                : StateTransition(system, 0, system.period(), integrator);
   if (!phi.ok || !phi.phi.allFinite()) return std::nullopt;
-  const Eigen::VectorXcd rho = phi.phi.eigenvalues();
+  const bool exact_trace_integral =
+      system.fourier_A() != nullptr || system.form() == PeriodicSystem::Form::kPiecewiseConstant;
+  const double det = n == 2 && exact_trace_integral ? std::exp(IntegralOfTrace(system)) : 0;
+  const Eigen::VectorXcd rho = det > 0 && std::isfinite(det)
+                                   ? MultipliersFromTraceAndDet(phi.phi.trace(), det)
+                                   : Eigen::VectorXcd(phi.phi.eigenvalues());
   std::vector<cd> logs(static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
     if (!(std::abs(rho(k)) > 0)) return std::nullopt;  // underflow: the full analysis keeps it
@@ -69,12 +90,20 @@ bool LargestMultiplierOnly(const PeriodicSystem& system, const SweepOptions& opt
   return true;
 }
 
+// Unchecked stability-only points try the formed product first (rigid-body states need the
+// full analysis, which flags their mode).
+bool TriesFormedRoute(const PeriodicSystem& system, const SweepOptions& options) {
+  return !options.modes && options.floquet.segments == 0 &&
+         system.labels().rigid_body_states.empty();
+}
+
 // A checked map point's estimate covers the route its unchecked neighbours take: the formed
 // product at the user's tolerance against the refined run that gives the point's numbers.
+// 0 when the formed product fails: a neighbour then takes the full analysis as this point did.
 double FormedRouteError(const PeriodicSystem& system, const FloquetOptions& options,
                         const FloquetResult& refined) {
   const std::optional<std::vector<cd>> logs = FormedLogMultipliers(system, options.integrator);
-  if (!logs) return std::numeric_limits<double>::infinity();
+  if (!logs) return 0;
   std::vector<cd> reference;
   for (const FloquetMode& m : refined.modes) reference.push_back(m.exponent * refined.period);
   return MaxExponentMismatch(*logs, reference, 2 * std::numbers::pi) / refined.period;
@@ -83,9 +112,8 @@ double FormedRouteError(const PeriodicSystem& system, const FloquetOptions& opti
 // Monodromy route for one point.
 void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& options, bool check_error,
                         SweepPoint& point) {
-  // Rigid-body states need the full analysis, which flags their mode.
-  if (!options.modes && !check_error && options.floquet.segments == 0 &&
-      system.labels().rigid_body_states.empty() && LargestMultiplierOnly(system, options, point))
+  if (!check_error && TriesFormedRoute(system, options) &&
+      LargestMultiplierOnly(system, options, point))
     return;
   FloquetOptions o = options.floquet;
   o.threads = 1;
@@ -107,7 +135,7 @@ void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& option
   point.max_real_exponent = r.max_real_exponent;
   point.max_log_multiplier = r.max_log_abs_multiplier;
   point.error_estimate = r.error_estimate;
-  if (check_error && !options.modes && r.error_estimate)
+  if (check_error && TriesFormedRoute(system, options) && r.error_estimate)
     point.error_estimate = std::max(*r.error_estimate, FormedRouteError(system, o, r));
   point.modes = std::move(r.modes);
   if (options.modes && !r.mode_samples.empty()) {

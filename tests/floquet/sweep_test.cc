@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/models/scene.h"
@@ -210,6 +211,32 @@ TEST(RunSweep, CheckedEstimateCoversTheUncheckedRoute) {
     unstable += r.max_real_exponent > 0;
   }
   EXPECT_GT(unstable, 3);  // the line crosses tongues
+}
+
+// A hugely unstable map point (a = −100, q = 20, c = 0.4: multipliers e^{±31}): the formed
+// 2×2 product holds the small multiplier only as round-off of the large one's size; it comes
+// from Liouville's det instead. Both exponents against AnalyzeFloquet's segmented analysis
+// (rkf78 at 1e-12, independent of the formed product), whose exponents sum to tr A_0 = −c.
+TEST(RunSweep, HugelyUnstablePointKeepsBothExponents) {
+  const Scene scene = LoadScene("mathieu");
+  const ParameterMap base = scene.Resolve({{"a", "-100"}, {"q", "20"}, {"c", "0.4"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("a=-100:-100:1")});
+  SweepOptions o;
+  o.modes = false;
+  o.check_every = 0;
+  const auto points = Sweep(scene, base, grid, o);
+  ASSERT_TRUE(points[0].ok);
+  FloquetOptions ref;
+  ref.integrator.type = IntegratorType::kRkf78;
+  ref.integrator.rel_tol = 1e-12;
+  ref.compute_modes = false;
+  const FloquetResult r = AnalyzeFloquet(scene.build(base), ref);
+  ASSERT_TRUE(r.ok);
+  std::vector<std::complex<double>> got, want;
+  for (const FloquetMode& m : points[0].modes) got.push_back(m.exponent);
+  for (const FloquetMode& m : r.modes) want.push_back(m.exponent);
+  EXPECT_GT(r.max_real_exponent * r.period, 30);
+  EXPECT_LT(MaxExponentMismatch(got, want, 2.0), 1e-8);
 }
 
 // Two uncoupled oscillators whose frequencies cross: the display order (by frequency) swaps at
