@@ -63,7 +63,8 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
 std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                                            const std::vector<PeriodicEigenvector>& vecs,
                                            const std::vector<cd>& log_rho, int samples,
-                                           const IntegratorOptions& integrator, ModeShapes& out) {
+                                           const IntegratorOptions& integrator, int threads,
+                                           ModeShapes& out) {
   const int n = system.states();
   const double T = system.period();
   out.sample_times.resize(samples);
@@ -87,6 +88,8 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
   out.diagnostics.push_back(
       "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
       " segments for " + std::to_string(samples) + " samples)");
+  long rhs_evals = 0;
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1)) reduction(+ : rhs_evals)
   for (int s = 0; s < samples; ++s) {
     const double ts = T * s / samples;
     auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
@@ -95,7 +98,7 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
     // ts can sit a rounding error below grid.times[i]: never integrate backwards.
     TransitionResult tr =
         StateTransition(system, grid.times[i], std::max(ts, grid.times[i]), integrator);
-    out.rhs_evals += tr.rhs_evals;
+    rhs_evals += tr.rhs_evals;
     Eigen::MatrixXcd at_grid(n, n);
     for (int k = 0; k < n; ++k)
       at_grid.col(k) = vecs[k].v[i] * std::exp(-log_rho[k] / T * (ts - grid.times[i]));
@@ -106,6 +109,7 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
     xi[s].real() = re;
     xi[s].imag() = im;
   }
+  out.rhs_evals += rhs_evals;
   return xi;
 }
 
@@ -215,7 +219,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
   for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
   const std::vector<PeriodicEigenvector> vecs =
       ComputePeriodicEigenvectors(grid.factors, dt, log_rho, threads);
-  out.samples = SampleShapes(system, grid, vecs, log_rho, samples, integrator, out);
+  out.samples = SampleShapes(system, grid, vecs, log_rho, samples, integrator, threads, out);
   // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
   const std::vector<int> prior = PriorBranches(system, log_rho, out.samples[0]);
   for (int s = 0; s < samples; ++s)
