@@ -165,6 +165,13 @@ struct ChartOutcome {
   std::string plot_note;
 };
 
+// A map of a time-reversible system (at the scene's base point): its unchecked points integrate
+// half a period.
+bool HalfPeriodRoute(const ChartOutcome& c) {
+  return c.options.method == SweepMethod::kMonodromy && !c.options.modes &&
+         FormsMonodromyFromHalfPeriod(c.scene.system);
+}
+
 // The points of the grid: those the journal holds (--resume), then the rest on every rank,
 // streamed to the record. False when interrupted (Ctrl-C or --stop-after) before the end.
 bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, ChartOutcome& c) {
@@ -266,6 +273,7 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
             {"method", args.method},
             {"integrator", args.integrator},
             {"tol", args.tol},
+            {"half_period", HalfPeriodRoute(c)},
             {"points", c.grid.size()},
             {"resumed_points", c.resumed},
             {"stable", c.count(StabilityVerdict::kStable)},
@@ -327,7 +335,9 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
               << " points)";
   std::cout << "; " << args.method << " route";
   if (c.options.method == SweepMethod::kMonodromy)
-    std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2) << ")";
+    std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2)
+              << (HalfPeriodRoute(c) ? "; time-reversible: half a period per unchecked point" : "")
+              << ")";
   std::cout << ", " << c.threads << (c.threads == 1 ? " thread" : " threads");
   if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
   std::cout << "\n  " << c.grid.size() << " points in " << Num(c.sweep_s, 3) << " s";

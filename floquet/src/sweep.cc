@@ -285,6 +285,10 @@ SweepGrid MakeSweepGrid(const Scene& scene, std::vector<SweepAxis> axes) {
   return grid;
 }
 
+bool FormsMonodromyFromHalfPeriod(const PeriodicSystem& system) {
+  return internal::FindTimeReversal(system).has_value();
+}
+
 SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
                              size_t index, const SweepOptions& options, bool check_error) {
   const auto start = std::chrono::steady_clock::now();

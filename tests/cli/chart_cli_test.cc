@@ -40,6 +40,29 @@ TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {
   EXPECT_FALSE(std::filesystem::exists(csv + ".journal"));    // journal gone when complete
 }
 
+// Maps say when their points integrate half a period: the damped Mathieu equation is
+// time-reversible (docs/time-reversal.md), the Meissner equation's time functions are not
+// inspected. The map's counts equal those of the full-period route (--check-every 1: every
+// point by the full analysis over the period).
+TEST(ChartCli, MapSaysWhenItIntegratesHalfAPeriod) {
+  const std::string map = "chart mathieu --sweep a=-1:3:0.25 --sweep2 q=0:2:0.25 --json";
+  const auto half = RunLtp(map);
+  ASSERT_EQ(half.code, 0) << half.err;
+  const json h = json::parse(half.out);
+  EXPECT_TRUE(h["half_period"].get<bool>());
+  const auto full = RunLtp(map + " --check-every 1");
+  ASSERT_EQ(full.code, 0) << full.err;
+  const json f = json::parse(full.out);
+  for (const char* key : {"stable", "marginal", "unstable"})
+    EXPECT_EQ(h[key].get<int>(), f[key].get<int>()) << key;
+  const auto meissner = RunLtp("chart meissner --sweep a=0.5:1:0.25 --sweep2 b=0:0.5:0.25 --json");
+  ASSERT_EQ(meissner.code, 0) << meissner.err;
+  EXPECT_FALSE(json::parse(meissner.out)["half_period"].get<bool>());
+  EXPECT_NE(RunLtp("chart mathieu --sweep a=-1:3:0.25 --sweep2 q=0:2:0.25")
+                .out.find("half a period per unchecked point"),
+            std::string::npos);
+}
+
 // Gyroscopic rotor (tests/data/gyroscopic-rotor.yaml): whirl lines cross nΩ at
 // Ω² = k / (n (n Id ∓ Ip)), closed form; text, JSON and the crossings CSV agree with it.
 TEST(ChartCli, CampbellCrossingsInTextJsonAndCsv) {
