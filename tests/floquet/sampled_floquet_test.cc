@@ -193,6 +193,36 @@ TEST(LinSampledFloquet, SixtyStatesEveryModeShapeSatisfiesItsCyclicRelation) {
   EXPECT_GE(compared, 2);
 }
 
+// The trigonometric route runs without modes, so its error estimate's refined run moves the
+// segment boundaries to the midpoints instead of halving every segment: the estimate must
+// still bound the reported exponents' error. Reference: the same system by Bulirsch–Stoer at
+// 1e-13 (no estimate), exponents compared modulo jΩ; at two tolerances.
+TEST(LinSampledFloquet, TrigonometricRouteEstimateBoundsItsError) {
+  const std::string dir = test::SourceDir() + "/tests/data/openfast/lin-60-states/";
+  const LinOperatingPoint op =
+      ReadLinOperatingPoint({dir + "Big.0.lin", dir + "Big.1.lin", dir + "Big.2.lin"});
+  const PeriodicSystem trig = BuildLinSystem(op, SampleInterpolation::kTrigonometric);
+  FloquetOptions ref;
+  ref.integrator.type = IntegratorType::kBulirschStoer;
+  ref.integrator.rel_tol = 1e-13;
+  ref.compute_modes = false;
+  ref.estimate_error = false;
+  const FloquetResult reference = AnalyzeFloquet(trig, ref);
+  ASSERT_TRUE(reference.ok);
+  std::vector<complex<double>> want;
+  for (const FloquetMode& m : reference.modes) want.push_back(m.exponent);
+  for (double tol : {1e-6, 1e-9}) {
+    FloquetOptions o;
+    o.integrator.rel_tol = tol;
+    o.compute_modes = false;
+    const FloquetResult r = AnalyzeFloquet(trig, o);
+    ASSERT_TRUE(r.ok && r.error_estimate);
+    std::vector<complex<double>> got;
+    for (const FloquetMode& m : r.modes) got.push_back(m.exponent);
+    EXPECT_LT(MaxExponentMismatch(got, want, trig.omega()), *r.error_estimate) << "tol " << tol;
+  }
+}
+
 // The plain monodromy route on the .lin system (files' own coordinates, no MBC): the generator
 // azimuth is labelled rigid-body, so AnalyzeFloquet flags exactly one mode — the exponent
 // nearest 0 — and leaves it out of the verdict. Independent check of the verdict: MBC3's

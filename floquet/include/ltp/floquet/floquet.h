@@ -51,7 +51,8 @@ struct FloquetOptions {
   /// gives the Fourier coefficients used to choose the branch. 0 = automatic (from the
   /// harmonic content of A).
   int mode_samples = 0;
-  /// Second run at rel_tol/100 (or twice the steps): the difference is the error estimate.
+  /// Second run at rel_tol/100 (or twice the steps) on another grid — every segment halved with
+  /// modes, the boundaries moved to the midpoints without: the difference is the estimate.
   bool estimate_error = true;
   /// Compute mode shapes, left modes and branch selection (off: multipliers only, faster).
   bool compute_modes = true;
