@@ -497,6 +497,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.elapsed_s = SecondsSince(start);
     return r;
   }
+  r.grid_segments = static_cast<int>(grid.factors.size());
   // 3. Error estimate (the numbers then come from the refined run).
   double integration_error = 0;
   if (options.estimate_error && n > 0)

@@ -435,11 +435,10 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
   for (std::size_t a = 0; a < log_rho.size(); ++a)
     for (std::size_t b = 0; b < log_rho.size(); ++b)
       if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
-  std::vector<bool> done(log_rho.size(), false);
+  std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
   {
     const std::vector<Eigen::VectorXcd> schur =
         internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
-    std::vector<char> accepted(log_rho.size(), 0);  // not vector<bool>: written concurrently
     const long modes = static_cast<long>(log_rho.size());
 #pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
     for (long m = 0; m < modes; ++m) {
@@ -450,10 +449,9 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       if (v.residual <= kSchurResidual) {
         v.method = PeriodicEigenvectorMethod::kSchur;
         result[m] = std::move(v);
-        accepted[m] = 1;
+        done[m] = 1;
       }
     }
-    for (std::size_t m = 0; m < done.size(); ++m) done[m] = accepted[m] != 0;
   }
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;
@@ -461,7 +459,7 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     for (std::size_t j = first; j < log_rho.size(); ++j) {
       if (!done[j] && InClusterOf(log_rho[first], log_rho[j])) {
         cluster.push_back(j);
-        done[j] = true;
+        done[j] = 1;
       }
     }
 

@@ -81,11 +81,11 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   r.hold =
       AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
   // Both routes interpolate the same samples, so their factors grow alike: the trigonometric
-  // route starts from the grid the hold route ended on (before its refined run's halving)
-  // instead of refining up to it again (200 states: one integration of the period fewer).
-  if (r.hold.ok && options.floquet.segments == 0 && options.floquet.initial_segments == 0)
-    trig_options.initial_segments =
-        std::max(1, hold_options.estimate_error ? r.hold.segments / 2 : r.hold.segments);
+  // route starts from the grid the hold route chose instead of refining up to it again
+  // (200 states: one integration of the period fewer).
+  if (r.hold.grid_segments > 0 && options.floquet.segments == 0 &&
+      options.floquet.initial_segments == 0)
+    trig_options.initial_segments = r.hold.grid_segments;
   r.trig = AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kTrigonometric), trig_options);
   r.ok = r.hold.ok && r.trig.ok;
   r.notes = LinCaveats(used);

@@ -90,7 +90,10 @@ struct FloquetResult {
   double period = 0;
   IntegratorType integrator = IntegratorType::kAuto;  ///< the one used (auto resolved)
   MultiplierMethod multiplier_method = MultiplierMethod::kPeriodicSchur;
-  int segments = 0;                   ///< K actually used
+  int segments = 0;  ///< K actually used
+  /// K of the grid the first run chose (the error estimate's refined run re-cuts it into
+  /// `segments`): a starting grid, FloquetOptions::initial_segments, for a similar system.
+  int grid_segments = 0;
   std::vector<double> segment_times;  ///< t_0 = 0 < t_1 < … < t_K = T
   std::vector<FloquetMode> modes;     ///< sorted by frequency (|Im λ|), then Re λ
   double max_real_exponent = 0;       ///< max Re λ (1/s), rigid-body modes excluded
