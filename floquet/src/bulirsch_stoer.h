@@ -39,6 +39,17 @@ class BulirschStoer {
     reset();
   }
 
+  /// After an accepted step, e = T_kk − T_k,k−1 at the new t (the controller's error estimate)
+  /// and the factor s with T_k−1,k−1 − T_kk = s·e: s e is how far the previous row's best
+  /// value (order 2k − 2 instead of 2k) lands from the accepted one. From the last
+  /// Aitken–Neville update, T_kk = (1 + c) T_k,k−1 − c T_k−1,k−1 with c = 1/(r² − 1) and
+  /// r = n_k / n_0 = k + 1: s = −(1 + c)/c = −r².
+  const State& local_error() const { return err_; }
+  double previous_row_scale() const {
+    const double r = static_cast<double>(stages_[accepted_k_]) / stages_[0];
+    return -r * r;
+  }
+
   /// Forget the order and step history (a jump of the right-hand side, a new piece).
   void reset() {
     first_ = true;
@@ -55,7 +66,8 @@ class BulirschStoer {
     bool reject = true;
     std::array<double, kMaxStage + 1> h_opt{}, work{};
     double new_h = dt;
-    for (int k = 0; k <= k_opt_ + 1; ++k) {
+    int k = 0;
+    for (; k <= k_opt_ + 1; ++k) {
       if (k == 0) {
         Midpoint(rhs, x, t, dt, stages_[0], out_);
         continue;
@@ -118,6 +130,7 @@ class BulirschStoer {
     if (!reject) {
       t += dt;
       x = out_;
+      accepted_k_ = k;
     }
     if (!last_rejected_ || new_h < dt) {
       dt_last_ = new_h;
@@ -195,6 +208,7 @@ class BulirschStoer {
   State dxdt_, out_, x0_, x1_, d_, err_;
   bool first_ = true, last_rejected_ = false;
   int k_opt_ = 4;
+  int accepted_k_ = 1;
   double dt_last_ = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -67,6 +67,10 @@ std::string_view ToString(MultiplierMethod method) {
   return method == MultiplierMethod::kPeriodicSchur ? "periodic-schur" : "single-shot";
 }
 
+std::string_view ToString(ErrorEstimateMethod method) {
+  return method == ErrorEstimateMethod::kRefinedRun ? "refined-run" : "local-errors";
+}
+
 std::string_view ToString(StabilityVerdict verdict) {
   switch (verdict) {
     case StabilityVerdict::kStable:
@@ -109,6 +113,10 @@ void FloquetOptions::Validate() const {
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
     fail("mode_samples", mode_samples, "0 or a power of two >= 4");
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
+  if (error_estimate_method != ErrorEstimateMethod::kRefinedRun &&
+      error_estimate_method != ErrorEstimateMethod::kLocalErrors)
+    fail("error_estimate_method", static_cast<int>(error_estimate_method),
+         "one of the ErrorEstimateMethod values");
 }
 
 FloquetMode MakeFloquetMode(std::complex<double> log_multiplier, int branch, double period) {
@@ -228,6 +236,8 @@ namespace {
 internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int samples, int n) {
   internal::SegmentGridOptions grid;
   grid.integrator = options.integrator;
+  grid.integrator.carry_local_errors =
+      options.estimate_error && options.error_estimate_method == ErrorEstimateMethod::kLocalErrors;
   grid.uniform_segments = options.segments > 0           ? options.segments
                           : options.initial_segments > 0 ? options.initial_segments
                                                          : ModeSegments(samples, n);
@@ -246,7 +256,7 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid,
   const int k = static_cast<int>(grid.times.size()) - 1;
   std::ostringstream s;
   s << "segments auto → K = " << k
-    << (!options.estimate_error ? ""
+    << (!options.estimate_error || !grid.local_error_effects.empty() ? ""
         : options.compute_modes
             ? " (halved again in the refined run that gives the numbers)"
             : " (moved by half a segment in the refined run that gives the numbers)")
@@ -312,6 +322,25 @@ double RefineForErrorEstimate(const PeriodicSystem& system, const FloquetOptions
   grid = std::move(reference);
   eig = std::move(ref_eig);
   return error;
+}
+
+// Step 3 when the integrator carried its local errors (Bulirsch–Stoer): the exponents of the
+// factors moved by them, Φ_i + δΦ_i — the period integrated with every step one extrapolation
+// order lower, to first order — against the factors' own (docs/local-error-estimate.md).
+// Returns the difference (∞ when the moved factors' eigenvalues failed).
+double LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalues& eig,
+                          MultiplierMethod method, double period, FloquetResult& r) {
+  internal::SegmentGrid moved;
+  moved.factors = grid.factors;
+  for (size_t i = 0; i < moved.factors.size(); ++i) moved.factors[i] += grid.local_error_effects[i];
+  const LogEigenvalues moved_eig = MultiplierLogs(moved, method, r.states);
+  if (!moved_eig.ok) {
+    r.diagnostics.push_back(
+        "error estimate: the eigenvalues of the factors moved by their local errors failed; "
+        "the error is unknown");
+    return std::numeric_limits<double>::infinity();
+  }
+  return MaxExponentMismatch(eig.log_values, moved_eig.log_values, 2 * kPi) / period;
 }
 
 // Step 5: modes ordered by |frequency|, positive first, then by Re λ; samples and Fourier
@@ -498,10 +527,19 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     return r;
   }
   r.grid_segments = static_cast<int>(grid.factors.size());
-  // 3. Error estimate (the numbers then come from the refined run).
+  // 3. Error estimate (after a refined run the numbers come from it).
   double integration_error = 0;
-  if (options.estimate_error && n > 0)
-    integration_error = RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
+  r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
+                                                             : ErrorEstimateMethod::kLocalErrors;
+  if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
+    r.diagnostics.push_back(
+        "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
+        std::string(ToString(options.integrator.type)) + " gets the refined run instead");
+  if (options.estimate_error && n > 0) {
+    integration_error = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
+                            ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
+                            : RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
+  }
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;
   r.monodromy = Eigen::MatrixXd::Identity(n, n);

@@ -5,6 +5,8 @@
 // odeint default-constructs fixed-size Eigen states (uninitialised by design) and copies them
 // before the first write; GCC cannot see that and warns inside the library headers.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <lapacke.h>
+
 #include <array>
 #include <boost/numeric/odeint.hpp>
 #include <boost/numeric/odeint/external/eigen/eigen.hpp>
@@ -267,6 +269,23 @@ bool BelowOverflow(const State& x) {
   return true;
 }
 
+// solved = y⁻¹ rhs (rhs: the n² entries of an n × n matrix); LAPACK for large n. A singular y
+// leaves non-finite entries, which drop the carried errors (ComputeSegmentGrid).
+template <class Y, class State, class Square>
+void SolveInto(const Y& y, const State& rhs, Square& lu, std::vector<lapack_int>& pivots,
+               Square& solved) {
+  const Eigen::Index n = y.rows();
+  if constexpr (Square::RowsAtCompileTime == Eigen::Dynamic) {
+    lu = y;
+    solved = Eigen::Map<const Square>(rhs.data(), n, n);
+    const lapack_int m = static_cast<lapack_int>(n);
+    if (LAPACKE_dgesv(LAPACK_COL_MAJOR, m, m, lu.data(), m, pivots.data(), solved.data(), m) != 0)
+      solved.setConstant(std::numeric_limits<double>::quiet_NaN());
+  } else {
+    solved = y.partialPivLu().solve(Eigen::Map<const Square>(rhs.data(), n, n));
+  }
+}
+
 // Integrates every piece from Φ = I and multiplies the pieces' transitions into the current
 // factor; a piece ending at an output point closes the factor (one TransitionResult each).
 // At a jump of A (a piece with `restart`) the stepper starts afresh from an initial step; across
@@ -284,6 +303,18 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
   if constexpr (N == Eigen::Dynamic) x.resize(static_cast<size_t>(n) * n);
   Eigen::Map<Eigen::Matrix<double, N, N>> piece_phi(x.data(), n, n);
   Eigen::MatrixXd product(n, n);
+  // Local-error propagation (docs/local-error-estimate.md): within a piece, the step ending at
+  // t_i with local error l_i moves Φ(b, a) by Φ(b, t_i) l_i = Y_b Y_i⁻¹ l_i (Y = piece_phi), so
+  // G = Σ Y_i⁻¹ l_i and the piece's effect is Y_b G; across pieces δF ← P δF + (Y_b G) F.
+  bool carry = false;
+  if constexpr (requires { stepper.local_error(); }) carry = options.carry_local_errors;
+  using Square = Eigen::Matrix<double, N, N>;
+  Square carried, solved, lu;
+  std::vector<lapack_int> pivots(carry ? n : 0);
+  if (carry) {
+    carried.setZero(n, n);
+    result.local_error_effect.setZero(n, n);
+  }
   long rhs_evals = 0;
   MatrixRhs<State, N> rhs(system, &rhs_evals);
   // Repeated stage times: Runge–Kutta tableaus (rkf78, dopri5), not Bulirsch–Stoer's substeps.
@@ -339,6 +370,12 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
           h = std::max(h, proposal);
         }
         if (!AllFinite(x)) return fail(kNotFiniteMessage, false);
+        if constexpr (requires { stepper.local_error(); }) {
+          if (carry) {
+            SolveInto(piece_phi, stepper.local_error(), lu, pivots, solved);
+            carried += stepper.previous_row_scale() * solved;
+          }
+        }
       } else if (!BelowOverflow(x)) {
         // A rejected step of a state near the double range: the error estimate itself
         // overflows (inf − inf), so every smaller step is rejected too (seen with
@@ -352,6 +389,13 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
         return fail(s.str(), false);
       }
     }
+    if (carry) {
+      product.noalias() = piece_phi * result.local_error_effect;
+      solved.noalias() = piece_phi * carried;
+      product.noalias() += solved * result.phi;
+      result.local_error_effect.swap(product);
+      carried.setZero(n, n);
+    }
     product.noalias() = piece_phi * result.phi;
     result.phi.swap(product);
     if (piece.output) {
@@ -361,6 +405,7 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
       results.push_back(std::move(result));
       result = TransitionResult{};
       result.phi = Eigen::MatrixXd::Identity(n, n);
+      if (carry) result.local_error_effect.setZero(n, n);
     }
   }
   return results;

@@ -125,10 +125,14 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
       << " segments): the smallest multipliers may be inaccurate";
     grid.diagnostics.push_back(s.str());
   }
+  const bool effects = std::all_of(pieces.begin(), pieces.end(), [](const Segment& p) {
+    return p.tr.local_error_effect.size() > 0 && p.tr.local_error_effect.allFinite();
+  });
   grid.times.reserve(pieces.size() + 1);
   for (const Segment& p : pieces) {
     grid.times.push_back(p.t0);
     grid.factors.push_back(p.tr.phi);
+    if (effects && !pieces.empty()) grid.local_error_effects.push_back(p.tr.local_error_effect);
     // At least these: a segment cut at breakpoints takes StepsOnPiece on every piece.
     if (p.tr.steps_per_period > 0)
       grid.fixed_steps += StepsOnPiece(p.tr.steps_per_period, p.t1 - p.t0, T);

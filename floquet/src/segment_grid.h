@@ -25,6 +25,9 @@ struct SegmentGrid {
   bool ok = false;
   std::vector<double> times;             ///< K + 1 points, 0 … T
   std::vector<Eigen::MatrixXd> factors;  ///< K factors
+  /// TransitionResult::local_error_effect of every factor, when the integrator carried them
+  /// (all K, else empty).
+  std::vector<Eigen::MatrixXd> local_error_effects;
   long rhs_evals = 0;
   int initial_segments = 0;    ///< the uniform grid it started from
   double worst_condition = 1;  ///< max over the factors of σmax/σmin

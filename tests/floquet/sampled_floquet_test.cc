@@ -168,7 +168,9 @@ TEST(LinSampledFloquet, SixtyStatesEveryModeShapeSatisfiesItsCyclicRelation) {
   const LinOperatingPoint op =
       ReadLinOperatingPoint({dir + "Big.0.lin", dir + "Big.1.lin", dir + "Big.2.lin"});
   const Mbc3Result mbc = Mbc3(op);
-  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
+  SampledFloquetOptions options;
+  options.hold_mode_shapes = true;  // the table itself does not read them
+  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc, options);
   ASSERT_TRUE(r.ok);
   ASSERT_EQ(r.hold.modes.size(), 60u);
   for (const FloquetMode& m : r.hold.modes) EXPECT_LE(m.eigvec_residual, 1e-12);
@@ -221,6 +223,30 @@ TEST(LinSampledFloquet, TrigonometricRouteEstimateBoundsItsError) {
     for (const FloquetMode& m : r.modes) got.push_back(m.exponent);
     EXPECT_LT(MaxExponentMismatch(got, want, trig.omega()), *r.error_estimate) << "tol " << tol;
   }
+}
+
+// The trigonometric route as `ltp mbc` runs it — one Bulirsch–Stoer run with its local errors
+// carried (no refined run): its estimate bounds its error. Reference as above (Bulirsch–Stoer
+// at 1e-13, on the MBC-transformed samples the route integrates).
+TEST(LinSampledFloquet, TrigonometricRouteAsMbcRunsItBoundsItsError) {
+  const std::string dir = test::SourceDir() + "/tests/data/openfast/lin-60-states/";
+  const LinOperatingPoint op =
+      ReadLinOperatingPoint({dir + "Big.0.lin", dir + "Big.1.lin", dir + "Big.2.lin"});
+  const Mbc3Result mbc = Mbc3(op);
+  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
+  ASSERT_TRUE(r.ok && r.trig.error_estimate);
+  EXPECT_EQ(r.trig.error_estimate_method, ErrorEstimateMethod::kLocalErrors);
+  EXPECT_TRUE(r.hold.mode_samples.empty());  // the table shows MBC branches: no shapes needed
+  FloquetOptions ref;
+  ref.integrator.type = IntegratorType::kBulirschStoer;
+  ref.integrator.rel_tol = 1e-13;
+  ref.compute_modes = false;
+  ref.estimate_error = false;
+  const FloquetResult reference = AnalyzeFloquet(
+      BuildLinSystem(InMultiBladeCoordinates(op, mbc), SampleInterpolation::kTrigonometric), ref);
+  ASSERT_TRUE(reference.ok);
+  EXPECT_LT(MaxExponentMismatch(Exponents(r.trig), Exponents(reference), op.rotor_speed),
+            *r.trig.error_estimate);
 }
 
 // The plain monodromy route on the .lin system (files' own coordinates, no MBC): the generator

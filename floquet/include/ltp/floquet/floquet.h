@@ -32,6 +32,20 @@ enum class MultiplierMethod {
 };
 std::string_view ToString(MultiplierMethod method);
 
+/// How the integration error of the exponents is estimated (FloquetOptions::estimate_error).
+enum class ErrorEstimateMethod {
+  /// A second run at rel_tol/100 on another grid; the numbers come from it, the difference to
+  /// the first run is the estimate. Any integrator; about 2.5 runs' work.
+  kRefinedRun,
+  /// Bulirsch–Stoer only (others fall back to kRefinedRun): one run at rel_tol, every step's
+  /// local error — the previous row of its extrapolation table against the accepted value —
+  /// carried to the segment factors, and the exponents of the factors so moved compared with
+  /// theirs (docs/local-error-estimate.md). About 1.1 runs' work; the numbers are the run's
+  /// at rel_tol, the estimate typically 10–100× their error.
+  kLocalErrors,
+};
+std::string_view ToString(ErrorEstimateMethod method);
+
 struct FloquetOptions {
   IntegratorOptions integrator;
   /// Number of segments K; 0 = automatic: at least `mode_samples`, refined where a factor's
@@ -51,9 +65,11 @@ struct FloquetOptions {
   /// gives the Fourier coefficients used to choose the branch. 0 = automatic (from the
   /// harmonic content of A).
   int mode_samples = 0;
-  /// Second run at rel_tol/100 (or twice the steps) on another grid — every segment halved with
-  /// modes, the boundaries moved to the midpoints without: the difference is the estimate.
+  /// Estimate the exponents' integration error, by `error_estimate_method`. The refined run
+  /// is at rel_tol/100 (or twice the steps) on another grid — every segment halved with modes,
+  /// the boundaries moved to the midpoints without.
   bool estimate_error = true;
+  ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
   /// Compute mode shapes, left modes and branch selection (off: multipliers only, faster).
   bool compute_modes = true;
   /// OpenMP threads for the segments; 0 = all cores.
@@ -90,6 +106,8 @@ struct FloquetResult {
   double period = 0;
   IntegratorType integrator = IntegratorType::kAuto;  ///< the one used (auto resolved)
   MultiplierMethod multiplier_method = MultiplierMethod::kPeriodicSchur;
+  /// The estimate's method actually used (kLocalErrors falls back for other integrators).
+  ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
   int segments = 0;  ///< K actually used
   /// K of the grid the first run chose (the error estimate's refined run re-cuts it into
   /// `segments`): a starting grid, FloquetOptions::initial_segments, for a similar system.

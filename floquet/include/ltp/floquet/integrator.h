@@ -47,6 +47,10 @@ struct IntegratorOptions {
   int steps_per_period = 0;
   /// Upper bound on steps per integration (adaptive methods) before giving up.
   long max_steps = 2'000'000;
+  /// Bulirsch–Stoer: also carry every accepted step's local error estimate (the next-lower
+  /// order's extrapolant minus the accepted one) to the end of each transition, to first order:
+  /// TransitionResult::local_error_effect. One n×n LU per step; ignored by the other methods.
+  bool carry_local_errors = false;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
@@ -60,6 +64,11 @@ struct TransitionResult {
   int steps_per_period = 0;  ///< fixed-step methods: the resolution used (after auto choice)
   /// Fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; empty for other integrators.
   std::optional<double> error_estimate;
+  /// With IntegratorOptions::carry_local_errors (Bulirsch–Stoer): δΦ, how far Φ moves to first
+  /// order had every step kept its lower-order extrapolant, Σ_i Φ(t1, t_i) l_i over the steps'
+  /// local error estimates l_i — what a solution held only to the tolerance may be off by
+  /// (docs/local-error-estimate.md). Empty otherwise.
+  Eigen::MatrixXd local_error_effect;
 };
 
 /// Φ(t1, t0) for t1 >= t0. Integration restarts at every breakpoint of the system inside

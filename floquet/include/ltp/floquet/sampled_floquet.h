@@ -32,6 +32,10 @@ struct SampledFloquetOptions {
   FloquetOptions floquet;
   /// Analyse the MBC-transformed samples when MBC applies (false: the files' coordinates).
   bool multiblade_coordinates = true;
+  /// Periodic mode shapes of the nearest-sample route even when the table does not need them
+  /// (with MBC it shows each exponent on its MBC eigenvalue's branch; without, the shapes find
+  /// the rigid rotation and are computed anyway). 200 states: 2.6 of the route's 3.7 s.
+  bool hold_mode_shapes = false;
 };
 
 /// One mode: a Floquet exponent of each route on the branch of the mode it is matched to.
