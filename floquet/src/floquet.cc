@@ -71,6 +71,13 @@ std::string_view ToString(ErrorEstimateMethod method) {
   return method == ErrorEstimateMethod::kRefinedRun ? "refined-run" : "local-errors";
 }
 
+std::optional<ErrorEstimateMethod> ParseErrorEstimateMethod(std::string_view name) {
+  for (ErrorEstimateMethod m :
+       {ErrorEstimateMethod::kRefinedRun, ErrorEstimateMethod::kLocalErrors})
+    if (name == ToString(m)) return m;
+  return std::nullopt;
+}
+
 std::string_view ToString(StabilityVerdict verdict) {
   switch (verdict) {
     case StabilityVerdict::kStable:

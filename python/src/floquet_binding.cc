@@ -72,8 +72,13 @@ formula beyond the error estimate): the diagnostics say why.)doc");
           "'stable' or 'unstable' only when max Re λ lies beyond the error estimate; "
           "'marginal' within it; 'failed'")
       .def_readonly("error_estimate", &FloquetResult::error_estimate,
-                    "estimated absolute error of every exponent (1/s): the difference to a second, "
-                    "tighter run; None when not computed")
+                    "estimated absolute error of every exponent (1/s), by error_estimate_method; "
+                    "None when not computed")
+      .def_property_readonly(
+          "error_estimate_method",
+          [](const FloquetResult& f) { return std::string(ToString(f.error_estimate_method)); },
+          "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
+          "'local-errors' (Bulirsch–Stoer's local errors carried to the exponents, one run)")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
                     "stopped before its multipliers")
@@ -120,14 +125,19 @@ formula beyond the error estimate): the diagnostics say why.)doc");
   m.def(
       "floquet",
       [](const System& system, const std::string& integrator, double tol, int steps,
-         const py::object& segments, const std::string& multipliers, int mode_samples,
-         int threads) {
+         const py::object& segments, const std::string& multipliers, const std::string& estimate,
+         int mode_samples, int threads) {
         FloquetOptions o;
         o.integrator.type = IntegratorFrom(integrator);
         o.integrator.rel_tol = tol;
         o.integrator.steps_per_period = steps;
         o.segments = SegmentsFrom(segments);
         o.multipliers = MultipliersFrom(multipliers);
+        const auto method = ParseErrorEstimateMethod(estimate);
+        if (!method)
+          throw InputError("estimate must be 'refined-run' or 'local-errors', got '" + estimate +
+                           "'");
+        o.error_estimate_method = *method;
         o.mode_samples = mode_samples;
         o.threads = AnalysisThreads(system, threads);
         o.Validate();
@@ -137,8 +147,9 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       py::arg("integrator") = std::string(ToString(defaults.integrator.type)),
       py::arg("tol") = defaults.integrator.rel_tol,
       py::arg("steps") = defaults.integrator.steps_per_period, py::arg("segments") = "auto",
-      py::arg("multipliers") = "schur", py::arg("mode_samples") = defaults.mode_samples,
-      py::arg("threads") = defaults.threads, R"doc(
+      py::arg("multipliers") = "schur",
+      py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
+      py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads, R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
@@ -149,6 +160,8 @@ the same options and defaults.
   steps         fixed-step methods: steps per period (0 = automatic)
   segments      number of segments K of the period, or 'auto'
   multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
+  estimate      'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
+                (Bulirsch–Stoer: one run, its steps' local errors carried to the exponents)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
 

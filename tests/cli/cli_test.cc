@@ -245,6 +245,27 @@ TEST(Cli, FloquetBothRoutesAgreeWithinTheirEstimates) {
   EXPECT_TRUE(k.contains("truncation_estimate"));
 }
 
+// `--estimate local-errors`: one Bulirsch–Stoer run whose carried local errors are the
+// estimate. Independent check: Hill's method on the same system agrees within the two
+// estimates; the text says where the estimate comes from; a wrong name is exit 2.
+TEST(Cli, LocalErrorEstimateCoversTheDistanceToHill) {
+  const Outcome r =
+      Ltp("floquet jeffcott --set c=0.02 --set Omega=0.8 --method both --integrator bs "
+          "--estimate local-errors --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["monodromy"]["error_estimate_method"], "local-errors");
+  EXPECT_LE(j["disagreement"].get<double>(), j["monodromy"]["error_estimate"].get<double>() +
+                                                 j["hill"]["error_estimate"].get<double>());
+  const Outcome text = Ltp("floquet mathieu --integrator bs --estimate local-errors");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("local errors"), std::string::npos) << text.out;
+  const Outcome bad = Ltp("floquet mathieu --estimate twice");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--estimate must be refined-run or local-errors"), std::string::npos)
+      << bad.err;
+}
+
 // The rotor scene's multi-blade-coordinate cross-check: for N >= 3 identical blades the MBC
 // system is constant and its eigenvalues equal the Floquet exponents modulo jΩ (an independent
 // route: one constant eigenproblem, no integration); for N = 2 MBC does not apply.

@@ -39,6 +39,7 @@ FLOQUET_CASES = [
     ("jeffcott", {}, {"tol": "1e-8"}),
     ("rotor", {"blades": "3"}, {"integrator": "rkf78", "segments": "16"}),
     ("tower-rotor", {}, {}),                    # the paper's 40-state system
+    ("tower-rotor", {}, {"estimate": "local-errors"}),  # one run, local errors carried
 ]
 
 
@@ -56,6 +57,7 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
     assert j["ok"] == r.ok and j["stable"] == r.stable and j["verdict"] == r.verdict
     assert j["integrator"] == r.integrator and j["segments"] == r.segments
     assert j["multiplier_method"] == r.multiplier_method and j["period"] == r.period
+    assert j["error_estimate_method"] == r.error_estimate_method
     for key in ["max_real_exponent", "max_log_abs_multiplier", "error_estimate", "liouville_residual",
                 "mode_condition"]:
         assert same(j[key], getattr(r, key)), key

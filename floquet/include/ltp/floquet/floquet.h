@@ -45,6 +45,8 @@ enum class ErrorEstimateMethod {
   kLocalErrors,
 };
 std::string_view ToString(ErrorEstimateMethod method);
+/// "refined-run" or "local-errors"; nullopt otherwise.
+std::optional<ErrorEstimateMethod> ParseErrorEstimateMethod(std::string_view name);
 
 struct FloquetOptions {
   IntegratorOptions integrator;
