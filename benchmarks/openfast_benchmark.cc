@@ -5,8 +5,10 @@
 //   build/benchmarks/openfast_benchmark --benchmark_repetitions=3
 //
 // Mbc3Only           the MBC3 table (azimuth averaging in multi-blade coordinates)
-// SampledFloquet     the Floquet analysis of the samples: monodromy, error estimate, and the
-//                    periodic eigenvectors of all 60 modes (docs/periodic-eigenvectors.md)
+// SampledFloquet     the Floquet analysis of the samples as `ltp mbc` runs it: both routes'
+//                    monodromies and error estimates (the trigonometric one from its carried
+//                    local errors, docs/local-error-estimate.md); no mode shapes, the table
+//                    shows each exponent on its MBC branch
 // SampledFloquet200  the same for 200 states. Lin-60-states is three independent random
 //                    matrices (diagonal uniform in [−7.5, −2.5], off-diagonal standard
 //                    normal); the 200-state set is drawn the same way (seeded), written to
