@@ -540,8 +540,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
                                                              : ErrorEstimateMethod::kLocalErrors;
   if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
     r.diagnostics.push_back(
-        "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
-        std::string(ToString(options.integrator.type)) + " gets the refined run instead");
+        options.integrator.type == IntegratorType::kBulirschStoer
+            ? "error estimate: the carried local errors were not finite (a singular step "
+              "matrix); the refined run instead"
+            : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
+                  std::string(ToString(options.integrator.type)) + " gets the refined run instead");
   if (options.estimate_error && n > 0) {
     integration_error = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
                             ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
