@@ -300,6 +300,21 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
         row.estimate = re.ok ? re.error_estimate.value_or(-1) : -1;
         row.estimate_error =
             re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
+        // Bulirsch–Stoer's other estimate, its carried local errors (one run): honesty only,
+        // in its own panel, so the chart's lines stay the plain runs.
+        if (line.type == IntegratorType::kBulirschStoer) {
+          e.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
+          const FloquetResult rl = AnalyzeFloquet(s, e);
+          Row local = NewRow(sc, "bs, local-errors estimate", row.knob_name, row.knob,
+                             "local-errors-honesty");
+          local.ok = rl.ok;
+          local.estimate = rl.ok ? rl.error_estimate.value_or(-1) : -1;
+          local.estimate_error =
+              rl.ok ? ExponentError(Exponents(rl.modes), sc.ref_for_mono, s.omega()) : kInf;
+          local.error_abs = local.estimate_error;
+          Finish(local, sc);
+          rows.push_back(local);
+        }
       }
       Finish(row, sc);
       rows.push_back(row);

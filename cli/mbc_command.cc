@@ -177,7 +177,11 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
             << f.hold.segments << " segments)\n"
             << "  trig: trigonometric interpolation through the samples ("
             << ToString(f.trig.integrator) << ", error estimate " << Num(f.trig.error_estimate, 2)
-            << " 1/s)\n";
+            << " 1/s"
+            << (f.trig.error_estimate_method == ErrorEstimateMethod::kLocalErrors
+                    ? " from its steps' local errors"
+                    : "")
+            << ")\n";
   if (!f.ok) {
     std::cout << "  FAILED\n";
     for (const auto& d : f.hold.diagnostics) std::cout << "    - hold: " << d << "\n";
