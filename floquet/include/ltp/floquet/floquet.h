@@ -41,7 +41,7 @@ enum class ErrorEstimateMethod {
   /// local error — the previous row of its extrapolation table against the accepted value —
   /// carried to the segment factors, and the exponents of the factors so moved compared with
   /// theirs (docs/local-error-estimate.md). About 1.1 runs' work; the numbers are the run's
-  /// at rel_tol, the estimate typically 10–100× their error.
+  /// at rel_tol, the estimate 25–1000× their error (study median 112×).
   kLocalErrors,
 };
 std::string_view ToString(ErrorEstimateMethod method);
