@@ -110,5 +110,50 @@ TEST(BulirschStoer, MatchesTheHarmonicOscillatorsClosedForm) {
   EXPECT_LT((got.x - want).cwiseAbs().maxCoeff(), 1e-10);
 }
 
+// The estimate's local error (docs/local-error-estimate.md): after an accepted step,
+// previous_row_scale() · local_error() must be T_{k−1,k−1} − T_kk, the previous row's best
+// value minus the accepted one. Reference: the extrapolation table built here from scratch for
+// x' = λx — Gragg's modified midpoint rule with n = 2, 4, …, 2(k + 1) substeps and the
+// Aitken–Neville recursion in h² — with k read off the scale (−(k + 1)²).
+TEST(BulirschStoer, PreviousRowOffsetIsTheTablesLowerOrderValue) {
+  using State = Eigen::Matrix<double, 1, 1>;
+  const double lambda = -1.3;
+  auto rhs = [lambda](const State& x, State& dxdt, double) { dxdt = lambda * x; };
+  for (double tol : {1e-4, 1e-8, 1e-12}) {
+    SCOPED_TRACE(testing::Message() << "tol = " << tol);
+    BulirschStoer<State> bs(tol, tol, 1);
+    State x = State::Constant(1.0);
+    double t = 0, dt = 0.7, h = 0;  // a rejected attempt shortens dt: h is the accepted step
+    for (int attempt = 0; attempt < 20 && h == 0; ++attempt) {
+      const double tried = dt;
+      if (bs.try_step(rhs, x, t, dt)) h = tried;
+    }
+    ASSERT_GT(h, 0);
+    const int k = static_cast<int>(std::lround(std::sqrt(-bs.previous_row_scale()))) - 1;
+    ASSERT_GE(k, 1);
+    std::vector<std::vector<double>> table(k + 1);
+    for (int j = 0; j <= k; ++j) {
+      const int n = 2 * (j + 1);
+      const double step = h / n;
+      double x0 = 1.0, x1 = 1.0 + step * lambda;
+      for (int i = 1; i < n; ++i) {
+        const double next = x0 + 2 * step * lambda * x1;
+        x0 = x1;
+        x1 = next;
+      }
+      table[j].push_back(0.5 * (x0 + x1 + step * lambda * x1));
+      for (int m = 1; m <= j; ++m) {
+        const double r = static_cast<double>(n) / (2 * (j - m + 1));
+        table[j].push_back(table[j][m - 1] + (table[j][m - 1] - table[j - 1][m - 1]) / (r * r - 1));
+      }
+    }
+    const double accepted = table[k][k], previous = table[k - 1][k - 1];
+    EXPECT_NEAR(x[0], accepted, 1e-14);
+    EXPECT_NEAR(bs.previous_row_scale() * bs.local_error()[0], previous - accepted,
+                1e-14 + 1e-9 * std::abs(previous - accepted));
+    EXPECT_LT(std::abs(accepted - std::exp(lambda * h)), std::abs(previous - std::exp(lambda * h)));
+  }
+}
+
 }  // namespace
 }  // namespace ltp::internal
