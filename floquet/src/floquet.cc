@@ -303,6 +303,7 @@ double RefineForErrorEstimate(const PeriodicSystem& system, const FloquetOptions
                               internal::SegmentGridOptions fine, internal::SegmentGrid& grid,
                               LogEigenvalues& eig, FloquetResult& r) {
   fine.refine = false;
+  fine.integrator.carry_local_errors = false;  // a fallback from kLocalErrors: nothing to carry
   fine.fixed_times.clear();
   fine.fixed_times.push_back(grid.times.front());
   for (size_t i = 0; i + 1 < grid.times.size(); ++i) {
