@@ -47,9 +47,10 @@ struct IntegratorOptions {
   int steps_per_period = 0;
   /// Upper bound on steps per integration (adaptive methods) before giving up.
   long max_steps = 2'000'000;
-  /// Bulirsch–Stoer: also carry every accepted step's local error estimate (the next-lower
-  /// order's extrapolant minus the accepted one) to the end of each transition, to first order:
-  /// TransitionResult::local_error_effect. One n×n LU per step; ignored by the other methods.
+  /// Bulirsch–Stoer: also carry every accepted step's local error (the previous row's best
+  /// extrapolant, two orders lower, minus the accepted value) to the end of each transition, to
+  /// first order: TransitionResult::local_error_effect. One n×n LU per step; ignored by the
+  /// other methods.
   bool carry_local_errors = false;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
@@ -65,7 +66,7 @@ struct TransitionResult {
   /// Fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; empty for other integrators.
   std::optional<double> error_estimate;
   /// With IntegratorOptions::carry_local_errors (Bulirsch–Stoer): δΦ, how far Φ moves to first
-  /// order had every step kept its lower-order extrapolant, Σ_i Φ(t1, t_i) l_i over the steps'
+  /// order had every step kept its previous row's extrapolant, Σ_i Φ(t1, t_i) l_i over the steps'
   /// local error estimates l_i — what a solution held only to the tolerance may be off by
   /// (docs/local-error-estimate.md). Empty otherwise.
   Eigen::MatrixXd local_error_effect;
