@@ -88,7 +88,7 @@ void BM_TowerRotorCampbell(benchmark::State& state) {
   std::vector<size_t> all(grid.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   const ltp::ChartOptions chart;
-  const ltp::SweepOptions options = ltp::ChartSweepOptions(chart, /*map=*/false);
+  const ltp::SweepOptions options = ltp::ChartSweepOptions(chart, /*map=*/false, scene.build(base));
   size_t lines = 0;
   for (auto _ : state) {
     std::vector<ltp::SweepPoint> points(grid.size());

@@ -49,7 +49,7 @@ struct ChartArgs {
   SceneArgs scene;
   std::string sweep, sweep2;
   std::string method{ToString(ChartOptions{}.method)};
-  std::string integrator;  // empty: ChartIntegrator's choice (bs for maps, rkf78 for 1-D)
+  std::string integrator;  // empty: ChartIntegrator's choice
   double tol = ChartOptions{}.tol;
   int threads = ChartOptions{}.threads;
   std::string csv, plot;
@@ -429,9 +429,10 @@ int RunChart(ChartArgs& args) {
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
     c.grid = MakeSweepGrid(c.scene.scene, axes);
     c.map = c.grid.axes.size() == 2;
-    if (args.integrator.empty()) args.integrator = ToString(ChartIntegrator(ChartOptions{}, c.map));
+    if (args.integrator.empty())
+      args.integrator = ToString(ChartIntegrator(ChartOptions{}, c.map, c.scene.system));
     const ChartOptions chart = MakeOptions(args);
-    c.options = ChartSweepOptions(chart, c.map);
+    c.options = ChartSweepOptions(chart, c.map, c.scene.system);
     c.threads = ThreadsFor(c.options.threads);
 
     json identity = {{"scene", c.scene.scene.name},
@@ -489,7 +490,8 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_option("--method", args.method, "monodromy | hill")->capture_default_str();
   cmd->add_option(
       "--integrator", args.integrator,
-      "monodromy integrator (see `ltp floquet --help`); default bs for maps, rkf78 for 1-D");
+      "monodromy integrator (see `ltp floquet --help`); default for maps taylor when A(t) is a "
+      "Fourier series, else bs; rkf78 for 1-D");
   cmd->add_option("--tol", args.tol, "integrator relative tolerance (hill: truncation tolerance)")
       ->capture_default_str();
   cmd->add_option("--threads", args.threads, "threads (0 = all cores)")->capture_default_str();

@@ -46,8 +46,9 @@ struct FloquetArgs {
 void ResolveOptions(FloquetArgs& args) {
   auto type = ParseIntegratorType(args.integrator);
   if (!type)
-    throw InputError("unknown integrator '" + args.integrator +
-                     "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm)");
+    throw InputError(
+        "unknown integrator '" + args.integrator +
+        "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor)");
   if (!ParseHillSolver(args.hill_solver))
     throw InputError("--hill-solver must be auto, dense or structured, got '" + args.hill_solver +
                      "'");
@@ -416,7 +417,8 @@ Command AddFloquetCommand(CLI::App& app) {
       "floquet", "Floquet exponents, multipliers and periodic modes via the monodromy matrix");
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--integrator", args.integrator,
-                  "auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm "
+                  "auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm | "
+                  "taylor (Fourier-form A(t) only) "
                   "(auto: the work-precision study's cheapest for the system; the output says "
                   "which and why)")
       ->capture_default_str();

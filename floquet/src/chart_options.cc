@@ -22,16 +22,17 @@ void ChartOptions::Validate() const {
   campbell.Validate();
 }
 
-IntegratorType ChartIntegrator(const ChartOptions& options, bool map) {
+IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base) {
   if (options.integrator) return *options.integrator;
-  return map ? IntegratorType::kBulirschStoer : IntegratorType::kRkf78;
+  if (!map) return IntegratorType::kRkf78;
+  return base.RealSeriesA(nullptr) ? IntegratorType::kTaylor : IntegratorType::kBulirschStoer;
 }
 
-SweepOptions ChartSweepOptions(const ChartOptions& options, bool map) {
+SweepOptions ChartSweepOptions(const ChartOptions& options, bool map, const PeriodicSystem& base) {
   options.Validate();
   SweepOptions o;
   o.method = options.method;
-  o.floquet.integrator.type = ChartIntegrator(options, map);
+  o.floquet.integrator.type = ChartIntegrator(options, map, base);
   o.floquet.integrator.rel_tol = options.tol;
   o.floquet.integrator.abs_tol = options.tol * 1e-3;
   o.hill_tol = options.tol;

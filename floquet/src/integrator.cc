@@ -24,7 +24,7 @@ struct NamedType {
   std::string_view name;
 };
 
-constexpr std::array<NamedType, 9> kNames = {{
+constexpr std::array<NamedType, 10> kNames = {{
     {IntegratorType::kDopri5, "dopri5"},
     {IntegratorType::kRkf78, "rkf78"},
     {IntegratorType::kBulirschStoer, "bs"},
@@ -33,6 +33,7 @@ constexpr std::array<NamedType, 9> kNames = {{
     {IntegratorType::kMagnus4, "magnus4"},
     {IntegratorType::kMagnus6, "magnus6"},
     {IntegratorType::kExpm, "expm"},
+    {IntegratorType::kTaylor, "taylor"},
     {IntegratorType::kAuto, "auto"},
 }};
 
@@ -282,6 +283,9 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
     case IntegratorType::kExpm:
       result = FixedStepTransition(system, points, options);
       break;
+    case IntegratorType::kTaylor:
+      result = std::move(internal::TaylorTransitions(system, {t0, t1}, options).back());
+      break;
     case IntegratorType::kAuto:  // resolved above
       break;
   }
@@ -311,6 +315,8 @@ std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& syste
   const bool adaptive_odeint = options.type == IntegratorType::kDopri5 ||
                                options.type == IntegratorType::kRkf78 ||
                                options.type == IntegratorType::kBulirschStoer;
+  if (options.type == IntegratorType::kTaylor && system.states() > 0)
+    return internal::TaylorTransitions(system, times, options);
   if (!adaptive_odeint || system.states() == 0) {
     for (size_t i = 0; i + 1 < times.size(); ++i)
       results.push_back(StateTransition(system, times[i], times[i + 1], options));

@@ -64,6 +64,13 @@ std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
                                                 const std::vector<Piece>& pieces,
                                                 const IntegratorOptions& options);
 
+/// kTaylor (integrator_taylor.cc) for a Fourier-form system: Φ(t_{i+1}, t_i) for consecutive
+/// `times`, one result each (fewer, the last not ok, when a step failed); max_steps bounds the
+/// steps over all intervals.
+std::vector<TransitionResult> TaylorTransitions(const PeriodicSystem& system,
+                                                const std::vector<double>& times,
+                                                const IntegratorOptions& options);
+
 /// kCvodeBdf / kCvodeAdams via SUNDIALS CVODE on the n² vector vec(Φ).
 TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector<double>& points,
                                  const IntegratorOptions& options);

@@ -76,9 +76,9 @@ ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes,
   r.states = system.system.states();
   r.grid = MakeSweepGrid(scene, axes);
   const bool map = r.grid.axes.size() == 2;
-  r.options = ChartSweepOptions(chart, map);
+  r.options = ChartSweepOptions(chart, map, system.system);
   r.method = ToString(chart.method);
-  r.integrator = ToString(ChartIntegrator(chart, map));
+  r.integrator = ToString(ChartIntegrator(chart, map, system.system));
   r.tol = chart.tol;
   r.threads = ThreadsFor(r.options.threads);
   std::vector<size_t> todo(r.grid.size());
@@ -399,7 +399,8 @@ defaults (the library's ChartOptions).
   scene         a System made by ltp.scene(...) (its parameters are the base) or a name
   sweep, sweep2 'NAME=START:STOP:STEP' or (name, start, stop, step)
   method        monodromy | hill
-  integrator    None: rkf78 for 1-D sweeps, bs for maps; or any name ltp.floquet takes
+  integrator    None: rkf78 for 1-D sweeps; for maps taylor when A(t) is a Fourier series,
+                else bs; or any name ltp.floquet takes
   tol           integrator relative tolerance (hill: truncation tolerance)
   threads       threads over points (0 = all cores)
   compare       1-D: also the frozen A(0) and averaged-system eigenvalues

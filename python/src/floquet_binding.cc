@@ -33,8 +33,9 @@ MultiplierMethod MultipliersFrom(const std::string& name) {
 IntegratorType IntegratorFrom(const std::string& name) {
   const auto type = ParseIntegratorType(name);
   if (!type)
-    throw InputError("unknown integrator '" + name +
-                     "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm)");
+    throw InputError(
+        "unknown integrator '" + name +
+        "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor)");
   return *type;
 }
 
@@ -153,7 +154,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
-  integrator    auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm
+  integrator    auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm | taylor
                 (auto: the work-precision study's cheapest for the system; the result's
                 integrator and diagnostics say which and why)
   tol           relative tolerance (the exponents inherit about this error)

@@ -47,10 +47,11 @@ Chart Sweep(const std::string& spec,
   std::vector<size_t> all(grid.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   std::mutex m;
-  RunSweep(scene, base, grid, all, ChartSweepOptions(ChartOptions{}, false), [&](SweepPoint&& p) {
-    std::lock_guard<std::mutex> lock(m);
-    c.points[p.index] = std::move(p);
-  });
+  RunSweep(scene, base, grid, all, ChartSweepOptions(ChartOptions{}, false, scene.build(base)),
+           [&](SweepPoint&& p) {
+             std::lock_guard<std::mutex> lock(m);
+             c.points[p.index] = std::move(p);
+           });
   c.tracking = TrackModes(c.points);
   return c;
 }
@@ -152,10 +153,11 @@ TEST(Campbell, AFrequencyLockedToAPerRevLineIsNotCounted) {
   std::vector<size_t> all(grid.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   std::mutex m;
-  RunSweep(scene, base, grid, all, ChartSweepOptions(ChartOptions{}, false), [&](SweepPoint&& p) {
-    std::lock_guard<std::mutex> lock(m);
-    points[p.index] = std::move(p);
-  });
+  RunSweep(scene, base, grid, all, ChartSweepOptions(ChartOptions{}, false, scene.build(base)),
+           [&](SweepPoint&& p) {
+             std::lock_guard<std::mutex> lock(m);
+             points[p.index] = std::move(p);
+           });
   CampbellOptions o;
   o.max_per_rev = 1;
   const CampbellDiagram d =

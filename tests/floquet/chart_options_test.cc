@@ -13,12 +13,23 @@
 namespace ltp {
 namespace {
 
+// A Fourier-form scene (Mathieu) and one whose A(t) is not a Fourier series (Meissner's jumps).
+PeriodicSystem FourierScene() {
+  return LoadScene("mathieu").build(LoadScene("mathieu").Resolve({}));
+}
+PeriodicSystem JumpScene() {
+  return LoadScene("meissner").build(LoadScene("meissner").Resolve({}));
+}
+
 TEST(ChartOptions, MapsAndCampbellSweepsGetTheirOwnDefaults) {
   const ChartOptions defaults;
-  const SweepOptions line = ChartSweepOptions(defaults, false),
-                     map = ChartSweepOptions(defaults, true);
+  const SweepOptions line = ChartSweepOptions(defaults, false, FourierScene()),
+                     map = ChartSweepOptions(defaults, true, FourierScene());
   EXPECT_EQ(line.floquet.integrator.type, IntegratorType::kRkf78);
-  EXPECT_EQ(map.floquet.integrator.type, IntegratorType::kBulirschStoer);
+  // Maps: Taylor series where A(t) is a Fourier series, Bulirsch–Stoer elsewhere.
+  EXPECT_EQ(map.floquet.integrator.type, IntegratorType::kTaylor);
+  EXPECT_EQ(ChartSweepOptions(defaults, true, JumpScene()).floquet.integrator.type,
+            IntegratorType::kBulirschStoer);
   EXPECT_EQ(line.check_every, 1);
   EXPECT_EQ(map.check_every, 97);
   EXPECT_TRUE(line.modes);
@@ -32,7 +43,7 @@ TEST(ChartOptions, NegativeCheckEveryIsRefusedWithItsField) {
   ChartOptions o;
   o.check_every = -1;
   try {
-    ChartSweepOptions(o, true);
+    ChartSweepOptions(o, true, FourierScene());
     FAIL() << "accepted check_every = -1";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("check_every"), std::string::npos) << e.what();
@@ -45,7 +56,8 @@ TEST(ChartOptions, ChoicesGivenWin) {
   o.check_every = 0;
   o.compare = true;
   o.tol = 1e-8;
-  const SweepOptions map = ChartSweepOptions(o, true), line = ChartSweepOptions(o, false);
+  const SweepOptions map = ChartSweepOptions(o, true, JumpScene()),
+                     line = ChartSweepOptions(o, false, JumpScene());
   EXPECT_EQ(map.floquet.integrator.type, IntegratorType::kDopri5);
   EXPECT_EQ(map.check_every, 0);
   EXPECT_FALSE(map.snapshot);  // the frozen/averaged comparison is a Campbell-diagram feature
@@ -60,7 +72,7 @@ TEST(ChartOptions, ChoicesGivenWin) {
 TEST(ChartOptions, RejectsToleranceOutsideZeroOne) {
   ChartOptions o;
   o.tol = 1;
-  EXPECT_THROW(ChartSweepOptions(o, false), InputError);
+  EXPECT_THROW(ChartSweepOptions(o, false, FourierScene()), InputError);
   o.tol = 1e-10;
   o.refine_tol = 0.5;
   EXPECT_THROW(o.Validate(), InputError);

@@ -38,13 +38,16 @@ struct ChartOptions {
   void Validate() const;
 };
 
-/// The integrator of a chart: `options.integrator` if set; else Bulirsch–Stoer for maps, the
-/// cheapest route to 1e-8 multipliers on smooth small systems (README, stability-chart
-/// benchmark), and rkf78 for 1-D sweeps, which suits their short mode-shape segments.
-IntegratorType ChartIntegrator(const ChartOptions& options, bool map);
+/// The integrator of a chart: `options.integrator` if set; else, for maps, Taylor series when
+/// A(t) is a Fourier series and Bulirsch–Stoer otherwise — the cheapest routes to 1e-8
+/// multipliers on smooth small systems (README, stability-chart benchmark) — and rkf78 for
+/// 1-D sweeps, which suits their short mode-shape segments. `base`: the scene's system at the
+/// chart's base point (a scene keeps its form over its parameters).
+IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base);
 
-/// The per-point options of the sweep (`map`: two swept parameters). @throws InputError.
-SweepOptions ChartSweepOptions(const ChartOptions& options, bool map);
+/// The per-point options of the sweep (`map`: two swept parameters; `base` as for
+/// ChartIntegrator). @throws InputError.
+SweepOptions ChartSweepOptions(const ChartOptions& options, bool map, const PeriodicSystem& base);
 
 /// The refinement of the boundaries found by that sweep.
 BoundaryOptions ChartBoundaryOptions(const ChartOptions& options);

@@ -24,6 +24,10 @@ enum class IntegratorType {
   kMagnus4,     ///< fixed-step 4th-order Magnus, 2 Gauss–Legendre nodes + expm
   kMagnus6,     ///< fixed-step 6th-order Magnus, 3 Gauss–Legendre nodes + expm
   kExpm,        ///< product of matrix exponentials: exact for piecewise-constant systems
+  /// Taylor series of order ≈ −ln(rel_tol) from the exact derivatives of a Fourier-form A(t)
+  /// (docs/taylor-integrator.md): a few long steps per period, the cheapest for small smooth
+  /// Fourier systems at tight tolerances (stability maps). Fourier-form systems only.
+  kTaylor,
   /// The study's cheapest for the system at hand (ltp/floquet/method_choice.h); analyses
   /// report the integrator actually used and why.
   kAuto,
@@ -60,8 +64,10 @@ struct TransitionResult {
   Eigen::MatrixXd phi;  ///< Φ(t1, t0), n×n
   bool ok = false;      ///< false: integrator failed; `message` says why
   std::string message;
-  long steps = 0;            ///< accepted steps (fixed-step: steps taken)
-  long rhs_evals = 0;        ///< evaluations of A(t)
+  long steps = 0;  ///< accepted steps (fixed-step: steps taken)
+  /// Evaluations of A(t) (products A(t)Φ); kTaylor: its products A_j Φ_k of the series,
+  /// p(p + 1)/2 per step, each the arithmetic of an evaluation's product.
+  long rhs_evals = 0;
   int steps_per_period = 0;  ///< fixed-step methods: the resolution used (after auto choice)
   /// Fixed-step auto: ||Φ_N − Φ_{N/2}|| / ||Φ||; empty for other integrators.
   std::optional<double> error_estimate;

@@ -38,7 +38,8 @@ IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol);
 IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
 
 /// `options` with IntegratorType::kAuto replaced by the choice (unchanged otherwise);
-/// `reason` (if given) receives the choice's reason, or stays empty.
+/// `reason` (if given) receives the choice's reason, or stays empty. Throws InputError for
+/// kTaylor on a system whose A(t) is not a Fourier series.
 IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOptions options,
                                     std::string* reason = nullptr);
 
