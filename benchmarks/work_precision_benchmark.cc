@@ -266,8 +266,11 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
       {IntegratorType::kDopri5, false},        {IntegratorType::kRkf78, false},
       {IntegratorType::kBulirschStoer, false}, {IntegratorType::kCvodeBdf, false},
       {IntegratorType::kCvodeAdams, false},    {IntegratorType::kMagnus4, true},
-      {IntegratorType::kMagnus6, true},        {IntegratorType::kAuto, false}};
+      {IntegratorType::kMagnus6, true},        {IntegratorType::kTaylor, false},
+      {IntegratorType::kAuto, false}};
   for (const Line& line : lines) {
+    // Taylor series need A(t) as a Fourier series (docs/taylor-integrator.md).
+    if (line.type == IntegratorType::kTaylor && s.RealSeriesA(nullptr) == nullptr) continue;
     const int points = cfg.quick ? 3 : (line.fixed ? 5 : 6);
     for (int i = 0; i < points; ++i) {
       Row row = NewRow(sc, std::string(ToString(line.type)), "", 0);

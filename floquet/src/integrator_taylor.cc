@@ -45,18 +45,25 @@ class TaylorSeriesStepper {
         return false;
       }
       SeriesOfA(t);
-      SeriesOfPhi(phi);
-      const double h = std::min(StepLength(phi), t1 - t);
+      const double tol = abs_tol_ + rel_tol_ * phi.cwiseAbs().maxCoeff();
+      // Steps that cannot reach t1 skip the check for an early end (half the work on n = 2).
+      const bool may_end = t1 - t <= full_step_;
+      const int order = SeriesOfPhi(phi, tol, may_end ? t1 - t : 0);
+      double h = t1 - t;  // reached early: the series' last terms at t1 are within tol
+      if (order == order_) {
+        full_step_ = StepLength(tol, order);
+        h = std::min(h, full_step_);
+      }
       if (!(h > 0) || !std::isfinite(h)) {
         result.message = kNotFiniteMessage;
         return false;
       }
       // Horner: Φ(t + h) = Σ_k Φ_k h^k.
-      phi = phi_[static_cast<size_t>(order_)];
-      for (int k = order_ - 1; k >= 0; --k) phi = phi_[static_cast<size_t>(k)] + h * phi;
+      phi = phi_[static_cast<size_t>(order)];
+      for (int k = order - 1; k >= 0; --k) phi = phi_[static_cast<size_t>(k)] + h * phi;
       t = h == t1 - t ? t1 : t + h;
       ++result.steps;
-      result.rhs_evals += static_cast<long>(order_) * (order_ + 1) / 2;
+      result.rhs_evals += static_cast<long>(order) * (order + 1) / 2;
     }
     result.phi = phi;
     return true;
@@ -66,6 +73,10 @@ class TaylorSeriesStepper {
   // The order from the tolerance: a step of order p is p²/2 products and, for coefficients
   // decaying like (ωh)^k/k!, spans h ∝ p tol^{1/p}, so the work per unit time ∝ p tol^{−1/p}
   // is least at p = −ln tol (23 at 1e-10). Clamped to where the series stays cheap.
+  // The lowest order an interval's end may be reached with (fewer terms than this say
+  // little about the tail).
+  static constexpr int kMinOrder = 4;
+
   static int TaylorOrder(double rel_tol) {
     return std::clamp(static_cast<int>(std::ceil(-std::log(rel_tol))), 8, 36);
   }
@@ -112,9 +123,14 @@ class TaylorSeriesStepper {
     }
   }
 
-  // Φ_0 = Φ, Φ_{k+1} = Σ_{j ≤ k} A_j Φ_{k−j} / (k + 1).
-  void SeriesOfPhi(const Matrix& phi) {
+  // Φ_0 = Φ, Φ_{k+1} = Σ_{j ≤ k} A_j Φ_{k−j} / (k + 1), up to the order; returns the order
+  // computed. With left > 0, stops early when the series already reaches the end of the
+  // interval, `left` ahead, within the tolerance — the last step of an interval, short
+  // segments.
+  int SeriesOfPhi(const Matrix& phi, double tol, double left) {
     phi_[0] = phi;
+    double power = 1;                                            // left^(k+1)
+    double last_term = std::numeric_limits<double>::infinity();  // ‖Φ_k‖ left^k
     for (int k = 0; k < order_; ++k) {
       Matrix& next = phi_[static_cast<size_t>(k) + 1];
       const double inv = 1.0 / (k + 1);
@@ -126,7 +142,13 @@ class TaylorSeriesStepper {
           next.noalias() += a_[static_cast<size_t>(j)] * phi_[static_cast<size_t>(k - j)];
         next *= inv;
       }
+      if (left == 0) continue;
+      power *= left;
+      const double term = phi_[static_cast<size_t>(k) + 1].cwiseAbs().maxCoeff() * power;
+      if (left > 0 && k + 1 >= kMinOrder && term <= tol && last_term <= tol) return k + 1;
+      last_term = term;
     }
+    return order_;
   }
 
   // Φ_{k+1} = (1/(k+1)) [Φ_k's lower half; Σ_j lower(A_j) Φ_{k−j}]: fixed-size halves for
@@ -153,12 +175,12 @@ class TaylorSeriesStepper {
     }
   }
 
-  // The longest h whose last two terms ‖Φ_k‖ h^k (k = p − 1, p) are within the tolerance of
-  // Φ: two terms, because one coefficient alone can vanish by symmetry (Jorba and Zou 2005).
-  double StepLength(const Matrix& phi) const {
-    const double tol = abs_tol_ + rel_tol_ * phi.cwiseAbs().maxCoeff();
+  // The longest h whose last two terms ‖Φ_k‖ h^k (k = p − 1, p) are within `tol` (the
+  // tolerance at Φ's size): two terms, because one coefficient alone can vanish by symmetry
+  // (Jorba and Zou 2005).
+  double StepLength(double tol, int order) const {
     double h = std::numeric_limits<double>::infinity();
-    for (int k : {order_ - 1, order_}) {
+    for (int k : {order - 1, order}) {
       const double size = phi_[static_cast<size_t>(k)].cwiseAbs().maxCoeff();
       if (!std::isfinite(size)) return std::numeric_limits<double>::quiet_NaN();
       if (size > 0) h = std::min(h, std::pow(tol / size, 1.0 / k));
@@ -173,6 +195,8 @@ class TaylorSeriesStepper {
   int harmonics_ = 0;
   bool second_order_ = false;
   std::vector<Matrix> a_, phi_;  // the series of A(t) and of Φ at the step's start
+  // The last step taken at the full order: a shorter interval end may be reached early.
+  double full_step_ = std::numeric_limits<double>::infinity();
 };
 
 template <int N>

@@ -19,6 +19,13 @@ bool UseSingleThreadedBlas() {
   auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   if (!set) return false;
   set(1);
+  // The worker threads OpenBLAS started when it was loaded keep spinning (sched_yield) for
+  // ~0.1 s before they sleep, on the cores ltp's own threads need: stop them. With one thread
+  // OpenBLAS never hands them work again (it would start them anew if it did). Measured: the
+  // 401 × 401 Mathieu map 0.47 → 0.42 s.
+  using Shutdown = int (*)();
+  if (auto shutdown = reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_")))
+    shutdown();
   return true;
 }
 

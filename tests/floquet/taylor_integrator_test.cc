@@ -157,6 +157,10 @@ TEST(TaylorIntegrator, ConsecutiveFactorsAreEachTheirIntervalsTransition) {
     ASSERT_TRUE(f[i].ok) << f[i].message;
     EXPECT_LT(RelErr(f[i].phi, c.Exact(times[i], times[i + 1])), 1e-10) << "factor " << i;
   }
+  // The short factor [0.2, 0.21] is one step, ended early: fewer terms than the full order
+  // ⌈−ln 1e-11⌉ = 26 (26 · 27 / 2 products).
+  EXPECT_EQ(f[1].steps, 1);
+  EXPECT_LT(f[1].rhs_evals, 26 * 27 / 2);
 }
 
 TEST(TaylorIntegrator, FloquetAnalysisMatchesBulirschStoer) {
