@@ -491,7 +491,7 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_option(
       "--integrator", args.integrator,
       "monodromy integrator (see `ltp floquet --help`); default for maps taylor when A(t) is a "
-      "Fourier series, else bs; rkf78 for 1-D");
+      "Fourier series of <= 2 states, else bs; rkf78 for 1-D");
   cmd->add_option("--tol", args.tol, "integrator relative tolerance (hill: truncation tolerance)")
       ->capture_default_str();
   cmd->add_option("--threads", args.threads, "threads (0 = all cores)")->capture_default_str();

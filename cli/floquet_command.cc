@@ -245,7 +245,9 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
                     : "(difference to the run at the requested tolerance on\n  another grid; the "
                       "numbers shown come from the refined, 100× tighter run)\n")
             << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
-            << Num(r.mode_condition, 3) << ", " << r.rhs_evals << " evaluations of A(t), "
+            << Num(r.mode_condition, 3) << ", " << r.rhs_evals
+            << (r.integrator == IntegratorType::kTaylor ? " products of A's and Φ's series, "
+                                                        : " evaluations of A(t), ")
             << Num(r.elapsed_s * 1e3, 3) << " ms\n"
             << "  branch: Im λ chosen so each periodic mode shape's Fourier energy is centred on "
                "harmonic 0\n";

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 #include "ltp/core/error.h"
 #include "ltp/core/real_fourier_series.h"
@@ -279,7 +280,7 @@ const std::vector<double>& PeriodicSystem::sample_times() const { return impl_->
 const std::vector<LtiSystem>& PeriodicSystem::samples() const { return impl_->samples; }
 const SystemLabels& PeriodicSystem::labels() const { return impl_->labels; }
 
-PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const {
+void PeriodicSystem::CheckLabels(const SystemLabels& labels) const {
   auto check = [](const std::vector<std::string>& v, int n, const char* what) {
     if (!v.empty() && static_cast<int>(v.size()) != n)
       throw InputError(std::string("expected ") + std::to_string(n) + " " + what + " names, got " +
@@ -292,7 +293,20 @@ PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const {
   for (int i : labels.blade_states)
     if (i < 0 || i >= impl_->n)
       throw InputError("blade state index " + std::to_string(i) + " out of range");
+}
+
+PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) const& {
+  CheckLabels(labels);
   auto impl = std::make_shared<Impl>(*impl_);
+  impl->labels = std::move(labels);
+  return PeriodicSystem(std::move(impl));
+}
+
+PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) && {
+  if (impl_.use_count() != 1) return std::as_const(*this).WithLabels(std::move(labels));
+  CheckLabels(labels);
+  // Every Impl is made by make_shared<Impl> (never const), so it may be written through.
+  auto impl = std::const_pointer_cast<Impl>(std::move(impl_));
   impl->labels = std::move(labels);
   return PeriodicSystem(std::move(impl));
 }

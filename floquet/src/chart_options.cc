@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ltp/core/error.h"
+#include "ltp/floquet/method_choice.h"
 
 namespace ltp {
 
@@ -25,7 +26,8 @@ void ChartOptions::Validate() const {
 IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base) {
   if (options.integrator) return *options.integrator;
   if (!map) return IntegratorType::kRkf78;
-  return base.RealSeriesA(nullptr) ? IntegratorType::kTaylor : IntegratorType::kBulirschStoer;
+  return TaylorSeriesPay(MeasureSystemTraits(base)) ? IntegratorType::kTaylor
+                                                    : IntegratorType::kBulirschStoer;
 }
 
 SweepOptions ChartSweepOptions(const ChartOptions& options, bool map, const PeriodicSystem& base) {

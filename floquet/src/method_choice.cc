@@ -20,6 +20,8 @@ constexpr int kTraitSamples = 4;
 // cheapest integrator at every accuracy). Fast *oscillation* (tower-rotor's undamped modes at
 // 4777 rad/s) is not counted: there Bulirsch–Stoer was faster in the full analysis.
 constexpr double kStiffnessLimit = 500;
+// States up to which Taylor series steps beat Bulirsch–Stoer (TaylorSeriesPay).
+constexpr int kTaylorMaxStates = 2;
 // Hill: structured / dense cost ≈ kStructuredCost · n (band/m)² (see ChooseHillSolver).
 constexpr double kStructuredCost = 0.5;
 constexpr double kStructuredMinSize = 50;
@@ -51,6 +53,7 @@ bool ConstantBetweenBreakpoints(const PeriodicSystem& system) {
 SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
   SystemTraits t;
   t.states = system.states();
+  t.fourier_form = system.RealSeriesA(nullptr) != nullptr;
   const double T = system.period();
   for (double b : system.breakpoints())
     if (b > 0 && b < T) t.has_jumps = true;
@@ -88,6 +91,11 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
     c.reason = "stiff: T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
                " > 500, so explicit steps are bound by stability; Magnus 6 follows the fast "
                "decay exactly (study: the cheapest integrator on stiff.yaml and stiff-coupled)";
+  } else if (TaylorSeriesPay(t)) {
+    c.type = IntegratorType::kTaylor;
+    c.reason = "A(t) is a Fourier series of " + std::to_string(t.states) +
+               " states: Taylor series steps from its exact derivatives were the cheapest at "
+               "every tolerance on Mathieu (study: 1.35–1.9× cheaper than Bulirsch–Stoer)";
   } else {
     c.type = IntegratorType::kBulirschStoer;
     c.reason = "smooth, not stiff (T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
@@ -95,6 +103,10 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
                "tolerances on Mathieu, rotor and tower-rotor (study)";
   }
   return c;
+}
+
+bool TaylorSeriesPay(const SystemTraits& traits) {
+  return traits.fourier_form && traits.states <= kTaylorMaxStates;
 }
 
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol) {

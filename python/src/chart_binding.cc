@@ -399,8 +399,8 @@ defaults (the library's ChartOptions).
   scene         a System made by ltp.scene(...) (its parameters are the base) or a name
   sweep, sweep2 'NAME=START:STOP:STEP' or (name, start, stop, step)
   method        monodromy | hill
-  integrator    None: rkf78 for 1-D sweeps; for maps taylor when A(t) is a Fourier series,
-                else bs; or any name ltp.floquet takes
+  integrator    None: rkf78 for 1-D sweeps; for maps taylor when A(t) is a Fourier series
+                of <= 2 states, else bs; or any name ltp.floquet takes
   tol           integrator relative tolerance (hill: truncation tolerance)
   threads       threads over points (0 = all cores)
   compare       1-D: also the frozen A(0) and averaged-system eigenvalues

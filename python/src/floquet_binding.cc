@@ -112,7 +112,8 @@ formula beyond the error estimate): the diagnostics say why.)doc");
             return v;
           },
           "the harmonics v = -H..H of mode_harmonics")
-      .def_readonly("rhs_evals", &FloquetResult::rhs_evals, "evaluations of A(t)")
+      .def_readonly("rhs_evals", &FloquetResult::rhs_evals,
+                    "evaluations of A(t) (taylor: products A_j Phi_k of the series)")
       .def_readonly("elapsed_s", &FloquetResult::elapsed_s, "wall time (s)")
       .def_readonly("diagnostics", &FloquetResult::diagnostics,
                     "what the analysis noticed, one line each")

@@ -148,6 +148,24 @@ TEST(PeriodicSystem, WithLabelsChecksSizes) {
   EXPECT_THROW(sys.WithLabels({.inputs = {"u"}}), InputError);  // the system has no inputs
 }
 
+TEST(PeriodicSystem, WithLabelsOnATemporaryLeavesOtherOwnersAlone) {
+  // Sole owner: relabelled in place (the same representation, no copy).
+  PeriodicSystem sole = PeriodicSystem::FromFourier(kPeriod, MathieuFourier());
+  const FourierMatrix* representation = sole.fourier_A();
+  const PeriodicSystem named = std::move(sole).WithLabels({.states = {"p", "v"}});
+  EXPECT_EQ(named.fourier_A(), representation);
+  EXPECT_EQ(named.labels().states, (std::vector<std::string>{"p", "v"}));
+  // Shared: copied, the other owner keeps its labels.
+  const PeriodicSystem kept = named;
+  PeriodicSystem shared = named;
+  const PeriodicSystem renamed = std::move(shared).WithLabels({.states = {"x", "x_dot"}});
+  EXPECT_EQ(renamed.labels().states, (std::vector<std::string>{"x", "x_dot"}));
+  EXPECT_EQ(kept.labels().states, (std::vector<std::string>{"p", "v"}));
+  EXPECT_NE(renamed.fourier_A(), kept.fourier_A());
+  PeriodicSystem bad = PeriodicSystem::FromFourier(kPeriod, MathieuFourier());
+  EXPECT_THROW(std::move(bad).WithLabels({.states = {"p"}}), InputError);
+}
+
 TEST(PeriodicSystem, ToFourierSystemReproducesFunctionForm) {
   // Mathieu A(t) plus a time-varying input and output matrix, all with period π.
   PeriodicSystem::Functions fn;

@@ -111,7 +111,11 @@ class PeriodicSystem {
 
   const SystemLabels& labels() const;
   /// Returns a copy with these labels (sizes must match states/inputs/outputs or be empty).
-  PeriodicSystem WithLabels(SystemLabels labels) const;
+  PeriodicSystem WithLabels(SystemLabels labels) const&;
+  /// The same for a temporary (a scene builder's `FromFourier(…).WithLabels(…)`): when it is
+  /// the only owner of its representation, that is relabelled instead of copied — a sweep
+  /// builds one system per point.
+  PeriodicSystem WithLabels(SystemLabels labels) &&;
   /// Rotor speed in rad/s, when the system describes a rotor (rotor angle = speed · t).
   std::optional<double> rotor_speed() const;
   PeriodicSystem WithRotorSpeed(double rad_per_s) const;
@@ -120,6 +124,7 @@ class PeriodicSystem {
 
  private:
   explicit PeriodicSystem(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  void CheckLabels(const SystemLabels& labels) const;
   std::shared_ptr<const Impl> impl_;
 };
 

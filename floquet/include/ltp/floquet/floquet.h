@@ -144,7 +144,7 @@ struct FloquetResult {
   /// column k, harmonics v = −H..H.
   std::vector<Eigen::MatrixXcd> mode_fourier;
   int mode_harmonics = 0;  ///< H
-  long rhs_evals = 0;
+  long rhs_evals = 0;      ///< evaluations of A(t)Φ; kTaylor: products A_j Φ_k of the series
   double elapsed_s = 0;
   std::vector<std::string> diagnostics;
 
