@@ -46,7 +46,8 @@ class TaylorSeriesStepper {
       }
       SeriesOfA(t);
       const double tol = abs_tol_ + rel_tol_ * phi.cwiseAbs().maxCoeff();
-      // Steps that cannot reach t1 skip the check for an early end (half the work on n = 2).
+      // Steps that cannot reach t1 skip the check for an early end (on n = 2 it costs about a
+      // quarter of the step).
       const bool may_end = t1 - t <= full_step_;
       const int order = SeriesOfPhi(phi, tol, may_end ? t1 - t : 0);
       double h = t1 - t;  // reached early: the series' last terms at t1 are within tol
@@ -70,13 +71,13 @@ class TaylorSeriesStepper {
   }
 
  private:
-  // The order from the tolerance: a step of order p is p²/2 products and, for coefficients
-  // decaying like (ωh)^k/k!, spans h ∝ p tol^{1/p}, so the work per unit time ∝ p tol^{−1/p}
-  // is least at p = −ln tol (23 at 1e-10). Clamped to where the series stays cheap.
   // The lowest order an interval's end may be reached with (fewer terms than this say
   // little about the tail).
   static constexpr int kMinOrder = 4;
 
+  // The order from the tolerance: a step of order p is p²/2 products and, for coefficients
+  // decaying like (ωh)^k/k!, spans h ∝ p tol^{1/p}, so the work per unit time ∝ p tol^{−1/p}
+  // is least at p = −ln tol (23 at 1e-10). Clamped to where the series stays cheap.
   static int TaylorOrder(double rel_tol) {
     return std::clamp(static_cast<int>(std::ceil(-std::log(rel_tol))), 8, 36);
   }
@@ -99,7 +100,8 @@ class TaylorSeriesStepper {
     return true;
   }
 
-  // A_j = A^(j)(t)/j!, j = 1 … p (A_0 = A₀'s block stays; the harmonics add to it at j = 0).
+  // A_j = A^(j)(t)/j!, j = 0 … p: the mean block A₀ (j = 0 only) plus every harmonic's j-th
+  // derivative.
   void SeriesOfA(double t) {
     a_[0] = Block(0);
     for (int j = 1; j <= order_; ++j) a_[static_cast<size_t>(j)].setZero();
@@ -145,7 +147,7 @@ class TaylorSeriesStepper {
       if (left == 0) continue;
       power *= left;
       const double term = phi_[static_cast<size_t>(k) + 1].cwiseAbs().maxCoeff() * power;
-      if (left > 0 && k + 1 >= kMinOrder && term <= tol && last_term <= tol) return k + 1;
+      if (k + 1 >= kMinOrder && term <= tol && last_term <= tol) return k + 1;
       last_term = term;
     }
     return order_;
