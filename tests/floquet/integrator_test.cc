@@ -177,13 +177,15 @@ TEST(TransitionInput, BadOptionsAndBackwardIntervalsThrow) {
 
 class IntegratorP : public ::testing::TestWithParam<IntegratorType> {};
 
-INSTANTIATE_TEST_SUITE_P(Integrator, IntegratorP, ::testing::ValuesIn(AllIntegrators()),
-                         [](const auto& info) {
-                           std::string s(ToString(info.param));
-                           for (char& c : s)
-                             if (c == '-') c = '_';
-                           return s;
-                         });
+// "cvode-adams" → "cvode_adams": test names take no '-'.
+std::string TestName(const ::testing::TestParamInfo<IntegratorType>& info) {
+  std::string s(ToString(info.param));
+  for (char& c : s)
+    if (c == '-') c = '_';
+  return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrator, IntegratorP, ::testing::ValuesIn(AllIntegrators()), TestName);
 
 // Every integrator that takes A(t) with jumps (Meissner): all but kTaylor, which needs a
 // Fourier series (its own tests: taylor_integrator_test.cc).
@@ -196,13 +198,7 @@ std::vector<IntegratorType> IntegratorsForJumps() {
   return types;
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrator, JumpsP, ::testing::ValuesIn(IntegratorsForJumps()),
-                         [](const auto& info) {
-                           std::string s(ToString(info.param));
-                           for (char& c : s)
-                             if (c == '-') c = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrator, JumpsP, ::testing::ValuesIn(IntegratorsForJumps()), TestName);
 
 TEST_P(IntegratorP, ConstantMatchesExpm) {
   Eigen::Matrix3d a;
