@@ -176,10 +176,17 @@ BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus4, IntegratorType::kMagnus4)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MathieuMultipliers, magnus6, IntegratorType::kMagnus6)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, bs, IntegratorType::kBulirschStoer)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MathieuMultipliers, taylor, IntegratorType::kTaylor)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Chain40, dopri5, IntegratorType::kDopri5)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, magnus6, IntegratorType::kMagnus6)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Chain40, bs, IntegratorType::kBulirschStoer)->Unit(benchmark::kMillisecond);
+// Where Taylor series do not pay: p²/2 products of 40 × 40 matrices per step.
+BENCHMARK_CAPTURE(BM_Chain40, taylor, IntegratorType::kTaylor)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Chain40FullAnalysis)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
