@@ -32,6 +32,7 @@ class TaylorSeriesStepper {
     phi_.assign(static_cast<size_t>(order_) + 1, Matrix::Zero(n_, n_));
     a_[0] = Block(0);
     second_order_ = SecondOrderForm();
+    constant_damping_ = second_order_ && ConstantLowerRight();
   }
 
   /// Φ(t1, t0) into `result` (steps and products added); false when a step's series is not
@@ -100,6 +101,15 @@ class TaylorSeriesStepper {
     return true;
   }
 
+  // Second-order form whose harmonics leave A₂₂ alone (constant damping, e.g. Mathieu, the
+  // Jeffcott rotor): for j ≥ 1 lower(A_j) Φ = A₂₁,j · upper(Φ), half the products.
+  bool ConstantLowerRight() const {
+    const int h = n_ / 2;
+    for (int b = 1; b <= 2 * harmonics_; ++b)
+      if (!Block(b).bottomRightCorner(h, h).isZero(0)) return false;
+    return true;
+  }
+
   // A_j = A^(j)(t)/j!, j = 0 … p: the mean block A₀ (j = 0 only) plus every harmonic's j-th
   // derivative.
   void SeriesOfA(double t) {
@@ -160,9 +170,15 @@ class TaylorSeriesStepper {
       constexpr int h = N / 2;
       Eigen::Matrix<double, h, N> lower =
           a_[0].template bottomRows<h>() * phi_[static_cast<size_t>(k)];
-      for (int j = 1; j <= k; ++j)
-        lower.noalias() +=
-            a_[static_cast<size_t>(j)].template bottomRows<h>() * phi_[static_cast<size_t>(k - j)];
+      if (constant_damping_) {
+        for (int j = 1; j <= k; ++j)
+          lower.noalias() += a_[static_cast<size_t>(j)].template bottomLeftCorner<h, h>() *
+                             phi_[static_cast<size_t>(k - j)].template topRows<h>();
+      } else {
+        for (int j = 1; j <= k; ++j)
+          lower.noalias() += a_[static_cast<size_t>(j)].template bottomRows<h>() *
+                             phi_[static_cast<size_t>(k - j)];
+      }
       next.template bottomRows<h>() = inv * lower;
       next.template topRows<h>() = inv * phi_[static_cast<size_t>(k)].template bottomRows<h>();
     } else {
@@ -196,7 +212,8 @@ class TaylorSeriesStepper {
   const double* series_ = nullptr;
   int harmonics_ = 0;
   bool second_order_ = false;
-  std::vector<Matrix> a_, phi_;  // the series of A(t) and of Φ at the step's start
+  bool constant_damping_ = false;  // second order, harmonics only in A₂₁
+  std::vector<Matrix> a_, phi_;    // the series of A(t) and of Φ at the step's start
   // The last step taken at the full order: a shorter interval end may be reached early.
   double full_step_ = std::numeric_limits<double>::infinity();
 };

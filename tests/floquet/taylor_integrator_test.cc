@@ -15,6 +15,7 @@
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/integrator.h"
+#include "ltp/models/scene.h"
 
 namespace ltp {
 namespace {
@@ -146,6 +147,20 @@ TEST(TaylorIntegrator, LargerSecondOrderSystemMatchesAnotherIntegrator) {
   // Liouville: det Φ(T, 0) = exp(T tr A₀) (the harmonics integrate to zero).
   const double det = std::exp(T * sys.fourier_A()->coefficient(0).real().trace());
   EXPECT_NEAR(r.phi.determinant() / det, 1.0, 1e-9);
+}
+
+TEST(TaylorIntegrator, JeffcottRotorMatchesAnotherIntegrator) {
+  // 4 states, second-order form with constant damping: the fixed-size path whose harmonics
+  // multiply only the upper half of Φ (stiffness K(t) rotating, damping constant).
+  const Scene scene = LoadScene("jeffcott");
+  const PeriodicSystem sys = scene.build(scene.Resolve({{"c", "0.05"}}));
+  const double T = sys.period();
+  const Eigen::MatrixXd want = StateTransition(AsFunction(sys), 0, 3 * T, Reference()).phi;
+  for (double tol : {1e-7, 1e-11}) {
+    const TransitionResult r = StateTransition(sys, 0, 3 * T, Taylor(tol));
+    ASSERT_TRUE(r.ok) << r.message;
+    EXPECT_LT(RelErr(r.phi, want), 10 * tol) << "tol " << tol;
+  }
 }
 
 TEST(TaylorIntegrator, ConsecutiveFactorsAreEachTheirIntervalsTransition) {
