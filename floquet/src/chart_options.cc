@@ -26,8 +26,10 @@ void ChartOptions::Validate() const {
 IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base) {
   if (options.integrator) return *options.integrator;
   if (!map) return IntegratorType::kRkf78;
-  return TaylorSeriesPay(MeasureSystemTraits(base)) ? IntegratorType::kTaylor
-                                                    : IntegratorType::kBulirschStoer;
+  // Only a Fourier series can pay; other forms are not sampled for traits at all (a user's
+  // A(t) at the base point need not be the sweep's concern).
+  const bool taylor = base.RealSeriesA(nullptr) && TaylorSeriesPay(MeasureSystemTraits(base));
+  return taylor ? IntegratorType::kTaylor : IntegratorType::kBulirschStoer;
 }
 
 SweepOptions ChartSweepOptions(const ChartOptions& options, bool map, const PeriodicSystem& base) {
