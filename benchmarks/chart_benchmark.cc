@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "ltp/core/elapsed.h"
@@ -26,10 +27,11 @@
 
 namespace {
 
-// `ltp chart` map defaults: for this Fourier scene Taylor series (ChartIntegrator) at rel tol
-// 1e-10, which keeps max log|ρ| within 3.8e-9 of an rkf78 run at 1e-13 on 6 561 points of this
-// map (Bulirsch–Stoer at 1e-10: 5.6e-9; docs/taylor-integrator.md).
-ltp::SweepOptions MapOptions(int threads, ltp::IntegratorType type = ltp::IntegratorType::kTaylor) {
+// `ltp chart` map defaults at rel tol 1e-10: the integrator `type` (Map::integrator, the
+// library's ChartIntegrator choice, is Taylor series for this Fourier scene) keeps max log|ρ|
+// within 3.8e-9 of an rkf78 run at 1e-13 on 6 561 points of this map (Bulirsch–Stoer at 1e-10:
+// 5.6e-9; docs/taylor-integrator.md).
+ltp::SweepOptions MapOptions(int threads, ltp::IntegratorType type) {
   ltp::SweepOptions o;
   o.modes = false;
   o.check_every = 0;
@@ -45,17 +47,20 @@ struct Map {
   ltp::ParameterMap base = scene.Resolve({{"c", "0.02"}});
   ltp::SweepGrid grid = ltp::MakeSweepGrid(
       scene, {ltp::SweepAxis::Parse("a=-2:10:0.03"), ltp::SweepAxis::Parse("q=0:8:0.02")});
+  // What `ltp chart` integrates this map with.
+  ltp::IntegratorType integrator = ltp::ChartIntegrator({}, /*map=*/true, scene.build(base));
 };
 
+// `type`: empty = the chart's own choice (Map::integrator).
 double RunMap(const Map& m, const std::vector<size_t>& indices, int threads,
               std::vector<double>* values = nullptr,
-              ltp::IntegratorType type = ltp::IntegratorType::kTaylor) {
+              std::optional<ltp::IntegratorType> type = std::nullopt) {
   std::mutex mutex;
   if (values) values->assign(indices.size(), NAN);
   std::vector<size_t> position(m.grid.size());
   for (size_t i = 0; i < indices.size(); ++i) position[indices[i]] = i;
   const auto start = std::chrono::steady_clock::now();
-  ltp::RunSweep(m.scene, m.base, m.grid, indices, MapOptions(threads, type),
+  ltp::RunSweep(m.scene, m.base, m.grid, indices, MapOptions(threads, type.value_or(m.integrator)),
                 [&](ltp::SweepPoint&& p) {
                   if (!values) return;
                   std::lock_guard<std::mutex> lock(mutex);
@@ -156,6 +161,7 @@ void BM_VersusScipy(benchmark::State& state) {
     const double ltp1 = one_thread / static_cast<double>(indices.size());
     const double ltpn = all_threads / static_cast<double>(indices.size());
     state.SetIterationTime(one_thread);
+    state.SetLabel(std::string(ltp::ToString(m.integrator)));
     state.counters["scipy_us_per_point"] = 1e6 * scipy;
     state.counters["ltp_us_per_point_1thread"] = 1e6 * ltp1;
     state.counters["ltp_us_per_point_all_threads"] = 1e6 * ltpn;

@@ -46,9 +46,7 @@ struct FloquetArgs {
 void ResolveOptions(FloquetArgs& args) {
   auto type = ParseIntegratorType(args.integrator);
   if (!type)
-    throw InputError(
-        "unknown integrator '" + args.integrator +
-        "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor)");
+    throw InputError("unknown integrator '" + args.integrator + "' (" + IntegratorNames() + ")");
   if (!ParseHillSolver(args.hill_solver))
     throw InputError("--hill-solver must be auto, dense or structured, got '" + args.hill_solver +
                      "'");

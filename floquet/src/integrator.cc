@@ -156,6 +156,12 @@ std::optional<IntegratorType> ParseIntegratorType(std::string_view name) {
   return std::nullopt;
 }
 
+std::string IntegratorNames() {
+  std::string names(ToString(IntegratorType::kAuto));
+  for (IntegratorType t : AllIntegrators()) (names += ", ") += ToString(t);
+  return names;
+}
+
 std::vector<IntegratorType> AllIntegrators() {
   std::vector<IntegratorType> all;
   for (const auto& named : kNames)

@@ -32,10 +32,7 @@ MultiplierMethod MultipliersFrom(const std::string& name) {
 
 IntegratorType IntegratorFrom(const std::string& name) {
   const auto type = ParseIntegratorType(name);
-  if (!type)
-    throw InputError(
-        "unknown integrator '" + name +
-        "' (auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor)");
+  if (!type) throw InputError("unknown integrator '" + name + "' (" + IntegratorNames() + ")");
   return *type;
 }
 

@@ -115,6 +115,9 @@ TEST(IntegratorNames, RoundTrip) {
   EXPECT_EQ(ParseIntegratorType("magnus6"), IntegratorType::kMagnus6);
   EXPECT_FALSE(ParseIntegratorType("rk4").has_value());
   EXPECT_FALSE(ParseIntegratorType("").has_value());
+  // The list the CLI's and Python's "unknown integrator" messages quote.
+  EXPECT_EQ(IntegratorNames(),
+            "auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor");
 }
 
 void ExpectInvalid(const IntegratorOptions& o, const std::string& field) {

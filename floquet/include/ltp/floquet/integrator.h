@@ -37,6 +37,8 @@ std::string_view ToString(IntegratorType type);
 std::optional<IntegratorType> ParseIntegratorType(std::string_view name);
 /// Every concrete integrator (not kAuto).
 std::vector<IntegratorType> AllIntegrators();
+/// "auto, dopri5, rkf78, …": every name ParseIntegratorType takes, for error messages.
+std::string IntegratorNames();
 
 struct IntegratorOptions {
   /// The library's default is the CLI's: the study's cheapest integrator for the system.
