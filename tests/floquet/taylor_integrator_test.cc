@@ -16,6 +16,7 @@
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/integrator.h"
 #include "ltp/models/scene.h"
+#include "support/systems.h"
 
 namespace ltp {
 namespace {
@@ -75,17 +76,6 @@ struct Commuting {
   }
 };
 
-// Mathieu y'' + (a − 2q cos 2t) y = 0 in second-order form, period π, as a Fourier series.
-PeriodicSystem MathieuFourier(double a, double q) {
-  FourierMatrix s(2, 2, 1);
-  Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);
-  a0 << 0, 1, -a, 0;
-  a1(1, 0) = q;  // 2q cos 2t in A₂₁
-  s.SetHarmonic(0, a0);
-  s.SetHarmonic(1, a1);
-  return PeriodicSystem::FromFourier(kPi, s);
-}
-
 // A random damped 3-degree-of-freedom second-order system [0 I; K(t) D(t)] with harmonics 1
 // and 2 (6 states: the dynamic-size, second-order path).
 PeriodicSystem RandomSecondOrder() {
@@ -127,7 +117,7 @@ TEST(TaylorIntegrator, MathieuMatchesAnotherIntegratorFromStableToStronglyUnstab
   // Second-order form, fixed size 2 (the stability maps' case), across a tongue: a = 1, q = 0.2
   // is stable; a = 1, q = 6 grows by ~e^{4} per period; a = −2, q = 8 by ~e^{9}.
   for (const auto& [a, q] : std::vector<std::pair<double, double>>{{1, 0.2}, {1, 6}, {-2, 8}}) {
-    const PeriodicSystem sys = MathieuFourier(a, q);
+    const PeriodicSystem sys = test::Mathieu(a, q);
     const Eigen::MatrixXd want = StateTransition(AsFunction(sys), 0, kPi, Reference()).phi;
     for (double tol : {1e-6, 1e-10}) {
       const TransitionResult r = StateTransition(sys, 0, kPi, Taylor(tol));
@@ -181,7 +171,7 @@ TEST(TaylorIntegrator, ConsecutiveFactorsAreEachTheirIntervalsTransition) {
 TEST(TaylorIntegrator, FloquetAnalysisMatchesBulirschStoer) {
   // Both routes of the whole analysis (segments, periodic Schur, error estimate) on a Mathieu
   // point inside the first tongue: the exponents agree within the two estimates.
-  const PeriodicSystem sys = MathieuFourier(1, 0.3);
+  const PeriodicSystem sys = test::Mathieu(1, 0.3);
   FloquetOptions o;
   o.integrator = Taylor(1e-10);
   const FloquetResult t = AnalyzeFloquet(sys, o);
@@ -210,7 +200,7 @@ TEST(TaylorIntegrator, RefusesASystemWhoseAIsNotAFourierSeries) {
 TEST(TaylorIntegrator, StepBudgetAndOverflowFailWithoutThrowing) {
   IntegratorOptions o = Taylor(1e-10);
   o.max_steps = 2;
-  const TransitionResult few = StateTransition(MathieuFourier(1, 0.2), 0, 100 * kPi, o);
+  const TransitionResult few = StateTransition(test::Mathieu(1, 0.2), 0, 100 * kPi, o);
   EXPECT_FALSE(few.ok);
   EXPECT_NE(few.message.find("max_steps"), std::string::npos) << few.message;
   // exp(1000 · 10) overflows a double.
