@@ -1,5 +1,5 @@
 // `ltp hill`: convergence study of Hill's method over the truncation N, against the
-// monodromy route, with the a-priori bound and the N vs N+Δ estimate per row.
+// monodromy route, with the a-priori bound and the analysis' own error estimate per row.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -51,14 +51,15 @@ void WriteCsv(const HillStudy& s, const std::string& file) {
   std::ofstream csv(file);
   if (!csv) throw InputError("cannot write '" + file + "'");
   const size_t k = s.rows.empty() ? 0 : s.rows.front().errors.size();
-  csv << "harmonics,matrix_size,max_error,apriori_bound,truncation_estimate,selection_margin,"
-         "tail_weight,ambiguous,elapsed_s";
+  csv << "harmonics,matrix_size,max_error,apriori_bound,truncation_estimate,error_estimate,"
+         "selection_margin,tail_weight,ambiguous,elapsed_s";
   for (size_t i = 0; i < k; ++i) csv << ",error_" << i;
   csv << "\n" << std::setprecision(12);
   for (const HillStudyRow& r : s.rows) {
     csv << r.harmonics << "," << r.matrix_size << "," << CsvNumber(r.max_error) << ","
-        << r.apriori_bound << "," << CsvNumber(r.truncation_estimate) << "," << r.selection_margin
-        << "," << r.tail_weight << "," << r.ambiguous << "," << r.elapsed_s;
+        << r.apriori_bound << "," << CsvNumber(r.truncation_estimate) << ","
+        << CsvNumber(r.error_estimate) << "," << r.selection_margin << "," << r.tail_weight << ","
+        << r.ambiguous << "," << r.elapsed_s;
     for (double e : r.errors) csv << "," << e;
     csv << "\n";
   }
@@ -73,7 +74,7 @@ void Plot(const HillStudy& s, const std::string& title, const std::string& file)
   g << GnuplotTerminal(file, 900, 560) << "set output '" << file << "'\n$D << EOD\n";
   for (const HillStudyRow& r : s.rows)
     g << r.harmonics << " " << val(r.max_error) << " " << val(r.apriori_bound) << " "
-      << val(r.truncation_estimate) << "\n";
+      << val(r.error_estimate) << "\n";
   g << "EOD\n"
     << "set title \"Hill convergence: " << title << "  (" << RateText(s) << ")\"\n"
     << "set xlabel 'harmonics N'\nset ylabel 'exponent error  [1/s]'\n"
@@ -81,7 +82,7 @@ void Plot(const HillStudy& s, const std::string& title, const std::string& file)
   if (s.rate_kind == HillConvergence::kAlgebraic) g << "set logscale x\n";
   g << "plot $D using 1:2 with linespoints pt 7 lc rgb '#1f77b4' title 'error vs monodromy', "
        "$D using 1:3 with linespoints pt 5 dt 2 lc rgb '#d62728' title 'a-priori bound', "
-       "$D using 1:4 with linespoints pt 9 dt 3 lc rgb '#2ca02c' title 'N vs N+Δ estimate'\n";
+       "$D using 1:4 with linespoints pt 9 dt 3 lc rgb '#2ca02c' title 'error estimate'\n";
   RunGnuplot(file, g.str());
 }
 
@@ -123,6 +124,7 @@ int RunHill(HillArgs& args) {
                       {"max_error", JsonNumber(r.max_error)},
                       {"apriori_bound", JsonNumber(r.apriori_bound)},
                       {"truncation_estimate", JsonNumber(r.truncation_estimate)},
+                      {"error_estimate", JsonNumber(r.error_estimate)},
                       {"selection_margin", JsonNumber(r.selection_margin)},
                       {"tail_weight", JsonNumber(r.tail_weight)},
                       {"ambiguous", r.ambiguous},
@@ -186,12 +188,12 @@ int RunHill(HillArgs& args) {
   if (s.decay.fourier_tail > 0) std::cout << ", fit tail " << Num(s.decay.fourier_tail, 2);
   std::cout << "\n  reference: "
             << (have_ref ? "monodromy route (dopri5, rel tol 1e-12), error modulo jΩp" : "none")
-            << "\n\n       N   size   error vs ref  a-priori bound   N vs N+Δ   margin      tail   "
+            << "\n\n       N   size   error vs ref  a-priori bound   estimate   margin      tail   "
                "time [ms]\n";
   for (const HillStudyRow& r : s.rows) {
     std::cout << std::setw(8) << r.harmonics << std::setw(7) << r.matrix_size
               << Num(r.max_error, 3, 15) << Num(r.apriori_bound, 3, 16)
-              << Num(r.truncation_estimate, 3, 11) << Num(r.selection_margin, 3, 9)
+              << Num(r.error_estimate, 3, 11) << Num(r.selection_margin, 3, 9)
               << Num(r.tail_weight, 2, 10) << Num(r.elapsed_s * 1e3, 3, 12)
               << (r.ambiguous ? "  tie λ/λ±jΩp" : "") << "\n";
   }

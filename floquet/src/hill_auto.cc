@@ -75,18 +75,25 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
         << "the tolerance " << goal << "; the estimate above is the error at this N";
       return finish(std::move(best), false, s.str());
     }
-    // Slow (algebraic) convergence: at the rate seen between the last two truncations, would
-    // the tolerance be met below max_harmonics? If not, stop now rather than spend minutes.
+    // Slow convergence: at the rate seen between the last two truncations, would the tolerance
+    // be met below max_harmonics? If not, stop now rather than spend minutes. The law follows
+    // the coefficients of A: a power of N when they decay algebraically (discontinuous A),
+    // geometric in N otherwise (extrapolating a geometric decay as a power law predicted
+    // N ≈ 6000 for the Poisson kernel r = 0.9, which N = 96 resolves to 1e-14).
     if (best.ok && previous_change > 0 && change > 0 && std::isfinite(change) &&
         change < previous_change) {
-      const double rate =
-          std::log(previous_change / change) / std::log(double(best.harmonics) / previous_n);
-      const double needed = best.harmonics * std::pow(change / goal, 1 / rate);
+      const bool algebraic = best.decay.kind == FourierDecay::kAlgebraic;
+      const double shrink = std::log(previous_change / change);
+      const double rate = algebraic ? shrink / std::log(double(best.harmonics) / previous_n)
+                                    : shrink / (best.harmonics - previous_n);
+      const double needed = algebraic ? best.harmonics * std::pow(change / goal, 1 / rate)
+                                      : best.harmonics + std::log(change / goal) / rate;
       if (rate > 0 && needed > 2.0 * max_harmonics) {
         s << "automatic truncation stopped at N = " << best.harmonics << ": the N vs N+Δ change "
-          << change << " 1/s falls like N^-" << rate << ", so the tolerance " << goal
-          << " needs N ≈ " << needed << " (limit " << max_harmonics
-          << "); the estimate above is the error at this N";
+          << change << " 1/s falls like "
+          << (algebraic ? "N^-" + MessageNumber(rate, 3) : "e^{-" + MessageNumber(rate, 3) + " N}")
+          << ", so the tolerance " << goal << " needs N ≈ " << std::ceil(needed) << " (limit "
+          << max_harmonics << "); the estimate above is the error at this N";
         return finish(std::move(best), false, s.str());
       }
     }

@@ -210,30 +210,12 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   for (const FloquetMode& m : reference.modes) study.reference.push_back(m.exponent);
   const bool have_ref = !study.reference.empty();
 
-  // One solve per N (the N + Δ estimates reuse other rows' solves).
+  // One full analysis per N: each row reports the estimate AnalyzeHill reports at that N (the
+  // N vs N+Δ change with its tail factor, the edge and Liouville checks), not a bare change.
   const std::vector<int> rows = StudyHarmonics(max_harmonics);
-  const auto delta_of = [&](int N) {
-    return options.delta_harmonics > 0 ? options.delta_harmonics : std::max(2, (N + 1) / 2);
-  };
-  std::set<int> planned(rows.begin(), rows.end());
-  if (options.delta_harmonics >= 0)
-    for (int N : rows) planned.insert(N + delta_of(N));
   const auto work = [n = system.states()](int N) { return std::pow(double((2 * N + 1) * n), 3); };
   double total_work = 0, done_work = 0;
-  for (int N : planned) total_work += work(N);
-  std::map<int, HillResult> cache;
-  auto solve = [&](int N) -> const HillResult& {
-    auto it = cache.find(N);
-    if (it != cache.end()) return it->second;
-    HillOptions o = options;
-    o.harmonics = N;
-    o.delta_harmonics = -1;
-    o.progress = nullptr;
-    const HillResult& r = cache.emplace(N, AnalyzeHill(system, o)).first->second;
-    done_work += work(N);
-    if (options.progress) options.progress(done_work, total_work);
-    return r;
-  };
+  for (int N : rows) total_work += work(N);
   auto exponents = [](const HillResult& r) {
     std::vector<cd> v;
     for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
@@ -241,7 +223,12 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   };
 
   for (int N : rows) {
-    const HillResult& r = solve(N);
+    HillOptions o = options;
+    o.harmonics = N;
+    o.progress = nullptr;
+    const HillResult r = AnalyzeHill(system, o);
+    done_work += work(N);
+    if (options.progress) options.progress(done_work, total_work);
     const double omega = 2 * std::numbers::pi / r.period;
     HillStudyRow row;
     row.harmonics = N;
@@ -254,17 +241,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       row.tail_weight = std::max(row.tail_weight, i.tail_weight);
       row.ambiguous = row.ambiguous || i.ambiguous;
     }
-    const int delta = delta_of(N);
-    if (options.delta_harmonics >= 0) {
-      const HillResult& r2 = solve(N + delta);
-      const double omega2 = 2 * std::numbers::pi / r2.period;
-      double change = 0;
-      for (double d : MatchExponents(exponents(r), exponents(r2), std::min(omega, omega2)))
-        change = std::max(change, d);
-      // See AnalyzeHill: algebraic convergence, scale up.
-      if (r.decay.kind == FourierDecay::kAlgebraic) change *= double(N + delta) / delta;
-      row.truncation_estimate = change;
-    }
+    row.truncation_estimate = r.truncation_estimate;
+    row.error_estimate = r.error_estimate;
     if (have_ref) {
       row.errors = MatchExponents(study.reference, exponents(r), omega);
       double worst = 0;
@@ -299,6 +277,13 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     } else {
       study.rate_kind = HillConvergence::kAlgebraic;
       study.rate = -al.beta;
+    }
+    if (!(study.rate > 0)) {  // no law of convergence: the error does not fall with N
+      study.rate_kind.reset();
+      study.rate = 0;
+      study.diagnostics.push_back(
+          "the error does not fall with N over the truncations above round-off: no convergence "
+          "rate (the selected eigenvalues are not converging; see the rows)");
     }
   } else {
     study.diagnostics.push_back("too few points above round-off to fit a convergence rate");

@@ -146,6 +146,8 @@ at N = max_harmonics (`last`).)doc")
                              "a-priori error bound per row (inf: none)")
       .def_property_readonly("truncation_estimate", StudyColumn(&HillStudyRow::truncation_estimate),
                              "N vs N+Δ estimate per row (NaN when not computed)")
+      .def_property_readonly("error_estimate", StudyColumn(&HillStudyRow::error_estimate),
+                             "the analysis' error estimate per row (inf: no bound)")
       .def_property_readonly("selection_margin", StudyColumn(&HillStudyRow::selection_margin),
                              "smallest selection margin per row")
       .def_property_readonly("tail_weight", StudyColumn(&HillStudyRow::tail_weight),

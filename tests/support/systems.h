@@ -146,6 +146,43 @@ inline PeriodicSystem BlockDiagonal(const std::vector<PeriodicSystem>& blocks) {
   return PeriodicSystem::FromFourier(blocks.front().period(), A);
 }
 
+/// A Lyapunov-reducible 2-state system with exponents exactly l1 and l2 (closed form):
+/// x = R(θ(t)) z, z' = diag(l1, l2) z, θ = t + e sin t, so
+/// A(t) = R(θ) diag(l1, l2) R(θ)ᵀ + θ'(t) J, J = [[0, −1], [1, 0]]; 2π-periodic because θ
+/// advances by 2π per period. Its frozen eigenvalues sit near l1 and l2 at every t, while A_0's
+/// are near (l1 + l2)/2 ± j: large |l1 − l2| puts the exponents far from where a search around
+/// A_0 looks (the scene of the same name in the robustness reproducers).
+inline PeriodicSystem ReducibleRotation(double l1, double l2, double e) {
+  PeriodicSystem::Functions f;
+  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const double th = t + e * std::sin(t), dth = 1 + e * std::cos(t);
+    const double c = std::cos(th), s = std::sin(th);
+    out(0, 0) = l1 * c * c + l2 * s * s;
+    out(0, 1) = (l1 - l2) * c * s - dth;
+    out(1, 0) = (l1 - l2) * c * s + dth;
+    out(1, 1) = l1 * s * s + l2 * c * c;
+  };
+  return PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f);
+}
+
+/// y'' + c y' + (a + b P_r(t)) y = 0 with the Poisson kernel
+/// P_r(t) = (1 − r²)/(1 − 2r cos t + r²) = 1 + 2 Σ_{k>=1} r^k cos kt, given by its exact
+/// Fourier coefficients (harmonic k of A: −b r^k in the lower-left entry) up to r^k < 1e-20:
+/// coefficients that decay only geometrically, slowly for r near 1.
+inline PeriodicSystem PoissonKernel(double a, double b, double r, double c) {
+  const int M = static_cast<int>(std::ceil(std::log(1e-20) / std::log(r)));
+  FourierMatrix A(2, 2, M);
+  Eigen::MatrixXcd a0(2, 2);
+  a0 << 0, 1, -(a + b), -c;
+  A.SetHarmonic(0, a0);
+  for (int k = 1; k <= M; ++k) {
+    Eigen::MatrixXcd ak = Eigen::MatrixXcd::Zero(2, 2);
+    ak(1, 0) = -b * std::pow(r, k);  // e^{jkt} and e^{−jkt} each carry r^k of 2 r^k cos kt
+    A.SetHarmonic(k, ak);
+  }
+  return PeriodicSystem::FromFourier(2 * kPi, A);
+}
+
 /// A Lyapunov-reducible system with prescribed real exponents: x = R(t) z, z' = Λ z, with
 /// R(t) = Q exp(S t) Qᵀ orthogonal and 2π-periodic (S skew with rates 1 and 2), so
 /// A(t) = R(t) Λ R(t)ᵀ + Q S Qᵀ has Floquet exponents exactly diag(Λ) (closed form).

@@ -198,8 +198,10 @@ struct HillStudyRow {
   std::optional<double> max_error;            ///< max of errors; empty without a reference
   double apriori_bound = 0;                   ///< HillResult::apriori_bound
   std::optional<double> truncation_estimate;  ///< N vs N+Δ (HillResult::truncation_estimate)
-  double selection_margin = 0;                ///< min over modes
-  double tail_weight = 0;                     ///< max over modes
+  /// HillResult::error_estimate at this N: what the analysis reports as its error bound.
+  std::optional<double> error_estimate;
+  double selection_margin = 0;  ///< min over modes
+  double tail_weight = 0;       ///< max over modes
   bool ambiguous = false;
   double elapsed_s = 0;
 };
