@@ -6,16 +6,28 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
+#include <map>
 
+#include "ltp/core/error.h"
 #include "ltp/floquet/threads.h"
 
 namespace ltp {
 
 namespace {
 
-// g(p) at the refinement tolerance for one parameter set. NaN when the point fails.
-double Objective(const Scene& scene, ParameterMap params, const SweepOptions& sweep,
-                 const BoundaryOptions& options) {
+// One evaluation at the refinement tolerance: max log|ρ| and, when `checked`, its own error
+// in log|ρ| (noise = error estimate × T; the monodromy route gets it from a refined run, about
+// twice the work). g = max log|ρ| − (level + noise) is positive only where the growth is
+// certain, so a flat, noisy max log|ρ| ≈ 0 on the stable side of an undamped boundary (thin
+// stable bands, conservative rotors) never reads as a crossing (docs/stability-boundaries.md).
+struct Evaluation {
+  bool ok = false;  // false: failed, or (checked) no finite error estimate
+  double log_rho = 0;
+  double noise = 0;
+};
+
+Evaluation Evaluate(const Scene& scene, ParameterMap params, const SweepOptions& sweep,
+                    const BoundaryOptions& options, bool checked) {
   SweepOptions tight = sweep;
   tight.modes = false;
   tight.floquet.integrator.rel_tol =
@@ -24,47 +36,72 @@ double Objective(const Scene& scene, ParameterMap params, const SweepOptions& sw
       std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
   tight.hill_tol = std::min(sweep.hill_tol, options.rel_tol_integrator * 10);
   SweepGrid none;  // no swept axes: the point is `params` itself
-  const SweepPoint point = AnalyzeSweepPoint(scene, params, none, 0, tight, false);
-  if (!point.ok) return std::numeric_limits<double>::quiet_NaN();
-  return point.max_log_multiplier - options.level;
+  const SweepPoint point = AnalyzeSweepPoint(scene, params, none, 0, tight, checked);
+  Evaluation e;
+  if (!point.ok) return e;
+  if (checked) {
+    if (!point.error_estimate || !std::isfinite(*point.error_estimate)) return e;
+    e.noise = *point.error_estimate * point.period;
+  }
+  e.log_rho = point.max_log_multiplier;
+  e.ok = std::isfinite(e.log_rho);
+  return e;
 }
 
-// Root of the objective along `axis` between a (g < 0 side) and b (g > 0 side), either order.
+// Root of g along `axis` between a (g < 0 side) and b (g > 0 side), either order.
 // `a_far`: a further grid point on the stable side (NaN if none), used when `a` sits on the
 // boundary itself: there the monodromy is defective and its computed multipliers split by the
 // square root of the integration error, which can put g(a) above the level.
+//
+// The root of g is where the growth becomes certain; the boundary itself (max log|ρ| = 0) lies
+// on the stable side of it, by (level + noise)/slope for a crossing with a finite slope and by
+// ((level + noise)/c)² on a square-root branch c√δ. The secant of max log|ρ| over the final
+// bracket bounds both (on the square-root branch by twice the offset), and the reported
+// bracket is the final bracket plus that offset: the boundary lies within ±bracket of value.
 BoundaryEstimate Refine(const Scene& scene, const ParameterMap& base, const std::string& axis,
                         double a, double b, double a_far, double span, const SweepOptions& sweep,
                         const BoundaryOptions& options) {
   BoundaryEstimate e;
   e.value = 0.5 * (a + b);
   e.bracket = std::abs(b - a);
-  auto g = [&](double p) {
+  auto evaluate = [&](double p, bool checked) {
     ParameterMap params = base;
     params[axis] = p;
     ++e.evaluations;
-    return Objective(scene, params, sweep, options);
+    return Evaluate(scene, params, sweep, options, checked);
   };
-  double ga = g(a);
-  const double gb = g(b);
-  if (std::isfinite(ga) && std::isfinite(gb) && (ga < 0) == (gb < 0) && std::isfinite(a_far)) {
+  // The noise of the search: twice the larger of the two ends' own (it varies slowly along a
+  // bracket); the search's evaluations are unchecked, and the final ends are checked below.
+  const Evaluation ea = evaluate(a, true), eb = evaluate(b, true);
+  if (!ea.ok || !eb.ok) {
+    e.note = "not refined: the analysis failed (or gave no finite error estimate) at a bracket end";
+    return e;
+  }
+  const double noise = 2 * std::max(ea.noise, eb.noise);
+  std::map<double, double> log_rho;  // every evaluation of the search
+  auto g = [&](double p) {
+    const Evaluation v = evaluate(p, false);
+    if (!v.ok) return std::numeric_limits<double>::quiet_NaN();
+    log_rho[p] = v.log_rho;
+    return v.log_rho - (options.level + noise);
+  };
+  double ga = ea.log_rho - (options.level + noise);
+  const double gb = eb.log_rho - (options.level + noise);
+  log_rho[a] = ea.log_rho;
+  log_rho[b] = eb.log_rho;
+  if ((ga < 0) == (gb < 0) && std::isfinite(a_far)) {
     a = a_far;
     ga = g(a);
   }
-  if (!std::isfinite(ga) || !std::isfinite(gb)) {
+  if (!std::isfinite(ga)) {
     e.note = "not refined: the analysis failed at a bracket end";
     return e;
   }
-  if (ga == 0 || gb == 0) {
-    e.value = ga == 0 ? a : b;
-    e.refined = true;
-    e.bracket = 0;
-    return e;
-  }
-  if ((ga < 0) == (gb < 0)) {
+  if ((ga < 0) == (gb < 0) || ga == 0 || gb == 0) {
     e.note =
-        "not refined: at the refinement tolerance both bracket ends are on the same side "
-        "(the boundary lies within the marginal band or the bracket holds two crossings)";
+        "not refined: at the refinement tolerance the growth is not certain on either side "
+        "beyond the evaluations' own error (the boundary lies within the marginal band, or the "
+        "bracket holds two crossings)";
     return e;
   }
   const double scale = std::max(std::max(std::abs(a), std::abs(b)), 1e-3 * span);
@@ -86,8 +123,29 @@ BoundaryEstimate Refine(const Scene& scene, const ParameterMap& base, const std:
         [width](double x, double y) { return std::abs(y - x) <= width; }, iterations);
     e.value = 0.5 * (lo + hi);
     e.bracket = hi - lo;
+    // The unstable end of the final bracket, checked with its own error estimate: its growth
+    // must be certain (its own verdict unstable), or the boundary is not located.
+    const bool lo_unstable = log_rho.count(lo) && log_rho[lo] > options.level + noise;
+    const double u = lo_unstable ? lo : hi, st = lo_unstable ? hi : lo;
+    const Evaluation check = evaluate(u, true);
+    const double rise = check.ok && log_rho.count(st) ? check.log_rho - log_rho[st] : 0;
+    if (!check.ok || check.log_rho <= options.level + check.noise) {
+      e.bracket = std::abs(b - a);
+      e.note =
+          "not refined: the unstable end of the final bracket is not certainly unstable by its "
+          "own error estimate";
+    } else if (!(rise > 0) || hi <= lo) {
+      e.bracket = std::abs(b - a);
+      e.note = "not refined: max log|ρ| does not rise across the final bracket (noise)";
+    } else {
+      // The boundary lies on the stable side of the root, by (level + noise)/slope.
+      e.bracket += (options.level + std::max(noise, check.noise)) * (hi - lo) / rise;
+    }
     e.refined = e.bracket <= width && e.note.empty();
-    if (e.bracket > width && e.note.empty()) e.note = "not converged within max_iterations";
+    if (e.note.empty() && e.bracket > width)
+      e.note = "located within ±" + MessageNumber(e.bracket, 2) +
+               ", wider than the tolerance: the evaluations' own error moves the boundary by "
+               "that much (a nearly tangent crossing), or max_iterations ran out";
   } catch (const std::exception& ex) {
     e.note = std::string("not refined: ") + ex.what();
   }

@@ -1,11 +1,14 @@
 #pragma once
 // Stability boundaries of a sweep, refined beyond the grid: the grid only brackets a boundary
-// (a neighbour pair whose verdicts differ); the boundary itself is the root of
-//   g(p) = max log|ρ(p)| − level
-// in the swept parameter, found by TOMS 748 (Boost.Math) with every evaluation at a tighter
-// tolerance than the grid. `level` is a small positive number above the integration noise:
-// damped systems cross g = 0 with a finite slope (the root moves by level / slope), undamped
-// ones touch it with a square-root branch (the root moves by ~level²).
+// (a neighbour pair whose verdicts differ); the refinement finds the root of
+//   g(p) = max log|ρ(p)| − (level + noise(p))
+// in the swept parameter by TOMS 748 (Boost.Math), every evaluation at a tighter tolerance than
+// the grid and with its own error estimate (noise = estimate × T): g > 0 only where the growth
+// is certain. The boundary itself lies on the stable side of that root, by about
+// (level + noise)/slope; the reported bracket includes that offset (docs/stability-boundaries.md).
+// `level` is a small positive number: damped systems cross with a finite slope (the root moves
+// by level / slope), undamped ones touch it with a square-root branch (the root moves by
+// ~level²).
 #include <string>
 #include <vector>
 
@@ -30,9 +33,11 @@ struct BoundaryOptions {
 };
 
 struct BoundaryEstimate {
-  double value = 0;            ///< boundary location in the swept parameter
-  bool refined = false;        ///< false: the grid value (reason in `note`)
-  double bracket = 0;          ///< width of the final bracket (or the grid step)
+  double value = 0;      ///< boundary location in the swept parameter
+  bool refined = false;  ///< false: the grid value (reason in `note`)
+  /// The boundary lies within ±bracket of value: the final bracket plus the offset the
+  /// evaluations' own error allows (refined), or the grid step (not refined).
+  double bracket = 0;
   bool at_sweep_edge = false;  ///< the interval extends beyond the sweep: value is the sweep end
   int evaluations = 0;
   std::string note;
