@@ -13,6 +13,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
+#include "ltp/core/text.h"
 #include "ltp/floquet/method_choice.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"
@@ -520,7 +521,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   const internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
   r.rhs_evals += grid.rhs_evals;
-  for (auto& d : grid.diagnostics) r.diagnostics.push_back(d);
+  // One line per failing segment would flood the reader (a NaN from t > 1 on: 19 945 lines).
+  for (auto& d : CollapseRepeatedLines(grid.diagnostics)) r.diagnostics.push_back(std::move(d));
   if (options.segments == 0 && grid.ok)
     r.diagnostics.push_back(DescribeSegmentChoice(grid, options));
   if (!grid.ok) {
