@@ -28,7 +28,8 @@ TEST_P(FailureMapTest, NoSilentFailure) {
 INSTANTIATE_TEST_SUITE_P(Regimes, FailureMapTest,
                          ::testing::Values("double range", "fast rotation", "discontinuous",
                                            "strip edge", "at +1", "at −1", "resonance",
-                                           "slow rotation", "harmonic content", "large n"),
+                                           "slow rotation", "harmonic content", "large n",
+                                           "truncation-edge", "slowly decaying"),
                          [](const auto& info) { return "regime" + std::to_string(info.index); });
 
 }  // namespace
