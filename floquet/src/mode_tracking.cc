@@ -10,6 +10,10 @@ namespace ltp {
 
 namespace {
 
+// branch_margin (0.5 − distance of the energy centroid from its harmonic) from which a mode's
+// own branch is trusted over the line's continuity.
+constexpr double kNamedBranchMargin = 0.25;
+
 using cd = std::complex<double>;
 
 }  // namespace
@@ -108,8 +112,15 @@ ModeTracking TrackModes(const std::vector<SweepPoint>& points) {
     const double fp = points[p].period > 0 ? 1.0 / points[p].period : 0;  // 0: time-invariant
     for (size_t k = 0; k < labels.size(); ++k) {
       if (labels[k] < 0) continue;
-      double f = points[p].modes[labels[k]].frequency_hz;
-      if (std::isfinite(last[k]) && fp > 0) f += fp * std::round((last[k] - f) / fp);
+      const FloquetMode& m = points[p].modes[labels[k]];
+      double f = m.frequency_hz;
+      // A shape whose energy is centred on one harmonic names its branch: keep it. Only a
+      // branch the point cannot name (no shape, or energy between two harmonics near a tie)
+      // follows the line; following it everywhere let a line leave its mode for an alias
+      // (laval4 with an anisotropic stator: 2Ω/2π − 31.3 Hz at 800 rad/s, where the point's own
+      // shape put 99.9 % of the energy on harmonic 0 at 31.3 Hz).
+      const bool named = m.branch_margin >= kNamedBranchMargin;
+      if (std::isfinite(last[k]) && fp > 0 && !named) f += fp * std::round((last[k] - f) / fp);
       t.frequency_hz[p][k] = f;
       last[k] = f;
     }

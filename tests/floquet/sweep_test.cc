@@ -11,9 +11,11 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
+#include "ltp/floquet/hill.h"
 #include "ltp/floquet/mode_tracking.h"
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/models/scene.h"
+#include "support/rotor_lin.h"
 
 namespace ltp {
 namespace {
@@ -273,6 +275,45 @@ TEST(TrackModes, CrossingKeepsLabels) {
     EXPECT_NEAR(t.frequency_hz[i][1], 1 / (2 * M_PI), 1e-12) << "x = " << x;
   }
   EXPECT_NEAR(t.min_mac, 1.0, 1e-12);
+}
+
+// An asymmetric shaft on an anisotropic stator (laval4, kbx = 2e4, kby = 6e4): past the
+// critical range near 200 rad/s the first line followed 2Ω/2π − 31.3 Hz, an alias, to
+// 223.3 Hz at 800 rad/s, while every point's own shape put 99.9 % of its energy on harmonic 0
+// at 31.3 Hz. Where a point's shape names its branch, each line's frequency must be a physical
+// frequency of that point — one of Hill's exponents, selected by its own eigenvectors (an
+// independent route), compared as frequencies, not modulo Ωp.
+TEST(TrackModes, LinesKeepTheBranchTheirShapesName) {
+  const Scene scene = LoadScene(test::SourceDir() + "/tests/data/laval4.yaml");
+  const ParameterMap base = scene.Resolve({{"kbx", "2e4"}, {"kby", "6e4"}});
+  const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("Omega=185:285:5")});
+  SweepOptions o;  // as `ltp chart` sweeps a Campbell diagram of this scene
+  o.modes = true;
+  o.floquet.integrator.type = IntegratorType::kRkf78;
+  const std::vector<SweepPoint> points = Sweep(scene, base, grid, o);
+  const ModeTracking t = TrackModes(points);
+  int compared = 0;
+  for (size_t p = 0; p < points.size(); ++p) {
+    ASSERT_TRUE(points[p].ok);
+    const double omega = points[p].values[0];
+    HillOptions ho;
+    const HillResult hill = AnalyzeHillAuto(
+        scene.Build({{"kbx", "2e4"}, {"kby", "6e4"}, {"Omega", std::to_string(omega)}}), ho, 1e-10,
+        64);
+    ASSERT_TRUE(hill.ok) << hill.BriefReport();
+    for (size_t k = 0; k < t.labels[p].size(); ++k) {
+      const FloquetMode& m = points[p].modes[t.labels[p][k]];
+      if (m.branch_margin < 0.25) continue;  // a tie: the line's continuity decides
+      double nearest = INFINITY;
+      for (const FloquetMode& h : hill.modes)
+        nearest =
+            std::min(nearest, std::abs(std::abs(t.frequency_hz[p][k]) - std::abs(h.frequency_hz)));
+      EXPECT_LT(nearest, 1e-6) << "line " << k + 1 << " at Omega = " << omega << ": "
+                               << t.frequency_hz[p][k] << " Hz";
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, static_cast<int>(points.size()) * 3);
 }
 
 }  // namespace

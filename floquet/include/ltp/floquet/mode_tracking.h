@@ -17,11 +17,12 @@ struct ModeTracking {
   /// failed point). Labels follow the display order of the first successful point.
   std::vector<std::vector<int>> labels;
   /// frequency_hz[p][k]: label k's frequency at point p (Hz, NaN at a failed point). A Floquet
-  /// frequency is defined modulo Ωp/2π; the branch chosen per point can jump where a mode's
-  /// shape moves its energy between harmonics, so along a tracked line each value is shifted by
-  /// the multiple of Ωp/2π that keeps it nearest to the previous point's. The first point
-  /// keeps its chosen branch. Points with period 0 (eigenvalues of a time-invariant system,
-  /// e.g. MBC3's) have definite frequencies and are not shifted.
+  /// frequency is defined modulo Ωp/2π. A mode whose shape centres its energy on one harmonic
+  /// (branch_margin >= 0.25) keeps the branch that shape names; one that cannot name it (no
+  /// shape, or energy between two harmonics near a tie) is shifted by the multiple of Ωp/2π
+  /// that keeps it nearest to the previous point's. The first point keeps its chosen branch. Points
+  /// with period 0 (eigenvalues of a time-invariant system, e.g. MBC3's) have definite frequencies
+  /// and are not shifted.
   std::vector<std::vector<double>> frequency_hz;
   /// Smallest MAC of an accepted match (1 when shapes were not used).
   double min_mac = 1;
