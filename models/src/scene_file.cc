@@ -15,6 +15,7 @@
 
 #include "expression.h"
 #include "expression_matrix.h"
+#include "ltp/core/bounded_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/second_order.h"
 #include "ltp/models/scene.h"
@@ -499,52 +500,8 @@ size_t InvalidUtf8At(const std::string& text) {
   return std::string::npos;
 }
 
-// A(t) must stay bounded over the period: a pole (1/(t − 1), tan t) or a mass matrix that
-// passes through singular (M = cos t) makes every integrator shrink its steps without end. Scan
-// 256 points; where ‖A‖ is largest, zoom in (ternary search on ‖A‖ down to 1e-12 T): a bounded
-// peak stays near its sampled value, a singularity keeps growing (‖A‖ ~ 1/|t − t*|).
 void CheckBounded(const PeriodicSystem& system, const std::string& where) {
-  const int n = system.states();
-  if (n == 0) return;
-  const double T = system.period();
-  Eigen::MatrixXd a(n, n);
-  auto norm_at = [&](double t) {
-    system.EvalA(t, a);
-    const double v = a.norm();
-    return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
-  };
-  constexpr int kSamples = 256;
-  int worst = 0;
-  double worst_norm = -1;
-  for (int s = 0; s < kSamples; ++s) {
-    const double v = norm_at((s + 0.5) * T / kSamples);
-    if (v > worst_norm) {
-      worst_norm = v;
-      worst = s;
-    }
-  }
-  double lo = std::max(0.0, (worst - 0.5) * T / kSamples),
-         hi = std::min(T, (worst + 1.5) * T / kSamples);
-  double peak = worst_norm, at = (worst + 0.5) * T / kSamples;
-  while (std::isfinite(peak) && hi - lo > 1e-12 * T) {
-    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-    const double v1 = norm_at(m1), v2 = norm_at(m2);
-    if (v1 >= v2) {
-      hi = m2;
-      if (v1 > peak) peak = v1, at = m1;
-    } else {
-      lo = m1;
-      if (v2 > peak) peak = v2, at = m2;
-    }
-  }
-  if (!std::isfinite(peak) || peak > 1e6 * std::max(worst_norm, 1e-300)) {
-    std::ostringstream s;
-    s.precision(10);
-    s << where << ": A(t) is unbounded near t = " << at << " (‖A‖ grows from " << worst_norm
-      << " to " << peak << " approaching it): a pole in the coefficients or a mass matrix that is "
-      << "singular there; no integrator can cross it";
-    throw SceneError(s.str());
-  }
+  if (const auto problem = UnboundedCoefficients(system)) throw SceneError(where + ": " + *problem);
 }
 
 YAML::Node LoadYaml(const std::string& text, const std::string& source) {

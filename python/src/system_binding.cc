@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "binding.h"
+#include "ltp/core/bounded_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/models/scene_input.h"
@@ -120,13 +121,13 @@ System FromFunction(double period, const py::object& a, const py::object& b, con
   if (fd.function && (fd.rows != outputs || fd.cols != inputs))
     throw InputError("D must be outputs × inputs");
   *owner = std::make_shared<Callbacks>(std::move(callables));
-  return System{PeriodicSystem::FromFunctions(period, fa.rows, inputs, outputs,
-                                              {fa.function, fb.function, fc.function, fd.function},
-                                              breakpoints),
-                std::nullopt,
-                {},
-                {},
-                *owner};
+  PeriodicSystem system = PeriodicSystem::FromFunctions(
+      period, fa.rows, inputs, outputs, {fa.function, fb.function, fc.function, fd.function},
+      breakpoints);
+  // Checked as scene files are: a NaN or a pole inside the period is refused here, in one line,
+  // not found by the integrator after seconds and thousands of diagnostics.
+  if (const auto problem = UnboundedCoefficients(system)) throw InputError(*problem);
+  return System{std::move(system), std::nullopt, {}, {}, *owner};
 }
 
 // (K, rows, cols) samples, or one (rows, cols) matrix held for every sample.

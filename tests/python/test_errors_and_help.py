@@ -43,6 +43,12 @@ MATHIEU = ltp.scene("mathieu")
     (lambda: ltp.System.from_fourier(1.0, np.array([np.eye(2), np.eye(2), 2 * np.eye(2)])),
      r"not the series of a real matrix function"),
     (lambda: ltp.System.from_function(1.0, np.eye(2)), r"A must be a callable A\(t\)"),
+    # Checked as scene files are: a NaN from t = 1 on, a pole at t = 1 (each used to run for
+    # seconds and return thousands of diagnostic lines).
+    (lambda: ltp.System.from_function(np.pi, lambda t: np.eye(2) * (np.nan if t > 1 else 1.0)),
+     r"A\(t\) is not a number at t = 1\.0"),
+    (lambda: ltp.System.from_function(np.pi, lambda t: np.array([[0.0, 1.0], [-1 / (t - 1), -0.1]])),
+     r"A\(t\) is unbounded near t = 1 "),
     (lambda: ltp.System.from_samples(1.0, [0.0, 0.5], np.zeros((3, 2, 2))), r"one matrix per sample time"),
     (lambda: ltp.System.from_samples(1.0, [0.5, 0.0], np.zeros((2, 2, 2))), r"strictly increasing"),
 ])
