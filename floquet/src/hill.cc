@@ -201,6 +201,12 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
   return EigenvalueConditions(xi0, order);
 }
 
+std::vector<cd> ExponentsOf(const HillResult& r) {
+  std::vector<cd> v;
+  for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
+  return v;
+}
+
 // The factor that turns the change e(N) − e(N+Δ) into a bound on e(N), for the slowest
 // convergence the coefficients of A allow. Algebraic decay e(N) ∝ N^−p: the change is only
 // 1 − (N/(N+Δ))^p of e(N) (30 % short for Meissner's p = 3 at Δ = N/2); the p = 1 factor
@@ -224,9 +230,7 @@ double TruncationTailFactor(const HillDecay& decay, int N, int delta) {
 // do not change at all: N vs N + Δ alone would call them converged (the reducible system
 // x = R(θ(t)) z with exponents ±120 at N = 16: a spurious pair at −0.25 ± 15.9j, change 6e-14).
 int CountMovingBranches(const HillResult& r, const HillResult& r2, double omega) {
-  std::vector<cd> a, b;
-  for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
-  for (const FloquetMode& m : r2.modes) b.push_back(m.exponent);
+  const std::vector<cd> a = ExponentsOf(r), b = ExponentsOf(r2);
   const std::vector<int> match = MatchExponentIndices(a, b, omega);
   int moved = 0;
   for (size_t k = 0; k < match.size(); ++k) {
@@ -254,9 +258,7 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
     for (const FloquetMode& m : r.modes) o2.expected.push_back(m.exponent);
     try {
       const HillResult r2 = AnalyzeFixed(A, fit, T, N + r.delta_harmonics, o2);
-      std::vector<cd> a, b;
-      for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
-      for (const FloquetMode& m : r2.modes) b.push_back(m.exponent);
+      const std::vector<cd> a = ExponentsOf(r), b = ExponentsOf(r2);
       const std::vector<double> d = MatchExponents(a, b, omega);
       double change = 0;
       for (size_t k = 0; k < d.size(); ++k) {
@@ -297,10 +299,8 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
         o2.expected.clear();
         for (const FloquetMode& m : r2.modes) o2.expected.push_back(m.exponent);
         const HillResult r3 = AnalyzeFixed(A, fit, T, N + 2 * r.delta_harmonics, o2);
-        std::vector<cd> c;
-        for (const FloquetMode& m : r3.modes) c.push_back(m.exponent);
         double next = 0;
-        for (double x : MatchExponents(b, c, omega)) next = std::max(next, x);
+        for (double x : MatchExponents(b, ExponentsOf(r3), omega)) next = std::max(next, x);
         const double q = change > 0 ? next / change : 0;
         change = q < 0.5   ? 2 * change
                  : q < 0.9 ? change / (1 - q)

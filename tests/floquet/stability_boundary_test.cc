@@ -14,23 +14,11 @@
 #include "ltp/floquet/sweep.h"
 #include "ltp/models/scene.h"
 #include "support/rotor_lin.h"
+#include "support/sweep.h"
 #include "support/systems.h"
 
 namespace ltp {
 namespace {
-
-std::vector<SweepPoint> Sweep(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
-                              const SweepOptions& options) {
-  std::vector<size_t> all(grid.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  std::vector<SweepPoint> points(grid.size());
-  std::mutex m;
-  RunSweep(scene, base, grid, all, options, [&](SweepPoint&& p) {
-    std::lock_guard<std::mutex> lock(m);
-    points[p.index] = std::move(p);
-  });
-  return points;
-}
 
 // The root of f nearest x0 within ±reach, by a scan at `cells` and bisection to round-off; NaN
 // when f keeps its sign over the whole window.
@@ -70,7 +58,7 @@ TEST(BoundaryBrackets, UndampedMeissnerMapThinStableBands) {
       MakeSweepGrid(scene, {SweepAxis::Parse("a=-1:0:0.025"), SweepAxis::Parse("b=2.5:3:0.025")});
   SweepOptions o;
   o.modes = false;
-  const std::vector<SweepPoint> points = Sweep(scene, base, grid, o);
+  const std::vector<SweepPoint> points = test::SweepAll(scene, base, grid, o);
   BoundaryOptions b;
   b.max_lines = 0;
   const std::vector<BoundaryPoint> boundary = RefineBoundaryPoints(scene, base, grid, points, o, b);
@@ -129,7 +117,7 @@ TEST(BoundaryBrackets, ConservativeRotorUpperEndIsNotNoise) {
     const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse(sweep)});
     SweepOptions o;
     o.modes = false;
-    const std::vector<SweepPoint> points = Sweep(scene, base, grid, o);
+    const std::vector<SweepPoint> points = test::SweepAll(scene, base, grid, o);
     const std::vector<UnstableInterval> intervals =
         RefineUnstableIntervals(scene, base, grid, points, o);
     ASSERT_EQ(intervals.size(), 1u) << sweep;

@@ -16,6 +16,7 @@
 #include "ltp/floquet/stability_boundary.h"
 #include "ltp/models/scene.h"
 #include "support/rotor_lin.h"
+#include "support/sweep.h"
 
 namespace ltp {
 namespace {
@@ -29,19 +30,6 @@ double MathieuB(int n, double q) {
   gsl_sf_result r;
   EXPECT_EQ(gsl_sf_mathieu_b_e(n, q, &r), 0);
   return r.val;
-}
-
-std::vector<SweepPoint> Sweep(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
-                              const SweepOptions& options) {
-  std::vector<size_t> all(grid.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  std::vector<SweepPoint> points(grid.size());
-  std::mutex m;
-  RunSweep(scene, base, grid, all, options, [&](SweepPoint&& p) {
-    std::lock_guard<std::mutex> lock(m);
-    points[p.index] = std::move(p);
-  });
-  return points;
 }
 
 TEST(SweepAxis, ParsesAndRejects) {
@@ -65,7 +53,7 @@ TEST(UnstableIntervals, MathieuTonguesMatchGsl) {
   SweepOptions o;
   o.modes = false;
   o.floquet.integrator.type = IntegratorType::kRkf78;
-  const auto points = Sweep(scene, base, grid, o);
+  const auto points = test::SweepAll(scene, base, grid, o);
   const auto intervals = RefineUnstableIntervals(scene, base, grid, points, o);
   ASSERT_EQ(intervals.size(), 3u);
   EXPECT_TRUE(intervals[0].lo.at_sweep_edge);
@@ -92,7 +80,7 @@ TEST(BoundaryPoints, InceStruttChartMatchesGsl) {
   SweepOptions o;
   o.modes = false;
   o.floquet.integrator.type = IntegratorType::kRkf78;
-  const auto points = Sweep(scene, base, grid, o);
+  const auto points = test::SweepAll(scene, base, grid, o);
   BoundaryOptions b;
   b.max_lines = 0;
   const auto boundary = RefineBoundaryPoints(scene, base, grid, points, o, b);
@@ -122,7 +110,7 @@ TEST(UnstableIntervals, AsymmetricShaftBandEdges) {
   const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("Omega=0.6:1.6:0.05")});
   SweepOptions o;
   o.modes = true;
-  const auto points = Sweep(scene, base, grid, o);
+  const auto points = test::SweepAll(scene, base, grid, o);
   const auto intervals = RefineUnstableIntervals(scene, base, grid, points, o);
   ASSERT_EQ(intervals.size(), 1u);
   EXPECT_TRUE(intervals[0].lo.refined && intervals[0].hi.refined);
@@ -142,7 +130,7 @@ TEST(UnstableIntervals, TwoBladedRotorMonodromyEqualsHill) {
     SweepOptions o;
     o.method = method;
     o.modes = false;
-    const auto points = Sweep(scene, base, grid, o);
+    const auto points = test::SweepAll(scene, base, grid, o);
     found.push_back(RefineUnstableIntervals(scene, base, grid, points, o));
     ASSERT_EQ(found.back().size(), 1u) << ToString(method);
     EXPECT_TRUE(found.back()[0].lo.refined && found.back()[0].hi.refined) << ToString(method);
@@ -160,7 +148,7 @@ TEST(RunSweep, FailingPointIsRecordedNotFatal) {
   const SweepGrid grid = MakeSweepGrid(scene, {SweepAxis::Parse("m=-1:1:0.5")});
   SweepOptions o;
   o.modes = false;
-  const auto points = Sweep(scene, base, grid, o);
+  const auto points = test::SweepAll(scene, base, grid, o);
   int failed = 0;
   for (const SweepPoint& p : points) {
     if (p.values[0] <= 0) {
@@ -187,9 +175,9 @@ TEST(RunSweep, CheckedEstimateCoversTheUncheckedRoute) {
   o.modes = false;
   o.floquet.integrator.rel_tol = 1e-7;
   o.check_every = 0;
-  const auto unchecked = Sweep(scene, base, grid, o);
+  const auto unchecked = test::SweepAll(scene, base, grid, o);
   o.check_every = 1;
-  const auto checked = Sweep(scene, base, grid, o);
+  const auto checked = test::SweepAll(scene, base, grid, o);
   FloquetOptions ref;
   ref.integrator.type = IntegratorType::kRkf78;
   ref.integrator.rel_tol = 1e-13;
@@ -226,7 +214,7 @@ TEST(RunSweep, HugelyUnstablePointKeepsBothExponents) {
   SweepOptions o;
   o.modes = false;
   o.check_every = 0;
-  const auto points = Sweep(scene, base, grid, o);
+  const auto points = test::SweepAll(scene, base, grid, o);
   ASSERT_TRUE(points[0].ok);
   FloquetOptions ref;
   ref.integrator.type = IntegratorType::kRkf78;
@@ -290,7 +278,7 @@ TEST(TrackModes, LinesKeepTheBranchTheirShapesName) {
   SweepOptions o;  // as `ltp chart` sweeps a Campbell diagram of this scene
   o.modes = true;
   o.floquet.integrator.type = IntegratorType::kRkf78;
-  const std::vector<SweepPoint> points = Sweep(scene, base, grid, o);
+  const std::vector<SweepPoint> points = test::SweepAll(scene, base, grid, o);
   const ModeTracking t = TrackModes(points);
   int compared = 0;
   for (size_t p = 0; p < points.size(); ++p) {
