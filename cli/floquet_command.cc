@@ -13,6 +13,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/floquet/model_error.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/rotor_mbc.h"
 #include "plot.h"
@@ -137,6 +138,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"verdict", ToString(r.verdict)},
           {"error_estimate", JsonNumber(r.error_estimate)},
           {"error_estimate_method", ToString(r.error_estimate_method)},
+          {"model_error", r.model_error ? JsonNumber(*r.model_error) : json(nullptr)},
           {"liouville_residual", JsonNumber(r.liouville_residual)},
           {"mode_condition", JsonNumber(r.mode_condition)},
           {"rhs_evals", r.rhs_evals},
@@ -241,8 +243,11 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
                     ? "(its steps' local errors, one\n  extrapolation order lower, carried to the "
                       "exponents; the numbers come from that one run)\n"
                     : "(difference to the run at the requested tolerance on\n  another grid; the "
-                      "numbers shown come from the refined, 100× tighter run)\n")
-            << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
+                      "numbers shown come from the refined, 100× tighter run)\n");
+  if (r.model_error)
+    std::cout << "  of which the model's sampling error is " << Num(*r.model_error, 2)
+              << " 1/s (other models of the same samples; docs/sampled-models.md)\n";
+  std::cout << "  Liouville residual " << Num(r.liouville_residual, 2) << ", cond(Ξ) "
             << Num(r.mode_condition, 3) << ", " << r.rhs_evals
             << (r.integrator == IntegratorType::kTaylor ? " products of A's and Φ's series, "
                                                         : " evaluations of A(t), ")
@@ -331,6 +336,8 @@ int RunFloquet(FloquetArgs& args) {
   FloquetResult r;
   HillResult h;
   if (run_mono) r = AnalyzeFloquet(l.system, args.options);
+  // A sampled model (.lin files): the estimate and the verdict include the sampling error.
+  if (run_mono) IncludeModelError(l.model_alternatives, args.options, r);
   if (run_hill) {
     HillOptions ho;
     ho.solver = *ParseHillSolver(args.hill_solver);

@@ -88,6 +88,8 @@ json FloquetJson(const SampledFloquetResult& f) {
           {"max_real_exponent_hold", JsonNumber(f.max_real_hold)},
           {"max_real_exponent_trig", JsonNumber(f.max_real_trig)},
           {"stable", f.stable},
+          {"verdict", ToString(f.verdict)},
+          {"error_estimate", JsonNumber(f.error_estimate)},
           {"max_difference", JsonNumber(f.max_difference)},
           {"max_difference_to_mbc",
            f.max_to_reference >= 0 ? JsonNumber(f.max_to_reference) : json(nullptr)},
@@ -215,7 +217,12 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
   for (const SampledFloquetMode& m : f.modes) rigid = rigid || m.rigid_body;
   std::cout << "\n  max Re λ" << (rigid ? " (rigid body excluded)" : "") << ": hold "
             << Num(f.max_real_hold, 6) << ", trig " << Num(f.max_real_trig, 6) << " 1/s  →  "
-            << (f.stable ? "STABLE" : "UNSTABLE") << "\n  the routes differ by up to "
+            << (f.verdict == StabilityVerdict::kStable     ? "STABLE"
+                : f.verdict == StabilityVerdict::kUnstable ? "UNSTABLE"
+                                                           : "MARGINAL (within the error estimate: "
+                                                             "undecided)")
+            << " (trig, error estimate " << Num(f.error_estimate, 2)
+            << " 1/s: integration plus the routes' difference)\n  the routes differ by up to "
             << Num(f.max_difference, 3) << " 1/s";
   if (f.max_to_reference >= 0)
     std::cout << "; Floquet vs MBC3 up to " << Num(f.max_to_reference, 3) << " 1/s";
@@ -231,12 +238,25 @@ int RunMbc(const MbcArgs& args) {
   options.speed_from_operating_point = args.speed == "operating-point";
   const Mbc3Result r = Mbc3(op, options);
 
+  // The table first: the Floquet part can take long (60 states: seconds to a minute).
+  if (!args.json) {
+    PrintHeader(op, r);
+    if (r.applicable) {
+      PrintTable(r);
+    } else {
+      std::cout << "\n  MBC3: not applicable — " << r.reason << "\n";
+    }
+    std::cout << std::flush;
+  }
   std::optional<SampledFloquetResult> f;
   std::string floquet_skipped;
-  if (args.floquet && op.rotor_speed > 0) {
+  const std::optional<std::string> sampling = AzimuthSamplingProblem(op.azimuths);
+  if (args.floquet && op.rotor_speed > 0 && !sampling) {
     SampledFloquetOptions fo;
     fo.floquet.integrator.rel_tol = args.tol;
     f = AnalyzeSampledFloquet(op, r, fo);
+  } else if (args.floquet && sampling) {
+    floquet_skipped = "not done: " + *sampling;
   } else if (args.floquet) {
     floquet_skipped =
         "rotor speed 0: a parked rotor is time-invariant, so there is no period "
@@ -267,12 +287,6 @@ int RunMbc(const MbcArgs& args) {
     if (!floquet_skipped.empty()) j["floquet_skipped"] = floquet_skipped;
     std::cout << j.dump(2) << "\n";
     return ok ? 0 : 1;
-  }
-  PrintHeader(op, r);
-  if (r.applicable) {
-    PrintTable(r);
-  } else {
-    std::cout << "\n  MBC3: not applicable — " << r.reason << "\n";
   }
   if (f) PrintFloquet(*f, r);
   if (!floquet_skipped.empty()) std::cout << "\n  Floquet analysis: " << floquet_skipped << "\n";

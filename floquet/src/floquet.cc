@@ -281,14 +281,65 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid,
   return s.str();
 }
 
-// Step 2: the multipliers as logarithms.
-LogEigenvalues MultiplierLogs(const internal::SegmentGrid& grid, MultiplierMethod method, int n) {
-  if (method == MultiplierMethod::kSingleShot) {
+// Step 2: the multipliers as logarithms. Periodic Schur (SLICOT MB03BD) rarely fails to
+// converge (INFO > 0: nearly triple multipliers of isotropic rotors); a failed analysis would
+// then cost the user the whole result, so it falls back: first the same method on the product
+// regrouped into pairs (another problem for the iteration, equally accurate while the pairs'
+// condition stays moderate), then the eigenvalues of the formed product (single shot), whose
+// lost accuracy the error estimate then carries (SingleShotError). `note` says which was used.
+LogEigenvalues MultiplierLogs(const internal::SegmentGrid& grid, MultiplierMethod method, int n,
+                              std::string* note = nullptr, bool* single_shot = nullptr) {
+  auto formed = [&] {
     Eigen::MatrixXd product = Eigen::MatrixXd::Identity(n, n);
     for (const auto& f : grid.factors) product = f * product;
     return SingleShotLogEigenvalues(product);
+  };
+  if (single_shot) *single_shot = method == MultiplierMethod::kSingleShot;
+  if (method == MultiplierMethod::kSingleShot) return formed();
+  LogEigenvalues eig = PeriodicSchurLogEigenvalues(grid.factors);
+  if (eig.ok) return eig;
+  const std::string first = eig.message;
+  if (grid.factors.size() >= 2) {
+    std::vector<Eigen::MatrixXd> pairs;
+    for (size_t i = 0; i < grid.factors.size(); i += 2)
+      pairs.push_back(i + 1 < grid.factors.size()
+                          ? Eigen::MatrixXd(grid.factors[i + 1] * grid.factors[i])
+                          : grid.factors[i]);
+    eig = PeriodicSchurLogEigenvalues(pairs);
+    if (eig.ok) {
+      if (note)
+        *note = first + "; the multipliers are from periodic Schur of the product regrouped into " +
+                std::to_string(pairs.size()) + " factors instead";
+      return eig;
+    }
   }
-  return PeriodicSchurLogEigenvalues(grid.factors);
+  eig = formed();
+  if (eig.ok) {
+    if (single_shot) *single_shot = true;
+    if (note)
+      *note = first +
+              "; the multipliers are the eigenvalues of the formed product (single shot) "
+              "instead: each carries the error eps·max|ρ|/|ρ_k| in the estimate";
+  }
+  return eig;
+}
+
+// The error single-shot multipliers add: the formed product carries a backward error of about
+// n·eps·max|ρ|, which moves log ρ_k by κ_k n eps max|ρ|/|ρ_k|; beyond 1/2 the exponent is
+// undetermined (+inf).
+double SingleShotError(const std::vector<cd>& log_rho, const std::vector<double>& kappa,
+                       double period) {
+  const int n = static_cast<int>(log_rho.size());
+  double top = -std::numeric_limits<double>::infinity();
+  for (const cd& l : log_rho) top = std::max(top, l.real());
+  double worst = 0;
+  for (int k = 0; k < n; ++k) {
+    const double relative = 16 * n * std::numeric_limits<double>::epsilon() * kappa[k] *
+                            std::exp(std::min(top - log_rho[k].real(), 700.0));
+    worst = std::max(worst,
+                     relative < 0.5 ? relative / period : std::numeric_limits<double>::infinity());
+  }
+  return worst;
 }
 
 // Step 3, the error estimate: a second run on a different grid at a 100× tighter tolerance
@@ -530,7 +581,16 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     return r;
   }
   // 2. Multipliers as logarithms.
-  LogEigenvalues eig = MultiplierLogs(grid, options.multipliers, n);
+  std::string fallback;
+  bool single_shot = false;
+  LogEigenvalues eig = MultiplierLogs(grid, options.multipliers, n, &fallback, &single_shot);
+  if (!fallback.empty()) {
+    r.diagnostics.push_back(fallback);
+    if (single_shot) {  // the refined run and the local errors use the same method
+      options.multipliers = MultiplierMethod::kSingleShot;
+      r.multiplier_method = MultiplierMethod::kSingleShot;
+    }
+  }
   if (!eig.ok) {
     r.diagnostics.push_back("eigenvalues of the monodromy failed: " + eig.message);
     r.elapsed_s = SecondsSince(start);
@@ -581,6 +641,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
   // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
   StoreOrderedModes(system, modes, options.compute_modes, r);
   FlagRigidBodyModes(system, r);
+  // A fallback to single shot (the user did not ask for it) carries its lost accuracy.
+  if (single_shot && !fallback.empty())
+    integration_error += SingleShotError(eig.log_values, kappa, T);
   SummariseAndCheck(system, eig.log_values, kappa, integration_error, grid.fixed_steps, options, r);
   r.elapsed_s = SecondsSince(start);
   return r;

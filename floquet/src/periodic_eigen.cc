@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "periodic_schur_testing.h"
 #include "periodic_schur_vectors.h"
 #include "slicot.h"
 
@@ -84,6 +85,12 @@ std::string CheckFactors(const std::vector<Eigen::MatrixXd>& factors) {
 }
 
 }  // namespace
+
+namespace {
+int injected_failures = 0;  // periodic_schur_testing.h
+}  // namespace
+
+void internal::InjectPeriodicSchurFailures(int count) { injected_failures = count; }
 
 LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& factors) {
   LogEigenvalues result;
@@ -143,6 +150,10 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
   mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
           &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(), beta.data(), scal.data(),
           iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn, &info, 1, 1, 1);
+  if (injected_failures > 0) {
+    --injected_failures;
+    info = n;  // as MB03BD reports an iteration that did not converge
+  }
   if (info != 0) {
     result.message = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
                      (info > 0 ? " (iteration did not converge)" : "");

@@ -155,7 +155,21 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
                      if (a.mbc_mode && b.mbc_mode) return *a.mbc_mode < *b.mbc_mode;
                      return std::abs(a.hold) < std::abs(b.hold);
                    });
-  r.stable = r.max_real_hold < 0 && r.max_real_trig < 0;
+  // The trigonometric route is the more accurate one; the two routes' difference is its
+  // sampling error term, as for `ltp floquet` (IncludeModelError).
+  // Each mode with its own difference (as IncludeModelError): the band on max Re λ.
+  const double integration = r.trig.error_estimate.value_or(0);
+  double upper = -std::numeric_limits<double>::infinity(), lower = upper;
+  for (const SampledFloquetMode& m : r.modes) {
+    if (m.rigid_body) continue;
+    upper = std::max(upper, m.trig.real() + integration + m.difference);
+    lower = std::max(lower, m.trig.real() - integration - m.difference);
+  }
+  r.error_estimate = std::isfinite(upper) && std::isfinite(lower)
+                         ? std::max(upper - r.max_real_trig, r.max_real_trig - lower)
+                         : integration + r.max_difference;
+  r.verdict = ClassifyStability(r.ok, r.max_real_trig, r.error_estimate);
+  r.stable = r.verdict == StabilityVerdict::kStable;
 
   r.notes.push_back("each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +
                     std::string(with_mbc ? "MBC eigenvalue" : "hold route's exponent") +

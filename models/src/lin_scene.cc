@@ -23,11 +23,23 @@ Scene MakeLinScene(const LinOperatingPoint& op) {
                       std::to_string(op.outputs.size()) + " outputs at " +
                       std::to_string(op.size()) + " azimuths, rotor speed " +
                       MessageNumber(op.rotor_speed) + " rad/s";
+  // Default: the most accurate route the samples allow (docs/sampled-models.md) — the
+  // trigonometric interpolation, which is exact for A(ψ) within the resolved harmonics where
+  // the hold is O(Δψ²), in multi-blade coordinates when MBC applies: an isotropic rotor is
+  // time-invariant there, so its samples are equal and any interpolation of them exact.
+  bool mbc_applies = false;
+  try {
+    mbc_applies = Mbc3(op).applicable;
+  } catch (const InputError&) {
+    mbc_applies = false;  // blade channels not recognised: the files' coordinates
+  }
   scene.parameters = {
-      {"trig", 0,
-       "0: each sample held over the azimuths nearest to it (exact product of exponentials); "
-       "1: trigonometric interpolation through the samples"},
-      {"mbc", 0, "0: the files' coordinates; 1: multi-blade coordinates (MBC3, N >= 3 blades)"}};
+      {"trig", 1,
+       "1: trigonometric interpolation through the samples (default); 0: each sample held over "
+       "the azimuths nearest to it (exact product of exponentials)"},
+      {"mbc", mbc_applies ? 1.0 : 0.0,
+       "1: multi-blade coordinates (MBC3, N >= 3 blades; the default when they apply); 0: the "
+       "files' coordinates"}};
   scene.build = [op](const ParameterMap& p) {
     auto flag = [&](const char* name) {
       const double v = p.at(name);

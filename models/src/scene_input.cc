@@ -30,7 +30,30 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
   std::vector<std::string> notes;
   if (op)  // the caveats of the coordinates actually analysed
     notes = LinCaveats(parameters.at("mbc") == 1 ? InMultiBladeCoordinates(*op, Mbc3(*op)) : *op);
-  return {std::move(scene), std::move(parameters), std::move(system), std::move(notes)};
+  std::vector<PeriodicSystem> alternatives;
+  if (op) {
+    ParameterMap other = parameters;
+    other.at("trig") = 1 - other.at("trig");
+    alternatives.push_back(scene.build(other));
+    // The MBC transform leaves the exact exponents unchanged, so the other coordinates differ
+    // only in what the samples miss — and alias differently: a 1P blade term is harmonic 1 in
+    // blade coordinates but 0 and ±3 in MBC, where three azimuths fold it onto a constant
+    // that both interpolations share (docs/sampled-models.md).
+    bool rotating = false;  // no blade states: both coordinates are the files'
+    try {
+      const Mbc3Result mbc = Mbc3(*op);
+      rotating = mbc.applicable && mbc.blades >= 3;
+    } catch (const InputError&) {
+      rotating = false;
+    }
+    if (rotating) {
+      other = parameters;
+      other.at("mbc") = 1 - other.at("mbc");
+      alternatives.push_back(scene.build(other));
+    }
+  }
+  return {std::move(scene), std::move(parameters), std::move(system), std::move(notes),
+          std::move(alternatives)};
 }
 
 }  // namespace ltp

@@ -828,6 +828,39 @@ LinOperatingPoint ReadLinOperatingPoint(const std::vector<std::string>& argument
   return MakeLinOperatingPoint(std::move(files));
 }
 
+double AzimuthLebesgueConstant(const std::vector<double>& azimuths) {
+  const int K = static_cast<int>(azimuths.size());
+  if (K <= 1) return 1;
+  // ℓ_k for every k at once: the interpolant of the identity's columns (TrigInterpolant's
+  // minimum-norm rule), evaluated on a grid fine enough for degree K/2.
+  std::vector<MatrixXd> unit;
+  for (int k = 0; k < K; ++k) {
+    MatrixXd e = MatrixXd::Zero(K, 1);
+    e(k) = 1;
+    unit.push_back(e);
+  }
+  const FourierMatrix l = TrigInterpolant(azimuths, unit);
+  const int grid = 64 * K;
+  double worst = 0;
+  for (int g = 0; g < grid; ++g)
+    worst = std::max(worst, l.Evaluate(2 * pi * g / grid, 1.0).cwiseAbs().sum());
+  return worst;
+}
+
+std::optional<std::string> AzimuthSamplingProblem(const std::vector<double>& azimuths) {
+  const double lebesgue = AzimuthLebesgueConstant(azimuths);
+  if (lebesgue <= kMaxAzimuthLebesgueConstant) return std::nullopt;
+  std::string list;
+  for (double a : azimuths) list += (list.empty() ? "" : ", ") + Degrees(a) + "°";
+  return "the azimuths " + list +
+         " leave part of the revolution unresolved: a periodic model through them amplifies "
+         "any error in the samples " +
+         FormatNumber(lebesgue, "%.0f") + "-fold (Lebesgue constant; at most " +
+         FormatNumber(kMaxAzimuthLebesgueConstant, "%.0f") +
+         " accepted, evenly spaced: below 3) — linearise at evenly spaced azimuths over the "
+         "whole revolution (were files from another set picked?)";
+}
+
 PeriodicSystem BuildAzimuthSampledSystem(double rotor_speed, const std::vector<double>& azimuths,
                                          const std::vector<LtiSystem>& samples,
                                          SampleInterpolation interpolation) {
@@ -844,6 +877,7 @@ PeriodicSystem BuildAzimuthSampledSystem(double rotor_speed, const std::vector<d
     if (k > 0 && azimuths[k] <= azimuths[k - 1])
       throw InputError("azimuths must be strictly increasing");
   }
+  if (auto problem = AzimuthSamplingProblem(azimuths)) throw InputError(*problem);
   const double period = 2 * pi / rotor_speed;
   if (interpolation == SampleInterpolation::kNearestConstant) {
     if (K == 1) return PeriodicSystem::FromSamples(period, {0.0}, samples);

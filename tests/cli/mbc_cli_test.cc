@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "support/isotropic_rotor_lin.h"
 #include "support/ltp_cli.h"
 
 namespace {
@@ -111,3 +113,71 @@ TEST(MbcCli, MalformedFileIsOneErrorLineAndExitTwo) {
 }
 
 }  // namespace
+
+namespace sampled {
+
+// Generated rotating-frame files of an isotropic rotor (tests/support/isotropic_rotor_lin.h):
+// exact exponents are the eigenvalues of its constant multi-blade matrix.
+const ltp::test::IsotropicRotorLin& Rotor() {
+  static const auto model = ltp::test::MakeIsotropicRotorLin(4, 4, ltp::test::EvenAzimuths(3));
+  return model;
+}
+std::string RotorDir() {
+  static const std::string dir =
+      ltp::test::WriteLinDirectory(Rotor().files, std::string(::testing::TempDir()) + "iso-cli");
+  return dir;
+}
+double ExactMaxReal() {
+  double m = -1e300;
+  for (auto l : Rotor().exponents) m = std::max(m, l.real());
+  return m;
+}
+
+TEST(MbcCli, FloquetOnLinFilesDefaultsToTheExactRouteAndCountsTheModelError) {
+  Outcome r = Ltp("floquet " + RotorDir() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["verdict"], "stable");
+  ASSERT_TRUE(j["model_error"].is_number());
+  const double estimate = j["error_estimate"].get<double>();
+  EXPECT_GE(estimate, j["model_error"].get<double>());
+  EXPECT_LE(std::abs(j["max_real_exponent"].get<double>() - ExactMaxReal()), estimate);
+  // The old default, held samples in blade coordinates, is far off (+0.02 for an exact −0.01
+  // here): its estimate now covers that and the verdict is not "unstable".
+  r = Ltp("floquet " + RotorDir() + " --set trig=0 --set mbc=0 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_LE(std::abs(j["max_real_exponent"].get<double>() - ExactMaxReal()),
+            j["error_estimate"].get<double>());
+  EXPECT_NE(j["verdict"], "unstable");
+}
+
+TEST(MbcCli, ClusteredAzimuthsRefusedByFloquetSkippedByMbc) {
+  const double deg = 3.141592653589793 / 180;
+  const auto model = ltp::test::MakeIsotropicRotorLin(2, 2, {0.5 * deg, 10 * deg, 20 * deg});
+  const std::string dir =
+      ltp::test::WriteLinDirectory(model.files, std::string(::testing::TempDir()) + "clus-cli");
+  Outcome r = Ltp("floquet " + dir);
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("leave part of the revolution unresolved"), std::string::npos) << r.err;
+  r = Ltp("mbc " + dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("STABLE (MBC3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Floquet analysis: not done: the azimuths 0.5°, 10.0°, 20.0°"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST(MbcCli, TablePrintedBeforeTheFloquetPart) {
+  const Outcome r = Ltp("mbc " + RotorDir());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto table = r.out.find("(MBC3, azimuth-averaged)");
+  const auto floquet = r.out.find("Floquet analysis of the same");
+  ASSERT_NE(table, std::string::npos) << r.out;
+  ASSERT_NE(floquet, std::string::npos) << r.out;
+  EXPECT_LT(table, floquet);
+  EXPECT_NE(r.out.find("STABLE (trig, error estimate"), std::string::npos) << r.out;
+}
+
+}  // namespace sampled

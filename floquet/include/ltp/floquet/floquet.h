@@ -123,6 +123,10 @@ struct FloquetResult {
   /// Estimated absolute error of every exponent, max over modes (1/s): the difference to a
   /// second run at a tighter tolerance, plus the round-off floor. Empty when not asked for.
   std::optional<double> error_estimate;
+  /// For a model built from samples: the part of error_estimate that is the model's own error —
+  /// how far the exponents move when the same samples are interpolated the other way
+  /// (IncludeModelError, ltp/floquet/model_error.h; docs/sampled-models.md). Empty otherwise.
+  std::optional<double> model_error;
   /// |Σ log|ρ_k| − ∫_0^T tr A dt| / max(1, |∫ tr A|) (Liouville: det Φ = exp ∫ tr A). Empty
   /// when the analysis stopped before its multipliers.
   std::optional<double> liouville_residual;

@@ -60,7 +60,12 @@ struct SampledFloquetResult {
   std::vector<SampledFloquetMode> modes;
   /// max Re λ of each route without the rigid-body mode (1/s).
   double max_real_hold = 0, max_real_trig = 0;
-  bool stable = false;             ///< both routes: max Re λ (rigid body excluded) < 0
+  bool stable = false;  ///< verdict == kStable
+  /// The trigonometric route's max Re λ against its error band: every mode's exponent
+  /// ± (integration estimate + its |hold − trig|, the sampling error; docs/sampled-models.md);
+  /// marginal when that band holds 0.
+  StabilityVerdict verdict = StabilityVerdict::kFailed;
+  double error_estimate = 0;       ///< that band on max Re λ (1/s)
   double max_difference = 0;       ///< max |hold − trig| over the modes (1/s)
   double max_to_reference = 0;     ///< max distance to the MBC eigenvalues (1/s), −1 if none
   std::vector<std::string> notes;  ///< caveats: what K samples resolve, branches, rigid body

@@ -6,9 +6,10 @@
 
 namespace ltp {
 
-/// A scene over the files: name "openfast: <files>", parameters `trig` (0: nearest-sample
-/// hold, 1: trigonometric interpolation) and `mbc` (0: the files' coordinates, 1: multi-blade
-/// coordinates, see ltp/openfast/mbc3.h). @throws InputError as MakeLinOperatingPoint.
+/// A scene over the files: name "openfast: <files>", parameters `trig` (1, the default:
+/// trigonometric interpolation; 0: nearest-sample hold) and `mbc` (1: multi-blade coordinates,
+/// the default when MBC applies, see ltp/openfast/mbc3.h; 0: the files' coordinates).
+/// docs/sampled-models.md says why these defaults. @throws InputError as MakeLinOperatingPoint.
 Scene MakeLinScene(const LinOperatingPoint& op);
 
 }  // namespace ltp

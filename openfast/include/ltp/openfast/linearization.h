@@ -121,9 +121,26 @@ enum class SampleInterpolation {
   kTrigonometric,
 };
 
+/// How much the trigonometric polynomial through samples at these azimuths (in [0, 2π),
+/// strictly increasing) can amplify an error in the samples, or content they leave out: its
+/// Lebesgue constant max_ψ Σ_k |ℓ_k(ψ)| (ℓ_k: the interpolant of the k-th unit sample).
+/// Evenly spaced: 5/3 for K = 3, 2.8 for K = 36; one file missing from an even set of K: about
+/// K − 1; 0.5°, 10°, 20°: 276 (docs/sampled-models.md).
+double AzimuthLebesgueConstant(const std::vector<double>& azimuths);
+
+/// Azimuths whose Lebesgue constant exceeds this leave part of the revolution unresolved: a
+/// periodic model through them is refused (docs/sampled-models.md).
+inline constexpr double kMaxAzimuthLebesgueConstant = 100;
+
+/// Why no periodic model is built from samples at these azimuths (their Lebesgue constant
+/// exceeds kMaxAzimuthLebesgueConstant: clustered azimuths, e.g. files picked from the wrong
+/// set), as one sentence naming the azimuths; nullopt when they are usable.
+std::optional<std::string> AzimuthSamplingProblem(const std::vector<double>& azimuths);
+
 /// The periodic system x' = A(t) x + B(t) u, y = C(t) x + D(t) u with T = 2π/rotor_speed and
 /// samples[k] at t_k = azimuths[k]/rotor_speed (azimuths in [0, 2π), strictly increasing).
-/// @throws InputError (sizes, rotor_speed <= 0, azimuths out of range or not increasing).
+/// @throws InputError (sizes, rotor_speed <= 0, azimuths out of range or not increasing, or
+/// clustered: AzimuthSamplingProblem).
 PeriodicSystem BuildAzimuthSampledSystem(double rotor_speed, const std::vector<double>& azimuths,
                                          const std::vector<LtiSystem>& samples,
                                          SampleInterpolation interpolation);

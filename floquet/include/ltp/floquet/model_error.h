@@ -1,0 +1,28 @@
+#pragma once
+// The error of a model built from samples, in a Floquet result's error estimate.
+//
+// A system built from K azimuth samples (OpenFAST linearisations) is exact only at the
+// samples; in between it is an interpolation. The integration estimate says how well the
+// exponents of that interpolated system were computed, not how far they are from the exponents
+// of the system the samples came from. The same samples interpolated another way (nearest-
+// sample hold ↔ trigonometric polynomial) give a second model; how far its exponents are from
+// the analysed one's is the model error term, added to the estimate before the verdict
+// (docs/sampled-models.md states the rule and what it cannot see).
+#include <vector>
+
+#include "ltp/core/periodic_system.h"
+#include "ltp/floquet/floquet.h"
+
+namespace ltp {
+
+/// Analyses each of `alternatives` (multipliers only, on `r`'s grid; the exact kExpm integrator
+/// when piecewise constant); each exponent's sampling error e_k is its largest distance to its
+/// match in any of them (modulo jΩp; +inf when an analysis failed). Sets r.model_error =
+/// max_k e_k, adds it to r.error_estimate (to 0 when no estimate was asked for) and
+/// reclassifies the verdict: every Re λ_k ± (integration estimate + e_k) below or above 0.
+/// Nothing happens for an empty list. @throws InputError when an alternative has another size
+/// or period than `r`.
+void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
+                       const FloquetOptions& options, FloquetResult& r);
+
+}  // namespace ltp

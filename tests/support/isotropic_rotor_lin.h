@@ -1,0 +1,174 @@
+#pragma once
+// Rotating-frame OpenFAST `.lin` files whose exact Floquet exponents are known: a constant,
+// rotationally symmetric (isotropic) model in multi-blade coordinates, transformed to blade
+// coordinates at chosen azimuths.
+//
+// The model: `blade_dofs` second-order DOFs on each of 3 identical blades and `fixed_dofs`
+// fixed-frame DOFs (in (x, y) pairs, one axial DOF when odd). In MBC coordinates
+// q = (q_0, q_c, q_s per blade DOF, fixed DOFs) the matrices are constant and commute with a
+// rotation of the rotor: the collectives and axial DOFs form one real block, the cyclic and
+// (x, y) pairs act as a complex matrix (2×2 blocks [[p, −q], [q, p]]). Blade b's DOF is
+// q_0 + q_c cos ψ_b + q_s sin ψ_b (ψ_b = ψ + 2π(b−1)/3), its rate the time derivative of that
+// (rotor speed Ω constant), so x_R = T(ψ) x_MBC and A_R = (T A_MBC + Ṫ) T⁻¹: A_R(ψ) holds
+// harmonics 0 and ±1 only, and its Floquet exponents are eig(A_MBC) modulo jΩ (a Lyapunov
+// transformation of a constant system). The transform is written out here, not taken from
+// openfast/mbc3.h, so the reference does not depend on the code under test.
+//
+// `gravity` adds −g cos ψ_b to each blade DOF's stiffness (per unit modal mass) in the
+// rotating frame, a 1P term: the model is then no longer constant in MBC coordinates and no
+// exact exponents are known, but A_R(ψ) still holds harmonics 0 and ±1 only, so three or more
+// azimuths determine it and the trigonometric route in blade coordinates is exact.
+#include <Eigen/Dense>
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ltp/openfast/linearization.h"
+
+namespace ltp::test {
+
+struct IsotropicRotorLin {
+  Eigen::MatrixXd a_mbc;                        ///< constant A in MBC coordinates
+  std::vector<std::complex<double>> exponents;  ///< eig(a_mbc): exact (without gravity)
+  std::vector<LinFile> files;                   ///< one per azimuth, blade coordinates
+};
+
+inline IsotropicRotorLin MakeIsotropicRotorLin(int blade_dofs, int fixed_dofs,
+                                               const std::vector<double>& azimuths,
+                                               double omega = 1.0, unsigned seed = 1,
+                                               double gravity = 0, double zeta = 0.02) {
+  using Eigen::MatrixXcd;
+  using Eigen::MatrixXd;
+  constexpr double pi = std::numbers::pi;
+  const int N = 3, nb = blade_dofs, nf = fixed_dofs, nd = N * nb + nf, n = 2 * nd;
+  const int pairs = nf / 2, axial = nf - 2 * pairs;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> frequency(0.5, 4.0);
+  std::vector<int> col;
+  std::vector<std::pair<int, int>> cyc;
+  for (int j = 0; j < nb; ++j) col.push_back(3 * j);
+  for (int i = 0; i < axial; ++i) col.push_back(N * nb + 2 * pairs + i);
+  for (int j = 0; j < nb; ++j) cyc.push_back({3 * j + 1, 3 * j + 2});
+  for (int k = 0; k < pairs; ++k) cyc.push_back({N * nb + 2 * k, N * nb + 2 * k + 1});
+  MatrixXd K = MatrixXd::Zero(nd, nd), C = MatrixXd::Zero(nd, nd);
+  {  // real block: K = Q diag(w²) Qᵀ, C = Q diag(2ζw) Qᵀ
+    const int m = static_cast<int>(col.size());
+    MatrixXd g(m, m);
+    for (int i = 0; i < g.size(); ++i) g.data()[i] = normal(rng);
+    const MatrixXd Q = g.householderQr().householderQ();
+    Eigen::VectorXd w(m);
+    for (int i = 0; i < m; ++i) w[i] = frequency(rng);
+    const MatrixXd k = Q * w.array().square().matrix().asDiagonal() * Q.transpose();
+    const MatrixXd c = Q * (2 * zeta * w).asDiagonal() * Q.transpose();
+    for (int r = 0; r < m; ++r)
+      for (int s = 0; s < m; ++s) {
+        K(col[r], col[s]) = k(r, s);
+        C(col[r], col[s]) = c(r, s);
+      }
+  }
+  {  // complex block: Hermitian stiffness and damping, plus a gyroscopic (anti-Hermitian) part
+    const int m = static_cast<int>(cyc.size());
+    MatrixXcd g(m, m);
+    for (int i = 0; i < g.size(); ++i) g.data()[i] = {normal(rng), normal(rng)};
+    const MatrixXcd U = g.householderQr().householderQ();
+    Eigen::VectorXd w(m);
+    for (int i = 0; i < m; ++i) w[i] = frequency(rng);
+    MatrixXd h(m, m);
+    for (int i = 0; i < h.size(); ++i) h.data()[i] = 0.05 * normal(rng);
+    h = (h + h.transpose()).eval();
+    const MatrixXcd k =
+        U * w.array().square().matrix().cast<std::complex<double>>().asDiagonal() * U.adjoint();
+    const MatrixXcd c = U * (2 * zeta * w).cast<std::complex<double>>().asDiagonal() * U.adjoint() +
+                        std::complex<double>(0, 1) * h.cast<std::complex<double>>();
+    for (int r = 0; r < m; ++r)
+      for (int s = 0; s < m; ++s)
+        for (auto [X, Z] : {std::pair<MatrixXd*, const MatrixXcd*>{&K, &k}, {&C, &c}}) {
+          const double p = (*Z)(r, s).real(), q = (*Z)(r, s).imag();
+          (*X)(cyc[r].first, cyc[s].first) = p;
+          (*X)(cyc[r].first, cyc[s].second) = -q;
+          (*X)(cyc[r].second, cyc[s].first) = q;
+          (*X)(cyc[r].second, cyc[s].second) = p;
+        }
+  }
+  IsotropicRotorLin out;
+  out.a_mbc = MatrixXd::Zero(n, n);
+  out.a_mbc.topRightCorner(nd, nd).setIdentity();
+  out.a_mbc.bottomLeftCorner(nd, nd) = -K;
+  out.a_mbc.bottomRightCorner(nd, nd) = -C;
+  const Eigen::VectorXcd ev = out.a_mbc.eigenvalues();
+  out.exponents.assign(ev.data(), ev.data() + ev.size());
+
+  std::vector<LinChannel> states(n);
+  for (int r = 0; r < n; ++r) {
+    const int dof = r % nd;
+    std::string what;
+    if (dof < N * nb) {
+      what = "blade dof " + std::string(1, static_cast<char>('a' + dof / N)) + " of blade " +
+             std::to_string(dof % N + 1);
+      states[r].rotating_frame = true;
+    } else {
+      what = "tower dof " + std::string(1, static_cast<char>('a' + (dof - N * nb)));
+    }
+    states[r].derivative_order = 2;
+    states[r].description =
+        r < nd ? "ED " + what + ", m" : "ED First time derivative of " + what + ", m/s";
+  }
+  for (size_t k = 0; k < azimuths.size(); ++k) {
+    const double psi = azimuths[k];
+    // Rotating displacement (blade DOF j, blade b) at index j·N + b, MBC (j, c) at 3j + c.
+    MatrixXd T = MatrixXd::Identity(n, n), Td = MatrixXd::Zero(n, n);
+    for (int j = 0; j < nb; ++j)
+      for (int b = 0; b < N; ++b) {
+        const double pb = psi + 2 * pi * b / N;
+        const double t0[3] = {1, std::cos(pb), std::sin(pb)};
+        const double t1[3] = {0, -std::sin(pb), std::cos(pb)};   // d/dψ
+        const double t2[3] = {0, -std::cos(pb), -std::sin(pb)};  // d²/dψ²
+        const int row = j * N + b;
+        for (int c = 0; c < N; ++c) {
+          const int m = 3 * j + c;
+          T(row, m) = t0[c];
+          T(nd + row, nd + m) = t0[c];
+          T(nd + row, m) = omega * t1[c];
+          Td(row, m) = omega * t1[c];
+          Td(nd + row, nd + m) = omega * t1[c];
+          Td(nd + row, m) = omega * omega * t2[c];
+        }
+      }
+    MatrixXd a = (T * out.a_mbc + Td) * T.inverse();
+    for (int j = 0; j < nb; ++j)
+      for (int b = 0; b < N; ++b)
+        a(nd + j * N + b, j * N + b) -= gravity * std::cos(psi + 2 * pi * b / N);
+    LinFile f;
+    f.path = "rotor." + std::to_string(k + 1) + ".lin";
+    f.title = "Linearized model: isotropic rotor (tests/support/isotropic_rotor_lin.h)";
+    f.rotor_speed = omega;
+    f.azimuth = psi;
+    f.continuous_states = n;
+    f.states = states;
+    f.A = a;
+    out.files.push_back(std::move(f));
+  }
+  return out;
+}
+
+/// K evenly spaced azimuths from 0.
+inline std::vector<double> EvenAzimuths(int K) {
+  std::vector<double> psi;
+  for (int k = 0; k < K; ++k) psi.push_back(2 * std::numbers::pi * k / K);
+  return psi;
+}
+
+/// Writes the files into a fresh directory `dir` (created) and returns it.
+inline std::string WriteLinDirectory(const std::vector<LinFile>& files, const std::string& dir) {
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (const LinFile& f : files) WriteLinFile(dir + "/" + f.path, f);
+  return dir;
+}
+
+}  // namespace ltp::test
