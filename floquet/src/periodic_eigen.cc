@@ -17,6 +17,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -87,7 +88,7 @@ std::string CheckFactors(const std::vector<Eigen::MatrixXd>& factors) {
 }  // namespace
 
 namespace {
-int injected_failures = 0;  // periodic_schur_testing.h
+std::atomic<int> injected_failures{0};  // periodic_schur_testing.h (sweeps call from threads)
 }  // namespace
 
 void internal::InjectPeriodicSchurFailures(int count) { injected_failures = count; }
@@ -150,10 +151,8 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
   mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
           &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(), beta.data(), scal.data(),
           iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn, &info, 1, 1, 1);
-  if (injected_failures > 0) {
-    --injected_failures;
+  if (injected_failures.load(std::memory_order_relaxed) > 0 && injected_failures-- > 0)
     info = n;  // as MB03BD reports an iteration that did not converge
-  }
   if (info != 0) {
     result.message = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
                      (info > 0 ? " (iteration did not converge)" : "");
