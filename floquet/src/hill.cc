@@ -356,13 +356,17 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
     }
     // The bound holds in exact arithmetic; the computed expm adds round-off ~ eps ||H T|| ||Φ||.
     r.apriori_phi_bound +=
-        16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) * std::max(1.0, phi.norm());
-    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(phi);
+        16 * std::numeric_limits<double>::epsilon() * (2 * N + 1) * std::max(1.0, phi.stableNorm());
+    // Finite entries near the top of the double range (multipliers e^{691}) still overflow
+    // inside the eigensolver, which then reads past its arrays (AddressSanitizer): solve for
+    // Φ/s, s its largest entry, and add log s back.
+    const double s = phi.cwiseAbs().maxCoeff();
+    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(s > 0 ? Eigen::MatrixXcd(phi / s) : phi);
     std::vector<cd> kh;
     for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) {
-      const cd rho = es.eigenvalues()(k);
-      r.koopman_log_multipliers.push_back(std::log(rho));
-      kh.push_back(std::log(rho) / T);
+      const cd log_rho = std::log(es.eigenvalues()(k)) + (s > 0 ? std::log(s) : 0.0);
+      r.koopman_log_multipliers.push_back(log_rho);
+      kh.push_back(log_rho / T);
     }
     std::vector<cd> hill;
     for (const FloquetMode& m : r.modes) hill.push_back(m.exponent);
