@@ -45,12 +45,18 @@ bool Mentions(const FloquetResult& r, const std::string& text) {
   return false;
 }
 
-TEST(MultiplierFallback, RegroupedPeriodicSchur) {
+// The analysis over 8 segments with the next `failures` periodic Schur calls failing.
+FloquetResult AnalyzeWithSchurFailures(const PeriodicSystem& system, int failures) {
   FloquetOptions o;
   o.segments = 8;
-  internal::InjectPeriodicSchurFailures(1);
-  const FloquetResult r = AnalyzeFloquet(Constant(1.3, 0.05, 0.7), o);
+  internal::InjectPeriodicSchurFailures(failures);
+  const FloquetResult r = AnalyzeFloquet(system, o);
   internal::InjectPeriodicSchurFailures(0);
+  return r;
+}
+
+TEST(MultiplierFallback, RegroupedPeriodicSchur) {
+  const FloquetResult r = AnalyzeWithSchurFailures(Constant(1.3, 0.05, 0.7), 1);
   ASSERT_TRUE(r.ok);
   EXPECT_TRUE(Mentions(r, "regrouped into 4 factors")) << r.diagnostics.front();
   EXPECT_EQ(r.multiplier_method, MultiplierMethod::kPeriodicSchur);
@@ -59,11 +65,7 @@ TEST(MultiplierFallback, RegroupedPeriodicSchur) {
 }
 
 TEST(MultiplierFallback, SingleShotWithItsErrorInTheEstimate) {
-  FloquetOptions o;
-  o.segments = 8;
-  internal::InjectPeriodicSchurFailures(2);
-  const FloquetResult r = AnalyzeFloquet(Constant(1.3, 0.05, 0.7), o);
-  internal::InjectPeriodicSchurFailures(0);
+  const FloquetResult r = AnalyzeWithSchurFailures(Constant(1.3, 0.05, 0.7), 2);
   ASSERT_TRUE(r.ok);
   EXPECT_TRUE(Mentions(r, "single shot"));
   EXPECT_EQ(r.multiplier_method, MultiplierMethod::kSingleShot);
@@ -74,11 +76,7 @@ TEST(MultiplierFallback, SingleShotWithItsErrorInTheEstimate) {
 TEST(MultiplierFallback, SingleShotOnAStiffSystemIsUndecidedNotWrong) {
   // d = 200: |ρ| = e^{−400} next to e^{−0.13}, far below eps · max|ρ|: single shot cannot
   // resolve that exponent, so the estimate is +inf and the verdict undecided.
-  FloquetOptions o;
-  o.segments = 8;
-  internal::InjectPeriodicSchurFailures(2);
-  const FloquetResult r = AnalyzeFloquet(Constant(1.3, 0.05, 200), o);
-  internal::InjectPeriodicSchurFailures(0);
+  const FloquetResult r = AnalyzeWithSchurFailures(Constant(1.3, 0.05, 200), 2);
   ASSERT_TRUE(r.error_estimate.has_value());
   EXPECT_LE(Error(r, Exact(1.3, 0.05, 200)), *r.error_estimate);
   EXPECT_NE(r.verdict, StabilityVerdict::kUnstable);
