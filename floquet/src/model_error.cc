@@ -48,16 +48,12 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
       e[k] = std::max(e[k], match[k] < 0 ? inf : ExponentDistance(a[k], b[match[k]], omega));
   }
   const double integration = r.error_estimate.value_or(0);
-  // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0, so fast-decaying
-  // modes that the models place far apart (−50 vs −53 1/s) do not make a clear verdict
-  // undecided.
-  double term = 0;
-  double upper = -inf, lower = -inf;
+  const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
+  std::vector<double> real_parts;
+  std::vector<bool> rigid;
   for (size_t k = 0; k < a.size(); ++k) {
-    term = std::max(term, e[k]);
-    if (r.modes[k].rigid_body) continue;
-    upper = std::max(upper, a[k].real() + integration + e[k]);
-    lower = std::max(lower, a[k].real() - integration - e[k]);
+    real_parts.push_back(a[k].real());
+    rigid.push_back(r.modes[k].rigid_body);
   }
   r.model_error = term;
   r.error_estimate = integration + term;
@@ -72,10 +68,9 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
          "sampling error is unknown and so is the verdict";
   }
   r.diagnostics.push_back(s.str());
-  // The band on max Re λ the verdict uses: the per-exponent rule above, as one number.
-  const double band = std::isfinite(upper) && std::isfinite(lower)
-                          ? std::max(upper - r.max_real_exponent, r.max_real_exponent - lower)
-                          : *r.error_estimate;
+  // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
+  const double band =
+      PerExponentBand(real_parts, e, rigid, integration, r.max_real_exponent, *r.error_estimate);
   if (band < *r.error_estimate) {
     std::ostringstream v;
     v << "verdict: max Re λ is within ±" << band
@@ -89,6 +84,19 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within its error estimate once the "
         "model's sampling error is included — linearise at more azimuths");
+}
+
+double PerExponentBand(const std::vector<double>& real_parts, const std::vector<double>& own,
+                       const std::vector<bool>& skip, double integration, double max_real,
+                       double fallback) {
+  double upper = -std::numeric_limits<double>::infinity(), lower = upper;
+  for (size_t k = 0; k < real_parts.size(); ++k) {
+    if (skip[k]) continue;
+    upper = std::max(upper, real_parts[k] + integration + own[k]);
+    lower = std::max(lower, real_parts[k] - integration - own[k]);
+  }
+  return std::isfinite(upper) && std::isfinite(lower) ? std::max(upper - max_real, max_real - lower)
+                                                      : fallback;
 }
 
 }  // namespace ltp

@@ -9,6 +9,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
+#include "ltp/floquet/model_error.h"
 
 namespace ltp {
 namespace {
@@ -159,15 +160,15 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   // sampling error term, as for `ltp floquet` (IncludeModelError).
   // Each mode with its own difference (as IncludeModelError): the band on max Re λ.
   const double integration = r.trig.error_estimate.value_or(0);
-  double upper = -std::numeric_limits<double>::infinity(), lower = upper;
+  std::vector<double> real_parts, own;
+  std::vector<bool> rigid;
   for (const SampledFloquetMode& m : r.modes) {
-    if (m.rigid_body) continue;
-    upper = std::max(upper, m.trig.real() + integration + m.difference);
-    lower = std::max(lower, m.trig.real() - integration - m.difference);
+    real_parts.push_back(m.trig.real());
+    own.push_back(m.difference);
+    rigid.push_back(m.rigid_body);
   }
-  r.error_estimate = std::isfinite(upper) && std::isfinite(lower)
-                         ? std::max(upper - r.max_real_trig, r.max_real_trig - lower)
-                         : integration + r.max_difference;
+  r.error_estimate = PerExponentBand(real_parts, own, rigid, integration, r.max_real_trig,
+                                     integration + r.max_difference);
   r.verdict = ClassifyStability(r.ok, r.max_real_trig, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
 

@@ -25,4 +25,13 @@ namespace ltp {
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, FloquetResult& r);
 
+/// The band on max Re λ that a verdict uses when exponent k carries its own error own[k]
+/// besides the common `integration` estimate: the largest distance from `max_real` to
+/// max_k (Re λ_k ± (integration + own[k])) over the modes not `skip`ped (rigid-body ones);
+/// `fallback` when no mode counts or a bound is not finite. Fast-decaying modes that two models
+/// place far apart (−50 vs −53 1/s) then leave a clear verdict clear.
+double PerExponentBand(const std::vector<double>& real_parts, const std::vector<double>& own,
+                       const std::vector<bool>& skip, double integration, double max_real,
+                       double fallback);
+
 }  // namespace ltp
