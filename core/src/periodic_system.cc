@@ -311,6 +311,76 @@ PeriodicSystem PeriodicSystem::WithLabels(SystemLabels labels) && {
   return PeriodicSystem(std::move(impl));
 }
 
+PeriodicSystem PeriodicSystem::WithStateScaling(const Eigen::VectorXd& scale) const {
+  const int n = impl_->n;
+  if (scale.size() != n || !scale.allFinite() || !(scale.array() > 0).all())
+    throw InputError("state scaling: " + std::to_string(n) +
+                     " finite positive scales needed, one per state");
+  const Eigen::VectorXd inverse = scale.cwiseInverse();
+  // M ↦ S⁻¹ M S, S⁻¹ M or M S, in place; real or complex.
+  auto rows = [&](auto& m) { m = inverse.asDiagonal() * m; };
+  auto cols = [&](auto& m) { m = m * scale.asDiagonal(); };
+  PeriodicSystem out = *this;
+  switch (impl_->form) {
+    case Form::kFourier: {
+      FourierMatrix a = impl_->fa, b = impl_->fb, c = impl_->fc;
+      for (int w = -a.max_harmonic(); w <= a.max_harmonic(); ++w) {
+        Eigen::MatrixXcd m = a[w];
+        rows(m);
+        cols(m);
+        a[w] = m;
+      }
+      for (int w = -b.max_harmonic(); w <= b.max_harmonic(); ++w) {
+        Eigen::MatrixXcd m = b[w];
+        rows(m);
+        b[w] = m;
+      }
+      for (int w = -c.max_harmonic(); w <= c.max_harmonic(); ++w) {
+        Eigen::MatrixXcd m = c[w];
+        cols(m);
+        c[w] = m;
+      }
+      out = FromFourier(impl_->period, std::move(a), std::move(b), std::move(c), impl_->fd);
+      break;
+    }
+    case Form::kPiecewiseConstant: {
+      std::vector<LtiSystem> samples = impl_->samples;
+      for (LtiSystem& s : samples) {
+        rows(s.A);
+        cols(s.A);
+        rows(s.B);
+        cols(s.C);
+      }
+      out = FromSamples(impl_->period, impl_->times, std::move(samples));
+      break;
+    }
+    case Form::kFunction: {
+      Functions f = impl_->fn;
+      const Functions original = impl_->fn;
+      f.A = [original, scale, inverse](double t, Eigen::Ref<Eigen::MatrixXd> m) {
+        original.A(t, m);
+        m = inverse.asDiagonal() * m * scale.asDiagonal();
+      };
+      if (original.B)
+        f.B = [original, inverse](double t, Eigen::Ref<Eigen::MatrixXd> m) {
+          original.B(t, m);
+          m = inverse.asDiagonal() * m;
+        };
+      if (original.C)
+        f.C = [original, scale](double t, Eigen::Ref<Eigen::MatrixXd> m) {
+          original.C(t, m);
+          m = m * scale.asDiagonal();
+        };
+      out = FromFunctions(impl_->period, n, impl_->m, impl_->p, std::move(f), impl_->breakpoints);
+      break;
+    }
+  }
+  auto impl = std::const_pointer_cast<Impl>(std::move(out.impl_));
+  impl->labels = impl_->labels;
+  impl->rotor_speed = impl_->rotor_speed;
+  return PeriodicSystem(std::move(impl));
+}
+
 std::optional<double> PeriodicSystem::rotor_speed() const { return impl_->rotor_speed; }
 
 PeriodicSystem PeriodicSystem::WithRotorSpeed(double rad_per_s) const {

@@ -18,6 +18,7 @@
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"
 #include "segment_grid.h"
+#include "state_balancing.h"
 
 namespace ltp {
 
@@ -542,11 +543,23 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
 
 }  // namespace
 
-FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions& requested) {
+FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& requested) {
   requested.Validate();
-  CheckPeriodScale(system, requested.max_period_scale);
   const auto start = std::chrono::steady_clock::now();
+  // States in units far apart (a finite-element rotor's metres and radians, 1e13 N/m
+  // bearings) are rescaled by powers of two before anything is measured or integrated; shapes
+  // and monodromy are scaled back at the end (docs/model-sizes.md).
+  const Eigen::VectorXd scale = internal::StateBalancing(given);
+  const PeriodicSystem system = scale.size() ? given.WithStateScaling(scale) : given;
+  CheckPeriodScale(system, requested.max_period_scale);
   FloquetResult r;
+  if (scale.size()) {
+    std::ostringstream s;
+    s << "states rescaled by powers of two from 2^" << std::lround(std::log2(scale.minCoeff()))
+      << " to 2^" << std::lround(std::log2(scale.maxCoeff()))
+      << " (diagonal balancing of A, exact) for the integration; results are in the given states";
+    r.diagnostics.push_back(s.str());
+  }
   std::string choice;
   FloquetOptions options = requested;
   options.integrator = ResolveIntegrator(system, requested.integrator, &choice);
@@ -637,6 +650,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& system, const FloquetOptions&
     r.mode_condition = shapes.condition;
   } else {
     r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
+  }
+  if (scale.size()) {  // back to the given states: x = S z
+    r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
+    for (Eigen::MatrixXcd& m : r.mode_samples) m = scale.asDiagonal() * m;
+    for (Eigen::MatrixXcd& m : r.mode_fourier) m = scale.asDiagonal() * m;
   }
   // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
   StoreOrderedModes(system, modes, options.compute_modes, r);

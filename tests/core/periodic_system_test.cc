@@ -233,3 +233,51 @@ TEST(Snapshot, AtAngleNeedsRotorSpeed) {
 
 }  // namespace
 }  // namespace ltp
+
+namespace ltp {
+namespace {
+
+// WithStateScaling: z = S⁻¹ x, so A_z = S⁻¹ A S, B_z = S⁻¹ B, C_z = C S, D unchanged — checked
+// entry by entry against the definition, for each of the three forms.
+void ExpectScaledLike(const PeriodicSystem& original, const PeriodicSystem& scaled,
+                      const Eigen::VectorXd& s) {
+  const Eigen::MatrixXd S = s.asDiagonal(), Si = s.cwiseInverse().asDiagonal();
+  for (double t : {0.1, 1.3, 2.9}) {
+    EXPECT_LT((scaled.A(t) - Si * original.A(t) * S).norm(),
+              1e-15 * (Si * original.A(t) * S).norm());
+    if (original.inputs() > 0) EXPECT_EQ(scaled.B(t), Si * original.B(t));
+    if (original.outputs() > 0) EXPECT_EQ(scaled.C(t), original.C(t) * S);
+  }
+  EXPECT_EQ(scaled.form(), original.form());
+  EXPECT_EQ(scaled.breakpoints(), original.breakpoints());
+  EXPECT_EQ(scaled.labels().states, original.labels().states);
+  EXPECT_EQ(scaled.rotor_speed(), original.rotor_speed());
+}
+
+TEST(StateScaling, EveryFormIsTheSimilarityTransform) {
+  const Eigen::Vector2d s(0x1p-20, 0x1p+12);
+  SystemLabels labels;
+  labels.states = {"y", "y'"};
+  const PeriodicSystem fourier =
+      PeriodicSystem::FromFourier(kPeriod, MathieuFourier()).WithLabels(labels).WithRotorSpeed(2);
+  ExpectScaledLike(fourier, fourier.WithStateScaling(s), s);
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = MathieuA(t); };
+  f.B = [](double, Eigen::Ref<Eigen::MatrixXd> out) { out << 0, 1; };
+  f.C = [](double t, Eigen::Ref<Eigen::MatrixXd> out) { out << 1, std::sin(t); };
+  f.D = [](double, Eigen::Ref<Eigen::MatrixXd> out) { out << 0.5; };
+  const PeriodicSystem functions = PeriodicSystem::FromFunctions(kPeriod, 2, 1, 1, f, {1.0});
+  const PeriodicSystem scaled = functions.WithStateScaling(s);
+  ExpectScaledLike(functions, scaled, s);
+  EXPECT_EQ(scaled.D(0.3), functions.D(0.3));
+  LtiSystem held{MathieuA(0.0), Eigen::MatrixXd::Ones(2, 1), Eigen::MatrixXd::Ones(1, 2),
+                 Eigen::MatrixXd::Zero(1, 1)};
+  const PeriodicSystem samples = PeriodicSystem::FromSamples(kPeriod, {0.0, 1.0}, {held, held});
+  ExpectScaledLike(samples, samples.WithStateScaling(s), s);
+  EXPECT_THROW(fourier.WithStateScaling(Eigen::Vector3d::Ones()), InputError);
+  EXPECT_THROW(fourier.WithStateScaling(Eigen::Vector2d(1, 0)), InputError);
+  EXPECT_THROW(fourier.WithStateScaling(Eigen::Vector2d(1, kNaN)), InputError);
+}
+
+}  // namespace
+}  // namespace ltp

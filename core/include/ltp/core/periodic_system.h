@@ -116,6 +116,11 @@ class PeriodicSystem {
   /// the only owner of its representation, that is relabelled instead of copied — a sweep
   /// builds one system per point.
   PeriodicSystem WithLabels(SystemLabels labels) &&;
+  /// The same system in the scaled states z = S⁻¹ x, S = diag(scale): A_z = S⁻¹ A S,
+  /// B_z = S⁻¹ B, C_z = C S, D unchanged; the same form, breakpoints, labels and rotor speed.
+  /// Exponents are unchanged; a mode shape of z is S⁻¹ times that of x. Powers of two keep the
+  /// scaling exact. @throws InputError for a wrong size or a scale that is not finite and > 0.
+  PeriodicSystem WithStateScaling(const Eigen::VectorXd& scale) const;
   /// Rotor speed in rad/s, when the system describes a rotor (rotor angle = speed · t).
   std::optional<double> rotor_speed() const;
   PeriodicSystem WithRotorSpeed(double rad_per_s) const;

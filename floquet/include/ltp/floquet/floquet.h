@@ -133,8 +133,11 @@ struct FloquetResult {
   /// 2-norm condition number of the normalised mode matrix Ξ(t), the best of up to 16 sample
   /// times (a shape may be tiny at one t; a defective Ξ is ill-conditioned at every t); large
   /// = (near-)defective; +inf when no shape could be computed. Empty without mode shapes.
+  /// Measured in the balanced states when the analysis rescaled them (see diagnostics).
   std::optional<double> mode_condition;
   /// Monodromy Φ(T, 0) as the formed product (entries may under/overflow for stiff systems).
+  /// States whose units spread A's scales beyond 2¹⁰ are analysed in balanced states
+  /// (powers of two, exact); monodromy and mode shapes are given back in the system's states.
   Eigen::MatrixXd monodromy;
   /// Periodic mode shapes at `sample_times` (uniform, t_s = s T/S): column k of
   /// mode_samples[s] is ξ_k(t_s) on mode k's chosen branch.
