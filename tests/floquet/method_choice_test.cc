@@ -17,6 +17,8 @@
 #include "ltp/floquet/hill.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/scene.h"
+#include "ltp/models/scene_input.h"
+#include "support/isotropic_rotor_lin.h"
 #include "support/rotor_lin.h"
 #include "support/systems.h"
 
@@ -131,6 +133,38 @@ TEST(MethodChoice, AutoOnAStiffNonTriangularSystemMeetsTheClosedForm) {
   const double err = MatchedDistance(r.modes, {-800.0, 150.0, -3.0, -0.5}, s.omega());
   EXPECT_LT(err, 1e-8 * 800);
   EXPECT_GE(r.error_estimate.value(), err);
+}
+
+TEST(MethodChoice, MagnusCrossesTheFastModesOfARotorConstantInMultiBladeCoordinates) {
+  // An isotropic rotor sampled at 3 azimuths (tests/support/isotropic_rotor_lin.h), its modes
+  // at up to 600 × 1P as a BeamDyn blade's at 10 rpm: constant in multi-blade coordinates, so
+  // Magnus steps are exact there and a few reach the tolerance, where Bulirsch–Stoer resolves
+  // every oscillation. Exact exponents: eig(A_MBC) modulo jΩ.
+  const double omega = 4.0 / 600;
+  const auto model = test::MakeIsotropicRotorLin(4, 2, test::EvenAzimuths(3), omega);
+  const std::string dir = test::WriteLinDirectory(model.files, ::testing::TempDir() + "fast-iso");
+  const PeriodicSystem mbc = LoadSceneInput({dir}, {}).system;
+  const SystemTraits traits = MeasureSystemTraits(mbc);
+  EXPECT_GT(traits.oscillation, 200);
+  EXPECT_LT(traits.variation, 1e-10 * traits.oscillation);
+  FloquetOptions o;
+  const FloquetResult r = AnalyzeFloquet(mbc, o);
+  ASSERT_TRUE(r.ok) << r.BriefReport();
+  EXPECT_EQ(r.integrator, IntegratorType::kMagnus6);
+  const double err = MatchedDistance(r.modes, model.exponents, omega);
+  EXPECT_LT(err, 1e-10);
+  EXPECT_GE(r.error_estimate.value(), err);
+  o.integrator.type = IntegratorType::kBulirschStoer;
+  const FloquetResult bs = AnalyzeFloquet(mbc, o);
+  ASSERT_TRUE(bs.ok);
+  EXPECT_LT(MatchedDistance(bs.modes, model.exponents, omega), bs.error_estimate.value());
+  EXPECT_LT(10 * r.rhs_evals, bs.rhs_evals);  // work, not time: A(t) evaluations
+  // The same samples in blade coordinates vary by a large share of the fast frequencies:
+  // Magnus's error terms then grow with h·ρ(Ā), and Bulirsch–Stoer stays the choice.
+  const PeriodicSystem blade = LoadSceneInput({dir}, {"mbc=0"}).system;
+  const SystemTraits rotating = MeasureSystemTraits(blade);
+  EXPECT_GT(rotating.variation, 0.01 * rotating.oscillation);
+  EXPECT_EQ(ChooseIntegrator(rotating, 1e-10).type, IntegratorType::kBulirschStoer);
 }
 
 TEST(MethodChoice, HillAutoSolverOnStiffYamlFindsEveryExponent) {

@@ -25,6 +25,13 @@ struct SystemTraits {
   double hill_stiffness = 0;
   /// A(t) is a Fourier series (its derivatives are exact: Taylor series steps are possible).
   bool fourier_form = false;
+  /// T · ρ(Ā), Ā the period mean of A(t): about 2π × the fast oscillations (or e-folds) per
+  /// period that an explicit method must resolve step by step.
+  double oscillation = 0;
+  /// T · max_t ‖A(t) − Ā‖ in diagonally balanced coordinates (Frobenius; for a Fourier series
+  /// the bound Σ_{w≠0} ‖A_w‖): how far the periodic part alone moves the solution per period.
+  /// Magnus steps are exact for Ā, so only this part sets their number.
+  double variation = 0;
 };
 SystemTraits MeasureSystemTraits(const PeriodicSystem& system);
 
