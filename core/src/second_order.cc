@@ -1,6 +1,8 @@
 #include "ltp/core/second_order.h"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <sstream>
 
@@ -120,6 +122,87 @@ PeriodicSystem FromSecondOrder(const SecondOrderSystem& system, const SecondOrde
   }
   return PeriodicSystem::FromFunctions(system.period, 2 * q, m, p, std::move(functions),
                                        system.breakpoints);
+}
+
+namespace {
+
+// A series' value at t into `out` (zero for an empty series).
+PeriodicSystem::MatrixFunction SeriesFunction(const FourierMatrix& f, double omega) {
+  if (f.rows() == 0 || f.cols() == 0) return {};
+  return [f, omega](double t, Eigen::Ref<MatrixXd> out) { f.Evaluate(t, omega, out); };
+}
+
+}  // namespace
+
+PeriodicSystem FromSecondOrderSeries(double period, const FourierMatrix& M, const FourierMatrix& D,
+                                     const FourierMatrix& K, const FourierMatrix& F,
+                                     const FourierMatrix& Cd, const FourierMatrix& Cv,
+                                     const SecondOrderOptions& options) {
+  const int q = M.rows();
+  auto check = [&](const FourierMatrix& f, const char* name, int rows, int cols, bool optional) {
+    if (optional && f.rows() == 0 && f.cols() == 0) return;
+    if (f.rows() != rows || f.cols() != cols)
+      throw InputError(std::string("second-order ") + name + " is " + std::to_string(f.rows()) +
+                       "×" + std::to_string(f.cols()) + ", expected " + std::to_string(rows) +
+                       "×" + std::to_string(cols));
+  };
+  if (q == 0 || M.cols() != q) throw InputError("second-order M must be square and not empty");
+  const int m = F.cols();
+  const int p = std::max(Cd.rows(), Cv.rows());
+  check(D, "D", q, q, true);
+  check(K, "K", q, q, false);
+  check(F, "F", q, m, true);
+  check(Cd, "Cd", p, q, true);
+  check(Cv, "Cv", p, q, true);
+  if (!std::isfinite(period) || period <= 0) throw InputError("period must be finite and > 0");
+  const double omega = 2 * std::acos(-1.0) / period;
+  if (M.max_harmonic() > 0) {  // periodic mass: M(t)⁻¹ at every evaluation
+    SecondOrderSystem s;
+    s.period = period;
+    s.dofs = q;
+    s.inputs = m;
+    s.outputs = p;
+    s.M = SeriesFunction(M, omega);
+    s.D = SeriesFunction(D, omega);
+    s.K = SeriesFunction(K, omega);
+    s.F = SeriesFunction(F, omega);
+    s.Cd = SeriesFunction(Cd, omega);
+    s.Cv = SeriesFunction(Cv, omega);
+    return FromSecondOrder(s, options);
+  }
+  SecondOrderSystem constant;  // for the one mass check
+  constant.period = period;
+  constant.dofs = q;
+  constant.M = SeriesFunction(M, omega);
+  CheckMass(constant, 0, options.min_rcond);
+  const Eigen::PartialPivLU<MatrixXd> lu(M[0].real());
+  auto solve = [&](const Eigen::MatrixXcd& x) -> Eigen::MatrixXcd {
+    Eigen::MatrixXcd out(x.rows(), x.cols());
+    out.real() = lu.solve(MatrixXd(x.real()));
+    out.imag() = lu.solve(MatrixXd(x.imag()));
+    return out;
+  };
+  const int H = std::max({D.max_harmonic(), K.max_harmonic(), F.max_harmonic(),
+                          Cd.max_harmonic(), Cv.max_harmonic()});
+  FourierMatrix a(2 * q, 2 * q, H), b(2 * q, m, H), c(p, 2 * q, H);
+  for (int w = -H; w <= H; ++w) {
+    Eigen::MatrixXcd aw = Eigen::MatrixXcd::Zero(2 * q, 2 * q);
+    if (w == 0) aw.topRightCorner(q, q).setIdentity();
+    if (w >= -K.max_harmonic() && w <= K.max_harmonic()) aw.bottomLeftCorner(q, q) = -solve(K[w]);
+    if (D.rows() > 0 && w >= -D.max_harmonic() && w <= D.max_harmonic())
+      aw.bottomRightCorner(q, q) = -solve(D[w]);
+    a[w] = aw;
+    Eigen::MatrixXcd bw = Eigen::MatrixXcd::Zero(2 * q, m);
+    if (m > 0 && w >= -F.max_harmonic() && w <= F.max_harmonic()) bw.bottomRows(q) = solve(F[w]);
+    b[w] = bw;
+    Eigen::MatrixXcd cw = Eigen::MatrixXcd::Zero(p, 2 * q);
+    if (Cd.rows() > 0 && w >= -Cd.max_harmonic() && w <= Cd.max_harmonic()) cw.leftCols(q) = Cd[w];
+    if (Cv.rows() > 0 && w >= -Cv.max_harmonic() && w <= Cv.max_harmonic())
+      cw.rightCols(q) = Cv[w];
+    c[w] = cw;
+  }
+  return PeriodicSystem::FromFourier(period, std::move(a), m > 0 ? std::move(b) : FourierMatrix(),
+                                     p > 0 ? std::move(c) : FourierMatrix());
 }
 
 }  // namespace ltp

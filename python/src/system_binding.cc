@@ -6,6 +6,7 @@
 #include "ltp/core/bounded_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
+#include "ltp/core/second_order.h"
 #include "ltp/models/scene_input.h"
 
 namespace ltp::python {
@@ -284,6 +285,37 @@ Example (damped Mathieu, x'' + c x' + (a + 2 q cos 2t) x = 0, period pi):
 
 Raises ltp.InputError (a ValueError) on inconsistent sizes, a period <= 0, non-finite or
 non-real series.)doc")
+      .def_static(
+          "from_second_order",
+          [](double period, const py::object& mass, const py::object& stiffness,
+             const py::object& damping, const py::object& f, const py::object& cd,
+             const py::object& cv) {
+            return System{FromSecondOrderSeries(period, FourierFrom(mass, "M"),
+                                                FourierFrom(damping, "D"),
+                                                FourierFrom(stiffness, "K"), FourierFrom(f, "F"),
+                                                FourierFrom(cd, "Cd"), FourierFrom(cv, "Cv")),
+                          std::nullopt,
+                          {},
+                          {},
+                          nullptr};
+          },
+          py::arg("period"), py::arg("M"), py::arg("K"), py::arg("D") = py::none(),
+          py::arg("F") = py::none(), py::arg("Cd") = py::none(), py::arg("Cv") = py::none(),
+          R"doc(
+A system from second-order matrices, as a finite-element model gives them:
+    M(t) q'' + D(t) q' + K(t) q = F(t) u,   y = Cd(t) q + Cv(t) q',
+with the state x = [q; q']. Each matrix is a real 2-D array (constant) or a complex array
+(2H+1, rows, cols) of Fourier coefficients M_w for w = -H..H, as in from_fourier. D holds the
+damping and gyroscopic terms (Ω·G for a rotor); D, F, Cd, Cv may be None.
+
+A constant M (the usual case: rotating asymmetry, periodic bearings or stiffness) gives an
+exact Fourier-form system, A_w = [[0, δ_w I], [-M⁻¹K_w, -M⁻¹D_w]], the fastest form for every
+analysis; a periodic M gives a function-form system (M(t)⁻¹ is evaluated at every step).
+States in physical units far apart (metres and radians, 1e13 N/m bearings) need no scaling by
+hand: the Floquet analysis balances them.
+
+Raises ltp.InputError (a ValueError) on inconsistent sizes or non-finite entries, and on a
+singular or ill-conditioned mass matrix (the time is named).)doc")
       .def_static("from_function", &FromFunction, py::arg("period"), py::arg("A"),
                   py::arg("B") = py::none(), py::arg("C") = py::none(), py::arg("D") = py::none(),
                   py::arg("breakpoints") = std::vector<double>{}, R"doc(

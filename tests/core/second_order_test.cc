@@ -157,3 +157,72 @@ TEST(SecondOrder, MissingPiecesAreInputErrors) {
 
 }  // namespace
 }  // namespace ltp
+
+namespace ltp {
+namespace {
+
+// The 2-DOF example above as Fourier coefficients: K(t) = K_0 + (K_c/2)(e^{jt} + e^{−jt}).
+FourierMatrix Harmonic1(const MatrixXd& k0, const MatrixXd& kc) {
+  FourierMatrix f(static_cast<int>(k0.rows()), static_cast<int>(k0.cols()), 1);
+  f.SetHarmonic(0, k0.cast<std::complex<double>>());
+  f.SetHarmonic(1, (0.5 * kc).cast<std::complex<double>>());
+  return f;
+}
+
+TEST(SecondOrderSeries, ConstantMassIsAnExactFourierSystemMatchingTheHandComputation) {
+  const MatrixXd m = (MatrixXd(2, 2) << 2, 1, 1, 3).finished();
+  const FourierMatrix K = Harmonic1((MatrixXd(2, 2) << 4, -1, -1, 2).finished(),
+                                    (MatrixXd(2, 2) << 1, 0, 0, 0).finished());
+  const PeriodicSystem sys = FromSecondOrderSeries(
+      2 * pi, FourierMatrix::Constant(m),
+      FourierMatrix::Constant((MatrixXd(2, 2) << 0.1, 0, 0, 0.2).finished()), K,
+      FourierMatrix::Constant((MatrixXd(2, 1) << 1, 0).finished()),
+      FourierMatrix::Constant((MatrixXd(1, 2) << 1, 0).finished()),
+      FourierMatrix::Constant((MatrixXd(1, 2) << 0, 1).finished()));
+  EXPECT_EQ(sys.form(), PeriodicSystem::Form::kFourier);
+  ASSERT_NE(sys.fourier_A(), nullptr);
+  EXPECT_EQ(sys.fourier_A()->max_harmonic(), 1);
+  // The function-form conversion of the same model, whose values are checked by hand above.
+  const PeriodicSystem reference = FromSecondOrder(TwoDof());
+  for (double t : {0.0, pi / 3, pi / 2, 2.5}) {
+    EXPECT_LT((sys.A(t) - reference.A(t)).norm(), 1e-14) << t;
+    EXPECT_LT((sys.B(t) - reference.B(t)).norm(), 1e-15) << t;
+    EXPECT_EQ(sys.C(t), reference.C(t)) << t;
+  }
+}
+
+TEST(SecondOrderSeries, PeriodicMassGivesTheFunctionForm) {
+  // M(t) = [[2 + 0.5 cos t, 1], [1, 3]]: A(t) = [[0, I], [−M(t)⁻¹K, −M(t)⁻¹D]] at each t.
+  const MatrixXd k = (MatrixXd(2, 2) << 4, -1, -1, 2).finished();
+  const MatrixXd d = (MatrixXd(2, 2) << 0.1, 0, 0, 0.2).finished();
+  const FourierMatrix M = Harmonic1((MatrixXd(2, 2) << 2, 1, 1, 3).finished(),
+                                    (MatrixXd(2, 2) << 0.5, 0, 0, 0).finished());
+  const PeriodicSystem sys =
+      FromSecondOrderSeries(2 * pi, M, FourierMatrix::Constant(d), FourierMatrix::Constant(k));
+  EXPECT_EQ(sys.form(), PeriodicSystem::Form::kFunction);
+  for (double t : {0.3, 1.7}) {
+    const MatrixXd mt = (MatrixXd(2, 2) << 2 + 0.5 * std::cos(t), 1, 1, 3).finished();
+    MatrixXd a = MatrixXd::Zero(4, 4);
+    a.topRightCorner(2, 2).setIdentity();
+    a.bottomLeftCorner(2, 2) = -mt.inverse() * k;
+    a.bottomRightCorner(2, 2) = -mt.inverse() * d;
+    EXPECT_LT((sys.A(t) - a).norm(), 1e-14) << t;
+  }
+}
+
+TEST(SecondOrderSeries, BadInputIsRefusedWithTheReason) {
+  const FourierMatrix k = FourierMatrix::Constant(MatrixXd::Identity(2, 2));
+  EXPECT_THROW(FromSecondOrderSeries(1.0, FourierMatrix::Constant(MatrixXd::Zero(2, 2)), {}, k),
+               SingularMassError);
+  EXPECT_NE(ThrownMessage<InputError>([&] {
+              FromSecondOrderSeries(1.0, FourierMatrix::Constant(MatrixXd::Identity(2, 2)), {},
+                                    FourierMatrix::Constant(MatrixXd::Identity(3, 3)));
+            }).find("expected 2×2"),
+            std::string::npos);
+  EXPECT_THROW(FromSecondOrderSeries(0.0, FourierMatrix::Constant(MatrixXd::Identity(2, 2)), {}, k),
+               InputError);
+  EXPECT_THROW(FromSecondOrderSeries(1.0, {}, {}, k), InputError);
+}
+
+}  // namespace
+}  // namespace ltp

@@ -35,4 +35,17 @@ struct SecondOrderOptions {
 PeriodicSystem FromSecondOrder(const SecondOrderSystem& system,
                                const SecondOrderOptions& options = {});
 
+/// The same from Fourier coefficients, as finite-element models come (constant M, D, K plus the
+/// harmonics of a rotating asymmetry or a periodic bearing; D includes gyroscopic terms Ω·G).
+/// Constant M: the first-order system is a Fourier series with the harmonics of D, K, F,
+/// exact — the form every analysis uses fastest — with A_w = [[δ_w I... ]] built as
+/// A_0 = [[0, I], [−M⁻¹K_0, −M⁻¹D_0]], A_w = [[0, 0], [−M⁻¹K_w, −M⁻¹D_w]], B_w = [[0], [M⁻¹F_w]],
+/// C_w = [Cd_w, Cv_w]. Periodic M: M(t)⁻¹ is no finite series, so the function form of
+/// FromSecondOrder. Empty D, F, Cd, Cv: no damping, no inputs, zero output parts (at least one
+/// of Cd, Cv gives the outputs). @throws SingularMassError, InputError (sizes, non-finite).
+PeriodicSystem FromSecondOrderSeries(double period, const FourierMatrix& M, const FourierMatrix& D,
+                                     const FourierMatrix& K, const FourierMatrix& F = {},
+                                     const FourierMatrix& Cd = {}, const FourierMatrix& Cv = {},
+                                     const SecondOrderOptions& options = {});
+
 }  // namespace ltp
