@@ -143,8 +143,8 @@ PeriodicSystem FromSecondOrderSeries(double period, const FourierMatrix& M, cons
     if (optional && f.rows() == 0 && f.cols() == 0) return;
     if (f.rows() != rows || f.cols() != cols)
       throw InputError(std::string("second-order ") + name + " is " + std::to_string(f.rows()) +
-                       "×" + std::to_string(f.cols()) + ", expected " + std::to_string(rows) +
-                       "×" + std::to_string(cols));
+                       "×" + std::to_string(f.cols()) + ", expected " + std::to_string(rows) + "×" +
+                       std::to_string(cols));
   };
   if (q == 0 || M.cols() != q) throw InputError("second-order M must be square and not empty");
   const int m = F.cols();
@@ -182,8 +182,8 @@ PeriodicSystem FromSecondOrderSeries(double period, const FourierMatrix& M, cons
     out.imag() = lu.solve(MatrixXd(x.imag()));
     return out;
   };
-  const int H = std::max({D.max_harmonic(), K.max_harmonic(), F.max_harmonic(),
-                          Cd.max_harmonic(), Cv.max_harmonic()});
+  const int H = std::max(
+      {D.max_harmonic(), K.max_harmonic(), F.max_harmonic(), Cd.max_harmonic(), Cv.max_harmonic()});
   FourierMatrix a(2 * q, 2 * q, H), b(2 * q, m, H), c(p, 2 * q, H);
   for (int w = -H; w <= H; ++w) {
     Eigen::MatrixXcd aw = Eigen::MatrixXcd::Zero(2 * q, 2 * q);
@@ -197,8 +197,7 @@ PeriodicSystem FromSecondOrderSeries(double period, const FourierMatrix& M, cons
     b[w] = bw;
     Eigen::MatrixXcd cw = Eigen::MatrixXcd::Zero(p, 2 * q);
     if (Cd.rows() > 0 && w >= -Cd.max_harmonic() && w <= Cd.max_harmonic()) cw.leftCols(q) = Cd[w];
-    if (Cv.rows() > 0 && w >= -Cv.max_harmonic() && w <= Cv.max_harmonic())
-      cw.rightCols(q) = Cv[w];
+    if (Cv.rows() > 0 && w >= -Cv.max_harmonic() && w <= Cv.max_harmonic()) cw.rightCols(q) = Cv[w];
     c[w] = cw;
   }
   return PeriodicSystem::FromFourier(period, std::move(a), m > 0 ? std::move(b) : FourierMatrix(),

@@ -290,14 +290,14 @@ non-real series.)doc")
           [](double period, const py::object& mass, const py::object& stiffness,
              const py::object& damping, const py::object& f, const py::object& cd,
              const py::object& cv) {
-            return System{FromSecondOrderSeries(period, FourierFrom(mass, "M"),
-                                                FourierFrom(damping, "D"),
-                                                FourierFrom(stiffness, "K"), FourierFrom(f, "F"),
-                                                FourierFrom(cd, "Cd"), FourierFrom(cv, "Cv")),
-                          std::nullopt,
-                          {},
-                          {},
-                          nullptr};
+            return System{
+                FromSecondOrderSeries(period, FourierFrom(mass, "M"), FourierFrom(damping, "D"),
+                                      FourierFrom(stiffness, "K"), FourierFrom(f, "F"),
+                                      FourierFrom(cd, "Cd"), FourierFrom(cv, "Cv")),
+                std::nullopt,
+                {},
+                {},
+                nullptr};
           },
           py::arg("period"), py::arg("M"), py::arg("K"), py::arg("D") = py::none(),
           py::arg("F") = py::none(), py::arg("Cd") = py::none(), py::arg("Cv") = py::none(),

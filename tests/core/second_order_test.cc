@@ -173,12 +173,12 @@ TEST(SecondOrderSeries, ConstantMassIsAnExactFourierSystemMatchingTheHandComputa
   const MatrixXd m = (MatrixXd(2, 2) << 2, 1, 1, 3).finished();
   const FourierMatrix K = Harmonic1((MatrixXd(2, 2) << 4, -1, -1, 2).finished(),
                                     (MatrixXd(2, 2) << 1, 0, 0, 0).finished());
-  const PeriodicSystem sys = FromSecondOrderSeries(
-      2 * pi, FourierMatrix::Constant(m),
-      FourierMatrix::Constant((MatrixXd(2, 2) << 0.1, 0, 0, 0.2).finished()), K,
-      FourierMatrix::Constant((MatrixXd(2, 1) << 1, 0).finished()),
-      FourierMatrix::Constant((MatrixXd(1, 2) << 1, 0).finished()),
-      FourierMatrix::Constant((MatrixXd(1, 2) << 0, 1).finished()));
+  const PeriodicSystem sys =
+      FromSecondOrderSeries(2 * pi, FourierMatrix::Constant(m),
+                            FourierMatrix::Constant((MatrixXd(2, 2) << 0.1, 0, 0, 0.2).finished()),
+                            K, FourierMatrix::Constant((MatrixXd(2, 1) << 1, 0).finished()),
+                            FourierMatrix::Constant((MatrixXd(1, 2) << 1, 0).finished()),
+                            FourierMatrix::Constant((MatrixXd(1, 2) << 0, 1).finished()));
   EXPECT_EQ(sys.form(), PeriodicSystem::Form::kFourier);
   ASSERT_NE(sys.fourier_A(), nullptr);
   EXPECT_EQ(sys.fourier_A()->max_harmonic(), 1);
