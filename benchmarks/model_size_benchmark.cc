@@ -1,0 +1,118 @@
+// Real model sizes (docs/model-sizes.md): how the cost of a Floquet analysis grows with the number
+// of states and with the fastest mode, and where it stands against the peer a user would write.
+//
+//   build/benchmarks/model_size_benchmark                      # every row
+//   build/benchmarks/model_size_benchmark --benchmark_filter=SampledRotor/124
+//
+// SampledRotor/STATES/RATIO  `ltp floquet` on an OpenFAST set as the command runs it (scene, the
+//     analysis, the model-error term of docs/sampled-models.md): a rotor written at 3 azimuths
+//     (tests/support/isotropic_rotor_lin.h, with a gravity-like 1P blade term), STATES states,
+//     its fastest mode RATIO × 1P (600: a BeamDyn blade mode near 100 Hz at 10 rpm). Counter
+//     `evaluations`: of A(t)·Φ, the work the time follows.
+// FeRotorVersusScipy/ELEMENTS  the finite-element rotor of tests/python/fe_rotor.py in SI units
+//     (8·(ELEMENTS+1) states) through the Python module, against SciPy's DOP853 on the n × n
+//     matrix ODE (benchmarks/peers/fe_rotor_peer.py), each in its own process; counters give
+//     both CPU times and their ratio (> 1: ltp cheaper), and the two max Re λ.
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/model_error.h"
+#include "ltp/floquet/threads.h"
+#include "ltp/models/scene_input.h"
+#include "support/isotropic_rotor_lin.h"
+
+namespace {
+
+const bool kSingleThreadedBlas = ltp::UseSingleThreadedBlas();  // as the ltp command runs
+
+void SampledRotor(benchmark::State& state) {
+  const int states = static_cast<int>(state.range(0)), ratio = static_cast<int>(state.range(1));
+  // 2 (3 blade_dofs + 2) states; modes drawn in [0.5, 4] rad/s, so Ω = 4 / ratio; the 1P term
+  // 0.01 (1/s²) is about 1 % of the blade stiffness, as gravity is for a 60 m blade.
+  const int blade_dofs = (states / 2 - 2) / 3;
+  const double omega = 4.0 / ratio;
+  const auto model =
+      ltp::test::MakeIsotropicRotorLin(blade_dofs, 2, ltp::test::EvenAzimuths(3), omega, 1, 0.01);
+  const std::string dir = ltp::test::WriteLinDirectory(
+      model.files, (std::filesystem::temp_directory_path() /
+                    ("ltp-rotor-" + std::to_string(states) + "-" + std::to_string(ratio)))
+                       .string());
+  long evaluations = 0;
+  double max_real = 0, estimate = 0;
+  for (auto _ : state) {
+    const ltp::LoadedScene l = ltp::LoadSceneInput({dir}, {});
+    ltp::FloquetResult r = ltp::AnalyzeFloquet(l.system);
+    ltp::IncludeModelError(l.model_alternatives, ltp::FloquetOptions{}, r);
+    evaluations = r.rhs_evals;
+    max_real = r.max_real_exponent;
+    estimate = r.error_estimate.value_or(-1);
+  }
+  state.counters["states"] = 2 * (3 * blade_dofs + 2);
+  state.counters["evaluations_main"] = static_cast<double>(evaluations);
+  state.counters["max_real"] = max_real;
+  state.counters["estimate"] = estimate;
+}
+BENCHMARK(SampledRotor)
+    ->Args({28, 600})
+    ->Args({64, 600})
+    ->Args({124, 600})
+    ->Args({64, 25})
+    ->Args({64, 100})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+nlohmann::json RunPeer(int elements, const char* which, std::string* error) {
+  const std::string script = std::string(LTP_SOURCE_DIR) + "/benchmarks/peers/fe_rotor_peer.py";
+  const std::string command = "PYTHONPATH=" + std::string(LTP_BINARY_DIR) +
+                              "/python /usr/bin/python3 " + script + " " +
+                              std::to_string(elements) + " " + which + " 2>&1";
+  FILE* p = popen(command.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (p && fgets(buf.data(), buf.size(), p)) out += buf.data();
+  if ((p ? pclose(p) : -1) != 0) {
+    *error = std::string(which) + " peer unavailable: " + out;
+    return {};
+  }
+  return nlohmann::json::parse(out);
+}
+
+void FeRotorVersusScipy(benchmark::State& state) {
+  const int elements = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    std::string error;
+    const nlohmann::json ltp = RunPeer(elements, "ltp", &error);
+    const nlohmann::json scipy =
+        error.empty() ? RunPeer(elements, "scipy", &error) : nlohmann::json{};
+    if (!error.empty()) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    state.SetIterationTime(ltp["wall_s"].get<double>());
+    state.counters["states"] = ltp["states"].get<double>();
+    state.counters["ltp_cpu_s"] = ltp["cpu_s"].get<double>();
+    state.counters["scipy_cpu_s"] = scipy["cpu_s"].get<double>();
+    state.counters["cpu_ratio"] = scipy["cpu_s"].get<double>() / ltp["cpu_s"].get<double>();
+    state.counters["wall_ratio"] = scipy["wall_s"].get<double>() / ltp["wall_s"].get<double>();
+    state.counters["ltp_max_real"] = ltp["max_real"].get<double>();
+    state.counters["scipy_max_real"] = scipy["max_real"].get<double>();
+    state.counters["ltp_estimate"] = ltp["estimate"].get<double>();
+  }
+}
+BENCHMARK(FeRotorVersusScipy)
+    ->Arg(4)
+    ->Arg(9)
+    ->Arg(14)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
