@@ -96,10 +96,12 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
   *multipliers = json::array();
   *extra = json::array();
   for (const FloquetMode& m : modes) {
-    exps.push_back({{"re", JsonNumber(m.exponent.real())},
-                    {"im", JsonNumber(m.exponent.imag())},
-                    {"frequency_hz", JsonNumber(m.frequency_hz)},
-                    {"damping_ratio", JsonNumber(m.damping_ratio)}});
+    exps.push_back(
+        {{"re", JsonNumber(m.exponent.real())},
+         {"im", JsonNumber(m.exponent.imag())},
+         {"frequency_hz", JsonNumber(m.frequency_hz)},
+         {"damping_ratio", JsonNumber(m.damping_ratio)},
+         {"error_estimate", m.error_estimate ? JsonNumber(*m.error_estimate) : json(nullptr)}});
     const double mag = ExpClamped(m.log_multiplier.real());
     multipliers->push_back({{"re", JsonNumber(mag * std::cos(m.log_multiplier.imag()))},
                             {"im", JsonNumber(mag * std::sin(m.log_multiplier.imag()))},

@@ -15,6 +15,7 @@
 #include "ltp/core/mode_description.h"
 #include "ltp/core/text.h"
 #include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"
 #include "segment_grid.h"
@@ -327,20 +328,19 @@ LogEigenvalues MultiplierLogs(const internal::SegmentGrid& grid, MultiplierMetho
 
 // The error single-shot multipliers add: the formed product carries a backward error of about
 // n·eps·max|ρ|, which moves log ρ_k by κ_k n eps max|ρ|/|ρ_k|; beyond 1/2 the exponent is
-// undetermined (+inf).
-double SingleShotError(const std::vector<cd>& log_rho, const std::vector<double>& kappa,
-                       double period) {
+// undetermined (+inf). One value per exponent.
+std::vector<double> SingleShotErrors(const std::vector<cd>& log_rho,
+                                     const std::vector<double>& kappa, double period) {
   const int n = static_cast<int>(log_rho.size());
   double top = -std::numeric_limits<double>::infinity();
   for (const cd& l : log_rho) top = std::max(top, l.real());
-  double worst = 0;
+  std::vector<double> errors(n);
   for (int k = 0; k < n; ++k) {
     const double relative = 16 * n * std::numeric_limits<double>::epsilon() * kappa[k] *
                             std::exp(std::min(top - log_rho[k].real(), 700.0));
-    worst = std::max(worst,
-                     relative < 0.5 ? relative / period : std::numeric_limits<double>::infinity());
+    errors[k] = relative < 0.5 ? relative / period : std::numeric_limits<double>::infinity();
   }
-  return worst;
+  return errors;
 }
 
 // Step 3, the error estimate: a second run on a different grid at a 100× tighter tolerance
@@ -351,10 +351,13 @@ double SingleShotError(const std::vector<cd>& log_rho, const std::vector<double>
 // 2K, each integrated differently (200-state OpenFAST set: 13.3 → 10.3 s, estimates as large,
 // errors 0.006–0.12 of them). The reported numbers come from this better run (grid and eig are
 // replaced), so the difference bounds their error with a wide margin.
-// Returns the integration error of the exponents (∞ when the reference run failed).
-double RefineForErrorEstimate(const PeriodicSystem& system, const FloquetOptions& options,
-                              internal::SegmentGridOptions fine, internal::SegmentGrid& grid,
-                              LogEigenvalues& eig, FloquetResult& r) {
+// Returns each exponent's integration error, in the order of the new `eig` (∞ when the
+// reference run failed).
+std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
+                                           const FloquetOptions& options,
+                                           internal::SegmentGridOptions fine,
+                                           internal::SegmentGrid& grid, LogEigenvalues& eig,
+                                           FloquetResult& r) {
   fine.refine = false;
   fine.integrator.carry_local_errors = false;  // a fallback from kLocalErrors: nothing to carry
   fine.fixed_times.clear();
@@ -376,21 +379,21 @@ double RefineForErrorEstimate(const PeriodicSystem& system, const FloquetOptions
     r.diagnostics.push_back(
         "error estimate: the refined reference run failed; results are "
         "from the first run and their error is unknown");
-    return std::numeric_limits<double>::infinity();
+    return std::vector<double>(eig.log_values.size(), std::numeric_limits<double>::infinity());
   }
-  const double error =
-      MaxExponentMismatch(eig.log_values, ref_eig.log_values, 2 * kPi) / system.period();
+  std::vector<double> errors = MatchExponents(ref_eig.log_values, eig.log_values, 2 * kPi);
+  for (double& e : errors) e /= system.period();
   grid = std::move(reference);
   eig = std::move(ref_eig);
-  return error;
+  return errors;
 }
 
 // Step 3 when the integrator carried its local errors (Bulirsch–Stoer): the exponents of the
 // factors moved by them, Φ_i + δΦ_i — the period integrated with every step one extrapolation
 // order lower, to first order — against the factors' own (docs/local-error-estimate.md).
-// Returns the difference (∞ when the moved factors' eigenvalues failed).
-double LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalues& eig,
-                          MultiplierMethod method, double period, FloquetResult& r) {
+// Returns each exponent's difference (∞ when the moved factors' eigenvalues failed).
+std::vector<double> LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalues& eig,
+                                       MultiplierMethod method, double period, FloquetResult& r) {
   internal::SegmentGrid moved;
   moved.factors = grid.factors;
   for (size_t i = 0; i < moved.factors.size(); ++i) moved.factors[i] += grid.local_error_effects[i];
@@ -399,9 +402,11 @@ double LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalue
     r.diagnostics.push_back(
         "error estimate: the eigenvalues of the factors moved by their local errors failed; "
         "the error is unknown");
-    return std::numeric_limits<double>::infinity();
+    return std::vector<double>(eig.log_values.size(), std::numeric_limits<double>::infinity());
   }
-  return MaxExponentMismatch(eig.log_values, moved_eig.log_values, 2 * kPi) / period;
+  std::vector<double> errors = MatchExponents(eig.log_values, moved_eig.log_values, 2 * kPi);
+  for (double& e : errors) e /= period;
+  return errors;
 }
 
 // Step 5: modes ordered by |frequency|, positive first, then by Re λ; samples and Fourier
@@ -475,11 +480,35 @@ void FlagRigidBodyModes(const PeriodicSystem& system, FloquetResult& r) {
   }
 }
 
-// Step 6b: max Re λ, the error estimate (integration error plus the round-off floor), the
-// Liouville check and the verdict.
+// Round-off floor of each exponent (1/s): every factor carries a backward error of a few eps,
+// K + n of them accumulate; an eigenvalue moves by κ_k times that, or by its square root when
+// the eigenvalue is defective (κ = ∞), and every exponent by backward · max|log ρ| / T. Every
+// step of a fixed-step method is a product of its own that no error control sees: S of them,
+// each off by up to n eps, add up like a random walk, n √S (Magnus 4 at 4096 steps per period
+// on tower-rotor: the difference to the refined run, 1.1e-7, had fallen below the true error,
+// 1.55e-7; the worst case, S n eps, over-estimates the study's errors 10–10⁴×).
+std::vector<double> RoundOffFloors(const std::vector<cd>& log_rho, const std::vector<double>& kappa,
+                                   int segments, long fixed_steps, double period) {
+  const int n = static_cast<int>(log_rho.size());
+  const double steps_term = n * std::sqrt(static_cast<double>(fixed_steps));
+  const double backward = 16 * std::numeric_limits<double>::epsilon() * (segments + n + steps_term);
+  double max_abs_log = 0;
+  for (const cd& l : log_rho)
+    if (std::isfinite(l.real())) max_abs_log = std::max(max_abs_log, std::abs(l));
+  std::vector<double> floors(n);
+  for (int k = 0; k < n; ++k)
+    floors[k] =
+        std::max(std::min(kappa[k] * backward, 2 * std::sqrt(backward)), backward * max_abs_log) /
+        period;
+  return floors;
+}
+
+// Step 6b: max Re λ, the error estimate (the largest integration error plus the largest
+// round-off floor: a bound on every exponent), the Liouville check and the verdict, which asks
+// it of each exponent with its own estimate (FloquetMode::error_estimate).
 void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_rho,
-                       const std::vector<double>& kappa, double integration_error, long fixed_steps,
-                       const FloquetOptions& options, FloquetResult& r) {
+                       double integration_error, double floor, const FloquetOptions& options,
+                       FloquetResult& r) {
   const int n = r.states;
   const double T = r.period;
   r.max_real_exponent = -std::numeric_limits<double>::infinity();
@@ -487,29 +516,11 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
     if (!mode.rigid_body) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
   if (!std::isfinite(r.max_real_exponent)) r.max_real_exponent = 0;  // n = 0, or all rigid
   r.max_log_abs_multiplier = r.max_real_exponent * T;
-  double max_abs_log = 0;
   double sum_log_abs = 0;
-  for (const cd& l : log_rho) {
-    if (std::isfinite(l.real())) max_abs_log = std::max(max_abs_log, std::abs(l));
-    sum_log_abs += l.real();
-  }
+  for (const cd& l : log_rho) sum_log_abs += l.real();
   const double trace_integral = IntegralOfTrace(system);
   r.liouville_residual =
       std::abs(sum_log_abs - trace_integral) / std::max(1.0, std::abs(trace_integral));
-  // Round-off floor: every factor carries a backward error of a few eps, K + n of them
-  // accumulate; an eigenvalue moves by κ_k times that, or by its square root when the
-  // eigenvalue is defective (κ = ∞). Every step of a fixed-step method is a product of its
-  // own that no error control sees: S of them, each off by up to n eps, add up like a random
-  // walk, n √S (Magnus 4 at 4096 steps per period on tower-rotor: the difference to the
-  // refined run, 1.1e-7, had fallen below the true error, 1.55e-7; the worst case, S n eps,
-  // over-estimates the study's errors 10–10⁴×).
-  const double steps_term = n * std::sqrt(static_cast<double>(fixed_steps));
-  const double backward =
-      16 * std::numeric_limits<double>::epsilon() * (r.segments + n + steps_term);
-  double floor = 0;
-  for (int k = 0; k < n; ++k)
-    floor = std::max(floor, std::min(kappa[k] * backward, 2 * std::sqrt(backward)) / T);
-  floor = std::max(floor, backward * max_abs_log / T);
   if (options.estimate_error) r.error_estimate = integration_error + floor;
   // Liouville: Σ log|ρ_k| = ∫ tr A exactly, and every exponent is within the estimate, so the
   // sum is within n·T·estimate of it. Beyond that some exponents are wrong — e.g. forced
@@ -533,12 +544,34 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
          "tolerance for this system; the automatic settings avoid this)";
     r.diagnostics.push_back(s.str());
   }
-  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
+  std::optional<double> band = r.error_estimate;
+  if (r.error_estimate) {
+    std::vector<double> real_parts, own;
+    std::vector<bool> rigid;
+    for (const FloquetMode& m : r.modes) {
+      real_parts.push_back(m.exponent.real());
+      own.push_back(m.error_estimate.value_or(*r.error_estimate));
+      rigid.push_back(m.rigid_body);
+    }
+    band = PerExponentBand(real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate);
+  }
+  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate)
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error "
         "estimate (a conservative system, or one on a stability boundary)");
+  const bool decided_by_own_estimates =
+      r.error_estimate && r.verdict != StabilityVerdict::kMarginal &&
+      r.verdict != StabilityVerdict::kFailed &&
+      ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate) == StabilityVerdict::kMarginal;
+  if (decided_by_own_estimates) {
+    std::ostringstream s;
+    s << "verdict: max Re λ is within ±" << *band
+      << " 1/s — each exponent with its own estimate; the largest, " << *r.error_estimate
+      << " 1/s, belongs to exponents far from the stability boundary";
+    r.diagnostics.push_back(s.str());
+  }
 }
 
 }  // namespace
@@ -611,7 +644,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   }
   r.grid_segments = static_cast<int>(grid.factors.size());
   // 3. Error estimate (after a refined run the numbers come from it).
-  double integration_error = 0;
+  std::vector<double> integration(n, 0.0);  // per exponent, in eig's order
   r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
                                                              : ErrorEstimateMethod::kLocalErrors;
   if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
@@ -622,9 +655,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
                   std::string(ToString(options.integrator.type)) + " gets the refined run instead");
   if (options.estimate_error && n > 0) {
-    integration_error = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-                            ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
-                            : RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
+    integration = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
+                      ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
+                      : RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
   }
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;
@@ -656,13 +689,26 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
     for (Eigen::MatrixXcd& m : r.mode_samples) m = scale.asDiagonal() * m;
     for (Eigen::MatrixXcd& m : r.mode_fourier) m = scale.asDiagonal() * m;
   }
+  // A fallback to single shot (the user did not ask for it) carries its lost accuracy.
+  if (single_shot && !fallback.empty()) {
+    const std::vector<double> lost = SingleShotErrors(eig.log_values, kappa, T);
+    for (int k = 0; k < n; ++k) integration[k] += lost[k];
+  }
+  const std::vector<double> floors =
+      RoundOffFloors(eig.log_values, kappa, r.segments, grid.fixed_steps, T);
+  // Own estimates only from periodic Schur: single-shot multipliers below eps·max|ρ| are lost
+  // to the formed product in both runs alike, so their difference says nothing of them (a
+  // −2000 1/s exponent off by 213 with a difference of 146); the verdict then uses the
+  // common estimate.
+  if (options.estimate_error && options.multipliers == MultiplierMethod::kPeriodicSchur)
+    for (int k = 0; k < n; ++k) modes[k].error_estimate = integration[k] + floors[k];
   // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
   StoreOrderedModes(system, modes, options.compute_modes, r);
   FlagRigidBodyModes(system, r);
-  // A fallback to single shot (the user did not ask for it) carries its lost accuracy.
-  if (single_shot && !fallback.empty())
-    integration_error += SingleShotError(eig.log_values, kappa, T);
-  SummariseAndCheck(system, eig.log_values, kappa, integration_error, grid.fixed_steps, options, r);
+  const double largest_integration =
+      n > 0 ? *std::max_element(integration.begin(), integration.end()) : 0.0;
+  const double largest_floor = n > 0 ? *std::max_element(floors.begin(), floors.end()) : 0.0;
+  SummariseAndCheck(system, eig.log_values, largest_integration, largest_floor, options, r);
   r.elapsed_s = SecondsSince(start);
   return r;
 }

@@ -52,11 +52,15 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
   }
   const double integration = r.error_estimate.value_or(0);
   const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
-  std::vector<double> real_parts;
+  // Each exponent's band: its own integration estimate (when the analysis gave one) and its own
+  // sampling error.
+  std::vector<double> real_parts, own;
   std::vector<bool> rigid;
   for (size_t k = 0; k < a.size(); ++k) {
     real_parts.push_back(a[k].real());
+    own.push_back(e[k] + r.modes[k].error_estimate.value_or(integration));
     rigid.push_back(r.modes[k].rigid_body);
+    r.modes[k].error_estimate = own.back();
   }
   r.model_error = term;
   r.error_estimate = integration + term;
@@ -73,7 +77,7 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
   r.diagnostics.push_back(s.str());
   // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
   const double band =
-      PerExponentBand(real_parts, e, rigid, integration, r.max_real_exponent, *r.error_estimate);
+      PerExponentBand(real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate);
   if (band < *r.error_estimate) {
     std::ostringstream v;
     v << "verdict: max Re λ is within ±" << band

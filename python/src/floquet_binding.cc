@@ -73,6 +73,16 @@ formula beyond the error estimate): the diagnostics say why.)doc");
                     "estimated absolute error of every exponent (1/s), by error_estimate_method; "
                     "None when not computed")
       .def_property_readonly(
+          "exponent_error_estimates",
+          [](const FloquetResult& f) {
+            std::vector<double> e;
+            for (const FloquetMode& m : f.modes)
+              e.push_back(m.error_estimate.value_or(std::numeric_limits<double>::quiet_NaN()));
+            return RealArray(e);
+          },
+          "each exponent's own estimate (1/s), in the order of `exponents` (NaN when not "
+          "computed); the verdict asks each exponent for its own, error_estimate is the largest")
+      .def_property_readonly(
           "error_estimate_method",
           [](const FloquetResult& f) { return std::string(ToString(f.error_estimate_method)); },
           "'refined-run' (the difference to a second, tighter run that gives the numbers) or "

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "ltp/core/fourier_fit.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
@@ -355,6 +356,22 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
       const FloquetResult r = AnalyzeFloquet(s, o);
       const double err = r.ok ? ExponentError(Exponents(r.modes), ref_for_mono, omega) : kInf;
       Cell c = Judge(r.ok, err, r.error_estimate, scale, r.diagnostics);
+      // Each exponent's own estimate (FloquetMode::error_estimate) must cover its own error.
+      if (r.ok && c.verdict != Verdict::kFailsSilently &&
+          Exponents(r.modes).size() == ref_for_mono.size()) {
+        const std::vector<double> own_errors =
+            MatchExponents(Exponents(r.modes), ref_for_mono, omega);
+        for (size_t k = 0; k < r.modes.size(); ++k) {
+          const auto& own = r.modes[k].error_estimate;
+          if (own && !(*own >= own_errors[k]) && own_errors[k] > 1e-12 * scale) {
+            std::ostringstream h;
+            h << "exponent " << r.modes[k].exponent << ": error " << own_errors[k]
+              << ", its own estimate " << *own;
+            c.verdict = Verdict::kFailsSilently;
+            c.how = h.str();
+          }
+        }
+      }
       c.elapsed_s = WallNow() - t0;
       row.push_back(c);
     }

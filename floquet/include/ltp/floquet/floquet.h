@@ -95,6 +95,11 @@ struct FloquetMode {
   /// e.g. a negative real multiplier, whose exponent sits on the strip edge).
   double branch_margin = 0;
   double eigvec_residual = 0;  ///< cyclic residual of the periodic eigenvector
+  /// This exponent's own error estimate (1/s): its integration error (the difference to the
+  /// refined run, or of the carried local errors) plus its round-off floor. The verdict asks
+  /// each exponent for its own; FloquetResult::error_estimate is the largest of each part.
+  /// Empty when no estimate was asked for.
+  std::optional<double> error_estimate;
   /// The free rotation of a state in SystemLabels::rigid_body_states: exponent 0 in theory
   /// (its distance from 0 is the model's error), left out of max_real_exponent and stable.
   bool rigid_body = false;
