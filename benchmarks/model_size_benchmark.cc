@@ -8,7 +8,7 @@
 //     analysis, the model-error term of docs/sampled-models.md): a rotor written at 3 azimuths
 //     (tests/support/isotropic_rotor_lin.h, with a gravity-like 1P blade term), STATES states,
 //     its fastest mode RATIO × 1P (600: a BeamDyn blade mode near 100 Hz at 10 rpm). Counter
-//     `evaluations`: of A(t)·Φ, the work the time follows.
+//     `evaluations`: of A(t)·Φ in all the analyses, the work the time follows.
 // FeRotorVersusScipy/ELEMENTS  the finite-element rotor of tests/python/fe_rotor.py in SI units
 //     (8·(ELEMENTS+1) states) through the Python module, against SciPy's DOP853 on the n × n
 //     matrix ODE (benchmarks/peers/fe_rotor_peer.py), each in its own process; counters give
@@ -54,7 +54,7 @@ void SampledRotor(benchmark::State& state) {
     estimate = r.error_estimate.value_or(-1);
   }
   state.counters["states"] = 2 * (3 * blade_dofs + 2);
-  state.counters["evaluations_main"] = static_cast<double>(evaluations);
+  state.counters["evaluations"] = static_cast<double>(evaluations);
   state.counters["max_real"] = max_real;
   state.counters["estimate"] = estimate;
 }

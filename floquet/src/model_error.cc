@@ -40,6 +40,7 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
     if (options.segments == 0 && options.initial_segments == 0 && r.grid_segments > 0)
       o.initial_segments = r.grid_segments;
     const FloquetResult other = AnalyzeFloquet(alternative, o);
+    r.rhs_evals += other.rhs_evals;  // the work reported is the whole analysis's, like its time
     if (other.modes.size() != a.size()) {
       std::fill(e.begin(), e.end(), inf);
       continue;

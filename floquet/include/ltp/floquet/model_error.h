@@ -20,9 +20,9 @@ namespace ltp {
 /// match in any of them (modulo jΩp; +inf when an analysis failed). Sets r.model_error =
 /// max_k e_k, adds it to r.error_estimate (to 0 when no estimate was asked for) and
 /// reclassifies the verdict: every Re λ_k ± (integration estimate + e_k) below or above 0;
-/// each mode's own estimate gets its e_k; adds the time these analyses took to r.elapsed_s (the
-/// whole call's time). Nothing happens for an empty list. @throws InputError when an alternative
-/// has another size or period than `r`.
+/// each mode's own estimate gets its e_k; the time and evaluations these analyses took are added
+/// to r.elapsed_s and r.rhs_evals (what the whole call cost). Nothing happens for an empty list.
+/// @throws InputError when an alternative has another size or period than `r`.
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, FloquetResult& r);
 
