@@ -63,6 +63,10 @@ void CheckFinite(const FourierMatrix& f, const char* name) {
 PeriodicSystem PeriodicSystem::FromFourier(double period, FourierMatrix A, FourierMatrix B,
                                            FourierMatrix C, FourierMatrix D) {
   CheckPeriod(period);
+  // A default (empty) series has no coefficient to read, not even harmonic 0.
+  if (A.rows() == 0 || A.cols() == 0)
+    throw InputError("A is missing or empty (" + std::to_string(A.rows()) + "×" +
+                     std::to_string(A.cols()) + "): a system needs at least one state");
   auto impl = std::make_shared<Impl>();
   impl->form = Form::kFourier;
   impl->period = period;

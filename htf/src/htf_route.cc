@@ -65,18 +65,54 @@ int HtfSolver::delta() const {
   return options_.delta > 0 ? options_.delta : std::max(2, harmonics_ / 4);
 }
 
+namespace {
+
+// The banded Hill matrix at truncation N must fit before a sweep starts: sweeps allocate one per
+// thread inside their parallel loops, where an allocation failure cannot be reported (it
+// aborted the process: htf_harmonics = 10^7). 2 GiB, the Hill route's limit too.
+constexpr double kMaxBandBytes = 2.0 * 1024 * 1024 * 1024;
+
+double BandBytes(int n, int N, int ha) {
+  const double size = (2.0 * N + 1) * n;
+  const double kl = std::min((std::min<double>(ha, N) + 1) * n - 1, size - 1);
+  return (3 * kl + 1) * size * sizeof(cd);
+}
+
+void CheckBandMemory(int n, int N, int ha) {
+  const double bytes = BandBytes(n, N, ha);
+  if (bytes > kMaxBandBytes) {
+    std::ostringstream s;
+    s << "htf: truncation N = " << N << " of a system with " << n
+      << " states needs a band matrix of " << bytes / (1024.0 * 1024 * 1024)
+      << " GiB per frequency solved at once, more than the limit of 2 GiB: lower the truncation "
+         "(htf harmonics)";
+    throw ResourceError(s.str());
+  }
+}
+
+}  // namespace
+
 int HtfSolver::ChooseTruncation(int min_order, int max_order,
                                 const std::vector<double>& probe_omegas) {
   const int Z = std::max(std::abs(min_order), std::abs(max_order));
   if (options_.harmonics > 0) {
     harmonics_ = std::max(options_.harmonics, Z);
+    CheckBandMemory(n_, harmonics_, ha_);
     return harmonics_;
   }
   // A couples neighbours H_A harmonics apart, so X_{±Z} needs about H_A more on each side.
   int N = std::max({2 * Z, Z + std::min(ha_, 8), 8});
   N = std::min(N, std::max(options_.max_harmonics, Z));
-  for (;;) {
+  for (bool first = true;; first = false) {
+    if (!first && BandBytes(n_, N + std::max(2, N / 4), ha_) > kMaxBandBytes) {
+      std::ostringstream s;
+      s << "htf: truncation stopped at N = " << harmonics_
+        << ": the next would not fit in memory (more than 2 GiB of band matrix)";
+      diagnostics_.push_back(s.str());
+      break;
+    }
     harmonics_ = N;
+    CheckBandMemory(n_, N + delta(), ha_);
     const int probes = static_cast<int>(probe_omegas.size());
     std::vector<double> changes(probes, 0.0), scales(probes, 0.0);
 #pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(0))  // independent solves

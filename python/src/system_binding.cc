@@ -41,6 +41,10 @@ FourierMatrix FourierFrom(const py::object& obj, const std::string& name) {
     throw InputError(name +
                      " must be a 2-D array (constant) or a 3-D array of Fourier coefficients "
                      "(2H+1, rows, cols) for harmonics -H..H");
+  for (int d = 0; d < a.ndim(); ++d)
+    if (a.shape(d) == 0)
+      throw InputError(name + " is missing or empty (shape " + Shape(a) +
+                       "): A needs at least one state; give None for no inputs or outputs");
   if (a.ndim() == 2) {
     Eigen::MatrixXcd m(a.shape(0), a.shape(1));
     for (py::ssize_t i = 0; i < a.shape(0); ++i)

@@ -281,3 +281,17 @@ TEST(StateScaling, EveryFormIsTheSimilarityTransform) {
 
 }  // namespace
 }  // namespace ltp
+
+namespace ltp {
+namespace {
+
+TEST(FromFourier, AMissingOrEmptyIsAnInputErrorNotACrash) {
+  // Python's from_fourier(1.0, None) and from_fourier(1.0, np.zeros((0, 0))) reached here and
+  // read a coefficient the empty series does not have (segmentation fault).
+  EXPECT_THROW(PeriodicSystem::FromFourier(1.0, FourierMatrix()), InputError);
+  EXPECT_THROW(PeriodicSystem::FromFourier(1.0, FourierMatrix::Constant(Eigen::MatrixXd(0, 0))),
+               InputError);
+}
+
+}  // namespace
+}  // namespace ltp

@@ -8,6 +8,7 @@
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include "ltp/core/error.h"
 #include "ltp/floquet/hill.h"
@@ -433,6 +434,27 @@ TEST(Snapshot, JeffcottAngle) {
   const double w = 2 * kPi * 0.05;
   const cd ref = 1.0 / cd(1.5 - w * w, 0.1 * w);  // x-direction now has k2 = 1.5, m = 1
   EXPECT_LT(std::abs(r.snapshot[0] - ref), 1e-12 * std::abs(ref));
+}
+
+}  // namespace
+}  // namespace ltp
+
+namespace ltp {
+namespace {
+
+TEST(PartialFrf, AnHtfTruncationBeyondMemoryIsAResourceErrorNotAnAbort) {
+  // N = 10^7 on 2 states: a 4e7-row band matrix per frequency, allocated inside the sweep's
+  // parallel loop, where std::bad_alloc ended the process (Python included). Refused before
+  // the sweep, with the size.
+  PfrfOptions o;
+  o.frequencies_hz = {0.1, 0.2};
+  o.htf.harmonics = 10'000'000;
+  try {
+    ComputePartialFrf(test::MathieuIo(2.0, 0.2, 0.3), o);
+    ADD_FAILURE() << "expected a ResourceError";
+  } catch (const ResourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("GiB"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -94,3 +94,18 @@ def test_defaults_are_the_clis(ltp_cli):
     r = ltp.floquet(MATHIEU)
     assert j["integrator"] == r.integrator and j["tolerance"] == 1e-10 and j["segments"] == r.segments
     assert [e["re"] for e in j["exponents"]] == list(r.exponents.real)
+
+
+def test_missing_or_empty_A_is_an_input_error_not_a_crash():
+    # from_fourier(1.0, None) and an empty 2-D array segfaulted (hostile input, round 2).
+    with pytest.raises(ltp.InputError, match="A is missing or empty"):
+        ltp.System.from_fourier(1.0, None)
+    with pytest.raises(ltp.InputError, match="A is missing or empty"):
+        ltp.System.from_fourier(1.0, np.zeros((0, 0)))
+
+
+def test_an_htf_truncation_beyond_memory_is_a_resource_error():
+    # htf_harmonics = 10**7 threw std::bad_alloc inside an OpenMP region: SIGABRT, the
+    # interpreter gone (hostile input, round 2).
+    with pytest.raises(ltp.ResourceError, match="GiB"):
+        ltp.pfrf(ltp.scene("mathieu", c=0.3), "0.1:0.3:0.1", htf_harmonics=10**7)

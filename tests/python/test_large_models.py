@@ -51,3 +51,4 @@ def test_finite_element_rotor_in_si_units_matches_scipy():
     assert r.error_estimate < 1e-6
     reference = scipy_max_real_exponent(period, system.fourier_A)
     assert abs(r.max_real_exponent - reference) <= r.error_estimate
+
