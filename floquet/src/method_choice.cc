@@ -36,7 +36,11 @@ constexpr double kStructuredMinSize = 50;
 // (docs/model-sizes.md).
 constexpr double kFastOscillation = 200;
 
-// Is A(t) the same at three interior points of every piece between breakpoints?
+// Is A(t) the same at five interior points of every piece between breakpoints? The points sit
+// at fractions k·φ mod 1 of the piece (φ the golden ratio): no two differ by a simple fraction,
+// so an A(t) that repeats every T/4 or T/12 is not mistaken for a constant (it was, sampled at
+// T/4, T/2, 3T/4: Vinograd's system over 2π became a product of exponentials, 40 s and a wrong
+// verdict). A sample that is not finite makes the piece not constant.
 bool ConstantBetweenBreakpoints(const PeriodicSystem& system) {
   if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) return true;
   if (const FourierMatrix* fa = system.fourier_A()) return fa->max_harmonic() == 0;
@@ -45,14 +49,18 @@ bool ConstantBetweenBreakpoints(const PeriodicSystem& system) {
     if (b > 0 && b < system.period()) edges.push_back(b);
   edges.push_back(system.period());
   const int n = system.states();
+  constexpr double kGolden = 0.6180339887498949;
   Eigen::MatrixXd first(n, n), other(n, n);
   for (size_t p = 0; p + 1 < edges.size(); ++p) {
     const double a = edges[p], b = edges[p + 1];
-    system.EvalA(a + 0.25 * (b - a), first);
+    system.EvalA(a + kGolden * (b - a), first);
+    if (!first.allFinite()) return false;
     const double scale = std::max(1.0, first.lpNorm<Eigen::Infinity>());
-    for (double f : {0.5, 0.75}) {
+    for (int k = 2; k <= 5; ++k) {
+      const double f = k * kGolden - std::floor(k * kGolden);
       system.EvalA(a + f * (b - a), other);
-      if ((other - first).lpNorm<Eigen::Infinity>() > 1e-15 * scale) return false;
+      if (!other.allFinite() || !((other - first).lpNorm<Eigen::Infinity>() <= 1e-15 * scale))
+        return false;
     }
   }
   return true;

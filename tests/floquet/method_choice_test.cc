@@ -167,6 +167,38 @@ TEST(MethodChoice, MagnusCrossesTheFastModesOfARotorConstantInMultiBladeCoordina
   EXPECT_EQ(ChooseIntegrator(rotating, 1e-10).type, IntegratorType::kBulirschStoer);
 }
 
+TEST(MethodChoice, APeriodicAWhosePeriodDividesTheSamplesIsNotConstant) {
+  // Vinograd's system (exponents 2 and −13, closed form: A(t) = R(6t)·[[−1, −12], [0, −13]]·
+  // R(6t)ᵀ + its rotation, period π/3) analysed over 2π: A repeats every π/6, so samples at
+  // T/4, T/2, 3T/4 were equal and `auto` took it for constant — expm, 40 s, MARGINAL.
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const double c = std::cos(6 * t), s = std::sin(6 * t), s12 = std::sin(12 * t);
+    out << -1 - 9 * c * c + 6 * s12, 12 * c * c + 4.5 * s12, -12 * s * s + 4.5 * s12,
+        -1 - 9 * s * s - 6 * s12;
+  };
+  const PeriodicSystem vinograd = PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f);
+  EXPECT_FALSE(MeasureSystemTraits(vinograd).constant_pieces);
+  FloquetOptions o;
+  const FloquetResult r = AnalyzeFloquet(vinograd, o);
+  ASSERT_TRUE(r.ok) << r.BriefReport();
+  EXPECT_NE(r.integrator, IntegratorType::kExpm);
+  const double err = MatchedDistance(r.modes, {2.0, -13.0}, vinograd.omega());
+  EXPECT_LE(err, r.error_estimate.value());
+  EXPECT_EQ(r.verdict, StabilityVerdict::kUnstable);
+  // A(t) of period π/2 over 2π, and one that is not finite in the middle of the period.
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, -1 + 0.8 * std::cos(4 * t), -0.02;
+  };
+  EXPECT_FALSE(
+      MeasureSystemTraits(PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f)).constant_pieces);
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, std::abs(t - kPi) < 1.5 ? std::nan("") : -1.0, 0;
+  };
+  EXPECT_FALSE(
+      MeasureSystemTraits(PeriodicSystem::FromFunctions(2 * kPi, 2, 0, 0, f)).constant_pieces);
+}
+
 TEST(MethodChoice, HillAutoSolverOnStiffYamlFindsEveryExponent) {
   // Closed form: the period averages of the triangular diagonal, −800, 150, −3. The dense
   // selection misses +150 (study); the automatic choice goes structured and must not.

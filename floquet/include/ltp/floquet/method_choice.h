@@ -14,8 +14,9 @@ namespace ltp {
 /// What the choice looked at.
 struct SystemTraits {
   int states = 0;
-  /// A(t) is constant between its breakpoints (piecewise-constant form, or sampled at three
-  /// interior points of every piece and found equal): products of matrix exponentials are exact.
+  /// A(t) is constant between its breakpoints (piecewise-constant form, or sampled at five
+  /// interior points of every piece, at no simple fractions of it, and found equal and finite):
+  /// products of matrix exponentials are exact.
   bool constant_pieces = false;
   bool has_jumps = false;  ///< breakpoints inside the period
   /// T · max_t max|Re eig A(t)| over 4 samples: how many e-folds of decay (or growth) an
