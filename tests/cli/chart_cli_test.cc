@@ -1,6 +1,7 @@
 // `ltp chart` end to end: intervals in the JSON summary, the CSV columns, failed points,
 // resume after an interruption, and MPI ranks against threads.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "support/ltp_cli.h"
 
@@ -19,7 +21,10 @@ using nlohmann::json;
 using test::ReadFile;
 using test::RunLtp;
 
-std::string Tmp(const std::string& name) { return std::string(::testing::TempDir()) + name; }
+// Per process: two test runs on one machine (plain and sanitized builds) must not share files.
+std::string Tmp(const std::string& name) {
+  return std::string(::testing::TempDir()) + "ltp-" + std::to_string(getpid()) + "-" + name;
+}
 
 // Asymmetric shaft, undamped: unstable for 1 < Ω < sqrt(1.5) (closed form).
 TEST(ChartCli, JsonListsRefinedIntervalAndCsvHasTrackedColumns) {

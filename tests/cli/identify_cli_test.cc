@@ -1,10 +1,12 @@
 // `ltp simulate` then `ltp identify` end to end: the estimates from the CSV against the
 // model's partial FRFs (--compare, modal route checked by htf), noise bounds, and refused data.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "support/ltp_cli.h"
 
@@ -13,7 +15,10 @@ namespace {
 using nlohmann::json;
 using test::RunLtp;
 
-std::string Tmp(const std::string& name) { return std::string(::testing::TempDir()) + name; }
+// Per process: two test runs on one machine (plain and sanitized builds) must not share files.
+std::string Tmp(const std::string& name) {
+  return std::string(::testing::TempDir()) + "ltp-" + std::to_string(getpid()) + "-" + name;
+}
 const std::string kScene = "mathieu --set a=2 --set c=0.2 --set q=0.3";  // stable, between tongues
 
 TEST(IdentifyCli, SimulatedStepSineIdentifiesTheModel) {
