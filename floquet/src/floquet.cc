@@ -579,9 +579,9 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
 FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& requested) {
   requested.Validate();
   const auto start = std::chrono::steady_clock::now();
-  // States in units far apart (a finite-element rotor's metres and radians, 1e13 N/m
-  // bearings) are rescaled by powers of two before anything is measured or integrated; shapes
-  // and monodromy are scaled back at the end (docs/model-sizes.md).
+  // States in units far apart (a finite-element rotor's metres and radians, stiffness entries
+  // of 1e9 N/m) are rescaled by powers of two before anything is measured or integrated;
+  // shapes and monodromy are scaled back at the end (docs/model-sizes.md).
   const Eigen::VectorXd scale = internal::StateBalancing(given);
   const PeriodicSystem system = scale.size() ? given.WithStateScaling(scale) : given;
   CheckPeriodScale(system, requested.max_period_scale);

@@ -315,8 +315,8 @@ damping and gyroscopic terms (Ω·G for a rotor); D, F, Cd, Cv may be None.
 A constant M (the usual case: rotating asymmetry, periodic bearings or stiffness) gives an
 exact Fourier-form system, A_w = [[0, δ_w I], [-M⁻¹K_w, -M⁻¹D_w]], the fastest form for every
 analysis; a periodic M gives a function-form system (M(t)⁻¹ is evaluated at every step).
-States in physical units far apart (metres and radians, 1e13 N/m bearings) need no scaling by
-hand: the Floquet analysis balances them.
+States in physical units far apart (metres and radians, stiffness entries of 1e9 N/m) need
+no scaling by hand: the Floquet analysis balances them.
 
 Raises ltp.InputError (a ValueError) on inconsistent sizes or non-finite entries, and on a
 singular or ill-conditioned mass matrix (the time is named).)doc")
