@@ -82,14 +82,18 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
   const int samples = kTraitSamples;
   for (int s = 0; s < samples; ++s) {
     system.EvalA((s + 0.5) * T / samples, a);
+    mean += a / samples;
+    // Eigen's eigensolvers read past their arrays on NaN input (AddressSanitizer): a sample
+    // that is not finite says nothing of the rates anyway.
+    if (!a.allFinite()) continue;
     const Eigen::VectorXcd eig = a.eigenvalues();
     for (Eigen::Index i = 0; i < eig.size(); ++i) rate = std::max(rate, std::abs(eig(i).real()));
-    mean += a / samples;
   }
   t.stiffness = T * rate;
   Eigen::MatrixXcd a0 = mean.cast<std::complex<double>>();
   if (const FourierMatrix* fa = system.fourier_A()) a0 = (*fa)[0];
-  const Eigen::VectorXcd eig = a0.eigenvalues();
+  const Eigen::VectorXcd eig =
+      a0.allFinite() ? Eigen::VectorXcd(a0.eigenvalues()) : Eigen::VectorXcd::Zero(0);
   double re = 0, radius = 0;
   for (Eigen::Index i = 0; i < eig.size(); ++i) {
     re = std::max(re, std::abs(eig(i).real()));
