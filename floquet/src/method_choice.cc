@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "ltp/core/error.h"
 #include "state_balancing.h"
@@ -32,8 +33,8 @@ constexpr double kStructuredMinSize = 50;
 // oscillation (an OpenFAST model of a nearly isotropic rotor in multi-blade coordinates, modes at
 // 600 × 1P, 64–124 states: 20–30× cheaper than Bulirsch–Stoer). Not for a larger periodic part:
 // Magnus's error terms then carry powers of h·ρ(Ā) (order reduction), and on the same model's
-// blade-coordinate twin (periodic part 0.2 % of ρ) it took 2.8× Bulirsch–Stoer's time
-// (docs/model-sizes.md).
+// blade-coordinate twin (periodic part 0.2 % of ρ) it took 3.4× Bulirsch–Stoer's time (5.7 s, 1.7
+// s) (docs/model-sizes.md).
 constexpr double kFastOscillation = 200;
 
 // Is A(t) the same at five interior points of every piece between breakpoints? The points sit
@@ -80,8 +81,10 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
   Eigen::MatrixXd a(t.states, t.states), mean = Eigen::MatrixXd::Zero(t.states, t.states);
   double rate = 0;
   const int samples = kTraitSamples;
+  std::vector<Eigen::MatrixXd> sampled;  // kept for the periodic part below
   for (int s = 0; s < samples; ++s) {
     system.EvalA((s + 0.5) * T / samples, a);
+    sampled.push_back(a);
     mean += a / samples;
     // Eigen's eigensolvers read past their arrays on NaN input (AddressSanitizer): a sample
     // that is not finite says nothing of the rates anyway.
@@ -108,11 +111,9 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
       if (w != 0) sum += internal::BalancedNorm((*fa)[w], scale);
     t.variation = T * sum;
   } else {
-    for (int s = 0; s < samples; ++s) {
-      system.EvalA((s + 0.5) * T / samples, a);
+    for (const Eigen::MatrixXd& x : sampled)
       t.variation =
-          std::max(t.variation, T * internal::BalancedNorm(Eigen::MatrixXd(a - mean), scale));
-    }
+          std::max(t.variation, T * internal::BalancedNorm(Eigen::MatrixXd(x - mean), scale));
   }
   return t;
 }
