@@ -6,7 +6,9 @@
 namespace ltp {
 
 std::string Trim(std::string_view s) {
-  constexpr std::string_view kBlanks = " \t\r\n";
+  // The characters std::isspace calls blank, so a trimmed line is empty exactly when a
+  // whitespace tokenizer finds no token in it.
+  constexpr std::string_view kBlanks = " \t\r\n\v\f";
   const auto first = s.find_first_not_of(kBlanks);
   if (first == std::string_view::npos) return "";
   const auto last = s.find_last_not_of(kBlanks);

@@ -271,9 +271,9 @@ class Parser {
       const std::vector<Token> t = Tokenize(line);
       size_t k = 0;
       double value = 0;
-      if (!ParseNumber(t[k].text, &value) || value != r + 1)
+      if (t.empty() || !ParseNumber(t[k].text, &value) || value != r + 1)
         Fail(i, "expected row number " + std::to_string(r + 1) + " of table '" + title +
-                    "', got '" + Shorten(t[k].text) + "'");
+                    "', got '" + Shorten(t.empty() ? line : t[k].text) + "'");
       ++k;
       LinChannel c;
       c.derivative_order = default_order;

@@ -206,6 +206,16 @@ TEST(OpenFastLin, MalformedFilesNameFileLineAndWhatWasExpected) {
   m = message(text);
   EXPECT_NE(m.find("declares 99999999 rows but the file has only"), std::string::npos) << m;
 
+  // A table row of a vertical tab or form feed (found by the lin_file fuzzer): blank to the
+  // tokenizer, so it must be blank to the table reader too, not a row with no row number.
+  for (const char* blank : {"\v", "\f", " \v\f "}) {
+    text = SmallFile();
+    const size_t row = text.find("          2    2.5-100");
+    text.replace(row, text.find('\n', row) - row, blank);
+    m = message(text);
+    EXPECT_NE(m.find("expected row 2 of 2"), std::string::npos) << m;
+  }
+
   EXPECT_THROW(ReadLinFile("/nonexistent/x.lin"), SceneError);
 }
 
