@@ -20,11 +20,10 @@
 #include <string>
 
 #include "ltp/core/elapsed.h"
-#include "ltp/floquet/campbell.h"
-#include "ltp/floquet/chart_options.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/sweep.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/chart.h"
+#include "ltp/studies/chart_options.h"
+#include "ltp/studies/sweep.h"
 
 namespace {
 
@@ -85,31 +84,20 @@ void BM_MathieuMap400(benchmark::State& state) {
   state.counters["us_per_point_wall"] = 1e6 * seconds / static_cast<double>(all.size());
 }
 // `ltp chart tower-rotor --sweep Omega=20:200:20`: a Campbell diagram of the paper's system,
-// ten rotor speeds with modes, mode tracking and the diagram, at the chart's defaults (every
-// point of a 1-D sweep checked by the error estimate), on all cores.
+// ten rotor speeds with modes, mode tracking, the diagram and the refined unstable intervals, at
+// the chart's defaults (every point of a 1-D sweep checked by the error estimate), on all cores.
 void BM_TowerRotorCampbell(benchmark::State& state) {
   const ltp::Scene scene = ltp::LoadScene("tower-rotor");
   const ltp::ParameterMap base = scene.Resolve({});
-  const ltp::SystemLabels labels = scene.build(base).labels();
-  const ltp::SweepGrid grid = ltp::MakeSweepGrid(scene, {ltp::SweepAxis::Parse("Omega=20:200:20")});
-  std::vector<size_t> all(grid.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const ltp::ChartOptions chart;
-  const ltp::SweepOptions options = ltp::ChartSweepOptions(chart, /*map=*/false, scene.build(base));
-  size_t lines = 0;
+  const ltp::PeriodicSystem system = scene.build(base);
+  size_t points = 0, lines = 0;
   for (auto _ : state) {
-    std::vector<ltp::SweepPoint> points(grid.size());
-    std::mutex mutex;
-    ltp::RunSweep(scene, base, grid, all, options, [&](ltp::SweepPoint&& p) {
-      std::lock_guard<std::mutex> lock(mutex);
-      points[p.index] = std::move(p);
-    });
-    const ltp::ModeTracking tracking = ltp::TrackModes(points);
-    const ltp::CampbellDiagram diagram =
-        ltp::MakeCampbellDiagram(points, tracking, labels, chart.campbell);
-    lines = diagram.lines.size();
+    const ltp::Chart chart =
+        ltp::ComputeChart(scene, base, system, {ltp::SweepAxis::Parse("Omega=20:200:20")}, {});
+    points = chart.points.size();
+    lines = chart.analysis.campbell.lines.size();
   }
-  state.counters["points"] = static_cast<double>(all.size());
+  state.counters["points"] = static_cast<double>(points);
   state.counters["lines"] = static_cast<double>(lines);
 }
 BENCHMARK(BM_TowerRotorCampbell)->Iterations(1)->Unit(benchmark::kSecond);

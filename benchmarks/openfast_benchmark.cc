@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/sampled_floquet.h"
 #include "ltp/floquet/threads.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
+#include "ltp/studies/sampled_floquet.h"
 
 namespace {
 

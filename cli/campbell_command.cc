@@ -13,7 +13,7 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/lin_campbell.h"
+#include "ltp/studies/lin_campbell.h"
 #include "plot.h"
 
 namespace ltp::cli {

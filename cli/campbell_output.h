@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "ltp/floquet/campbell.h"
+#include "ltp/studies/campbell.h"
 
 namespace ltp::cli {
 

@@ -29,11 +29,13 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/chart_options.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/stability_boundary.h"
-#include "ltp/floquet/sweep.h"
+#include "ltp/floquet/formed_monodromy.h"
 #include "ltp/floquet/threads.h"
+#include "ltp/studies/chart.h"
+#include "ltp/studies/chart_options.h"
+#include "ltp/studies/mode_tracking.h"
+#include "ltp/studies/stability_boundary.h"
+#include "ltp/studies/sweep.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -125,9 +127,11 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   if (!method)
     throw InputError("--method must be 'monodromy' or 'hill', got '" + args.method + "'");
   o.method = *method;
-  const auto type = ParseIntegratorType(args.integrator);
-  if (!type) throw InputError("--integrator: unknown integrator '" + args.integrator + "'");
-  o.integrator = *type;
+  if (!args.integrator.empty()) {
+    const auto type = ParseIntegratorType(args.integrator);
+    if (!type) throw InputError("--integrator: unknown integrator '" + args.integrator + "'");
+    o.integrator = *type;
+  }
   if (!(args.tol > 0 && args.tol < 1)) throw InputError("--tol must be in (0, 1)");
   o.tol = args.tol;
   o.compare = args.compare;
@@ -147,20 +151,14 @@ ChartOptions MakeOptions(const ChartArgs& args) {
 // Everything one chart computed, for the writers.
 struct ChartOutcome {
   explicit ChartOutcome(LoadedScene loaded) : scene(std::move(loaded)) {}
-  size_t count(StabilityVerdict v) const { return tally.counts.at(v); }
+  size_t count(StabilityVerdict v) const { return analysis.tally.counts.at(v); }
   LoadedScene scene;
-  SweepGrid grid;
-  bool map = false;
-  SweepOptions options;
+  ChartPlan plan;
   int threads = 0;
   std::vector<SweepPoint> points;  ///< grid order
   size_t resumed = 0;
-  double sweep_s = 0, refine_s = 0;
-  ModeTracking tracking;                    ///< 1-D
-  CampbellDiagram campbell;                 ///< 1-D
-  std::vector<UnstableInterval> intervals;  ///< 1-D
-  std::vector<BoundaryPoint> boundary;      ///< maps
-  SweepTally tally;
+  double sweep_s = 0;
+  ChartAnalysis analysis;
   std::string title;  ///< the scene and what the user set
   std::string plot_note;
 };
@@ -168,7 +166,7 @@ struct ChartOutcome {
 // A map of a time-reversible system (at the scene's base point): its unchecked points integrate
 // half a period.
 bool HalfPeriodRoute(const ChartOutcome& c) {
-  return c.options.method == SweepMethod::kMonodromy && !c.options.modes &&
+  return c.plan.sweep.method == SweepMethod::kMonodromy && !c.plan.sweep.modes &&
          FormsMonodromyFromHalfPeriod(c.scene.system);
 }
 
@@ -176,51 +174,50 @@ bool HalfPeriodRoute(const ChartOutcome& c) {
 // streamed to the record. False when interrupted (Ctrl-C or --stop-after) before the end.
 bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, ChartOutcome& c) {
   const bool root = ranks.rank == 0;
-  c.points.assign(c.grid.size(), {});
-  std::vector<char> have(c.grid.size(), 0);
-  if (root)
-    for (const SweepPoint& p : record->resumed())
-      if (p.index < c.points.size() && !have[p.index]) {
-        c.points[p.index] = p;
-        have[p.index] = 1;
-        ++c.resumed;
-      }
-  // Every rank needs the same list of missing points.
-  std::vector<size_t> todo;
-  for (size_t i = 0; i < c.grid.size(); ++i)
-    if (!have[i]) todo.push_back(i);
-#ifdef LTP_WITH_MPI
-  if (ranks.size > 1) {
-    unsigned long count = todo.size();
-    MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
-    todo.resize(count);
-    MPI_Bcast(todo.data(), static_cast<int>(count), MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+  const size_t size = c.plan.grid.size();
+  ChartSweepHooks hooks;
+  if (root) hooks.resumed = record->resumed();
+  size_t resumed = 0;
+  {
+    std::vector<char> seen(size, 0);
+    for (const SweepPoint& p : hooks.resumed)
+      if (p.index < size && !seen[p.index]) seen[p.index] = 1, ++resumed;
   }
+  Progress progress(size, resumed, root && !args.json);
+  hooks.on_point = [&](const SweepPoint& p) {
+    record->Add(p);
+    progress.Tick();
+    if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
+  };
+  hooks.cancel = &g_interrupted;
+  hooks.runner = [&](const std::vector<size_t>& todo,
+                     const std::function<void(SweepPoint &&)>& on_point,
+                     const std::atomic<bool>* cancel) {
+    // Every rank needs the same list of missing points: rank 0's.
+    std::vector<size_t> indices = todo;
+#ifdef LTP_WITH_MPI
+    if (ranks.size > 1) {
+      unsigned long count = indices.size();
+      MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+      indices.resize(count);
+      MPI_Bcast(indices.data(), static_cast<int>(count), MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+    }
 #endif
-  Progress progress(c.grid.size(), c.resumed, root && !args.json);
+    return DistributedSweep(ranks, c.scene.scene, c.scene.parameters, c.plan.grid, indices,
+                            c.plan.sweep, on_point, cancel);
+  };
   g_interrupted = false;
   auto previous = std::signal(SIGINT, OnInterrupt);
-  const auto sweep_start = Clock::now();
-  std::mutex progress_mutex;
-  DistributedSweep(
-      ranks, c.scene.scene, c.scene.parameters, c.grid, todo, c.options,
-      [&](SweepPoint&& p) {
-        record->Add(p);
-        const size_t index = p.index;
-        c.points[index] = std::move(p);  // distinct indices: no two threads write one element
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        have[index] = 1;
-        progress.Tick();
-        if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
-      },
-      &g_interrupted);
+  ChartPoints swept = SweepChart(c.scene.scene, c.scene.parameters, c.plan, hooks);
   std::signal(SIGINT, previous);
-  c.sweep_s = std::chrono::duration<double>(Clock::now() - sweep_start).count();
   progress.Finish();
+  c.points = std::move(swept.points);
+  c.resumed = swept.resumed;
+  c.sweep_s = swept.sweep_s;
   if (!root) return true;
-  const size_t done = static_cast<size_t>(std::count(have.begin(), have.end(), 1));
-  if (done == c.grid.size()) return true;
-  std::cerr << "ltp chart: interrupted after " << done << " of " << c.grid.size() << " points";
+  if (swept.complete()) return true;
+  const size_t done = static_cast<size_t>(std::count(swept.have.begin(), swept.have.end(), 1));
+  std::cerr << "ltp chart: interrupted after " << done << " of " << size << " points";
   if (!args.csv.empty())
     std::cerr << "; '" << args.csv << "' holds them; finish with the same command and --resume";
   std::cerr << "\n";
@@ -228,21 +225,9 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
 }
 
 // Mode tracking and the Campbell diagram (1-D), the refined boundaries, the summary counts.
-void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) {
-  if (!c.map) {
-    c.tracking = TrackModes(c.points);
-    c.campbell = MakeCampbellDiagram(c.points, c.tracking, c.scene.system.labels(), chart.campbell);
-  }
-  const BoundaryOptions bopt = ChartBoundaryOptions(chart);
-  const auto refine_start = Clock::now();
-  if (!c.map)
-    c.intervals = RefineUnstableIntervals(c.scene.scene, c.scene.parameters, c.grid, c.points,
-                                          c.options, bopt);
-  if (c.map && !args.no_refine)
-    c.boundary =
-        RefineBoundaryPoints(c.scene.scene, c.scene.parameters, c.grid, c.points, c.options, bopt);
-  c.refine_s = std::chrono::duration<double>(Clock::now() - refine_start).count();
-  c.tally = TallySweep(c.points);
+void Analyse(const ChartArgs& args, ChartOutcome& c) {
+  c.analysis =
+      AnalyseChart(c.scene.scene, c.scene.parameters, c.scene.system.labels(), c.plan, c.points);
   c.title = c.scene.scene.name;
   if (!args.scene.set.empty()) {
     c.title += " (";
@@ -254,13 +239,13 @@ void Analyse(const ChartArgs& args, const ChartOptions& chart, ChartOutcome& c) 
 
 std::string Plot(const ChartArgs& args, const ChartOutcome& c) {
   ChartPlotInput in;
-  in.title = (c.map ? "Stability map: " : "Campbell diagram: ") + c.title;
-  for (const auto& a : c.grid.axes) in.axis_labels.push_back(AxisLabel(c.scene.scene, a.name));
-  in.grid = &c.grid;
+  in.title = (c.plan.map ? "Stability map: " : "Campbell diagram: ") + c.title;
+  for (const auto& a : c.plan.grid.axes) in.axis_labels.push_back(AxisLabel(c.scene.scene, a.name));
+  in.grid = &c.plan.grid;
   in.points = &c.points;
-  in.campbell = &c.campbell;
-  in.intervals = &c.intervals;
-  in.boundary = &c.boundary;
+  in.campbell = &c.analysis.campbell;
+  in.intervals = &c.analysis.intervals;
+  in.boundary = &c.analysis.boundary;
   in.sidebands = args.sidebands;
   in.compare = args.compare;
   return DrawChart(in, args.plot);
@@ -274,21 +259,21 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
             {"integrator", args.integrator},
             {"tol", args.tol},
             {"half_period", HalfPeriodRoute(c)},
-            {"points", c.grid.size()},
+            {"points", c.plan.grid.size()},
             {"resumed_points", c.resumed},
             {"stable", c.count(StabilityVerdict::kStable)},
             {"marginal", c.count(StabilityVerdict::kMarginal)},
             {"unstable", c.count(StabilityVerdict::kUnstable)},
             {"failed", c.count(StabilityVerdict::kFailed)},
-            {"checked_points", c.tally.checked},
-            {"max_error_estimate", JsonNumber(c.tally.max_error)},
+            {"checked_points", c.analysis.tally.checked},
+            {"max_error_estimate", JsonNumber(c.analysis.tally.max_error)},
             {"threads", c.threads},
             {"ranks", ranks.size},
             {"sweep_s", c.sweep_s},
-            {"refine_s", c.refine_s},
+            {"refine_s", c.analysis.refine_s},
             {"csv", args.csv},
             {"plot", args.plot}};
-  for (const auto& a : c.grid.axes)
+  for (const auto& a : c.plan.grid.axes)
     j["sweep"].push_back({{"name", a.name},
                           {"start", a.start},
                           {"stop", a.stop},
@@ -298,26 +283,26 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
   for (const SweepPoint& p : c.points)
     if (!p.ok) failures.push_back({{"values", p.values}, {"reason", p.failure}});
   j["failures"] = failures;
-  if (!c.map) {
+  if (!c.plan.map) {
     json list = json::array(), detail = json::array();
-    for (const auto& in : c.intervals) {
+    for (const auto& in : c.analysis.intervals) {
       list.push_back({JsonNumber(in.lo.value), JsonNumber(in.hi.value)});
       detail.push_back({{"lo", BoundaryJson(in.lo)}, {"hi", BoundaryJson(in.hi)}});
     }
     j["unstable_intervals"] = list;
     j["unstable_interval_details"] = detail;
-    j["mode_tracking"] = {{"min_mac", JsonNumber(c.tracking.min_mac)},
-                          {"ambiguous_points", c.tracking.ambiguous.size()}};
-    j["campbell"] = CampbellJson(c.campbell);
+    j["mode_tracking"] = {{"min_mac", JsonNumber(c.analysis.tracking.min_mac)},
+                          {"ambiguous_points", c.analysis.tracking.ambiguous.size()}};
+    j["campbell"] = CampbellJson(c.analysis.campbell);
   } else {
     json list = json::array(), detail = json::array();
-    for (const auto& b : c.boundary) {
+    for (const auto& b : c.analysis.boundary) {
       if (!b.estimate.refined) continue;
       list.push_back({JsonNumber(b.values[0]), JsonNumber(b.values[1])});
     }
-    for (const auto& b : c.boundary)
+    for (const auto& b : c.analysis.boundary)
       detail.push_back({{"values", {JsonNumber(b.values[0]), JsonNumber(b.values[1])}},
-                        {"refined_parameter", c.grid.axes[static_cast<size_t>(b.axis)].name},
+                        {"refined_parameter", c.plan.grid.axes[static_cast<size_t>(b.axis)].name},
                         {"entering_unstable", b.entering_unstable},
                         {"estimate", BoundaryJson(b.estimate)}});
     j["boundary_points"] = list;
@@ -328,49 +313,51 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
 }
 
 void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c) {
-  std::cout << (c.map ? "Stability map of " : "Campbell sweep of ") << c.title << "\n  ";
-  for (size_t a = 0; a < c.grid.axes.size(); ++a)
-    std::cout << (a ? " × " : "") << c.grid.axes[a].name << " = " << Num(c.grid.axes[a].start, 8)
-              << " … " << Num(c.grid.values[a].back(), 8) << " (" << c.grid.values[a].size()
-              << " points)";
+  std::cout << (c.plan.map ? "Stability map of " : "Campbell sweep of ") << c.title << "\n  ";
+  for (size_t a = 0; a < c.plan.grid.axes.size(); ++a)
+    std::cout << (a ? " × " : "") << c.plan.grid.axes[a].name << " = "
+              << Num(c.plan.grid.axes[a].start, 8) << " … " << Num(c.plan.grid.values[a].back(), 8)
+              << " (" << c.plan.grid.values[a].size() << " points)";
   std::cout << "; " << args.method << " route";
-  if (c.options.method == SweepMethod::kMonodromy)
+  if (c.plan.sweep.method == SweepMethod::kMonodromy)
     std::cout << " (" << args.integrator << ", tol " << Num(args.tol, 2)
               << (HalfPeriodRoute(c) ? "; time-reversible: half a period per unchecked point" : "")
               << ")";
   std::cout << ", " << c.threads << (c.threads == 1 ? " thread" : " threads");
   if (ranks.size > 1) std::cout << " × " << ranks.size << " MPI ranks";
-  std::cout << "\n  " << c.grid.size() << " points in " << Num(c.sweep_s, 3) << " s";
+  std::cout << "\n  " << c.plan.grid.size() << " points in " << Num(c.sweep_s, 3) << " s";
   if (c.resumed) std::cout << " (" << c.resumed << " resumed from the journal)";
   std::cout << ": " << c.count(StabilityVerdict::kStable) << " stable, "
             << c.count(StabilityVerdict::kMarginal) << " marginal, "
             << c.count(StabilityVerdict::kUnstable) << " unstable, "
             << c.count(StabilityVerdict::kFailed) << " failed\n  error estimate: ";
-  if (c.tally.max_error)
+  if (c.analysis.tally.max_error)
     // On a map only a sample is checked, and its largest estimate is no bound for the rest
     // (401 × 401 Mathieu at 1e-10: 2.8e-9 over the sample, 2.3e-8 the worst unchecked error).
-    std::cout << "max " << Num(*c.tally.max_error, 2) << " 1/s over " << c.tally.checked
-              << " checked points (tighter rerun"
-              << (c.tally.checked < c.grid.size()
+    std::cout << "max " << Num(*c.analysis.tally.max_error, 2) << " 1/s over "
+              << c.analysis.tally.checked << " checked points (tighter rerun"
+              << (c.analysis.tally.checked < c.plan.grid.size()
                       ? "; a sample: an unchecked point's error can exceed it"
                       : "")
               << ")\n";
   else
     std::cout << "not computed (--check-every 0)\n";
-  if (!c.map) {
-    std::cout << "  mode tracking by MAC: smallest accepted MAC " << Num(c.tracking.min_mac, 3);
-    if (!c.tracking.ambiguous.empty())
-      std::cout << ", ambiguous at " << c.tracking.ambiguous.size() << " points";
+  if (!c.plan.map) {
+    std::cout << "  mode tracking by MAC: smallest accepted MAC "
+              << Num(c.analysis.tracking.min_mac, 3);
+    if (!c.analysis.tracking.ambiguous.empty())
+      std::cout << ", ambiguous at " << c.analysis.tracking.ambiguous.size() << " points";
     std::cout << "\n";
-    PrintCampbell(std::cout, c.campbell, c.grid.axes[0].name);
+    PrintCampbell(std::cout, c.analysis.campbell, c.plan.grid.axes[0].name);
     std::cout << "\n";
-    if (c.intervals.empty()) {
+    if (c.analysis.intervals.empty()) {
       std::cout << "  no unstable interval in the sweep\n";
     } else {
-      std::cout << "  unstable intervals of " << c.grid.axes[0].name << " (boundaries refined to "
-                << Num(args.refine_tol, 2) << " relative; " << Num(c.refine_s, 3) << " s):\n"
+      std::cout << "  unstable intervals of " << c.plan.grid.axes[0].name
+                << " (boundaries refined to " << Num(args.refine_tol, 2) << " relative; "
+                << Num(c.analysis.refine_s, 3) << " s):\n"
                 << "              from                 to      max Re λ inside [1/s]\n";
-      for (const auto& in : c.intervals) {
+      for (const auto& in : c.analysis.intervals) {
         double peak = -INFINITY;
         for (const SweepPoint& p : c.points)
           if (p.ok && p.values[0] >= in.lo.value && p.values[0] <= in.hi.value)
@@ -388,11 +375,11 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
     }
   } else {
     size_t refined = 0;
-    for (const auto& b : c.boundary) refined += b.estimate.refined;
-    std::cout << "  boundary points: " << refined << " refined of " << c.boundary.size()
+    for (const auto& b : c.analysis.boundary) refined += b.estimate.refined;
+    std::cout << "  boundary points: " << refined << " refined of " << c.analysis.boundary.size()
               << " grid crossings along "
               << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
-              << " lines per axis (" << Num(c.refine_s, 3) << " s)\n";
+              << " lines per axis (" << Num(c.analysis.refine_s, 3) << " s)\n";
   }
   const int failed = static_cast<int>(c.count(StabilityVerdict::kFailed));
   if (failed) {
@@ -402,12 +389,12 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
       if (!p.ok && shown++ < 5) {
         std::cout << "    ";
         for (size_t a = 0; a < p.values.size(); ++a)
-          std::cout << (a ? ", " : "") << c.grid.axes[a].name << " = " << Num(p.values[a], 8);
+          std::cout << (a ? ", " : "") << c.plan.grid.axes[a].name << " = " << Num(p.values[a], 8);
         std::cout << ": " << p.failure << "\n";
       }
   }
   if (!args.csv.empty())
-    std::cout << "  wrote " << args.csv << (c.map ? "" : " and " + CrossingsCsvPath(args.csv))
+    std::cout << "  wrote " << args.csv << (c.plan.map ? "" : " and " + CrossingsCsvPath(args.csv))
               << "\n";
   if (!args.plot.empty())
     std::cout << (c.plot_note.empty() ? "  wrote " + args.plot : "  " + c.plot_note) << "\n";
@@ -427,13 +414,9 @@ int RunChart(ChartArgs& args) {
     ChartOutcome c(LoadSceneArgs(args.scene));
     std::vector<SweepAxis> axes = {SweepAxis::Parse(args.sweep)};
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
-    c.grid = MakeSweepGrid(c.scene.scene, axes);
-    c.map = c.grid.axes.size() == 2;
-    if (args.integrator.empty())
-      args.integrator = ToString(ChartIntegrator(ChartOptions{}, c.map, c.scene.system));
-    const ChartOptions chart = MakeOptions(args);
-    c.options = ChartSweepOptions(chart, c.map, c.scene.system);
-    c.threads = ThreadsFor(c.options.threads);
+    c.plan = PlanChart(c.scene.scene, c.scene.system, std::move(axes), MakeOptions(args));
+    args.integrator = ToString(c.plan.sweep.floquet.integrator.type);
+    c.threads = ThreadsFor(c.plan.sweep.threads);
 
     json identity = {{"scene", c.scene.scene.name},
                      {"source", c.scene.scene.source},
@@ -441,23 +424,23 @@ int RunChart(ChartArgs& args) {
                      {"method", args.method},
                      {"integrator", args.integrator},
                      {"tol", args.tol},
-                     {"check_every", c.options.check_every},
-                     {"compare", c.options.snapshot}};
-    for (const auto& a : c.grid.axes)
+                     {"check_every", c.plan.sweep.check_every},
+                     {"compare", c.plan.sweep.snapshot}};
+    for (const auto& a : c.plan.grid.axes)
       identity["sweep"].push_back({a.name, a.start, a.stop, a.step});
     std::unique_ptr<ChartRecord> record;
     if (root)
-      record = std::make_unique<ChartRecord>(args.csv, c.grid, c.scene.system.states(), identity,
-                                             args.resume);
+      record = std::make_unique<ChartRecord>(args.csv, c.plan.grid, c.scene.system.states(),
+                                             identity, args.resume);
     if (!SweepAllPoints(args, ranks, record.get(), c)) return 130;
     if (!root) return 0;
 
-    Analyse(args, chart, c);
-    if (!c.map && !args.csv.empty())
-      WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.campbell, c.grid.axes[0].name);
-    record->Finish(c.points, c.map ? nullptr : &c.campbell);
+    Analyse(args, c);
+    if (!c.plan.map && !args.csv.empty())
+      WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.analysis.campbell, c.plan.grid.axes[0].name);
+    record->Finish(c.points, c.plan.map ? nullptr : &c.analysis.campbell);
     if (!args.plot.empty()) c.plot_note = Plot(args, c);
-    const bool all_failed = c.count(StabilityVerdict::kFailed) == c.grid.size();
+    const bool all_failed = c.count(StabilityVerdict::kFailed) == c.plan.grid.size();
     if (args.json) {
       std::cout << ChartJson(args, ranks, c).dump(2) << "\n";
     } else {

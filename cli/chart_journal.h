@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::cli {
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::cli {
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/campbell.h"
-#include "ltp/floquet/stability_boundary.h"
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/campbell.h"
+#include "ltp/studies/stability_boundary.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::cli {
 

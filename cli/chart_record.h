@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "chart_journal.h"
-#include "ltp/floquet/campbell.h"
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/campbell.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::cli {
 

@@ -15,9 +15,9 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/sampled_floquet.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
+#include "ltp/studies/sampled_floquet.h"
 
 namespace ltp::cli {
 

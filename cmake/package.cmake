@@ -1,5 +1,5 @@
 # The installed CMake package: find_package(ltp) gives ltp::core, ltp::openfast, ltp::models,
-# ltp::floquet and ltp::htf.
+# ltp::floquet, ltp::htf and ltp::studies.
 # The targets install themselves into the export set ltpTargets (see core/, openfast/, models/,
 # floquet/, htf/).
 include(CMakePackageConfigHelpers)

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "frf_args.h"
-#include "ltp/floquet/sweep.h"
 #include "ltp/htf/frequency_range.h"
+#include "ltp/studies/sweep.h"
 #include "run_ltp.h"
 
 namespace {

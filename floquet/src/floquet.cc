@@ -14,7 +14,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
 #include "ltp/core/text.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"

@@ -21,7 +21,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/hill_solver_choice.h"
 
 namespace ltp {
 namespace {

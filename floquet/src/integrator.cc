@@ -13,7 +13,7 @@
 
 #include "integrator_internal.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 
 namespace ltp {
 

@@ -17,7 +17,7 @@
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 #include "ltp/htf/pfrf.h"
 
 namespace ltp {

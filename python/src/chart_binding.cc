@@ -1,19 +1,18 @@
 // ltp.chart: Campbell and damping diagrams over one scene parameter, stability maps over two,
 // with the stability boundaries refined beyond the grid (what `ltp chart` computes, in memory:
 // no journal, no plot).
-#include <chrono>
 #include <cmath>
 #include <map>
 
 #include "binding.h"
-#include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/campbell.h"
-#include "ltp/floquet/chart_options.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/stability_boundary.h"
-#include "ltp/floquet/sweep.h"
 #include "ltp/floquet/threads.h"
+#include "ltp/studies/campbell.h"
+#include "ltp/studies/chart.h"
+#include "ltp/studies/chart_options.h"
+#include "ltp/studies/mode_tracking.h"
+#include "ltp/studies/stability_boundary.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::python {
 
@@ -32,6 +31,7 @@ struct ChartResult {
   CampbellDiagram campbell;        ///< 1-D only
   std::vector<UnstableInterval> intervals;
   std::vector<BoundaryPoint> boundary;
+  SweepTally tally;
   double sweep_s = 0, refine_s = 0;
 };
 
@@ -65,42 +65,31 @@ auto PointArray(Field field) {
   };
 }
 
-ChartResult Chart(const System& system, const std::vector<SweepAxis>& axes,
-                  const ChartOptions& chart) {
+ChartResult ChartOfScene(const System& system, std::vector<SweepAxis> axes,
+                         const ChartOptions& options) {
   if (!system.scene)
     throw InputError("chart sweeps a scene's parameters: give a system made by ltp.scene(...)");
   const Scene& scene = *system.scene;
+  ltp::Chart chart =
+      ComputeChart(scene, system.parameters, system.system, std::move(axes), options);
   ChartResult r;
   r.scene = scene.name;
   r.parameters = system.parameters;
   r.states = system.system.states();
-  r.grid = MakeSweepGrid(scene, axes);
-  const bool map = r.grid.axes.size() == 2;
-  r.options = ChartSweepOptions(chart, map, system.system);
-  r.method = ToString(chart.method);
-  r.integrator = ToString(ChartIntegrator(chart, map, system.system));
-  r.tol = chart.tol;
+  r.grid = std::move(chart.plan.grid);
+  r.options = chart.plan.sweep;
+  r.method = ToString(options.method);
+  r.integrator = ToString(chart.plan.sweep.floquet.integrator.type);
+  r.tol = options.tol;
   r.threads = ThreadsFor(r.options.threads);
-  std::vector<size_t> todo(r.grid.size());
-  for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
-  r.points.resize(r.grid.size());
-  const auto start = std::chrono::steady_clock::now();
-  // Distinct indices: no two threads write one element.
-  RunSweep(scene, system.parameters, r.grid, todo, r.options,
-           [&r](SweepPoint&& p) { r.points[p.index] = std::move(p); });
-  r.sweep_s = SecondsSince(start);
-  const auto refine_start = std::chrono::steady_clock::now();
-  const BoundaryOptions boundary = ChartBoundaryOptions(chart);
-  if (!map) {
-    r.tracking = TrackModes(r.points);
-    r.campbell = MakeCampbellDiagram(r.points, r.tracking, system.system.labels(), chart.campbell);
-    r.intervals =
-        RefineUnstableIntervals(scene, system.parameters, r.grid, r.points, r.options, boundary);
-  } else if (chart.refine) {
-    r.boundary =
-        RefineBoundaryPoints(scene, system.parameters, r.grid, r.points, r.options, boundary);
-  }
-  r.refine_s = SecondsSince(refine_start);
+  r.points = std::move(chart.points);
+  r.tracking = std::move(chart.analysis.tracking);
+  r.campbell = std::move(chart.analysis.campbell);
+  r.intervals = std::move(chart.analysis.intervals);
+  r.boundary = std::move(chart.analysis.boundary);
+  r.tally = std::move(chart.analysis.tally);
+  r.sweep_s = chart.sweep_s;
+  r.refine_s = chart.analysis.refine_s;
   return r;
 }
 
@@ -230,16 +219,16 @@ members of each conjugate pair).)doc")
           "counts",
           [](const ChartResult& c) {
             std::map<std::string, size_t> counts;
-            for (const auto& [verdict, n] : TallySweep(c.points).counts)
+            for (const auto& [verdict, n] : c.tally.counts)
               counts[std::string(ToString(verdict))] = n;
             return counts;
           },
           "points per verdict")
       .def_property_readonly(
-          "checked_points", [](const ChartResult& c) { return TallySweep(c.points).checked; },
+          "checked_points", [](const ChartResult& c) { return c.tally.checked; },
           "points with an error estimate")
       .def_property_readonly(
-          "max_error_estimate", [](const ChartResult& c) { return TallySweep(c.points).max_error; },
+          "max_error_estimate", [](const ChartResult& c) { return c.tally.max_error; },
           "over the checked points (1/s); None when none was checked")
       .def_property_readonly(
           "failures",
@@ -382,7 +371,7 @@ members of each conjugate pair).)doc")
         o.campbell.weak_damping_ratio = weak_damping;
         o.Validate();
         py::gil_scoped_release release;
-        return Chart(system, axes, o);
+        return ChartOfScene(system, axes, o);
       },
       py::arg("scene"), py::arg("sweep"), py::arg("sweep2") = py::none(), py::kw_only(),
       py::arg("method") = std::string(ToString(defaults.method)),

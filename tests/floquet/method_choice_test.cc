@@ -2,8 +2,6 @@
 // system the work–precision study covered, and that the analyses it drives are accurate
 // against closed forms (Meissner's monodromy, the triangular stiff scene, a Lyapunov-reducible
 // stiff system) and say which method they used and why.
-#include "ltp/floquet/method_choice.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +13,8 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/scene.h"
 #include "ltp/models/scene_input.h"

@@ -3,7 +3,7 @@
 #include <mutex>
 #include <vector>
 
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp::test {
 

@@ -28,7 +28,7 @@ namespace ltp {
 enum class HillSolver {
   kDense,       ///< all (2N+1)n eigenpairs by LAPACK zgeev
   kStructured,  ///< banded LU (zgbtrf) + shift-invert Arnoldi around the expected exponents
-  /// Chosen per N by the work–precision study's rule (ChooseHillSolver in method_choice.h);
+  /// Chosen per N by the work–precision study's rule (ChooseHillSolver in hill_solver_choice.h);
   /// the result's diagnostics say which and why.
   kAuto,
 };

@@ -21,8 +21,8 @@
 
 #include "ltp/core/mode_description.h"
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/mode_tracking.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp {
 

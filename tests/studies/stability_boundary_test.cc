@@ -3,7 +3,7 @@
 // thin stable bands (Meissner, closed-form monodromy) and a conservative gyroscopic rotor above
 // its unstable speed range (laval4, closed-form rotating-frame stiffness).
 // docs/stability-boundaries.md.
-#include "ltp/floquet/stability_boundary.h"
+#include "ltp/studies/stability_boundary.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <mutex>
 #include <vector>
 
-#include "ltp/floquet/sweep.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/sweep.h"
 #include "support/rotor_lin.h"
 #include "support/sweep.h"
 #include "support/systems.h"

@@ -2,7 +2,7 @@
 // at several rotor speeds with ltp's own writer, read back, and MBC3 + tracking must give, at
 // every speed, the exponents of the scene's own Floquet analysis (identical blades, N = 3: the
 // multi-blade system is exactly time-invariant, so the two agree modulo jΩp to round-off).
-#include "ltp/floquet/lin_campbell.h"
+#include "ltp/studies/lin_campbell.h"
 
 #include <gtest/gtest.h>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp {
 

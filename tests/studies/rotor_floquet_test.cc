@@ -2,7 +2,7 @@
 // coordinates (a constant-coefficient route), the closed-form lag exponent of an isolated
 // blade, energy conservation, the 1/N-revolution monodromy, the flapping instability, and the
 // sampled scene files against the built-in Mathieu oscillator.
-#include "ltp/floquet/rotor_floquet.h"
+#include "ltp/studies/rotor_floquet.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Campbell diagrams: whirl lines and per-rev crossings of a gyroscopic rotor against their
 // closed forms (tests/data/gyroscopic-rotor.yaml), one line per conjugate pair, descriptions,
 // lost lines and weak-damping shading.
-#include "ltp/floquet/campbell.h"
+#include "ltp/studies/campbell.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <numbers>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/chart_options.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/chart_options.h"
 #include "support/rotor_lin.h"
 
 namespace ltp {

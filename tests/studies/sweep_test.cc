@@ -1,6 +1,6 @@
 // Parameter sweeps: refined stability boundaries against closed forms and GSL, mode tracking
 // through a crossing, failing points, and the monodromy and Hill routes against each other.
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 #include <gsl/gsl_sf_mathieu.h>
 #include <gtest/gtest.h>
@@ -12,9 +12,9 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/stability_boundary.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/mode_tracking.h"
+#include "ltp/studies/stability_boundary.h"
 #include "support/rotor_lin.h"
 #include "support/sweep.h"
 

@@ -1,4 +1,4 @@
-#include "ltp/floquet/lin_campbell.h"
+#include "ltp/studies/lin_campbell.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // truncation that `harmonics = auto` means (AnalyzeHillToTolerance): what each turns into.
 // Reference: the values `ltp chart` and `ltp floquet --method hill` used before they moved
 // into the library (README, stability-chart benchmark and work-precision study).
-#include "ltp/floquet/chart_options.h"
+#include "ltp/studies/chart_options.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "ltp/floquet/mode_tracking.h"
+#include "ltp/studies/mode_tracking.h"
 
 #include <algorithm>
 #include <cmath>

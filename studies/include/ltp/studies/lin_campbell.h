@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/campbell.h"
-#include "ltp/floquet/mode_tracking.h"
-#include "ltp/floquet/sweep.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
+#include "ltp/studies/campbell.h"
+#include "ltp/studies/mode_tracking.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp {
 

@@ -1,6 +1,6 @@
 // Full-period Floquet multipliers from one sector of a cyclically symmetric system
-// (derivation in ltp/floquet/rotor_floquet.h and ltp/models/rotor.h).
-#include "ltp/floquet/rotor_floquet.h"
+// (derivation in ltp/studies/rotor_floquet.h and ltp/models/rotor.h).
+#include "ltp/studies/rotor_floquet.h"
 
 #include <algorithm>
 #include <chrono>

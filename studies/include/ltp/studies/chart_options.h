@@ -6,10 +6,10 @@
 // every 97th point: a map has thousands of points and the estimate doubles the cost of each).
 #include <optional>
 
-#include "ltp/floquet/campbell.h"
 #include "ltp/floquet/integrator.h"
-#include "ltp/floquet/stability_boundary.h"
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/campbell.h"
+#include "ltp/studies/stability_boundary.h"
+#include "ltp/studies/sweep.h"
 
 namespace ltp {
 

@@ -1,10 +1,10 @@
-#include "ltp/floquet/chart_options.h"
+#include "ltp/studies/chart_options.h"
 
 #include <sstream>
 #include <string>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/method_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 
 namespace ltp {
 

@@ -1,4 +1,4 @@
-#include "ltp/floquet/sweep.h"
+#include "ltp/studies/sweep.h"
 
 #include <omp.h>
 
@@ -14,57 +14,14 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/text.h"
+#include "ltp/floquet/formed_monodromy.h"
 #include "ltp/floquet/threads.h"
-#include "time_reversal.h"
 
 namespace ltp {
 
 namespace {
 
 using cd = std::complex<double>;
-
-// The multipliers of a 2×2 Φ(T) with its determinant known exactly (Liouville): the larger
-// from the trace without cancellation, the smaller as det / larger — where the formed matrix
-// holds only round-off of the larger's size (even an exact 0) — and a complex pair on the
-// circle |ρ|² = det.
-Eigen::VectorXcd MultipliersFromTraceAndDet(double trace, double det) {
-  const double half = trace / 2;
-  if (std::abs(half) > 1e150) return Eigen::Vector2cd(trace, det / trace);  // det ≪ trace²
-  const double discriminant = half * half - det;
-  if (discriminant < 0) {
-    const double im = std::sqrt(-discriminant);
-    return Eigen::Vector2cd(cd(half, im), cd(half, -im));
-  }
-  const double larger = half + std::copysign(std::sqrt(discriminant), half);
-  return Eigen::Vector2cd(larger, det / larger);
-}
-
-// Log multipliers from Φ(T, 0) formed in one integration — over half a period when the
-// system is time-reversible (docs/time-reversal.md) — and the eigenvalues of the n×n product.
-// The largest multiplier keeps its relative accuracy in the formed product however small the
-// others are. nullopt when the integration fails or the product over- or underflows.
-std::optional<std::vector<cd>> FormedLogMultipliers(const PeriodicSystem& system,
-                                                    const IntegratorOptions& integrator) {
-  const int n = system.states();
-  if (n == 0) return std::nullopt;
-  const std::optional<internal::TimeReversal> reversal = internal::FindTimeReversal(system);
-  const TransitionResult phi =
-      reversal ? internal::MonodromyFromHalfPeriod(system, *reversal, integrator)
-               : StateTransition(system, 0, system.period(), integrator);
-  if (!phi.ok || !phi.phi.allFinite()) return std::nullopt;
-  const bool exact_trace_integral =
-      system.fourier_A() != nullptr || system.form() == PeriodicSystem::Form::kPiecewiseConstant;
-  const double det = n == 2 && exact_trace_integral ? std::exp(IntegralOfTrace(system)) : 0;
-  const Eigen::VectorXcd rho = det > 0 && std::isfinite(det)
-                                   ? MultipliersFromTraceAndDet(phi.phi.trace(), det)
-                                   : Eigen::VectorXcd(phi.phi.eigenvalues());
-  std::vector<cd> logs(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    if (!(std::abs(rho(k)) > 0)) return std::nullopt;  // underflow: the full analysis keeps it
-    logs[static_cast<size_t>(k)] = std::log(rho(k));
-  }
-  return logs;
-}
 
 // Stability only (maps): the formed product's multipliers. AnalyzeFloquet's segment grid,
 // periodic Schur and bookkeeping would cost a quarter of the point. Returns false (caller
@@ -283,10 +240,6 @@ SweepGrid MakeSweepGrid(const Scene& scene, std::vector<SweepAxis> axes) {
   }
   grid.axes = std::move(axes);
   return grid;
-}
-
-bool FormsMonodromyFromHalfPeriod(const PeriodicSystem& system) {
-  return internal::FindTimeReversal(system).has_value();
 }
 
 SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,

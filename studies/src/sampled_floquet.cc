@@ -1,5 +1,5 @@
-// Floquet analysis from azimuth samples beside MBC3 (see ltp/floquet/sampled_floquet.h).
-#include "ltp/floquet/sampled_floquet.h"
+// Floquet analysis from azimuth samples beside MBC3 (see ltp/studies/sampled_floquet.h).
+#include "ltp/studies/sampled_floquet.h"
 
 #include <algorithm>
 #include <cmath>

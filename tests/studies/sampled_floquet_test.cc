@@ -1,7 +1,7 @@
 // Floquet analysis from azimuth samples (OpenFAST .lin files) against independent references:
 // the exact constant multi-blade system of the rotor scene, the continuous rotor integrated
 // without sampling, and the product of matrix exponentials formed directly.
-#include "ltp/floquet/sampled_floquet.h"
+#include "ltp/studies/sampled_floquet.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "ltp/floquet/campbell.h"
+#include "ltp/studies/campbell.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,11 @@
 #pragma once
-// Automatic method choice (`--integrator auto`, Hill's solver `auto`): the rules the
-// work–precision study found (README, "Work–precision study"; scripts/work-precision), applied
-// to features of the system that cost a few evaluations of A(t) to measure. Every choice
-// carries the reason, which the analyses put in their diagnostics.
+// Automatic integrator choice (`--integrator auto`): the rules the work–precision study found
+// (README, "Work–precision study"; scripts/work-precision), applied to traits of the system
+// that cost a few evaluations of A(t) to measure. Every choice carries the reason, which the
+// analyses put in their diagnostics.
 #include <string>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/hill.h"
 #include "ltp/floquet/integrator.h"
 
 namespace ltp {
@@ -59,17 +58,5 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
 /// kTaylor on a system whose A(t) is not a Fourier series.
 IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOptions options,
                                     std::string* reason = nullptr);
-
-struct HillSolverChoice {
-  HillSolver solver = HillSolver::kDense;
-  std::string reason;
-};
-
-/// Structured (banded shift-invert) when its cost model n·(band/m)²·0.5 ≤ 1 × dense (m =
-/// (2N+1)n rows, band = (min(H_A, 2N)+1)n) and m ≥ 50, or whenever max|Re eig A_0| > 10 Ωp (the
-/// dense selection missed stiff.yaml's +150 exponent at every N; shift-invert around A_0's
-/// eigenvalues found it); dense otherwise. `coefficient_harmonics` = H_A of the series used.
-HillSolverChoice ChooseHillSolver(const SystemTraits& traits, int harmonics,
-                                  int coefficient_harmonics);
 
 }  // namespace ltp

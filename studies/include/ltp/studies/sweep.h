@@ -100,10 +100,6 @@ struct SweepGrid {
 /// an empty axis.
 SweepGrid MakeSweepGrid(const Scene& scene, std::vector<SweepAxis> axes);
 
-/// Whether a stability-only point (SweepOptions::modes off, unchecked) of this system forms
-/// Φ(T) from half a period: the system is time-reversible (docs/time-reversal.md).
-bool FormsMonodromyFromHalfPeriod(const PeriodicSystem& system);
-
 /// One point: builds the system for `base` with the swept values set, and analyses it.
 /// Never throws: a failing build (e.g. a singular mass matrix) or analysis is a failed point.
 SweepPoint AnalyzeSweepPoint(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,

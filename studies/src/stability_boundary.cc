@@ -1,4 +1,4 @@
-#include "ltp/floquet/stability_boundary.h"
+#include "ltp/studies/stability_boundary.h"
 
 #include <omp.h>
 
