@@ -22,6 +22,7 @@
 #include "bulirsch_stoer.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/models/scene.h"
 #include "support/systems.h"
 
 namespace {
@@ -161,6 +162,26 @@ using BoostBs =
                                            boost::numeric::odeint::vector_space_algebra>;
 
 }  // namespace
+
+// One evaluation of a scene file's A(t) through its compiled muParser expressions (2×2, two
+// t-dependent entries): integrators call it millions of times (it was a unit test's timing).
+void BM_SceneExpressionA(benchmark::State& state) {
+  const ltp::PeriodicSystem system = ltp::ParseSceneYaml(R"yaml(period: 2*pi
+parameters: {k: 10}
+state_space:
+  A: [["0", "1"], ["-k*cos(t)", "-24 - k*sin(t)"]]
+)yaml",
+                                                         "scene.yaml")
+                                         .Build();
+  Eigen::MatrixXd a(2, 2);
+  double t = 0;
+  for (auto _ : state) {
+    system.EvalA(t, a);
+    benchmark::DoNotOptimize(a.data());
+    t += 1e-5;
+  }
+}
+BENCHMARK(BM_SceneExpressionA);
 
 BENCHMARK_TEMPLATE(BM_BulirschStoer, LtpBs)->Name("BulirschStoer/ltp");
 BENCHMARK_TEMPLATE(BM_BulirschStoer, BoostBs)->Name("BulirschStoer/boost");

@@ -120,7 +120,9 @@ TEST(HillEdge, StudyRowsCarryTheAnalysisEstimate) {
       EXPECT_GE(*row.error_estimate + slack, *row.max_error) << name << " at N = " << row.harmonics;
     }
     // A fitted law, when there is one, says the error falls.
-    if (study.rate_kind) EXPECT_GT(study.rate, 0) << name;
+    if (study.rate_kind) {
+      EXPECT_GT(study.rate, 0) << name;
+    }
   }
 }
 
