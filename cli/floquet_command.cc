@@ -337,6 +337,16 @@ int RunFloquet(FloquetArgs& args) {
   const bool run_mono = args.method != "hill", run_hill = args.method != "monodromy";
   FloquetResult r;
   HillResult h;
+  // A long analysis says so before it starts (the library's estimate), on stderr.
+  args.options.on_long_work = [](const WorkEstimate& w) {
+    const double s = w.seconds();
+    const std::string about = s < 120    ? Num(s, 2) + " s"
+                              : s < 7200 ? Num(s / 60, 2) + " min"
+                                         : Num(s / 3600, 2) + " h";
+    std::cerr << "ltp floquet: about " << about << " of CPU work ahead (" << Num(w.evaluations, 2)
+              << " evaluations of A(t)·Φ at " << Num(w.seconds_per_evaluation * 1e6, 2)
+              << " µs each)\n";
+  };
   if (run_mono) r = AnalyzeFloquet(l.system, args.options);
   // A sampled model (.lin files): the estimate and the verdict include the sampling error.
   if (run_mono) IncludeModelError(l.model_alternatives, args.options, r);
@@ -463,6 +473,11 @@ Command AddFloquetCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--threads", args.options.threads, "OpenMP threads (0 = all cores)")
       ->capture_default_str();
+  cmd->add_option("--max-work", args.options.max_work_seconds,
+                  "refuse an analysis estimated to need more CPU seconds than this even at its "
+                  "fastest (0 = no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_flag("--keep-going", args.keep_going,
                 "exit 0 even when the analysis failed its own checks (the output still says so; "

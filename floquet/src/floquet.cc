@@ -115,6 +115,10 @@ void FloquetOptions::Validate() const {
   if (!(max_factor_condition > 10)) fail("max_factor_condition", max_factor_condition, "> 10");
   if (max_segments < 1) fail("max_segments", max_segments, "max_segments >= 1");
   if (!(max_period_scale > 0)) fail("max_period_scale", max_period_scale, "max_period_scale > 0");
+  if (!(max_work_seconds >= 0))
+    fail("max_work_seconds", max_work_seconds, "max_work_seconds >= 0 (0 = no limit)");
+  if (!(announce_work_seconds >= 0))
+    fail("announce_work_seconds", announce_work_seconds, "announce_work_seconds >= 0");
   if (segments > max_segments)
     fail("segments", segments, "segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (initial_segments < 0 || initial_segments > max_segments)
@@ -217,10 +221,11 @@ std::string FloquetResult::BriefReport() const {
 }
 
 // T · max ‖A(t)‖ over 16 samples: the number of e-folds or radians a solution can move through
-// in one period, i.e. the work any integrator has to do. @throws InputError beyond the limit.
-void CheckPeriodScale(const PeriodicSystem& system, double limit) {
+// in one period, i.e. the work any integrator has to do. Returns it. @throws InputError beyond
+// the limit.
+double CheckPeriodScale(const PeriodicSystem& system, double limit) {
   const int n = system.states();
-  if (n == 0) return;
+  if (n == 0) return 0;
   Eigen::MatrixXd a(n, n);
   double largest = 0;
   for (int s = 0; s < 16; ++s) {
@@ -236,6 +241,44 @@ void CheckPeriodScale(const PeriodicSystem& system, double limit) {
       << "FloquetOptions::max_period_scale = " << limit
       << " (coefficients or period out of scale?)";
     throw InputError(s.str());
+  }
+  return scale;
+}
+
+// The cost before the work (work_estimate.h): refused when even the fewest evaluations any run
+// needs would exceed FloquetOptions::max_work_seconds, announced when the typical estimate
+// exceeds announce_work_seconds. A job whose upper bound is below both is not weighed further
+// (no eigenvalues of A(t) for the traits). `traits` are measured here when needed.
+void WeighTheWork(const PeriodicSystem& system, std::optional<SystemTraits>& traits,
+                  const FloquetOptions& options, double period_scale, int segments,
+                  FloquetResult& r) {
+  if (system.states() == 0) return;
+  const double pieces = static_cast<double>(system.breakpoints().size()) + 1;
+  const double per_evaluation = SecondsPerEvaluation(system);
+  const double most =
+      MostEvaluations(period_scale, pieces, segments, options.integrator.rel_tol) * per_evaluation;
+  const double limit = options.max_work_seconds > 0 ? options.max_work_seconds : HUGE_VAL;
+  if (most <= std::min(limit, options.announce_work_seconds)) return;
+  if (!traits) traits = MeasureSystemTraits(system);
+  const WorkEstimate w =
+      EstimateFloquetWork(*traits, options.integrator, pieces, segments, per_evaluation);
+  if (w.fewest_seconds() > limit) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "this analysis would take at least " << w.fewest_seconds() << " CPU s (about "
+      << w.seconds() << " s typically; " << w.basis
+      << "), beyond FloquetOptions::max_work_seconds = " << limit
+      << " (ltp: --max-work SECONDS; 0 = no limit); check the period and the coefficients' "
+         "units, or model fewer fast modes";
+    throw InputError(s.str());
+  }
+  if (w.seconds() > options.announce_work_seconds) {
+    std::ostringstream s;
+    s.precision(2);
+    s << "work estimate before the analysis: about " << w.seconds() << " CPU s (" << w.evaluations
+      << " evaluations; " << w.basis << ")";
+    r.diagnostics.push_back(s.str());
+    if (options.on_long_work) options.on_long_work(w);
   }
 }
 
@@ -584,7 +627,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // shapes and monodromy are scaled back at the end (docs/model-sizes.md).
   const Eigen::VectorXd scale = internal::StateBalancing(given);
   const PeriodicSystem system = scale.size() ? given.WithStateScaling(scale) : given;
-  CheckPeriodScale(system, requested.max_period_scale);
+  const double period_scale = CheckPeriodScale(system, requested.max_period_scale);
   FloquetResult r;
   if (scale.size()) {
     std::ostringstream s;
@@ -595,7 +638,10 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   }
   std::string choice;
   FloquetOptions options = requested;
-  options.integrator = ResolveIntegrator(system, requested.integrator, &choice);
+  std::optional<SystemTraits> traits;
+  if (requested.integrator.type == IntegratorType::kAuto) traits = MeasureSystemTraits(system);
+  options.integrator =
+      ResolveIntegrator(system, requested.integrator, &choice, traits ? &*traits : nullptr);
   if (!choice.empty())
     r.diagnostics.push_back("integrator auto → " + std::string(ToString(options.integrator.type)) +
                             ": " + choice);
@@ -615,6 +661,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // refining from one segment costs extra rounds and ends on more segments (60-state OpenFAST
   // set: K = 48 from 1, 27 from 8).
   const int grid_samples = n > kSmallSystemStates ? mode_samples : samples;
+  WeighTheWork(system, traits, options, period_scale, grid_samples, r);
   const internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
   r.rhs_evals += grid.rhs_evals;

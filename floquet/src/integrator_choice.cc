@@ -157,14 +157,15 @@ IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol) 
 }
 
 IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOptions options,
-                                    std::string* reason) {
+                                    std::string* reason, const SystemTraits* measured) {
   if (reason) reason->clear();
   if (options.type == IntegratorType::kTaylor && system.RealSeriesA(nullptr) == nullptr)
     throw InputError(
         "integrator 'taylor' needs A(t) as a Fourier series (a Fourier-form scene or system); "
         "this system's A(t) is not one: use bs, rkf78 or auto");
   if (options.type != IntegratorType::kAuto) return options;
-  const IntegratorChoice c = ChooseIntegrator(system, options.rel_tol);
+  const IntegratorChoice c = measured ? ChooseIntegrator(*measured, options.rel_tol)
+                                      : ChooseIntegrator(system, options.rel_tol);
   options.type = c.type;
   if (reason) *reason = c.reason;
   return options;

@@ -16,6 +16,7 @@
 #include "expression.h"
 #include "expression_matrix.h"
 #include "ltp/core/bounded_coefficients.h"
+#include "ltp/core/periodic_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/second_order.h"
 #include "ltp/models/scene.h"
@@ -404,7 +405,7 @@ PeriodicSystem BuildSampled(const SceneModel& model, const internal::Constants& 
                                      series(&LtiSystem::D, p, m));
 }
 
-void CheckBounded(const PeriodicSystem& system, const std::string& where);
+void CheckCoefficients(const PeriodicSystem& system, const std::string& where);
 
 PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& parameters) {
   const internal::Constants constants(parameters.begin(), parameters.end());
@@ -464,13 +465,13 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
     } catch (const SingularMassError& e) {
       throw SingularMassError(model.mass_where + ": " + e.what());
     }
-    CheckBounded(*system, model.mass_where);
+    CheckCoefficients(*system, model.mass_where);
   } else {
     PeriodicSystem::Functions f{function("A"), function("B"), function("C"), function("D")};
     system = PeriodicSystem::FromFunctions(period, model.states, model.inputs, model.outputs,
                                            std::move(f), breakpoints);
     const auto a = model.matrices.find("A");
-    CheckBounded(*system, a != model.matrices.end() && !a->second.empty() && !a->second[0].empty()
+    CheckCoefficients(*system, a != model.matrices.end() && !a->second.empty() && !a->second[0].empty()
                               ? a->second[0][0].where.substr(0, a->second[0][0].where.find(':'))
                               : std::string("scene"));
   }
@@ -500,8 +501,10 @@ size_t InvalidUtf8At(const std::string& text) {
   return std::string::npos;
 }
 
-void CheckBounded(const PeriodicSystem& system, const std::string& where) {
+void CheckCoefficients(const PeriodicSystem& system, const std::string& where) {
   if (const auto problem = UnboundedCoefficients(system)) throw SceneError(where + ": " + *problem);
+  if (const auto problem = NonPeriodicCoefficients(system))
+    throw SceneError(where + ": " + *problem);
 }
 
 YAML::Node LoadYaml(const std::string& text, const std::string& source) {

@@ -112,6 +112,12 @@ std::pair<int, int> OrdersFrom(const py::object& orders);
 int ChannelFrom(const py::object& channel, const std::vector<std::string>& names, int count,
                 const std::string& what);
 
+/// The largest |Im| in `value` (an array, a list or a scalar); 0 when it is real.
+double LargestImaginaryPart(const py::handle& value);
+/// @throws InputError when `value` holds a complex number with a non-zero imaginary part:
+/// numpy's cast to float would drop it silently. `what` names it.
+void RefuseComplex(const py::handle& value, const std::string& what);
+
 /// An integrator by the CLI's name. @throws InputError listing the names.
 IntegratorType IntegratorFrom(const std::string& name);
 

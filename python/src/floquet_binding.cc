@@ -135,7 +135,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       "floquet",
       [](const System& system, const std::string& integrator, double tol, int steps,
          const py::object& segments, const std::string& multipliers, const std::string& estimate,
-         int mode_samples, int threads) {
+         int mode_samples, int threads, double max_work) {
         FloquetOptions o;
         o.integrator.type = IntegratorFrom(integrator);
         o.integrator.rel_tol = tol;
@@ -149,6 +149,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
         o.error_estimate_method = *method;
         o.mode_samples = mode_samples;
         o.threads = AnalysisThreads(system, threads);
+        o.max_work_seconds = max_work;
         o.Validate();
         return WithoutGil(system, [&] { return AnalyzeFloquet(system.system, o); });
       },
@@ -158,7 +159,8 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       py::arg("steps") = defaults.integrator.steps_per_period, py::arg("segments") = "auto",
       py::arg("multipliers") = "schur",
       py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
-      py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads, R"doc(
+      py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
+      py::arg("max_work") = defaults.max_work_seconds, R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
@@ -173,6 +175,9 @@ the same options and defaults.
                 (Bulirsch–Stoer: one run, its steps' local errors carried to the exponents)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
+  max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU
+                seconds than this even at its fastest (0 = no limit); an analysis estimated
+                beyond 10 s says so in its diagnostics
 
 Returns a FloquetResult. Runs without the GIL. Raises ltp.InputError (a ValueError) for
 bad options; a failed analysis is not an exception: see result.ok and diagnostics.

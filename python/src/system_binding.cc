@@ -6,6 +6,7 @@
 #include "ltp/core/bounded_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
+#include "ltp/core/periodic_coefficients.h"
 #include "ltp/core/second_order.h"
 #include "ltp/models/scene_input.h"
 
@@ -25,6 +26,7 @@ std::string Shape(const py::array& a) {
 }
 
 Eigen::MatrixXd MatrixFrom(const py::object& obj, const std::string& name) {
+  RefuseComplex(obj, name);
   const Array a = Array::ensure(obj);
   if (!a || a.ndim() != 2) throw InputError(name + " must be a real 2-D array");
   Eigen::MatrixXd m(a.shape(0), a.shape(1));
@@ -132,6 +134,8 @@ System FromFunction(double period, const py::object& a, const py::object& b, con
   // Checked as scene files are: a NaN or a pole inside the period is refused here, in one line,
   // not found by the integrator after seconds and thousands of diagnostics.
   if (const auto problem = UnboundedCoefficients(system)) throw InputError(*problem);
+  if (const auto problem = NonPeriodicCoefficients(system)) throw InputError(*problem);
+  (*owner)->RethrowIfFailed();  // what a callable raised during the checks
   return System{std::move(system), std::nullopt, {}, {}, *owner};
 }
 

@@ -202,7 +202,7 @@ TEST(Cli, BothRoutesAgreeOnRepeatedMultipliersAndJumps) {
 // shapes too (each satisfying Φ_i v_i = σ_i v_{i+1} to round-off), with the note that the
 // default mode samples do not resolve them.
 // Reference: WKB, leading order — the growth over a period is ∫ √(k(t)) dt where k(t) > 0:
-// y'' = 1e6 sin(t) y on [0, π]: 1000 ∫_0^π √(sin t) dt = 2396.3; Mathieu q = 1e5 (a = 1):
+// y'' = 1e6 |sin t| y, over [0, π]: 1000 ∫_0^π √(sin t) dt = 2396.3; Mathieu q = 1e5 (a = 1):
 // ∫_{|t|<π/4} √(2q cos 2t) dt = 1.1981 √(2q) = 535.8.
 TEST(Cli, HugeCoefficientsAnalyseWithModeShapes) {
   const struct {

@@ -49,6 +49,17 @@ MATHIEU = ltp.scene("mathieu")
      r"A\(t\) is not a number at t = 1\.0"),
     (lambda: ltp.System.from_function(np.pi, lambda t: np.array([[0.0, 1.0], [-1 / (t - 1), -0.1]])),
      r"A\(t\) is unbounded near t = 1 "),
+    # Refused, not truncated to their real part or analysed as a periodic extension.
+    (lambda: ltp.System.from_function(np.pi, lambda t: np.array([[0, 1], [-1 + 0.1j * np.cos(2 * t), 0]])),
+     r"A\(0\) has complex values \(\|Im\| up to 0\.1\)"),
+    (lambda: ltp.System.from_function(np.pi, lambda t: [[0, 1], [-1 + (0.5j if t > 1 else 0), 0]]),
+     r"A\(t\) at t = 1\.[0-9]+ has complex values"),
+    (lambda: ltp.System.from_function(np.pi, lambda t: np.array([[0, 1], [-1 - 0.1 * np.sin(t), -0.1]])),
+     r"A\(t\) is not periodic with the period T = 3\.14159"),
+    # 2e9 radians per period: refused before the work, with the estimate (the CLI's --max-work).
+    (lambda: ltp.floquet(ltp.System.from_fourier(2 * np.pi, np.array(
+        [[[0, 0], [-4.5e15, 0]], [[0, 1], [-9e16, -0.02]], [[0, 0], [-4.5e15, 0]]])), max_work=1),
+     r"this analysis would take at least .* CPU s"),
     (lambda: ltp.System.from_samples(1.0, [0.0, 0.5], np.zeros((3, 2, 2))), r"one matrix per sample time"),
     (lambda: ltp.System.from_samples(1.0, [0.5, 0.0], np.zeros((2, 2, 2))), r"strictly increasing"),
 ])

@@ -9,12 +9,14 @@
 // the null vectors of the block-cyclic matrix, never from propagating through the product.
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/integrator.h"
+#include "ltp/floquet/work_estimate.h"
 
 namespace ltp {
 
@@ -80,6 +82,13 @@ struct FloquetOptions {
   /// integrator follows the solutions over a period in any reasonable time, and the analysis is
   /// refused up front (InputError) instead of running for hours.
   double max_period_scale = 1e10;
+  /// Refuse (InputError, with the estimate) an analysis whose fewest possible evaluations
+  /// (WorkEstimate::fewest_seconds) would take longer than this many CPU seconds; 0 = no limit.
+  double max_work_seconds = 3600;
+  /// An analysis whose typical estimate (WorkEstimate::seconds) exceeds this many CPU seconds
+  /// says so up front: a diagnostic, and `on_long_work` (the CLI prints it) before the work.
+  double announce_work_seconds = 10;
+  std::function<void(const WorkEstimate&)> on_long_work;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };

@@ -56,7 +56,9 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
 /// `options` with IntegratorType::kAuto replaced by the choice (unchanged otherwise);
 /// `reason` (if given) receives the choice's reason, or stays empty. Throws InputError for
 /// kTaylor on a system whose A(t) is not a Fourier series.
+/// `measured`: the system's traits when the caller has them (else measured here, for kAuto).
 IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOptions options,
-                                    std::string* reason = nullptr);
+                                    std::string* reason = nullptr,
+                                    const SystemTraits* measured = nullptr);
 
 }  // namespace ltp

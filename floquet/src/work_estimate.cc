@@ -1,0 +1,100 @@
+// The cost model of EstimateFloquetWork. Counts measured with `ltp floquet --json` (rhs_evals, the
+// whole analysis: run, refined run, mode samples) at the default tolerance 1e-10 on
+// x'' + 0.02 x' + w²(1 + 0.1 cos t) x = 0 over 2π (T·ρ = 2π w rad): w = 100 / 1000 gave
+// Bulirsch–Stoer 162 / 100 evaluations per radian, rkf78 94 / 93, Magnus 6 129 / 127; the 120-state
+// finite-element shaft 140 (docs/model-sizes.md).
+#include "ltp/floquet/work_estimate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "ltp/core/error.h"
+
+namespace ltp {
+namespace {
+
+// Typical evaluations per radian of the fastest motion over the whole analysis at rel_tol 1e-10
+// (see above), and how the count grows as the tolerance tightens: the same oscillator (w = 1000)
+// took rkf78 15 / 28 / 93, Bulirsch–Stoer 35 / 53 / 100, Magnus 6 11 / 21 / 127 per radian at
+// 1e-4 / 1e-6 / 1e-10, about (1/tol)^0.13.
+constexpr double kTypicalPerRadian = 120;
+constexpr double kTolerancePower = 0.13;
+// Fewest per radian: a fifth of the typical count (at 1e-4: 4 against the 11 measured, at 1e-10:
+// 24 against 93).
+constexpr double kFewestFraction = 0.2;
+// Start-up per segment (first steps, the step-size search) at 1e-10, scaled with the tolerance
+// as the count per radian: the w = 100 runs' 128 segments.
+constexpr double kPerSegment = 250;
+// One matrix exponential of a piece costs about this many n×n products (scaling and squaring
+// with a degree-13 Padé approximant), and the analysis forms each piece about twice.
+constexpr double kProductsPerPiece = 2 * 12;
+// Magnus 6 on an A(t) constant to the tolerance (ChooseIntegrator's fast-oscillation rule):
+// the 64-state generated rotor took 882 evaluations.
+constexpr double kNearlyConstantMagnus = 1000;
+
+double PerRadian(double rel_tol) {
+  return kTypicalPerRadian * std::pow(1e-10 / std::max(rel_tol, 1e-16), kTolerancePower);
+}
+
+}  // namespace
+
+double SecondsPerEvaluation(const PeriodicSystem& system) {
+  const int n = system.states();
+  Eigen::MatrixXd a(n, n), phi = Eigen::MatrixXd::Identity(n, n), out(n, n);
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    system.EvalA((k + 0.37) * system.period() / 3, a);
+    out.noalias() = a * phi;
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+double MostEvaluations(double period_scale, double pieces, int segments, double rel_tol) {
+  return PerRadian(rel_tol) *
+             (period_scale + kPerSegment / kTypicalPerRadian * std::max(segments, 1)) +
+         kProductsPerPiece * pieces;
+}
+
+WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOptions& integrator,
+                                 double pieces, int segments, double seconds_per_evaluation) {
+  WorkEstimate w;
+  w.seconds_per_evaluation = seconds_per_evaluation;
+  std::ostringstream s;
+  s.precision(3);
+  if (integrator.type == IntegratorType::kExpm) {
+    w.fewest_evaluations = pieces;
+    w.evaluations = kProductsPerPiece * pieces;
+    s << pieces << " constant pieces, one matrix exponential each";
+  } else if (integrator.type == IntegratorType::kMagnus6 && traits.oscillation > 0 &&
+             traits.variation <= integrator.rel_tol * traits.oscillation) {
+    w.fewest_evaluations = 1;
+    w.evaluations = kNearlyConstantMagnus;
+    s << "A(t) constant to the tolerance: Magnus steps exact for its mean";
+  } else {
+    // Explicit methods follow every radian of the fastest oscillation and every e-fold of the
+    // fastest decay; Magnus follows the decay exactly but not the oscillation of a periodic part.
+    const double radians = integrator.type == IntegratorType::kMagnus6
+                               ? traits.oscillation
+                               : std::max(traits.oscillation, traits.stiffness);
+    const double per_radian = PerRadian(integrator.rel_tol);
+    w.fewest_evaluations = kFewestFraction * per_radian * radians;
+    w.evaluations =
+        per_radian * (radians + kPerSegment / kTypicalPerRadian * std::max(segments, 1));
+    s << "T·ρ(A) = " << radians << " radians or e-folds per period to follow, about "
+      << std::lround(per_radian) << " evaluations each over the analysis at tol "
+      << integrator.rel_tol;
+  }
+  w.evaluations = std::max(w.evaluations, w.fewest_evaluations);
+  s << ", at " << w.seconds_per_evaluation * 1e6 << " µs per evaluation of A(t)·Φ ("
+    << traits.states << " states)";
+  w.basis = s.str();
+  return w;
+}
+
+}  // namespace ltp

@@ -1,0 +1,85 @@
+// The cost before the work (work_estimate.h): the estimate against the evaluations the analysis
+// then counts (another route: the integrators' own tally), a refusal that needs no timing to be
+// certain, and the announcement hook.
+#include "ltp/floquet/work_estimate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "ltp/core/error.h"
+#include "ltp/floquet/floquet.h"
+#include "ltp/floquet/integrator_choice.h"
+
+namespace ltp {
+namespace {
+
+// x'' + 0.02 x' + w²(1 + 0.1 cos t) x = 0 over 2π: T·ρ ≈ 2π w radians per period.
+PeriodicSystem FastOscillator(double w) {
+  FourierMatrix a(2, 2, 1);
+  a[0] << 0, 1, -w * w, -0.02;
+  a[1] << 0, 0, -0.05 * w * w, 0;
+  a[-1] = a[1];
+  return PeriodicSystem::FromFourier(2 * std::numbers::pi, a);
+}
+
+TEST(WorkEstimate, BracketsTheEvaluationsTheAnalysisCounts) {
+  for (double w : {30.0, 300.0, 3000.0})
+    for (IntegratorType type : {IntegratorType::kBulirschStoer, IntegratorType::kRkf78})
+      for (double tol : {1e-6, 1e-10}) {
+        const PeriodicSystem system = FastOscillator(w);
+        FloquetOptions o;
+        o.integrator.type = type;
+        o.integrator.rel_tol = tol;
+        const FloquetResult r = AnalyzeFloquet(system, o);
+        ASSERT_TRUE(r.ok);
+        const WorkEstimate e =
+            EstimateFloquetWork(MeasureSystemTraits(system), o.integrator, 1, r.segments, 1e-7);
+        const double counted = static_cast<double>(r.rhs_evals);
+        const std::string what = "w = " + std::to_string(w) + " " + std::string(ToString(type)) +
+                                 " tol " + std::to_string(tol);
+        EXPECT_GE(counted, e.fewest_evaluations) << what;
+        EXPECT_LE(counted, 3 * e.evaluations) << what;
+        EXPECT_GE(counted, e.evaluations / 3) << what;
+      }
+}
+
+TEST(WorkEstimate, AnAnalysisBeyondTheLimitIsRefusedWithTheEstimate) {
+  // 2e9 radians per period: even a fifth of the typical count at a nanosecond each is a minute.
+  FloquetOptions o;
+  o.max_work_seconds = 1;
+  try {
+    AnalyzeFloquet(FastOscillator(3e8), o);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("would take at least"), std::string::npos) << m;
+    EXPECT_NE(m.find("max_work_seconds"), std::string::npos) << m;
+  }
+}
+
+TEST(WorkEstimate, ALongAnalysisIsAnnouncedBeforeItStarts) {
+  FloquetOptions o;
+  o.announce_work_seconds = 0;  // announce everything
+  int calls = 0;
+  WorkEstimate seen;
+  o.on_long_work = [&](const WorkEstimate& w) {
+    ++calls;
+    seen = w;
+  };
+  const FloquetResult r = AnalyzeFloquet(FastOscillator(300), o);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(calls, 1);
+  EXPECT_GT(seen.evaluations, 0);
+  bool said = false;
+  for (const std::string& d : r.diagnostics) said = said || d.find("work estimate") == 0;
+  EXPECT_TRUE(said);
+  // The default threshold (10 CPU s) keeps a small job quiet.
+  const FloquetResult quiet = AnalyzeFloquet(FastOscillator(300), FloquetOptions{});
+  for (const std::string& d : quiet.diagnostics) EXPECT_NE(d.find("work estimate"), 0u) << d;
+}
+
+}  // namespace
+}  // namespace ltp
