@@ -16,8 +16,8 @@
 #include "expression.h"
 #include "expression_matrix.h"
 #include "ltp/core/bounded_coefficients.h"
-#include "ltp/core/periodic_coefficients.h"
 #include "ltp/core/error.h"
+#include "ltp/core/periodic_coefficients.h"
 #include "ltp/core/second_order.h"
 #include "ltp/models/scene.h"
 
@@ -471,9 +471,10 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
     system = PeriodicSystem::FromFunctions(period, model.states, model.inputs, model.outputs,
                                            std::move(f), breakpoints);
     const auto a = model.matrices.find("A");
-    CheckCoefficients(*system, a != model.matrices.end() && !a->second.empty() && !a->second[0].empty()
-                              ? a->second[0][0].where.substr(0, a->second[0][0].where.find(':'))
-                              : std::string("scene"));
+    CheckCoefficients(*system,
+                      a != model.matrices.end() && !a->second.empty() && !a->second[0].empty()
+                          ? a->second[0][0].where.substr(0, a->second[0][0].where.find(':'))
+                          : std::string("scene"));
   }
   system = system->WithLabels(model.labels);
   if (model.rotor_speed) system = system->WithRotorSpeed(Value(*model.rotor_speed, constants));
