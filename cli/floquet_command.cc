@@ -15,7 +15,7 @@
 #include "ltp/floquet/hill.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/models/rotor.h"
-#include "ltp/models/rotor_mbc.h"
+#include "ltp/studies/rotor_mbc_check.h"
 #include "plot.h"
 #include "scene_args.h"
 
@@ -301,33 +301,24 @@ double Disagreement(const std::vector<FloquetMode>& a, const std::vector<Floquet
   return MaxExponentMismatch(x, y, omega);
 }
 
-// For the `rotor` scene: the multi-blade-coordinate cross-check (N >= 3 identical blades make
-// the rotor time-invariant; its eigenvalues equal the Floquet exponents modulo jΩ).
-json MbcCheck(const LoadedScene& l, const FloquetResult& r) {
-  if (l.scene.name != "rotor" || !r.ok) return nullptr;
-  const RotorParameters rotor = RotorParametersFrom(l.parameters);
-  if (auto reason = MbcNotApplicable(rotor)) return {{"applicable", false}, {"reason", *reason}};
-  const MbcRotorSystem mbc = RotorInMultiBladeCoordinates(rotor);
-  std::vector<std::complex<double>> exponents;
-  for (const FloquetMode& m : r.modes) exponents.push_back(m.exponent);
-  const double worst = MaxExponentMismatch(exponents, mbc.eigenvalues, mbc.rotor_speed);
-  return {{"applicable", true}, {"blades", mbc.blades}, {"max_difference", JsonNumber(worst)}};
+json MbcCheckJson(const std::optional<RotorMbcCheck>& check) {
+  if (!check) return nullptr;
+  if (!check->applicable) return {{"applicable", false}, {"reason", check->reason}};
+  return {{"applicable", true},
+          {"blades", check->blades},
+          {"max_difference", JsonNumber(check->max_difference)}};
 }
 
-void PrintMbcCheck(const json& check) {
-  if (check.is_null()) return;
-  if (!check["applicable"].get<bool>()) {
-    std::cout << "  MBC cross-check: not applicable — " << check["reason"].get<std::string>()
-              << "\n";
+void PrintMbcCheck(const std::optional<RotorMbcCheck>& check) {
+  if (!check) return;
+  if (!check->applicable) {
+    std::cout << "  MBC cross-check: not applicable — " << check->reason << "\n";
     return;
   }
-  std::cout << "  MBC cross-check (" << check["blades"].get<int>()
+  std::cout << "  MBC cross-check (" << check->blades
             << " blades): the Floquet exponents equal the eigenvalues of the constant "
                "multi-blade-coordinate system modulo jΩ to "
-            << Num(check["max_difference"].is_number() ? check["max_difference"].get<double>()
-                                                       : std::numeric_limits<double>::infinity(),
-                   2)
-            << " 1/s\n";
+            << Num(check->max_difference, 2) << " 1/s\n";
 }
 
 int RunFloquet(FloquetArgs& args) {
@@ -391,7 +382,8 @@ int RunFloquet(FloquetArgs& args) {
     json j;
     if (args.method == "monodromy") {
       j = MonodromyJson(l, args, r);
-      if (const json mbc = MbcCheck(l, r); !mbc.is_null()) j["mbc_check"] = mbc;
+      if (const json mbc = MbcCheckJson(CheckRotorByMbc(l.scene, l.parameters, r)); !mbc.is_null())
+        j["mbc_check"] = mbc;
     } else if (args.method == "hill") {
       j = HillJson(l, h);
     } else {
@@ -416,7 +408,7 @@ int RunFloquet(FloquetArgs& args) {
   std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
             << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
   if (run_mono) PrintMonodromy(args, r);
-  if (run_mono) PrintMbcCheck(MbcCheck(l, r));
+  if (run_mono) PrintMbcCheck(CheckRotorByMbc(l.scene, l.parameters, r));
   if (run_mono && run_hill) std::cout << "\n";
   if (run_hill) PrintHill(h);
   if (run_mono && run_hill)

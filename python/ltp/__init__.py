@@ -17,6 +17,7 @@ Analyses (each runs without the GIL)
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
+    mbc_check(system, result) -> dict | None  `ltp floquet rotor`'s multi-blade-coordinate check
 
 Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
 ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
@@ -43,6 +44,7 @@ from ._ltp import (  # noqa: F401
     floquet,
     hill,
     hill_study,
+    mbc_check,
     pfrf,
     scene,
     scenes,
@@ -52,5 +54,5 @@ from ._ltp import (  # noqa: F401
 __all__ = [
     "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "PfrfResult",
     "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
-    "chart", "floquet", "hill", "hill_study", "pfrf", "scene", "scenes", "snapshot",
+    "chart", "floquet", "hill", "hill_study", "mbc_check", "pfrf", "scene", "scenes", "snapshot",
 ]

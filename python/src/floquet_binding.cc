@@ -7,6 +7,7 @@
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/studies/rotor_mbc_check.h"
 
 namespace ltp::python {
 
@@ -184,6 +185,26 @@ bad options; a failed analysis is not an exception: see result.ok and diagnostic
 
     r = ltp.floquet(ltp.scene("mathieu", a=1.5, q=2))
     r.exponents, r.multipliers, r.verdict, r.error_estimate)doc");
+
+  m.def(
+      "mbc_check",
+      [](const System& system, const FloquetResult& result) -> py::object {
+        if (!system.scene) return py::none();
+        const auto check = CheckRotorByMbc(*system.scene, system.parameters, result);
+        if (!check) return py::none();
+        return py::dict(py::arg("applicable") = check->applicable,
+                        py::arg("reason") = check->reason, py::arg("blades") = check->blades,
+                        py::arg("max_difference") = check->max_difference);
+      },
+      py::arg("system"), py::arg("result"), R"doc(
+The multi-blade-coordinate cross-check `ltp floquet rotor` prints: for the built-in rotor
+scene with N >= 3 identical blades, the largest distance (1/s) between the Floquet exponents of
+`result` (ltp.floquet of `system`) and the eigenvalues of the constant multi-blade-coordinate
+system, matched modulo jΩ. A dict {applicable, reason, blades, max_difference}; None for other
+scenes or a failed result.
+
+    s = ltp.scene("rotor")
+    ltp.mbc_check(s, ltp.floquet(s))["max_difference"]   # ~1e-12)doc");
 }
 
 }  // namespace ltp::python

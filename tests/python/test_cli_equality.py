@@ -52,8 +52,18 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
         args += [f"--{k}", v]
     j = ltp_cli(*args, "--keep-going")
     kwargs = {k: (int(v) if k == "segments" else float(v) if k == "tol" else v) for k, v in options.items()}
-    r = ltp.floquet(ltp.scene(scene, **parameters), **kwargs)
+    system = ltp.scene(scene, **parameters)
+    r = ltp.floquet(system, **kwargs)
     assert_modes_equal(j, r)
+    # The rotor's multi-blade-coordinate cross-check (an independent route: eigenvalues of the
+    # constant MBC system), the same in both.
+    check = ltp.mbc_check(system, r)
+    assert (check is None) == ("mbc_check" not in j)
+    if check is not None:
+        assert check["applicable"] == j["mbc_check"]["applicable"]
+        assert check["blades"] == j["mbc_check"]["blades"] == 3
+        assert same(j["mbc_check"]["max_difference"], check["max_difference"])
+        assert check["max_difference"] < 1e-7
     assert j["ok"] == r.ok and j["stable"] == r.stable and j["verdict"] == r.verdict
     assert j["integrator"] == r.integrator and j["segments"] == r.segments
     assert j["multiplier_method"] == r.multiplier_method and j["period"] == r.period
