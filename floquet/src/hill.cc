@@ -604,6 +604,7 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   const auto start = std::chrono::steady_clock::now();
   const double T = system.period();
   std::vector<std::string> notes;
+  std::string fit_note;
   HillOptions options = requested;
   FourierMatrix A;
   std::optional<FourierFit> fit;
@@ -620,7 +621,8 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     if (fit->decay == FourierDecay::kAlgebraic)
       s << " (|A_w| ~ |w|^-" << fit->decay_rate
         << ": discontinuous A(t), expect algebraic convergence in N)";
-    notes.push_back(s.str());
+    fit_note = s.str();
+    notes.push_back(fit_note);
   }
 
   if (options.solver == HillSolver::kAuto) {  // needs H_A: after the fit
@@ -647,6 +649,7 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   }
   if (fit && !fit->converged && !r.modes.empty()) FitErrorEstimate(system, options, *fit, r);
   r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
+  r.fourier_fit = fit_note;
   r.elapsed_s = SecondsSince(start);
   return r;
 }

@@ -251,8 +251,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
     }
     if (study.rows.empty()) {
       study.decay = r.decay;
-      for (const std::string& d : r.diagnostics)
-        if (d.rfind("A(t) fitted", 0) == 0) study.diagnostics.push_back(d);
+      if (!r.fourier_fit.empty()) study.diagnostics.push_back(r.fourier_fit);
     }
     study.rows.push_back(row);
   }

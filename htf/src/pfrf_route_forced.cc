@@ -53,8 +53,8 @@ class ForcedResponseRoute : public PfrfRouteSolver {
               ? " (NOT resolved: raise max_samples)"
               : "");
     d.push_back(s.str());
-    for (const auto& m : solver_.diagnostics())
-      if (m.rfind(name, 0) == 0 || m.rfind("forced", 0) == 0) d.push_back(m);
+    // The solver serves this route only: everything it noticed is this route's.
+    for (const auto& m : solver_.diagnostics()) d.push_back(m);
     return d;
   }
 

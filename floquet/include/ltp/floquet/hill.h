@@ -153,6 +153,9 @@ struct HillResult {
   /// fit uses half the samples (aliasing of a discontinuous A(t) falls like 1/S or faster, so
   /// the change is at least the error). 0 for Fourier-form systems and converged fits.
   double fourier_fit_error = 0;
+  /// How A(t) was fitted (harmonics, samples, tail, decay), one sentence; empty when A(t) was a
+  /// Fourier series. Also the first diagnostic.
+  std::string fourier_fit;
   /// AnalyzeHillAuto only: whether the truncation met the requested tolerance (false: it
   /// stopped at the memory or harmonics limit, or early because the observed convergence rate
   /// or the Fourier fit of A could not reach it; the diagnostics say which). Empty for a fixed N.
