@@ -171,8 +171,8 @@ struct FloquetResult {
 
   /// Ξ(t) from the Fourier coefficients of the mode shapes (spectral interpolation).
   Eigen::MatrixXcd ModeMatrix(double t) const;
-  /// Left modes: rows of Ξ(t)⁻¹ (throws NumericalError-free: returns the pseudo-inverse
-  /// when Ξ is singular and says so via mode_condition).
+  /// Left modes: rows of Ξ(t)⁻¹ — the pseudo-inverse, so a singular Ξ (see mode_condition)
+  /// gives a result, not an exception.
   Eigen::MatrixXcd LeftModes(double t) const;
   /// One line: K, max Re λ, stability, error, time.
   std::string BriefReport() const;

@@ -271,10 +271,6 @@ HillDecay FitHillDecay(const FourierMatrix& A, const FourierFit* fit, int harmon
 /// `decay` (b > ln 2); +inf for algebraic decay.
 double KoopmanHillBound(const HillDecay& decay, int harmonics, double period);
 
-}  // namespace ltp
-
-namespace ltp {
-
 /// Hill analysis with the truncation chosen automatically: N = start, 2·start, … until the
 /// N vs N+Δ estimate is below `tol` · max(1, max|λ|), the matrix would exceed the memory
 /// limit, or N reaches `max_harmonics`. The result says which N was used; not reaching `tol`

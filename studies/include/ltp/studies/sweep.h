@@ -54,7 +54,7 @@ struct SweepOptions {
   /// users compute without Floquet theory), for comparison in Campbell diagrams.
   bool snapshot = false;
   /// Run the error estimate (a second, tighter run) on every `check_every`-th point (1 = all;
-  /// 0 = none). Unchecked points report error_estimate = -1.
+  /// 0 = none). Unchecked points leave SweepPoint::error_estimate empty.
   int check_every = 1;
   /// |max log|ρ|| below this (per period) is "marginal" rather than stable/unstable: it must
   /// exceed the multipliers' error, which the study in the README puts below 1e-8 at the
