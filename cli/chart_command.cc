@@ -13,9 +13,9 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #ifdef LTP_WITH_MPI
@@ -177,16 +177,11 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
   const size_t size = c.plan.grid.size();
   ChartSweepHooks hooks;
   if (root) hooks.resumed = record->resumed();
-  size_t resumed = 0;
-  {
-    std::vector<char> seen(size, 0);
-    for (const SweepPoint& p : hooks.resumed)
-      if (p.index < size && !seen[p.index]) seen[p.index] = 1, ++resumed;
-  }
-  Progress progress(size, resumed, root && !args.json);
+  std::optional<Progress> progress;
+  hooks.on_start = [&](size_t resumed) { progress.emplace(size, resumed, root && !args.json); };
   hooks.on_point = [&](const SweepPoint& p) {
     record->Add(p);
-    progress.Tick();
+    progress->Tick();
     if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
   };
   hooks.cancel = &g_interrupted;
@@ -210,7 +205,7 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
   auto previous = std::signal(SIGINT, OnInterrupt);
   ChartPoints swept = SweepChart(c.scene.scene, c.scene.parameters, c.plan, hooks);
   std::signal(SIGINT, previous);
-  progress.Finish();
+  if (progress) progress->Finish();
   c.points = std::move(swept.points);
   c.resumed = swept.resumed;
   c.sweep_s = swept.sweep_s;

@@ -127,7 +127,7 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
     c.reason = "stiff: T·max|Re eig A(t)| = " + MessageNumber(t.stiffness, 3) +
                " > 500, so explicit steps are bound by stability; Magnus 6 follows the fast "
                "decay exactly (study: the cheapest integrator on stiff.yaml and stiff-coupled)";
-  } else if (t.oscillation > kFastOscillation && t.variation <= rel_tol * t.oscillation) {
+  } else if (MagnusOverTheMeanPays(t, rel_tol)) {
     c.type = IntegratorType::kMagnus6;
     c.reason = "fast oscillation (T·ρ(Ā) = " + MessageNumber(t.oscillation, 3) +
                ") around a mean A(t) leaves by less than the tolerance (T·max‖A(t) − Ā‖ = " +
@@ -150,6 +150,10 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
 
 bool TaylorSeriesPay(const SystemTraits& traits) {
   return traits.fourier_form && traits.states <= kTaylorMaxStates;
+}
+
+bool MagnusOverTheMeanPays(const SystemTraits& traits, double rel_tol) {
+  return traits.oscillation > kFastOscillation && traits.variation <= rel_tol * traits.oscillation;
 }
 
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol) {

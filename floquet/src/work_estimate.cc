@@ -31,7 +31,7 @@ constexpr double kPerSegment = 250;
 // One matrix exponential of a piece costs about this many n×n products (scaling and squaring
 // with a degree-13 Padé approximant), and the analysis forms each piece about twice.
 constexpr double kProductsPerPiece = 2 * 12;
-// Magnus 6 on an A(t) constant to the tolerance (ChooseIntegrator's fast-oscillation rule):
+// Magnus 6 where MagnusOverTheMeanPays (A(t) constant to the tolerance around fast modes):
 // the 64-state generated rotor took 882 evaluations.
 constexpr double kNearlyConstantMagnus = 1000;
 
@@ -71,8 +71,8 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
     w.fewest_evaluations = pieces;
     w.evaluations = kProductsPerPiece * pieces;
     s << pieces << " constant pieces, one matrix exponential each";
-  } else if (integrator.type == IntegratorType::kMagnus6 && traits.oscillation > 0 &&
-             traits.variation <= integrator.rel_tol * traits.oscillation) {
+  } else if (integrator.type == IntegratorType::kMagnus6 &&
+             MagnusOverTheMeanPays(traits, integrator.rel_tol)) {
     w.fewest_evaluations = 1;
     w.evaluations = kNearlyConstantMagnus;
     s << "A(t) constant to the tolerance: Magnus steps exact for its mean";

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <complex>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -112,11 +113,11 @@ std::pair<int, int> OrdersFrom(const py::object& orders);
 int ChannelFrom(const py::object& channel, const std::vector<std::string>& names, int count,
                 const std::string& what);
 
-/// The largest |Im| in `value` (an array, a list or a scalar); 0 when it is real.
-double LargestImaginaryPart(const py::handle& value);
-/// @throws InputError when `value` holds a complex number with a non-zero imaginary part:
-/// numpy's cast to float would drop it silently. `what` names it.
-void RefuseComplex(const py::handle& value, const std::string& what);
+/// `value` (an array, a list or a scalar) as numpy reads it: an ndarray as it is, anything else
+/// converted once; null when numpy cannot. @throws InputError when it holds a complex number
+/// with a non-zero imaginary part, which numpy's cast to float would drop silently; `what()`
+/// names the value (built only then).
+py::array RealValued(const py::handle& value, const std::function<std::string()>& what);
 
 /// An integrator by the CLI's name. @throws InputError listing the names.
 IntegratorType IntegratorFrom(const std::string& name);

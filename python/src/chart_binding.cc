@@ -18,21 +18,13 @@ namespace ltp::python {
 
 namespace {
 
+// The library's chart and what the binding adds: where it came from, the threads it ran on.
 struct ChartResult {
-  std::string scene, method, integrator;
+  std::string scene;
   ParameterMap parameters;
   int states = 0;
-  double tol = 0;
   int threads = 0;
-  SweepGrid grid;
-  SweepOptions options;
-  std::vector<SweepPoint> points;  ///< grid order
-  ModeTracking tracking;           ///< 1-D only
-  CampbellDiagram campbell;        ///< 1-D only
-  std::vector<UnstableInterval> intervals;
-  std::vector<BoundaryPoint> boundary;
-  SweepTally tally;
-  double sweep_s = 0, refine_s = 0;
+  ltp::Chart chart;
 };
 
 SweepAxis AxisFrom(const py::object& spec) {
@@ -58,9 +50,9 @@ py::dict BoundaryDict(const BoundaryEstimate& e) {
 template <class Field>
 auto PointArray(Field field) {
   return [field](const ChartResult& c) {
-    py::array_t<double> a(static_cast<py::ssize_t>(c.points.size()));
-    for (size_t i = 0; i < c.points.size(); ++i)
-      a.mutable_at(static_cast<py::ssize_t>(i)) = field(c.points[i]);
+    py::array_t<double> a(static_cast<py::ssize_t>(c.chart.points.size()));
+    for (size_t i = 0; i < c.chart.points.size(); ++i)
+      a.mutable_at(static_cast<py::ssize_t>(i)) = field(c.chart.points[i]);
     return a;
   };
 }
@@ -70,26 +62,12 @@ ChartResult ChartOfScene(const System& system, std::vector<SweepAxis> axes,
   if (!system.scene)
     throw InputError("chart sweeps a scene's parameters: give a system made by ltp.scene(...)");
   const Scene& scene = *system.scene;
-  ltp::Chart chart =
-      ComputeChart(scene, system.parameters, system.system, std::move(axes), options);
   ChartResult r;
   r.scene = scene.name;
   r.parameters = system.parameters;
   r.states = system.system.states();
-  r.grid = std::move(chart.plan.grid);
-  r.options = chart.plan.sweep;
-  r.method = ToString(options.method);
-  r.integrator = ToString(chart.plan.sweep.floquet.integrator.type);
-  r.tol = options.tol;
-  r.threads = ThreadsFor(r.options.threads);
-  r.points = std::move(chart.points);
-  r.tracking = std::move(chart.analysis.tracking);
-  r.campbell = std::move(chart.analysis.campbell);
-  r.intervals = std::move(chart.analysis.intervals);
-  r.boundary = std::move(chart.analysis.boundary);
-  r.tally = std::move(chart.analysis.tally);
-  r.sweep_s = chart.sweep_s;
-  r.refine_s = chart.analysis.refine_s;
+  r.chart = ComputeChart(scene, system.parameters, system.system, std::move(axes), options);
+  r.threads = ThreadsFor(r.chart.plan.sweep.threads);
   return r;
 }
 
@@ -108,18 +86,27 @@ members of each conjugate pair).)doc")
       .def_readonly("scene", &ChartResult::scene, "the scene's name")
       .def_readonly("parameters", &ChartResult::parameters,
                     "the scene's parameters besides the swept ones")
-      .def_readonly("method", &ChartResult::method, "'monodromy' or 'hill'")
-      .def_readonly("integrator", &ChartResult::integrator, "the monodromy integrator used")
-      .def_readonly("tol", &ChartResult::tol, "the tolerance used")
+      .def_property_readonly(
+          "method",
+          [](const ChartResult& c) { return std::string(ToString(c.chart.plan.chart.method)); },
+          "'monodromy' or 'hill'")
+      .def_property_readonly(
+          "integrator",
+          [](const ChartResult& c) {
+            return std::string(ToString(c.chart.plan.sweep.floquet.integrator.type));
+          },
+          "the monodromy integrator used")
+      .def_property_readonly(
+          "tol", [](const ChartResult& c) { return c.chart.plan.chart.tol; }, "the tolerance used")
       .def_readonly("threads", &ChartResult::threads, "threads used over points")
       .def_property_readonly(
-          "check_every", [](const ChartResult& c) { return c.options.check_every; },
+          "check_every", [](const ChartResult& c) { return c.chart.plan.sweep.check_every; },
           "error estimate on every k-th point")
       .def_property_readonly(
           "axes",
           [](const ChartResult& c) {
             std::vector<std::string> names;
-            for (const auto& a : c.grid.axes) names.push_back(a.name);
+            for (const auto& a : c.chart.plan.grid.axes) names.push_back(a.name);
             return names;
           },
           "the swept parameters' names")
@@ -127,7 +114,7 @@ members of each conjugate pair).)doc")
           "values",
           [](const ChartResult& c) {
             py::list out;
-            for (const auto& v : c.grid.values) out.append(RealArray(v));
+            for (const auto& v : c.chart.plan.grid.values) out.append(RealArray(v));
             return out;
           },
           "the grid values of each axis")
@@ -135,16 +122,16 @@ members of each conjugate pair).)doc")
           "point_values",
           [](const ChartResult& c) {
             std::vector<std::vector<double>> v;
-            for (const SweepPoint& p : c.points) v.push_back(p.values);
-            return RealTable(v, c.grid.axes.size());
+            for (const SweepPoint& p : c.chart.points) v.push_back(p.values);
+            return RealTable(v, c.chart.plan.grid.axes.size());
           },
           "parameter values of every point, shape (points, axes)")
       .def_property_readonly(
           "ok",
           [](const ChartResult& c) {
-            py::array_t<bool> a(static_cast<py::ssize_t>(c.points.size()));
-            for (size_t i = 0; i < c.points.size(); ++i)
-              a.mutable_at(static_cast<py::ssize_t>(i)) = c.points[i].ok;
+            py::array_t<bool> a(static_cast<py::ssize_t>(c.chart.points.size()));
+            for (size_t i = 0; i < c.chart.points.size(); ++i)
+              a.mutable_at(static_cast<py::ssize_t>(i)) = c.chart.points[i].ok;
             return a;
           },
           "per point: the analysis succeeded")
@@ -152,7 +139,7 @@ members of each conjugate pair).)doc")
           "verdicts",
           [](const ChartResult& c) {
             std::vector<std::string> v;
-            for (const SweepPoint& p : c.points) v.emplace_back(ToString(p.verdict));
+            for (const SweepPoint& p : c.chart.points) v.emplace_back(ToString(p.verdict));
             return v;
           },
           "'stable', 'marginal', 'unstable' or 'failed' per point")
@@ -171,7 +158,7 @@ members of each conjugate pair).)doc")
           "exponents",
           [](const ChartResult& c) {
             std::vector<std::vector<Complex>> v;
-            for (const SweepPoint& p : c.points) {
+            for (const SweepPoint& p : c.chart.points) {
               v.emplace_back();
               for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
             }
@@ -182,13 +169,13 @@ members of each conjugate pair).)doc")
           "tracked_exponents",
           [](const ChartResult& c) {
             std::vector<std::vector<Complex>> v;
-            for (size_t i = 0; i < c.points.size(); ++i) {
+            for (size_t i = 0; i < c.chart.points.size(); ++i) {
               v.emplace_back();
-              if (i >= c.tracking.labels.size()) continue;
-              for (int index : c.tracking.labels[i])
-                v.back().push_back(index >= 0
-                                       ? c.points[i].modes[static_cast<size_t>(index)].exponent
-                                       : Complex(NAN, NAN));
+              if (i >= c.chart.analysis.tracking.labels.size()) continue;
+              for (int index : c.chart.analysis.tracking.labels[i])
+                v.back().push_back(
+                    index >= 0 ? c.chart.points[i].modes[static_cast<size_t>(index)].exponent
+                               : Complex(NAN, NAN));
             }
             return ComplexTable(v, static_cast<size_t>(c.states));
           },
@@ -196,14 +183,14 @@ members of each conjugate pair).)doc")
       .def_property_readonly(
           "tracked_frequencies_hz",
           [](const ChartResult& c) {
-            return RealTable(c.tracking.frequency_hz, static_cast<size_t>(c.states));
+            return RealTable(c.chart.analysis.tracking.frequency_hz, static_cast<size_t>(c.states));
           },
           "1-D: tracked frequencies, unwrapped along each line (Hz), shape (points, n)")
       .def_property_readonly(
           "snapshot_eigenvalues",
           [](const ChartResult& c) {
             std::vector<std::vector<Complex>> v;
-            for (const SweepPoint& p : c.points) v.push_back(p.snapshot_eigenvalues);
+            for (const SweepPoint& p : c.chart.points) v.push_back(p.snapshot_eigenvalues);
             return ComplexTable(v, static_cast<size_t>(c.states));
           },
           "compare=True: eigenvalues of the frozen A(0) per point")
@@ -211,7 +198,7 @@ members of each conjugate pair).)doc")
           "averaged_eigenvalues",
           [](const ChartResult& c) {
             std::vector<std::vector<Complex>> v;
-            for (const SweepPoint& p : c.points) v.push_back(p.averaged_eigenvalues);
+            for (const SweepPoint& p : c.chart.points) v.push_back(p.averaged_eigenvalues);
             return ComplexTable(v, static_cast<size_t>(c.states));
           },
           "compare=True: eigenvalues of the averaged A_0 per point")
@@ -219,22 +206,23 @@ members of each conjugate pair).)doc")
           "counts",
           [](const ChartResult& c) {
             std::map<std::string, size_t> counts;
-            for (const auto& [verdict, n] : c.tally.counts)
+            for (const auto& [verdict, n] : c.chart.analysis.tally.counts)
               counts[std::string(ToString(verdict))] = n;
             return counts;
           },
           "points per verdict")
       .def_property_readonly(
-          "checked_points", [](const ChartResult& c) { return c.tally.checked; },
+          "checked_points", [](const ChartResult& c) { return c.chart.analysis.tally.checked; },
           "points with an error estimate")
       .def_property_readonly(
-          "max_error_estimate", [](const ChartResult& c) { return c.tally.max_error; },
+          "max_error_estimate",
+          [](const ChartResult& c) { return c.chart.analysis.tally.max_error; },
           "over the checked points (1/s); None when none was checked")
       .def_property_readonly(
           "failures",
           [](const ChartResult& c) {
             py::list out;
-            for (const SweepPoint& p : c.points)
+            for (const SweepPoint& p : c.chart.points)
               if (!p.ok)
                 out.append(py::dict(py::arg("values") = p.values, py::arg("reason") = p.failure));
             return out;
@@ -244,7 +232,8 @@ members of each conjugate pair).)doc")
           "unstable_intervals",
           [](const ChartResult& c) {
             std::vector<std::vector<double>> v;
-            for (const auto& in : c.intervals) v.push_back({in.lo.value, in.hi.value});
+            for (const auto& in : c.chart.analysis.intervals)
+              v.push_back({in.lo.value, in.hi.value});
             return RealTable(v, 2);
           },
           "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
@@ -252,7 +241,7 @@ members of each conjugate pair).)doc")
           "unstable_interval_details",
           [](const ChartResult& c) {
             py::list out;
-            for (const auto& in : c.intervals)
+            for (const auto& in : c.chart.analysis.intervals)
               out.append(py::dict(py::arg("lo") = BoundaryDict(in.lo),
                                   py::arg("hi") = BoundaryDict(in.hi)));
             return out;
@@ -263,7 +252,7 @@ members of each conjugate pair).)doc")
           "boundary_points",
           [](const ChartResult& c) {
             std::vector<std::vector<double>> v;
-            for (const auto& b : c.boundary)
+            for (const auto& b : c.chart.analysis.boundary)
               if (b.estimate.refined) v.push_back(b.values);
             return RealTable(v, 2);
           },
@@ -272,27 +261,27 @@ members of each conjugate pair).)doc")
           "boundary_point_details",
           [](const ChartResult& c) {
             py::list out;
-            for (const auto& b : c.boundary)
-              out.append(py::dict(
-                  py::arg("values") = b.values,
-                  py::arg("refined_parameter") = c.grid.axes[static_cast<size_t>(b.axis)].name,
-                  py::arg("entering_unstable") = b.entering_unstable,
-                  py::arg("estimate") = BoundaryDict(b.estimate)));
+            for (const auto& b : c.chart.analysis.boundary)
+              out.append(py::dict(py::arg("values") = b.values,
+                                  py::arg("refined_parameter") =
+                                      c.chart.plan.grid.axes[static_cast<size_t>(b.axis)].name,
+                                  py::arg("entering_unstable") = b.entering_unstable,
+                                  py::arg("estimate") = BoundaryDict(b.estimate)));
             return out;
           },
           "maps: every grid crossing, refined or not, with its estimate")
       .def_property_readonly(
           "mode_tracking",
           [](const ChartResult& c) {
-            return py::dict(py::arg("min_mac") = c.tracking.min_mac,
-                            py::arg("ambiguous_points") = c.tracking.ambiguous);
+            return py::dict(py::arg("min_mac") = c.chart.analysis.tracking.min_mac,
+                            py::arg("ambiguous_points") = c.chart.analysis.tracking.ambiguous);
           },
           "1-D: smallest accepted MAC and the points where a match was ambiguous")
       .def_property_readonly(
           "lines",
           [](const ChartResult& c) {
             py::list out;
-            for (const CampbellLine& line : c.campbell.lines)
+            for (const CampbellLine& line : c.chart.analysis.campbell.lines)
               out.append(py::dict(py::arg("description") = line.description,
                                   py::arg("description_end") = line.description_end,
                                   py::arg("frequency_hz") = RealArray(line.frequency_hz),
@@ -306,19 +295,20 @@ members of each conjugate pair).)doc")
           "frequency_hz, real_part, damping_ratio (NaN where not tracked), lost_after (point index "
           "or -1)")
       .def_property_readonly(
-          "rotor_speeds", [](const ChartResult& c) { return RealArray(c.campbell.rotor_speed); },
+          "rotor_speeds",
+          [](const ChartResult& c) { return RealArray(c.chart.analysis.campbell.rotor_speed); },
           "1-D: rotor speed per point (rad/s; NaN when the scene is not a rotor)")
       .def_property_readonly(
-          "per_rev", [](const ChartResult& c) { return c.campbell.per_rev; },
+          "per_rev", [](const ChartResult& c) { return c.chart.analysis.campbell.per_rev; },
           "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
       .def_property_readonly(
           "crossings",
           [](const ChartResult& c) {
             py::list out;
-            for (const CampbellCrossing& x : c.campbell.crossings)
+            for (const CampbellCrossing& x : c.chart.analysis.campbell.crossings)
               out.append(py::dict(
                   py::arg("mode") = x.line + 1,
-                  py::arg("description") = c.campbell.lines[x.line].description,
+                  py::arg("description") = c.chart.analysis.campbell.lines[x.line].description,
                   py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
                   py::arg("parameter_error") = x.parameter_error,
                   py::arg("rotor_speed") = x.rotor_speed, py::arg("frequency_hz") = x.frequency_hz,
@@ -330,17 +320,24 @@ members of each conjugate pair).)doc")
           "weakly_damped",
           [](const ChartResult& c) {
             std::vector<std::vector<double>> v;
-            for (const auto& [lo, hi] : c.campbell.weakly_damped) v.push_back({lo, hi});
+            for (const auto& [lo, hi] : c.chart.analysis.campbell.weakly_damped)
+              v.push_back({lo, hi});
             return RealTable(v, 2);
           },
           "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
       .def_property_readonly(
-          "campbell_notes", [](const ChartResult& c) { return c.campbell.diagnostics; },
+          "campbell_notes",
+          [](const ChartResult& c) { return c.chart.analysis.campbell.diagnostics; },
           "1-D: lost lines and ambiguous tracking")
-      .def_readonly("sweep_s", &ChartResult::sweep_s, "wall time of the sweep (s)")
-      .def_readonly("refine_s", &ChartResult::refine_s, "wall time of the boundary refinement (s)")
+      .def_property_readonly(
+          "sweep_s", [](const ChartResult& c) { return c.chart.sweep_s; },
+          "wall time of the sweep (s)")
+      .def_property_readonly(
+          "refine_s", [](const ChartResult& c) { return c.chart.analysis.refine_s; },
+          "wall time of the boundary refinement (s)")
       .def("__repr__", [](const ChartResult& c) {
-        return "<ltp.ChartResult: " + c.scene + ", " + std::to_string(c.points.size()) + " points>";
+        return "<ltp.ChartResult: " + c.scene + ", " + std::to_string(c.chart.points.size()) +
+               " points>";
       });
 
   const ChartOptions defaults;

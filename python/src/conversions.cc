@@ -2,6 +2,7 @@
 // systems.
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <sstream>
 
 #include "binding.h"
@@ -11,27 +12,22 @@
 
 namespace ltp::python {
 
-double LargestImaginaryPart(const py::handle& value) {
-  if (PyComplex_Check(value.ptr())) return std::abs(PyComplex_ImagAsDouble(value.ptr()));
-  // An array is checked by its dtype (cheap); anything else (a list) as numpy converts it.
-  const py::array raw = py::isinstance<py::array>(value)
-                            ? py::reinterpret_borrow<py::array>(value)
-                            : py::array::ensure(py::reinterpret_borrow<py::object>(value));
-  if (!raw || raw.dtype().kind() != 'c') return 0;
+py::array RealValued(const py::handle& value, const std::function<std::string()>& what) {
+  // An ndarray is taken as it is (its dtype says whether to look further); a list or a scalar is
+  // converted here once, and the caller casts this array, not the value again.
+  const py::array raw = py::array::ensure(value);
+  if (!raw || raw.dtype().kind() != 'c') return raw;
   const auto c = py::array_t<std::complex<double>, py::array::forcecast>::ensure(raw);
   double imag = 0;
   if (c)
     for (py::ssize_t i = 0; i < c.size(); ++i) imag = std::max(imag, std::abs(c.data()[i].imag()));
-  return imag;
-}
-
-void RefuseComplex(const py::handle& value, const std::string& what) {
-  if (const double imag = LargestImaginaryPart(value); imag > 0) {
+  if (imag > 0) {
     std::ostringstream s;
-    s << what << " has complex values (|Im| up to " << imag
+    s << what() << " has complex values (|Im| up to " << imag
       << "): a system's matrices must be real (give the real form of the equations)";
     throw InputError(s.str());
   }
+  return raw;
 }
 
 Callbacks::~Callbacks() {
@@ -69,9 +65,9 @@ void Callbacks::Evaluate(size_t which, const char* name, double t,
   }
   py::gil_scoped_acquire gil;
   try {
-    const py::object value = functions_[which](t);
-    if (LargestImaginaryPart(value) > 0)
-      RefuseComplex(value, std::string(name) + "(t) at t = " + std::to_string(t));
+    const py::array value = RealValued(functions_[which](t), [&] {
+      return std::string(name) + "(t) at t = " + std::to_string(t);
+    });
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
     const bool scalar_ok = out.rows() == 1 && out.cols() == 1 && a && a.size() == 1;
     if (!a ||

@@ -26,8 +26,7 @@ std::string Shape(const py::array& a) {
 }
 
 Eigen::MatrixXd MatrixFrom(const py::object& obj, const std::string& name) {
-  RefuseComplex(obj, name);
-  const Array a = Array::ensure(obj);
+  const Array a = Array::ensure(RealValued(obj, [&] { return name; }));
   if (!a || a.ndim() != 2) throw InputError(name + " must be a real 2-D array");
   Eigen::MatrixXd m(a.shape(0), a.shape(1));
   for (py::ssize_t i = 0; i < a.shape(0); ++i)

@@ -47,6 +47,7 @@ ChartPoints SweepChart(const Scene& scene, const ParameterMap& base, const Chart
     r.points[index] = std::move(p);
     r.have[index] = 1;
   };
+  if (hooks.on_start) hooks.on_start(r.resumed);
   const auto start = std::chrono::steady_clock::now();
   if (hooks.runner)
     hooks.runner(todo, on_point, hooks.cancel);

@@ -42,6 +42,11 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system);
 /// save; docs/taylor-integrator.md).
 bool TaylorSeriesPay(const SystemTraits& traits);
 
+/// Magnus 6 steps over the mean pay: fast oscillation (T·ρ(Ā) > 200) around a mean that A(t)
+/// leaves by less than the tolerance (variation ≤ rel_tol · oscillation), so steps exact for Ā
+/// reach the tolerance in a few where an explicit method resolves every oscillation.
+bool MagnusOverTheMeanPays(const SystemTraits& traits, double rel_tol);
+
 struct IntegratorChoice {
   IntegratorType type = IntegratorType::kRkf78;
   std::string reason;  ///< one sentence: the trait and the study result behind the choice

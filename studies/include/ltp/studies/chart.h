@@ -42,6 +42,8 @@ struct ChartSweepHooks {
   /// Points computed earlier (a journal): they are kept, not recomputed. Indices past the grid
   /// and repeats are ignored.
   std::vector<SweepPoint> resumed;
+  /// Once, before the first new point: how many of the grid's points were resumed (progress).
+  std::function<void(size_t resumed)> on_start;
   /// Each new point, one call at a time (journal, progress).
   std::function<void(const SweepPoint&)> on_point;
   /// Set to stop after the points under way.
