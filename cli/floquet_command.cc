@@ -180,6 +180,7 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"coefficient_decay",
            {{"kind", std::string(ToString(h.decay.kind))}, {"rate", JsonNumber(h.decay.rate)}}},
           {"error_estimate", JsonNumber(h.error_estimate)},
+          {"model_error", h.model_error ? JsonNumber(*h.model_error) : json(nullptr)},
           {"fourier_fit_error", JsonNumber(h.fourier_fit_error)},
           {"tolerance_met", h.tolerance_met ? json(*h.tolerance_met) : json(nullptr)},
           {"elapsed_s", h.elapsed_s},
@@ -286,6 +287,9 @@ void PrintHill(const HillResult& h) {
   if (h.fourier_fit_error > 0)
     std::cout << " (of which the Fourier fit of A: " << Num(h.fourier_fit_error, 2) << ")";
   std::cout << "\n";
+  if (h.model_error)
+    std::cout << "  of which the model's sampling error is " << Num(*h.model_error, 2)
+              << " 1/s (other models of the same samples; docs/sampled-models.md)\n";
   if (h.tolerance_met && !*h.tolerance_met)
     std::cout
         << "  tolerance NOT reached (see diagnostics): the estimate is what this N delivers\n";
@@ -353,6 +357,7 @@ int RunFloquet(FloquetArgs& args) {
       ho.harmonics = std::stoi(args.harmonics);
       h = AnalyzeHill(l.system, ho);
     }
+    IncludeModelError(l.model_alternatives, args.options, h);  // as for the monodromy route
   }
 
   if (run_mono && !args.modes_csv.empty()) {

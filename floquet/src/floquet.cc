@@ -18,6 +18,7 @@
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"
+#include "rigid_body.h"
 #include "segment_grid.h"
 #include "state_balancing.h"
 
@@ -488,41 +489,6 @@ void StoreOrderedModes(const PeriodicSystem& system, const std::vector<FloquetMo
   r.mode_descriptions = DescribeModeShapes(system.labels(), r.mode_samples.front());
 }
 
-// Step 6a: a state labelled rigid-body (a free rotation angle) owns one exponent that is 0 in
-// theory: among the modes whose shape lies mostly in that state (without shapes: all modes),
-// the exponent nearest 0 is flagged and left out of the verdict. Nearest 0, not largest
-// share: a slow real mode of the rotor speed also lies mostly in the angle (its angle
-// amplitude is the speed amplitude divided by λ).
-void FlagRigidBodyModes(const PeriodicSystem& system, FloquetResult& r) {
-  const int n = r.states;
-  for (int state : system.labels().rigid_body_states) {
-    if (state < 0 || state >= n) continue;
-    int best = -1;
-    for (int pass = 0; pass < 2 && best < 0; ++pass) {
-      for (int k = 0; k < n; ++k) {
-        if (r.modes[k].rigid_body) continue;
-        if (pass == 0) {
-          if (r.mode_samples.empty()) continue;
-          const double norm = r.mode_samples.front().col(k).norm();
-          if (!(norm > 0) || std::abs(r.mode_samples.front()(state, k)) < 0.5 * norm) continue;
-        }
-        if (best < 0 || std::abs(r.modes[k].exponent) < std::abs(r.modes[best].exponent)) best = k;
-      }
-    }
-    if (best < 0) continue;
-    r.modes[best].rigid_body = true;
-    std::ostringstream s;
-    s << "mode " << best + 1 << " is the rigid rotation of state " << state + 1
-      << (state < static_cast<int>(system.labels().states.size())
-              ? " (" + system.labels().states[state] + ")"
-              : "")
-      << ": exponent " << r.modes[best].exponent.real()
-      << " 1/s, exactly 0 for the exact periodic system; its distance from 0 is the model's "
-         "error (e.g. azimuth sampling); left out of max Re λ and the stability verdict";
-    r.diagnostics.push_back(s.str());
-  }
-}
-
 // Round-off floor of each exponent (1/s): every factor carries a backward error of a few eps,
 // K + n of them accumulate; an eigenvalue moves by κ_k times that, or by its square root when
 // the eigenvalue is defective (κ = ∞), and every exponent by backward · max|log ρ| / T. Every
@@ -554,10 +520,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
                        FloquetResult& r) {
   const int n = r.states;
   const double T = r.period;
-  r.max_real_exponent = -std::numeric_limits<double>::infinity();
-  for (const auto& mode : r.modes)
-    if (!mode.rigid_body) r.max_real_exponent = std::max(r.max_real_exponent, mode.exponent.real());
-  if (!std::isfinite(r.max_real_exponent)) r.max_real_exponent = 0;  // n = 0, or all rigid
+  r.max_real_exponent = internal::MaxRealExponent(r.modes);
   r.max_log_abs_multiplier = r.max_real_exponent * T;
   double sum_log_abs = 0;
   for (const cd& l : log_rho) sum_log_abs += l.real();
@@ -751,7 +714,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
     for (int k = 0; k < n; ++k) modes[k].error_estimate = integration[k] + floors[k];
   // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
   StoreOrderedModes(system, modes, options.compute_modes, r);
-  FlagRigidBodyModes(system, r);
+  // 6a: the rigid rotation of a free angle (rigid_body.h), from the mode shapes at t = 0.
+  for (std::string& line : internal::FlagRigidBodyModes(
+           system.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
+           r.modes))
+    r.diagnostics.push_back(std::move(line));
   const double largest_integration =
       n > 0 ? *std::max_element(integration.begin(), integration.end()) : 0.0;
   const double largest_floor = n > 0 ? *std::max_element(floors.begin(), floors.end()) : 0.0;

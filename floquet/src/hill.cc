@@ -14,6 +14,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill_solver_choice.h"
+#include "rigid_body.h"
 
 namespace ltp {
 namespace {
@@ -180,14 +181,14 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
     infos.push_back(info);
   }
   const std::vector<int> order = ModeDisplayOrder(modes);  // the monodromy route's order
-  for (int k : order) {
-    r.modes.push_back(modes[k]);
-    r.info.push_back(infos[k]);
+  r.mode_shapes.resize(n, static_cast<Eigen::Index>(order.size()));
+  for (size_t j = 0; j < order.size(); ++j) {
+    r.modes.push_back(modes[order[j]]);
+    r.info.push_back(infos[order[j]]);
+    r.mode_shapes.col(static_cast<Eigen::Index>(j)) = xi0.col(order[j]);
   }
   r.ok = static_cast<int>(r.modes.size()) == n;
-  r.max_real_exponent = n > 0 ? -std::numeric_limits<double>::infinity() : 0;
-  for (const FloquetMode& m : r.modes)
-    r.max_real_exponent = std::max(r.max_real_exponent, m.exponent.real());
+  r.max_real_exponent = internal::MaxRealExponent(r.modes);
 
   double worst_tail = 0;
   for (const HillModeInfo& i : r.info) worst_tail = std::max(worst_tail, i.tail_weight);
@@ -461,11 +462,9 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
   if (!r.modes.empty())
     r.error_estimate = estimate ? *estimate + floor : std::numeric_limits<double>::infinity();
   // The verdict needs max Re λ beyond the error estimate (as the monodromy route reports it).
+  // The verdict is set once the rigid-body modes are known (AnalyzeHill).
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
-  if (r.verdict == StabilityVerdict::kMarginal)
-    r.diagnostics.push_back(
-        "stability undecided (marginal): |max Re λ| is within the error estimate");
 }
 
 // One Hill analysis at fixed period and N (no period doubling).
@@ -648,6 +647,13 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     r = std::move(d);
   }
   if (fit && !fit->converged && !r.modes.empty()) FitErrorEstimate(system, options, *fit, r);
+  // The rigid rotation of a free angle (rigid_body.h): left out of max Re λ and the verdict,
+  // as the monodromy route does.
+  for (std::string& line : internal::FlagRigidBodyModes(system.labels(), r.mode_shapes, r.modes))
+    r.diagnostics.push_back(std::move(line));
+  r.max_real_exponent = internal::MaxRealExponent(r.modes);
+  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
+  r.stable = r.verdict == StabilityVerdict::kStable;
   r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
   r.fourier_fit = fit_note;
   r.elapsed_s = SecondsSince(start);

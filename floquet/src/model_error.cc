@@ -7,6 +7,7 @@
 #include <complex>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "ltp/core/elapsed.h"
@@ -15,19 +16,16 @@
 
 namespace ltp {
 
-void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
-                       const FloquetOptions& options, FloquetResult& r) {
-  if (alternatives.empty()) return;
-  const auto start = std::chrono::steady_clock::now();
+SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternatives,
+                                     const std::vector<std::complex<double>>& exponents, int states,
+                                     double period, const FloquetOptions& options,
+                                     int grid_segments) {
   const double inf = std::numeric_limits<double>::infinity();
-  const double omega = 2 * std::acos(-1.0) / r.period;
-  std::vector<std::complex<double>> a;
-  for (const FloquetMode& m : r.modes) a.push_back(m.exponent);
-  // Each exponent's own sampling error e_k: its largest distance to its match.
-  std::vector<double> e(a.size(), 0.0);
+  const double omega = 2 * std::acos(-1.0) / period;
+  SamplingErrors s;
+  s.per_exponent.assign(exponents.size(), 0.0);
   for (const PeriodicSystem& alternative : alternatives) {
-    if (alternative.states() != r.states ||
-        std::abs(alternative.period() - r.period) > 1e-12 * r.period)
+    if (alternative.states() != states || std::abs(alternative.period() - period) > 1e-12 * period)
       throw InputError("IncludeModelError: an alternative model has another size or period");
     FloquetOptions o = options;
     o.compute_modes = false;  // exponents modulo jΩp are all the comparison needs
@@ -36,63 +34,123 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
     o.estimate_error = false;
     if (alternative.form() == PeriodicSystem::Form::kPiecewiseConstant)
       o.integrator.type = IntegratorType::kExpm;  // exact for held samples
-    // The same samples, so factors grow alike: start from r's grid.
-    if (options.segments == 0 && options.initial_segments == 0 && r.grid_segments > 0)
-      o.initial_segments = r.grid_segments;
+    // The same samples, so factors grow alike: start from the analysed model's grid.
+    if (options.segments == 0 && options.initial_segments == 0 && grid_segments > 0)
+      o.initial_segments = grid_segments;
     const FloquetResult other = AnalyzeFloquet(alternative, o);
-    r.rhs_evals += other.rhs_evals;  // the work reported is the whole analysis's, like its time
-    if (other.modes.size() != a.size()) {
-      std::fill(e.begin(), e.end(), inf);
+    s.evaluations += other.rhs_evals;  // the work reported is the whole analysis's
+    if (other.modes.size() != exponents.size()) {
+      std::fill(s.per_exponent.begin(), s.per_exponent.end(), inf);
       continue;
     }
     std::vector<std::complex<double>> b;
     for (const FloquetMode& m : other.modes) b.push_back(m.exponent);
-    const std::vector<int> match = MatchExponentIndices(a, b, omega);
-    for (size_t k = 0; k < a.size(); ++k)
-      e[k] = std::max(e[k], match[k] < 0 ? inf : ExponentDistance(a[k], b[match[k]], omega));
+    const std::vector<int> match = MatchExponentIndices(exponents, b, omega);
+    for (size_t k = 0; k < exponents.size(); ++k)
+      s.per_exponent[k] =
+          std::max(s.per_exponent[k],
+                   match[k] < 0 ? inf : ExponentDistance(exponents[k], b[match[k]], omega));
   }
-  const double integration = r.error_estimate.value_or(0);
-  const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
-  // Each exponent's band: its own integration estimate (when the analysis gave one) and its own
-  // sampling error.
-  std::vector<double> real_parts, own;
-  std::vector<bool> rigid;
-  for (size_t k = 0; k < a.size(); ++k) {
-    real_parts.push_back(a[k].real());
-    own.push_back(e[k] + r.modes[k].error_estimate.value_or(integration));
-    rigid.push_back(r.modes[k].rigid_body);
-    r.modes[k].error_estimate = own.back();
-  }
-  r.model_error = term;
-  r.error_estimate = integration + term;
+  return s;
+}
+
+namespace {
+
+std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes) {
+  std::vector<std::complex<double>> a;
+  for (const FloquetMode& m : modes) a.push_back(m.exponent);
+  return a;
+}
+
+// What the estimate now contains, one line.
+std::string SamplingErrorLine(double term, size_t alternatives) {
   std::ostringstream s;
   if (std::isfinite(term)) {
     s << "error estimate includes the model's sampling error " << term
       << " 1/s: the exponents of the same samples interpolated the other way"
-      << (alternatives.size() > 1 ? " or in the other coordinates (multi-blade ↔ the files')" : "")
+      << (alternatives > 1 ? " or in the other coordinates (multi-blade ↔ the files')" : "")
       << " differ by that much (docs/sampled-models.md)";
   } else {
     s << "another model of the same samples could not be analysed, so the model's "
          "sampling error is unknown and so is the verdict";
   }
-  r.diagnostics.push_back(s.str());
-  // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
-  const double band =
-      PerExponentBand(real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate);
-  if (band < *r.error_estimate) {
+  return s.str();
+}
+
+// Gives each mode its band (own estimate + e_k) and returns the band on max Re λ that the
+// verdict uses; says so when it is narrower than the largest.
+double PerModeBand(const std::vector<double>& e, double integration, double max_real,
+                   double estimate, std::vector<FloquetMode>& modes,
+                   std::vector<std::string>& diagnostics) {
+  std::vector<double> real_parts, own;
+  std::vector<bool> rigid;
+  for (size_t k = 0; k < modes.size(); ++k) {
+    real_parts.push_back(modes[k].exponent.real());
+    own.push_back(e[k] + modes[k].error_estimate.value_or(integration));
+    rigid.push_back(modes[k].rigid_body);
+    modes[k].error_estimate = own.back();
+  }
+  const double band = PerExponentBand(real_parts, own, rigid, 0, max_real, estimate);
+  if (band < estimate) {
     std::ostringstream v;
     v << "verdict: max Re λ is within ±" << band
       << " 1/s — each exponent with its own sampling error, not the largest one";
-    r.diagnostics.push_back(v.str());
+    diagnostics.push_back(v.str());
   }
+  return band;
+}
+
+const char* kUndecided =
+    "stability undecided (marginal): |max Re λ| is within its error estimate once the model's "
+    "sampling error is included — linearise at more azimuths";
+
+}  // namespace
+
+void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
+                       const FloquetOptions& options, FloquetResult& r) {
+  if (alternatives.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const SamplingErrors s = MeasureSamplingErrors(alternatives, Exponents(r.modes), r.states,
+                                                 r.period, options, r.grid_segments);
+  r.rhs_evals += s.evaluations;
+  const std::vector<double>& e = s.per_exponent;
+  const double integration = r.error_estimate.value_or(0);
+  const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
+  r.model_error = term;
+  r.error_estimate = integration + term;
+  r.diagnostics.push_back(SamplingErrorLine(term, alternatives.size()));
+  // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
+  const double band =
+      PerModeBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
   const StabilityVerdict before = r.verdict;
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
-    r.diagnostics.push_back(
-        "stability undecided (marginal): |max Re λ| is within its error estimate once the "
-        "model's sampling error is included — linearise at more azimuths");
+    r.diagnostics.push_back(kUndecided);
   r.elapsed_s += SecondsSince(start);  // the reported time is the whole analysis
+}
+
+void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
+                       const FloquetOptions& options, HillResult& h) {
+  if (alternatives.empty() || h.modes.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const SamplingErrors s =
+      MeasureSamplingErrors(alternatives, Exponents(h.modes), h.states, h.period, options, 0);
+  const std::vector<double>& e = s.per_exponent;
+  // Hill's estimate is one number for every exponent.
+  const double integration = h.error_estimate.value_or(std::numeric_limits<double>::infinity());
+  const double term = *std::max_element(e.begin(), e.end());
+  h.model_error = term;
+  h.error_estimate = integration + term;
+  h.diagnostics.push_back(SamplingErrorLine(term, alternatives.size()));
+  const double band =
+      PerModeBand(e, integration, h.max_real_exponent, *h.error_estimate, h.modes, h.diagnostics);
+  const StabilityVerdict before = h.verdict;
+  h.verdict = ClassifyStability(h.ok, h.max_real_exponent, band);
+  h.stable = h.verdict == StabilityVerdict::kStable;
+  if (h.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
+    h.diagnostics.push_back(kUndecided);
+  h.elapsed_s += SecondsSince(start);
 }
 
 double PerExponentBand(const std::vector<double>& real_parts, const std::vector<double>& own,

@@ -60,6 +60,9 @@ struct System {
   ParameterMap parameters;     ///< the scene's resolved parameters
   std::vector<std::string> notes;
   std::shared_ptr<Callbacks> callbacks;  ///< from_function with Python callables
+  /// For OpenFAST samples: the other interpolations of the same samples, whose exponents give
+  /// the sampling error that floquet() and hill() add to their estimate (IncludeModelError).
+  std::vector<PeriodicSystem> model_alternatives;
 };
 
 /// Runs `work` with the GIL released (long work: other Python threads run meanwhile). Python

@@ -7,6 +7,7 @@
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/model_error.h"
 #include "ltp/studies/rotor_mbc_check.h"
 
 namespace ltp::python {
@@ -73,6 +74,9 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       .def_readonly("error_estimate", &FloquetResult::error_estimate,
                     "estimated absolute error of every exponent (1/s), by error_estimate_method; "
                     "None when not computed")
+      .def_readonly("model_error", &FloquetResult::model_error,
+                    "for OpenFAST samples: the part of error_estimate that is the sampling "
+                    "error (other interpolations of the same samples); None otherwise")
       .def_property_readonly(
           "exponent_error_estimates",
           [](const FloquetResult& f) {
@@ -152,7 +156,11 @@ formula beyond the error estimate): the diagnostics say why.)doc");
         o.threads = AnalysisThreads(system, threads);
         o.max_work_seconds = max_work;
         o.Validate();
-        return WithoutGil(system, [&] { return AnalyzeFloquet(system.system, o); });
+        return WithoutGil(system, [&] {
+          FloquetResult r = AnalyzeFloquet(system.system, o);
+          IncludeModelError(system.model_alternatives, o, r);  // sampled models, as the CLI
+          return r;
+        });
       },
       py::arg("system"), py::kw_only(),
       py::arg("integrator") = std::string(ToString(defaults.integrator.type)),

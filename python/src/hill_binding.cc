@@ -6,6 +6,7 @@
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/floquet/model_error.h"
 
 namespace ltp::python {
 
@@ -79,7 +80,11 @@ Koopman–Hill cross-check.)doc");
       .def_property_readonly("ambiguous",
                              InfoColumn<bool>([](const HillModeInfo& i) { return i.ambiguous; }),
                              "selection margin below the threshold (a tie between λ and λ ± jΩp)")
-      .def_readonly("max_real_exponent", &HillResult::max_real_exponent, "max Re λ (1/s)")
+      .def_readonly("mode_shapes", &HillResult::mode_shapes,
+                    "periodic mode shapes at t = 0 (n × n complex, one column per exponent): "
+                    "the eigenvector's harmonic blocks summed")
+      .def_readonly("max_real_exponent", &HillResult::max_real_exponent,
+                    "max Re λ over the modes that are not rigid-body (1/s)")
       .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
       .def_property_readonly(
           "verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); },
@@ -109,6 +114,9 @@ Koopman–Hill cross-check.)doc");
           "error_estimate", &HillResult::error_estimate,
           "the error estimate of every exponent (1/s); see the C++ HillResult for its parts; "
           "None when no exponents were found")
+      .def_readonly("model_error", &HillResult::model_error,
+                    "for OpenFAST samples: the part of error_estimate that is the sampling "
+                    "error (other interpolations of the same samples); None otherwise")
       .def_property_readonly(
           "koopman_log_multipliers",
           [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); },
@@ -234,7 +242,11 @@ Returns a HillStudy. Runs without the GIL.)doc");
         if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
         if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
           o.Validate();
-          return WithoutGil(system, [&] { return AnalyzeHillToTolerance(system.system, o, tol); });
+          return WithoutGil(system, [&] {
+            HillResult h = AnalyzeHillToTolerance(system.system, o, tol);
+            IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
+            return h;
+          });
         }
         if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
             harmonics.cast<long>() < 1 || harmonics.cast<long>() > 100000)
@@ -242,7 +254,11 @@ Returns a HillStudy. Runs without the GIL.)doc");
                            py::repr(harmonics).cast<std::string>());
         o.harmonics = harmonics.cast<int>();
         o.Validate();
-        return WithoutGil(system, [&] { return AnalyzeHill(system.system, o); });
+        return WithoutGil(system, [&] {
+          HillResult h = AnalyzeHill(system.system, o);
+          IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
+          return h;
+        });
       },
       py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
       py::arg("solver") = std::string(ToString(defaults.solver)),

@@ -135,7 +135,7 @@ System FromFunction(double period, const py::object& a, const py::object& b, con
   if (const auto problem = UnboundedCoefficients(system)) throw InputError(*problem);
   if (const auto problem = NonPeriodicCoefficients(system)) throw InputError(*problem);
   (*owner)->RethrowIfFailed();  // what a callable raised during the checks
-  return System{std::move(system), std::nullopt, {}, {}, *owner};
+  return System{std::move(system), std::nullopt, {}, {}, *owner, {}};
 }
 
 // (K, rows, cols) samples, or one (rows, cols) matrix held for every sample.
@@ -174,7 +174,8 @@ System FromSamples(double period, const std::vector<double>& times, const py::ob
                 std::nullopt,
                 {},
                 {},
-                nullptr};
+                nullptr,
+                {}};
 }
 
 // A scene parameter value as the CLI's --set takes it: numbers exactly (shortest repr), text
@@ -210,7 +211,8 @@ System SceneSystem(const py::object& name, const py::kwargs& parameters) {
     py::gil_scoped_release release;  // .lin files and finite-element scenes take a while
     loaded.emplace(LoadSceneInput(names, assignments));
   }
-  return System{loaded->system, loaded->scene, loaded->parameters, loaded->notes, nullptr};
+  return System{loaded->system, loaded->scene, loaded->parameters,
+                loaded->notes,  nullptr,       loaded->model_alternatives};
 }
 
 py::object MaybeFourier(const FourierMatrix* f) {
@@ -273,7 +275,8 @@ ltp.chart takes a system made by ltp.scene, whose parameters it sweeps.)doc")
                 std::nullopt,
                 {},
                 {},
-                nullptr};
+                nullptr,
+                {}};
           },
           py::arg("period"), py::arg("A"), py::arg("B") = py::none(), py::arg("C") = py::none(),
           py::arg("D") = py::none(), R"doc(
@@ -304,7 +307,8 @@ non-real series.)doc")
                 std::nullopt,
                 {},
                 {},
-                nullptr};
+                nullptr,
+                {}};
           },
           py::arg("period"), py::arg("M"), py::arg("K"), py::arg("D") = py::none(),
           py::arg("F") = py::none(), py::arg("Cd") = py::none(), py::arg("Cv") = py::none(),

@@ -5,6 +5,8 @@ call the same library function with the same options, so any difference (a defau
 CLI sets and Python does not, a grid built differently, a lost digit in a conversion) shows
 up as a mismatch in the last bit. Timings (elapsed_s) are the only fields left out.
 """
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -33,6 +35,7 @@ def assert_modes_equal(j, r):
         assert same(m["eigenvector_residual"], r.eigenvector_residuals[k])
 
 
+FIVE_MW = str(Path(__file__).resolve().parents[1] / "data" / "openfast" / "nrel5mw-rotating")
 FLOQUET_CASES = [
     ("mathieu", {"a": "1.5", "q": "2", "c": "0.05"}, {}),
     ("meissner", {}, {}),                       # A(t) jumps: breakpoints, expm/bs pieces
@@ -40,10 +43,12 @@ FLOQUET_CASES = [
     ("rotor", {"blades": "3"}, {"integrator": "rkf78", "segments": "16"}),
     ("tower-rotor", {}, {}),                    # the paper's 40-state system
     ("tower-rotor", {}, {"estimate": "local-errors"}),  # one run, local errors carried
+    (FIVE_MW, {}, {}),                          # samples: the sampling error in the estimate
 ]
 
 
-@pytest.mark.parametrize("scene,parameters,options", FLOQUET_CASES, ids=[c[0] for c in FLOQUET_CASES])
+@pytest.mark.parametrize("scene,parameters,options", FLOQUET_CASES,
+                         ids=[Path(c[0]).name for c in FLOQUET_CASES])
 def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
     args = ["floquet", scene]
     for k, v in parameters.items():
@@ -69,7 +74,7 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
     assert j["multiplier_method"] == r.multiplier_method and j["period"] == r.period
     assert j["error_estimate_method"] == r.error_estimate_method
     for key in ["max_real_exponent", "max_log_abs_multiplier", "error_estimate", "liouville_residual",
-                "mode_condition"]:
+                "mode_condition", "model_error"]:
         assert same(j[key], getattr(r, key)), key
     assert j["rhs_evals"] == r.rhs_evals
     assert j["diagnostics"] == r.diagnostics
@@ -77,10 +82,12 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
 
 
 HILL_CASES = [("mathieu", {"a": "1.5", "q": "2"}, []), ("meissner", {}, []),
-              ("jeffcott", {}, ["--harmonics", "12"])]
+              ("jeffcott", {}, ["--harmonics", "12"]),
+              (FIVE_MW, {}, ["--harmonics", "6"])]  # samples: the sampling error, a rigid mode
 
 
-@pytest.mark.parametrize("scene,parameters,extra", HILL_CASES, ids=[c[0] for c in HILL_CASES])
+@pytest.mark.parametrize("scene,parameters,extra", HILL_CASES,
+                         ids=[Path(c[0]).name for c in HILL_CASES])
 def test_hill_equals_cli(ltp_cli, scene, parameters, extra):
     args = ["floquet", scene, "--method", "hill", "--keep-going", *extra]
     for k, v in parameters.items():
@@ -95,13 +102,16 @@ def test_hill_equals_cli(ltp_cli, scene, parameters, extra):
         assert same(m["selection_margin"], h.selection_margins[k])
         assert same(m["tail_weight"], h.tail_weights[k])
     for key in ["max_real_exponent", "truncation_estimate", "apriori_bound", "koopman_discrepancy",
-                "error_estimate", "fourier_fit_error"]:
+                "error_estimate", "fourier_fit_error", "model_error"]:
         assert same(j[key], getattr(h, key)), key
     assert j["tolerance_met"] == h.tolerance_met
     assert j["coefficient_decay"]["kind"] == h.coefficient_decay["kind"]
     assert same(j["coefficient_decay"]["rate"], h.coefficient_decay["rate"])
     assert j["verdict"] == h.verdict and j["ok"] == h.ok
     assert j["diagnostics"] == h.diagnostics
+    if scene == FIVE_MW:  # the samples' error is in the estimate; the rigid rotation is not a verdict
+        assert h.model_error > 0 and h.error_estimate >= h.model_error
+        assert sum(h.rigid_body) == 1 and h.verdict == "stable"
 
 
 def assert_pfrf_equal(j, r):

@@ -17,6 +17,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/rotor_mbc.h"
 #include "ltp/openfast/linearization.h"
@@ -272,6 +273,33 @@ TEST(LinSampledFloquet, FiveMwRigidRotationLeftOutOfTheVerdict) {
   EXPECT_EQ(rigid, 1);
   EXPECT_TRUE(r.stable);
   EXPECT_NEAR(r.max_real_exponent, Mbc3(op).max_real_part, 2e-3);
+}
+
+// Hill's route on the same system flags the same mode and reaches the same verdict (it counted
+// the rigid rotation, +6.2e-4 1/s, as an instability). Reference: the monodromy route above and
+// MBC3, independent of Hill.
+TEST(LinSampledFloquet, FiveMwHillLeavesTheRigidRotationOutToo) {
+  const LinOperatingPoint op = ReadLinOperatingPoint({FiveMwDir()});
+  const PeriodicSystem system = BuildLinSystem(op, SampleInterpolation::kTrigonometric);
+  const FloquetResult r = AnalyzeFloquet(system);
+  HillOptions o;
+  o.harmonics = 6;
+  const HillResult h = AnalyzeHill(system, o);
+  ASSERT_TRUE(r.ok && h.ok);
+  ASSERT_EQ(h.mode_shapes.cols(), static_cast<Eigen::Index>(h.modes.size()));
+  std::vector<std::complex<double>> rigid_r, rigid_h;
+  for (const FloquetMode& m : r.modes)
+    if (m.rigid_body) rigid_r.push_back(m.exponent);
+  for (const FloquetMode& m : h.modes)
+    if (m.rigid_body) rigid_h.push_back(m.exponent);
+  ASSERT_EQ(rigid_h.size(), 1u);
+  ASSERT_EQ(rigid_r.size(), 1u);
+  EXPECT_LT(std::abs(rigid_h[0] - rigid_r[0]), 1e-8);
+  EXPECT_GT(rigid_h[0].real(), 0);  // what made Hill's verdict "unstable"
+  EXPECT_EQ(h.verdict, r.verdict);
+  EXPECT_EQ(h.verdict, StabilityVerdict::kStable);
+  EXPECT_NEAR(h.max_real_exponent, r.max_real_exponent, 1e-8);
+  EXPECT_NEAR(h.max_real_exponent, Mbc3(op).max_real_part, 2e-3);
 }
 
 }  // namespace

@@ -133,6 +133,9 @@ struct HillResult {
   /// positive first, then Re λ). branch_margin = 0.5 − |centroid|.
   std::vector<FloquetMode> modes;
   std::vector<HillModeInfo> info;  ///< parallel to modes
+  /// Periodic mode shapes at t = 0, ξ_k(0) = Σ_w v_w (the eigenvector's blocks summed), one
+  /// column per mode in modes' order (n × n; empty when no exponents were found).
+  Eigen::MatrixXcd mode_shapes;
   double max_real_exponent = 0;
   bool stable = false;  ///< verdict == kStable
   StabilityVerdict verdict = StabilityVerdict::kFailed;
@@ -168,6 +171,9 @@ struct HillResult {
   /// fourier_fit_error; the Koopman–Hill gap alone when there is no N+Δ run; +inf when neither
   /// check ran; empty when no exponents were found.
   std::optional<double> error_estimate;
+  /// For a model built from samples: the part of error_estimate that is the model's own error
+  /// (IncludeModelError, ltp/floquet/model_error.h). Empty otherwise.
+  std::optional<double> model_error;
 
   // Koopman–Hill cross-check (sorting-free).
   std::vector<std::complex<double>> koopman_log_multipliers;  ///< log eig(C e^{H T} W)
