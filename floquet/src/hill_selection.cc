@@ -171,18 +171,27 @@ Selection SelectPhysical(const Eigenpairs& pairs, int n, int harmonics, double o
     s << "; the others are the best-scoring members of their family: raise N";
     sel.diagnostics.push_back(s.str());
   }
+  // Ties said once, with their count (a rotor at 3 azimuths has dozens).
+  std::vector<double> ties;
+  double smallest_margin = 1;
   for (size_t k = 0; k < sel.chosen.size(); ++k)
     if (sel.info[k].ambiguous) {
-      std::ostringstream s;
-      const cd v = cands[sel.chosen[k]].value;
-      s << "exponent with Re λ = " << v.real() << ": its eigenvector is centred between two "
-        << "harmonic blocks (margin " << sel.info[k].selection_margin << " < "
-        << ambiguity_threshold
-        << "), a tie between λ and λ ± jΩp, which are the same exponent modulo jΩp (a negative "
-           "real multiplier puts it on the strip edge Im λ = ±Ωp/2); the one with the larger "
-           "Im λ is reported";
-      sel.diagnostics.push_back(s.str());
+      ties.push_back(cands[sel.chosen[k]].value.real());
+      smallest_margin = std::min(smallest_margin, sel.info[k].selection_margin);
     }
+  if (!ties.empty()) {
+    std::ostringstream s;
+    s << ties.size() << (ties.size() == 1 ? " exponent (Re λ = " : " exponents (Re λ = ");
+    for (size_t k = 0; k < std::min<size_t>(ties.size(), 4); ++k) s << (k ? ", " : "") << ties[k];
+    if (ties.size() > 4) s << ", …";
+    s << (ties.size() == 1 ? ") has its eigenvector" : ") have their eigenvectors")
+      << " centred between two harmonic blocks (margin down to " << smallest_margin << " < "
+      << ambiguity_threshold
+      << "): a tie between λ and λ ± jΩp, which are the same exponent modulo jΩp (a negative "
+         "real multiplier puts it on the strip edge Im λ = ±Ωp/2); the one with the larger "
+         "Im λ is reported";
+    sel.diagnostics.push_back(s.str());
+  }
   return sel;
 }
 
