@@ -2,7 +2,6 @@
 // the unstable intervals (or boundary points) refined beyond the grid. Streams every point to
 // disk as it completes, resumes an interrupted sweep, and shows progress on a terminal.
 #include <omp.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -37,6 +36,7 @@
 #include "ltp/studies/stability_boundary.h"
 #include "ltp/studies/sweep.h"
 #include "plot.h"
+#include "progress_bar.h"
 #include "scene_args.h"
 
 namespace ltp::cli {
@@ -44,7 +44,6 @@ namespace ltp::cli {
 namespace {
 
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 // Defaults from the library's ChartOptions (Python's ltp.chart has the same).
 struct ChartArgs {
@@ -77,43 +76,6 @@ std::string AxisLabel(const Scene& scene, const std::string& name) {
   }
   return name;
 }
-
-// A one-line progress bar with ETA on stderr, redrawn at most 10 times a second; nothing when
-// stderr is not a terminal (logs and CI stay clean).
-class Progress {
- public:
-  Progress(size_t total, size_t already, bool enabled)
-      : total_(total),
-        done_(already),
-        start_done_(already),
-        enabled_(enabled && isatty(STDERR_FILENO)) {}
-  void Tick() {
-    ++done_;
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (now - last_ < std::chrono::milliseconds(100) && done_ < total_) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = (done_ - start_done_) / std::max(elapsed, 1e-9);
-    const double eta = rate > 0 ? (total_ - done_) / rate : 0;
-    const int width = 30;
-    const int filled =
-        static_cast<int>(width * double(done_) / double(std::max<size_t>(total_, 1)));
-    std::cerr << "\r  [" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
-              << std::setw(3) << (100 * done_ / std::max<size_t>(total_, 1)) << "%  " << done_
-              << "/" << total_ << " points  " << std::fixed << std::setprecision(1) << elapsed
-              << " s, ETA " << eta << " s   " << std::defaultfloat << std::setprecision(6)
-              << std::flush;
-  }
-  void Finish() {
-    if (enabled_) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
-  }
-
- private:
-  size_t total_, done_, start_done_;
-  bool enabled_;
-  Clock::time_point start_ = Clock::now(), last_{};
-};
 
 json BoundaryJson(const BoundaryEstimate& e) {
   return {{"value", JsonNumber(e.value)},     {"refined", e.refined},
@@ -177,11 +139,12 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
   const size_t size = c.plan.grid.size();
   ChartSweepHooks hooks;
   if (root) hooks.resumed = record->resumed();
-  std::optional<Progress> progress;
-  hooks.on_start = [&](size_t resumed) { progress.emplace(size, resumed, root && !args.json); };
+  ProgressBar progress("chart", root && !args.json);
+  size_t swept_so_far = 0;
+  hooks.on_start = [&](size_t resumed) { swept_so_far = resumed; };
   hooks.on_point = [&](const SweepPoint& p) {
     record->Add(p);
-    progress->Tick();
+    progress.Update(static_cast<double>(++swept_so_far), static_cast<double>(size), "points");
     if (args.stop_after > 0 && --args.stop_after == 0) g_interrupted = true;
   };
   hooks.cancel = &g_interrupted;
@@ -205,7 +168,7 @@ bool SweepAllPoints(ChartArgs& args, const Ranks& ranks, ChartRecord* record, Ch
   auto previous = std::signal(SIGINT, OnInterrupt);
   ChartPoints swept = SweepChart(c.scene.scene, c.scene.parameters, c.plan, hooks);
   std::signal(SIGINT, previous);
-  if (progress) progress->Finish();
+  progress.Clear();
   c.points = std::move(swept.points);
   c.resumed = swept.resumed;
   c.sweep_s = swept.sweep_s;

@@ -20,15 +20,10 @@ inline std::string& FailureReason() {
   static std::string reason;
   return reason;
 }
-/// The first diagnostic that says what failed (or the last one), prefixed by `what`.
-inline void SetFailureFrom(const std::string& what, const std::vector<std::string>& diagnostics) {
-  std::string line = diagnostics.empty() ? "no diagnostics" : diagnostics.back();
-  for (const std::string& d : diagnostics)
-    if (d.find("fail") != std::string::npos || d.find("FAIL") != std::string::npos) {
-      line = d;
-      break;
-    }
-  FailureReason() = what + ": " + line;
+/// The exit reason of a failed analysis: its typed `failure` (FloquetResult, HillResult,
+/// PfrfResult), prefixed by `what`.
+inline void SetFailureFrom(const std::string& what, const std::string& failure) {
+  FailureReason() = what + ": " + (failure.empty() ? "it failed its own checks" : failure);
 }
 
 Command AddScenesCommand(CLI::App& app);

@@ -17,6 +17,7 @@
 #include "ltp/models/rotor.h"
 #include "ltp/studies/rotor_mbc_check.h"
 #include "plot.h"
+#include "progress_bar.h"
 #include "scene_args.h"
 
 namespace ltp::cli {
@@ -146,6 +147,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"rhs_evals", r.rhs_evals},
           {"elapsed_s", r.elapsed_s},
           {"ok", r.ok},
+          {"failure", r.failure},
           {"diagnostics", r.diagnostics}};
 }
 
@@ -185,6 +187,7 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"tolerance_met", h.tolerance_met ? json(*h.tolerance_met) : json(nullptr)},
           {"elapsed_s", h.elapsed_s},
           {"ok", h.ok},
+          {"failure", h.failure},
           {"diagnostics", h.diagnostics}};
 }
 
@@ -342,6 +345,10 @@ int RunFloquet(FloquetArgs& args) {
               << " evaluations of A(t)·Φ at " << Num(w.seconds_per_evaluation * 1e6, 2)
               << " µs each)\n";
   };
+  ProgressBar progress("floquet", !args.json);  // long integrations: a bar on a terminal
+  args.options.on_progress = [&progress](std::string_view phase, double fraction) {
+    progress.Update(fraction, 1, {}, phase);
+  };
   if (run_mono) r = AnalyzeFloquet(l.system, args.options);
   // A sampled model (.lin files): the estimate and the verdict include the sampling error.
   if (run_mono) IncludeModelError(l.model_alternatives, args.options, r);
@@ -360,6 +367,7 @@ int RunFloquet(FloquetArgs& args) {
     IncludeModelError(l.model_alternatives, args.options, h);  // as for the monodromy route
   }
 
+  progress.Clear();
   if (run_mono && !args.modes_csv.empty()) {
     std::ofstream csv(args.modes_csv);
     if (!csv) throw InputError("cannot write '" + args.modes_csv + "'");
@@ -379,9 +387,9 @@ int RunFloquet(FloquetArgs& args) {
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
   if (run_mono && !r.ok)
-    SetFailureFrom("monodromy route", r.diagnostics);
+    SetFailureFrom("monodromy route", r.failure);
   else if (run_hill && !h.ok)
-    SetFailureFrom("Hill's method", h.diagnostics);
+    SetFailureFrom("Hill's method", h.failure);
 
   if (args.json) {
     json j;
@@ -428,7 +436,8 @@ int RunFloquet(FloquetArgs& args) {
 
 Command AddFloquetCommand(CLI::App& app) {
   static FloquetArgs args;
-  args = FloquetArgs{};  // fresh state for each RunLtp call (the argument fuzzer makes many)
+  FloquetArgs fresh;  // fresh state for each RunLtp call (the argument fuzzer makes many)
+  args = std::move(fresh);
   auto* cmd = app.add_subcommand(
       "floquet", "Floquet exponents, multipliers and periodic modes via the monodromy matrix");
   AddSceneArgs(cmd, args.scene);

@@ -11,11 +11,11 @@
 
 #include "command.h"
 #include "format.h"
-#include "frf_args.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 #include "plot.h"
+#include "progress_bar.h"
 #include "scene_args.h"
 
 namespace ltp::cli {
@@ -101,10 +101,8 @@ int RunHill(HillArgs& args) {
   if (args.max_harmonics < 1) throw InputError("--max-harmonics must be >= 1");
   LoadedScene l = LoadSceneArgs(args.scene);
 
-  Progress progress("hill: convergence study");  // the largest truncations take the time
-  options.progress = [&progress](double done, double total) {
-    progress(static_cast<int>(100 * done / total), 100);
-  };
+  ProgressBar progress("hill: convergence study");  // the largest truncations take the time
+  options.progress = [&progress](double done, double total) { progress.Update(done, total); };
   const HillStudyRun run = RunHillStudy(l.system, args.max_harmonics, options, !args.no_reference);
   const HillStudy& s = run.study;
   const HillResult& last = run.last;

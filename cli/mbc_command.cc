@@ -18,6 +18,7 @@
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
 #include "ltp/studies/sampled_floquet.h"
+#include "progress_bar.h"
 
 namespace ltp::cli {
 
@@ -254,6 +255,10 @@ int RunMbc(const MbcArgs& args) {
   if (args.floquet && op.rotor_speed > 0 && !sampling) {
     SampledFloquetOptions fo;
     fo.floquet.integrator.rel_tol = args.tol;
+    ProgressBar progress("mbc: Floquet", !args.json);
+    fo.floquet.on_progress = [&progress](std::string_view phase, double fraction) {
+      progress.Update(fraction, 1, {}, phase);
+    };
     f = AnalyzeSampledFloquet(op, r, fo);
   } else if (args.floquet && sampling) {
     floquet_skipped = "not done: " + *sampling;

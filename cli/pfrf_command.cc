@@ -17,6 +17,7 @@
 #include "ltp/htf/frequency_range.h"
 #include "ltp/htf/pfrf.h"
 #include "plot.h"
+#include "progress_bar.h"
 #include "scene_args.h"
 
 namespace ltp::cli {
@@ -177,6 +178,7 @@ json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
           {"values", points},
           {"elapsed_s", r.elapsed_s},
           {"ok", r.ok},
+          {"failure", r.failure},
           {"diagnostics", r.diagnostics}};
 }
 
@@ -285,8 +287,8 @@ int RunPfrf(PfrfArgs& args) {
   if (sys.inputs() < 1 || sys.outputs() < 1)
     throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
   PfrfOptions o = OptionsFrom(args, sys);
-  Progress progress("pfrf");
-  o.progress = [&progress](int done, int total) { progress(done, total); };
+  ProgressBar progress("pfrf");
+  o.progress = [&progress](int done, int total) { progress.Update(done, total, "frequencies"); };
   const PfrfResult r = ComputePartialFrf(sys, o);
   ChannelNames names;
   if (o.input < static_cast<int>(sys.labels().inputs.size()))
@@ -304,7 +306,7 @@ int RunPfrf(PfrfArgs& args) {
     std::cout << PfrfJson(r, l, o, names).dump(2) << "\n";
   else
     PrintPfrf(r, l, o, names, !args.csv.empty());
-  if (!r.ok) SetFailureFrom("partial FRFs", r.diagnostics);
+  if (!r.ok) SetFailureFrom("partial FRFs", r.failure);
   return r.ok ? 0 : 1;
 }
 

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "analysis_progress.h"
 #include "floquet_modes.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
@@ -397,6 +398,13 @@ std::vector<double> SingleShotErrors(const std::vector<cd>& log_rho,
 // replaced), so the difference bounds their error with a wide margin.
 // Returns each exponent's integration error, in the order of the new `eig` (∞ when the
 // reference run failed).
+// The refined run's grid options: the run's, reporting progress as its own phase.
+internal::SegmentGridOptions RefinedRunOptions(internal::SegmentGridOptions o,
+                                               const internal::AnalysisProgress& progress) {
+  o.integrator.on_advance = progress.Phase("refined run");
+  return o;
+}
+
 std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
                                            const FloquetOptions& options,
                                            internal::SegmentGridOptions fine,
@@ -548,6 +556,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
       << liouville_allowance
       << "): some exponents are wrong (too few segments, single-shot multipliers or too loose a "
          "tolerance for this system; the automatic settings avoid this)";
+    r.failure = s.str();
     r.diagnostics.push_back(s.str());
   }
   std::optional<double> band = r.error_estimate;
@@ -625,7 +634,9 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // set: K = 48 from 1, 27 from 8).
   const int grid_samples = n > kSmallSystemStates ? mode_samples : samples;
   WeighTheWork(system, traits, options, period_scale, grid_samples, r);
-  const internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
+  const internal::AnalysisProgress progress(options.on_progress, T);
+  internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
+  grid_options.integrator.on_advance = progress.Phase("run");
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
   r.rhs_evals += grid.rhs_evals;
   // One line per failing segment would flood the reader (a NaN from t > 1 on: 19 945 lines).
@@ -633,6 +644,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   if (options.segments == 0 && grid.ok)
     r.diagnostics.push_back(DescribeSegmentChoice(grid, options));
   if (!grid.ok) {
+    r.failure = grid.diagnostics.empty() ? "the integration of the period failed"
+                                         : "integration failed: " + grid.diagnostics.front();
     r.elapsed_s = SecondsSince(start);
     return r;
   }
@@ -648,7 +661,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
     }
   }
   if (!eig.ok) {
-    r.diagnostics.push_back("eigenvalues of the monodromy failed: " + eig.message);
+    r.failure = "eigenvalues of the monodromy failed: " + eig.message;
+    r.diagnostics.push_back(r.failure);
     r.elapsed_s = SecondsSince(start);
     return r;
   }
@@ -665,9 +679,11 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
                   std::string(ToString(options.integrator.type)) + " gets the refined run instead");
   if (options.estimate_error && n > 0) {
-    integration = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-                      ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
-                      : RefineForErrorEstimate(system, options, grid_options, grid, eig, r);
+    integration =
+        r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
+            ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
+            : RefineForErrorEstimate(system, options, RefinedRunOptions(grid_options, progress),
+                                     grid, eig, r);
   }
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;
@@ -680,8 +696,10 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers
   const bool with_shapes = options.compute_modes && n > 0;
   if (with_shapes) {
+    IntegratorOptions shape_integrator = options.integrator;
+    shape_integrator.on_advance = progress.Phase("mode shapes");
     internal::ModeShapes shapes = internal::ComputeModeShapes(
-        system, grid, eig.log_values, samples, options.integrator, ThreadsFor(options.threads));
+        system, grid, eig.log_values, samples, shape_integrator, ThreadsFor(options.threads));
     r.rhs_evals += shapes.rhs_evals;
     for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
     modes = std::move(shapes.modes);
@@ -725,6 +743,14 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   SummariseAndCheck(system, eig.log_values, largest_integration, largest_floor, options, r);
   r.elapsed_s = SecondsSince(start);
   return r;
+}
+
+std::function<void(std::string_view, double)> PrefixedProgress(
+    std::function<void(std::string_view, double)> sink, std::string prefix) {
+  if (!sink) return {};
+  return [sink = std::move(sink), prefix = std::move(prefix)](std::string_view phase, double f) {
+    sink(prefix + std::string(phase), f);
+  };
 }
 
 }  // namespace ltp

@@ -188,6 +188,9 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
     r.mode_shapes.col(static_cast<Eigen::Index>(j)) = xi0.col(order[j]);
   }
   r.ok = static_cast<int>(r.modes.size()) == n;
+  if (!r.ok)
+    r.failure = "found " + std::to_string(r.modes.size()) + " of " + std::to_string(n) +
+                " Floquet exponents among the Hill eigenvalues";
   r.max_real_exponent = internal::MaxRealExponent(r.modes);
 
   double worst_tail = 0;
@@ -283,6 +286,7 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
         r.diagnostics.push_back(s.str());
         change = std::numeric_limits<double>::infinity();
         r.ok = false;
+        r.failure = s.str();
       }
       r.truncation_estimate = change;
       // Pre-asymptotic (eigenvectors at the truncation edge, and a change above 1e-6 of the
@@ -435,6 +439,7 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
         << " 1/s, so the selected eigenvalues are not all Floquet exponents (raise N, or use the "
            "monodromy route); no error bound";
       r.diagnostics.push_back(s.str());
+      r.failure = s.str();
       // Errors of the other exponents can cancel part of the deficit (dense stiff.yaml: deficit
       // 973, error 1018), so a failed check leaves no finite bound, and the result is not ok.
       estimate = std::numeric_limits<double>::infinity();
@@ -480,6 +485,8 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   r.selection_rule = std::string(ToString(o.selection));
   const Solved solved = SolveAndSelect(A, omega, N, o, r);
   if (!solved.pairs.ok) {
+    r.failure = solved.pairs.notes.empty() ? "the eigenvalues of the Hill matrix were not found"
+                                           : solved.pairs.notes.front();
     r.elapsed_s = SecondsSince(start);
     return r;
   }

@@ -321,11 +321,16 @@ std::vector<TransitionResult> ConsecutiveTransitions(const PeriodicSystem& syste
   const bool adaptive_odeint = options.type == IntegratorType::kDopri5 ||
                                options.type == IntegratorType::kRkf78 ||
                                options.type == IntegratorType::kBulirschStoer;
-  if (options.type == IntegratorType::kTaylor && system.states() > 0)
-    return internal::TaylorTransitions(system, times, options);
+  if (options.type == IntegratorType::kTaylor && system.states() > 0) {
+    results = internal::TaylorTransitions(system, times, options);
+    if (options.on_advance) options.on_advance(times.back() - times.front());
+    return results;
+  }
   if (!adaptive_odeint || system.states() == 0) {
-    for (size_t i = 0; i + 1 < times.size(); ++i)
+    for (size_t i = 0; i + 1 < times.size(); ++i) {
       results.push_back(StateTransition(system, times[i], times[i + 1], options));
+      if (options.on_advance) options.on_advance(times[i + 1] - times[i]);
+    }
     return results;
   }
   results = internal::OdeintTransitions(system, internal::TransitionPieces(system, times), options);

@@ -361,8 +361,10 @@ std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicS
       const bool last = dt >= b - t;
       const double proposal = dt;
       double h = last ? b - t : dt;
+      const double before = t;
       if (Accepted(stepper.try_step(std::ref(rhs), x, t, h))) {
         ++result.steps;
+        if (options.on_advance) options.on_advance((last ? b : t) - before);
         if (last) {
           t = b;  // land exactly on the restart point
           // The landing step was cut short; its successor may be as long as the step the

@@ -37,6 +37,10 @@ SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternat
     // The same samples, so factors grow alike: start from the analysed model's grid.
     if (options.segments == 0 && options.initial_segments == 0 && grid_segments > 0)
       o.initial_segments = grid_segments;
+    o.on_progress = PrefixedProgress(  // the other models' phases, named as such
+        options.on_progress, "other model " +
+                                 std::to_string(&alternative - alternatives.data() + 1) + " of " +
+                                 std::to_string(alternatives.size()) + ": ");
     const FloquetResult other = AnalyzeFloquet(alternative, o);
     s.evaluations += other.rhs_evals;  // the work reported is the whole analysis's
     if (other.modes.size() != exponents.size()) {

@@ -318,10 +318,11 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
   r.max_relative_disagreement = global_max > 0 ? r.max_disagreement / global_max : 0;
 
   r.ok = r.routes.front().failures == 0;
-  if (!r.ok)
-    r.diagnostics.push_back("primary route " + std::string(ToString(primary_route)) +
-                            " failed at " + std::to_string(r.routes.front().failures) +
-                            " frequencies");
+  if (!r.ok) {
+    r.failure = "primary route " + std::string(ToString(primary_route)) + " failed at " +
+                std::to_string(r.routes.front().failures) + " frequencies";
+    r.diagnostics.push_back(r.failure);
+  }
   if (r.modal && !r.modal->reliable && primary_route == PfrfRoute::kModal)
     r.diagnostics.push_back(
         "the modal route reports itself unreliable (see its diagnostics); "

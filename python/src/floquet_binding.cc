@@ -49,6 +49,8 @@ ok is False when the integration failed or the result failed its own checks (Lio
 formula beyond the error estimate): the diagnostics say why.)doc");
   BindModeArrays<FloquetResult>(r);
   r.def_readonly("ok", &FloquetResult::ok, "the analysis succeeded and passed its own checks")
+      .def_readonly("failure", &FloquetResult::failure,
+                    "why ok is False, one sentence; empty when ok")
       .def_readonly("states", &FloquetResult::states, "n")
       .def_readonly("period", &FloquetResult::period, "T (s)")
       .def_property_readonly(

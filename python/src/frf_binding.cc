@@ -42,6 +42,7 @@ estimate for every value from the independent routes' disagreement.
   H[i, z - zmin]  H_z at frequencies_hz[i] (complex); orders = zmin..zmax
   error_estimate  same shape: absolute error estimate of every value)doc")
       .def_readonly("ok", &PfrfResult::ok, "every route ran and the result passed its checks")
+      .def_readonly("failure", &PfrfResult::failure, "why ok is False, one sentence; empty when ok")
       .def_property_readonly(
           "frequencies_hz", [](const PfrfResult& r) { return RealArray(r.frequencies_hz); },
           "excitation frequencies f (Hz)")

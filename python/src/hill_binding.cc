@@ -48,6 +48,7 @@ FloquetResult, with the selection's margins, the truncation error estimates and 
 Koopman–Hill cross-check.)doc");
   BindModeArrays<HillResult>(r);
   r.def_readonly("ok", &HillResult::ok, "the exponents were found and passed the Liouville check")
+      .def_readonly("failure", &HillResult::failure, "why ok is False, one sentence; empty when ok")
       .def_readonly("states", &HillResult::states, "n")
       .def_readonly("harmonics", &HillResult::harmonics, "N actually used (harmonics -N..N)")
       .def_readonly("matrix_size", &HillResult::matrix_size, "(2N+1) n")

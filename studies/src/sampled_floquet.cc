@@ -86,6 +86,8 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   // tolerance: one Bulirsch–Stoer run with its local errors carried instead of a second run at
   // a 100× tighter tolerance (200 states: 6.6 → 2.9 s).
   trig_options.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
+  hold_options.on_progress = PrefixedProgress(options.floquet.on_progress, "hold route: ");
+  trig_options.on_progress = PrefixedProgress(options.floquet.on_progress, "trigonometric route: ");
   r.hold =
       AnalyzeFloquet(BuildLinSystem(used, SampleInterpolation::kNearestConstant), hold_options);
   // Both routes interpolate the same samples, so their factors grow alike: the trigonometric

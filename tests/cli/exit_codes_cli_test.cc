@@ -7,6 +7,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "support/ltp_cli.h"
 
@@ -19,14 +21,21 @@ int Lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), 
 TEST(ExitCodes, FailedAnalysisSaysWhyOnStderr) {
   // Result that fails its own Liouville check (see cli_test.cc), and a time route with no
   // steady state (undamped Mathieu inside a tongue).
-  for (const std::string& args :
-       {"floquet " + Src("tests/data/stiff-rotating.yaml") +
-            " --segments 1 --multipliers single-shot",
-        std::string("pfrf mathieu --freq 0:1:0.25 --route time --set c=0 --set q=2 --set a=1.5")}) {
+  // The reason is the result's typed `failure`, also in its JSON.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"floquet " + Src("tests/data/stiff-rotating.yaml") +
+           " --segments 1 --multipliers single-shot",
+       "ltp: failed: floquet: monodromy route: Liouville check failed"},
+      {"pfrf mathieu --freq 0:1:0.25 --route time --set c=0 --set q=2 --set a=1.5",
+       "ltp: failed: pfrf: partial FRFs: primary route time failed at "}};
+  for (const auto& [args, reason] : cases) {
     const auto r = RunLtp(args);
     EXPECT_EQ(r.code, 1) << args;
     EXPECT_EQ(Lines(r.err), 1) << args << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("ltp: failed: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind(reason, 0), 0u) << r.err;
+    const auto j = RunLtp(args + " --json");
+    const std::string failure = nlohmann::json::parse(j.out)["failure"];
+    EXPECT_NE(reason.find(failure.substr(0, 20)), std::string::npos) << failure;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
@@ -89,9 +90,18 @@ struct FloquetOptions {
   /// says so up front: a diagnostic, and `on_long_work` (the CLI prints it) before the work.
   double announce_work_seconds = 10;
   std::function<void(const WorkEstimate&)> on_long_work;
+  /// For a progress bar: the phase integrating ("run", "refined run", "mode shapes"; prefixed
+  /// for the other models of sampled data) and the fraction of its period done, at most every
+  /// half percent; one call at a time, possibly from a worker thread.
+  std::function<void(std::string_view phase, double fraction)> on_progress;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
+
+/// `sink` with `prefix` before every phase name (an empty sink stays empty): the progress of
+/// one analysis inside a larger job ("other model 1 of 2: run").
+std::function<void(std::string_view, double)> PrefixedProgress(
+    std::function<void(std::string_view, double)> sink, std::string prefix);
 
 struct FloquetMode {
   std::complex<double> exponent;        ///< λ on the chosen branch (1/s)
@@ -118,6 +128,8 @@ struct FloquetResult {
   /// false: the integration failed, or the result failed its own checks (Liouville beyond the
   /// error estimate); modes are kept when they were computed, see diagnostics.
   bool ok = false;
+  /// Why ok is false, one sentence (also among the diagnostics); empty when ok.
+  std::string failure;
   int states = 0;
   double period = 0;
   IntegratorType integrator = IntegratorType::kAuto;  ///< the one used (auto resolved)

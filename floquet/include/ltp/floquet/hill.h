@@ -120,6 +120,8 @@ struct HillResult {
   /// false: the solver failed, fewer than n exponents were found, or the selected ones failed
   /// the Liouville check (then modes are kept for inspection and error_estimate is +inf).
   bool ok = false;
+  /// Why ok is false, one sentence (also among the diagnostics); empty when ok.
+  std::string failure;
   int states = 0;
   int harmonics = 0;                       ///< N actually used
   int matrix_size = 0;                     ///< (2N+1)n

@@ -2,6 +2,7 @@
 // State-transition matrices Φ(t1, t0) of x' = A(t) x, all n columns integrated together
 // (Φ' = A(t) Φ as one n×n matrix ODE), by one of several integrators behind one interface.
 #include <Eigen/Dense>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -58,6 +59,10 @@ struct IntegratorOptions {
   /// first order: TransitionResult::local_error_effect. One n×n LU per step; ignored by the
   /// other methods.
   bool carry_local_errors = false;
+  /// For progress reports: called with the time each accepted step advanced (adaptive
+  /// methods) or each transition spanned (the others), possibly from several threads at once,
+  /// so it must be thread-safe. Empty: nothing is called.
+  std::function<void(double)> on_advance = nullptr;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };

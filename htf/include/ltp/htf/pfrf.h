@@ -316,7 +316,9 @@ struct Resonance {
 };
 
 struct PfrfResult {
-  bool ok = false;
+  bool ok = false;  ///< the primary route gave every frequency
+  /// Why ok is false, one sentence (also among the diagnostics); empty when ok.
+  std::string failure;
   std::vector<double> frequencies_hz;
   int min_order = 0, max_order = 0;
   int input = 0, output = 0;
