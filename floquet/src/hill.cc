@@ -92,7 +92,9 @@ Eigenpairs Solve(const FourierMatrix& A, double omega, int N, const HillOptions&
   if (o.solver == HillSolver::kDense) {
     hill_internal::CheckDenseMemory(A.rows(), N, o.max_dense_bytes);
     solver_used = HillSolver::kDense;
-    return hill_internal::SolveDense(A, omega, N);
+    Eigenpairs p = hill_internal::SolveDense(A, omega, N);
+    for (const std::string& s : p.notes) diagnostics.push_back(s);
+    return p;
   }
   solver_used = HillSolver::kStructured;
   Eigenpairs p = hill_internal::SolveStructured(A, omega, N, shifts);
@@ -137,7 +139,6 @@ Solved SolveAndSelect(const FourierMatrix& A, double omega, int N, const HillOpt
         sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
     }
   }
-  for (const std::string& s : pairs.notes) r.diagnostics.push_back(s);
   for (const std::string& s : sel.diagnostics) r.diagnostics.push_back(s);
   r.eigenvalues = pairs.values;
   return {std::move(pairs), std::move(sel)};

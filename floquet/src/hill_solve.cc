@@ -227,7 +227,10 @@ Eigenpairs SolveStructured(const FourierMatrix& A, double omega, int harmonics,
   }
   if (unconverged > 0) {
     std::ostringstream s;
-    s << "structured solver: " << unconverged << " Ritz pairs did not converge";
+    s << "structured solver: " << unconverged
+      << " of the Ritz pairs asked for around the shifts did not converge and were left out "
+         "(exponents are chosen among converged pairs only; too few of them fall back to the "
+         "dense solver or fail)";
     out.notes.push_back(s.str());
   }
 

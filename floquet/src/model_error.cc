@@ -110,19 +110,17 @@ const char* kUndecided =
 
 }  // namespace
 
-void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
-                       const FloquetOptions& options, FloquetResult& r) {
-  if (alternatives.empty()) return;
-  const auto start = std::chrono::steady_clock::now();
-  const SamplingErrors s = MeasureSamplingErrors(alternatives, Exponents(r.modes), r.states,
-                                                 r.period, options, r.grid_segments);
-  r.rhs_evals += s.evaluations;
-  const std::vector<double>& e = s.per_exponent;
-  const double integration = r.error_estimate.value_or(0);
+namespace {
+
+// The term in a result of either route: e_k on each mode's band, the largest on the estimate,
+// the verdict from the per-mode band; `integration` is the route's own estimate.
+template <class Result>
+void ApplySamplingErrors(const std::vector<double>& e, double integration, size_t alternatives,
+                         Result& r) {
   const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
   r.model_error = term;
   r.error_estimate = integration + term;
-  r.diagnostics.push_back(SamplingErrorLine(term, alternatives.size()));
+  r.diagnostics.push_back(SamplingErrorLine(term, alternatives));
   // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
   const double band =
       PerModeBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
@@ -131,6 +129,18 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
     r.diagnostics.push_back(kUndecided);
+}
+
+}  // namespace
+
+void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
+                       const FloquetOptions& options, FloquetResult& r) {
+  if (alternatives.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const SamplingErrors s = MeasureSamplingErrors(alternatives, Exponents(r.modes), r.states,
+                                                 r.period, options, r.grid_segments);
+  r.rhs_evals += s.evaluations;
+  ApplySamplingErrors(s.per_exponent, r.error_estimate.value_or(0), alternatives.size(), r);
   r.elapsed_s += SecondsSince(start);  // the reported time is the whole analysis
 }
 
@@ -140,20 +150,10 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
   const auto start = std::chrono::steady_clock::now();
   const SamplingErrors s =
       MeasureSamplingErrors(alternatives, Exponents(h.modes), h.states, h.period, options, 0);
-  const std::vector<double>& e = s.per_exponent;
-  // Hill's estimate is one number for every exponent.
-  const double integration = h.error_estimate.value_or(std::numeric_limits<double>::infinity());
-  const double term = *std::max_element(e.begin(), e.end());
-  h.model_error = term;
-  h.error_estimate = integration + term;
-  h.diagnostics.push_back(SamplingErrorLine(term, alternatives.size()));
-  const double band =
-      PerModeBand(e, integration, h.max_real_exponent, *h.error_estimate, h.modes, h.diagnostics);
-  const StabilityVerdict before = h.verdict;
-  h.verdict = ClassifyStability(h.ok, h.max_real_exponent, band);
-  h.stable = h.verdict == StabilityVerdict::kStable;
-  if (h.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
-    h.diagnostics.push_back(kUndecided);
+  // Hill's estimate is one number for every exponent (none: no bound).
+  ApplySamplingErrors(s.per_exponent,
+                      h.error_estimate.value_or(std::numeric_limits<double>::infinity()),
+                      alternatives.size(), h);
   h.elapsed_s += SecondsSince(start);
 }
 
