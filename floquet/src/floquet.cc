@@ -461,6 +461,41 @@ std::vector<double> LocalErrorEstimate(const internal::SegmentGrid& grid, const 
   return errors;
 }
 
+// Near-ties of the branch choice, one line per kind with the modes' numbers (a rotor at three
+// azimuths has twenty negative real multipliers).
+void ReportBranchTies(FloquetResult& r) {
+  std::vector<int> strip_edge, ambiguous;
+  double smallest_margin = 1;
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const FloquetMode& m = r.modes[k];
+    if (!(m.branch_margin < 0.05) || !std::isfinite(m.eigvec_residual)) continue;
+    if (std::abs(std::abs(m.log_multiplier.imag()) - kPi) < 1e-6) {
+      strip_edge.push_back(static_cast<int>(k) + 1);
+    } else {
+      ambiguous.push_back(static_cast<int>(k) + 1);
+      smallest_margin = std::min(smallest_margin, m.branch_margin);
+    }
+  }
+  auto modes = [](const std::vector<int>& list) {
+    std::ostringstream s;
+    s << (list.size() == 1 ? "mode " : "modes ");
+    for (size_t i = 0; i < list.size(); ++i) s << (i ? ", " : "") << list[i];
+    return s.str();
+  };
+  if (!strip_edge.empty())
+    r.diagnostics.push_back(
+        modes(strip_edge) + ": negative real multiplier" + (strip_edge.size() > 1 ? "s" : "") +
+        ", so the exponent sits on the strip edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the "
+        "same solution; the non-negative one is reported");
+  if (!ambiguous.empty()) {
+    std::ostringstream s;
+    s << modes(ambiguous) << ": branch ambiguous (margin down to " << smallest_margin
+      << "): the mode shape's Fourier energy is split between two neighbouring harmonics; the "
+         "smaller non-negative frequency was taken";
+    r.diagnostics.push_back(s.str());
+  }
+}
+
 // Step 5: modes ordered by |frequency|, positive first, then by Re λ; samples and Fourier
 // coefficients permuted alike; near-ties of the branch choice reported.
 void StoreOrderedModes(const PeriodicSystem& system, const std::vector<FloquetMode>& modes,
@@ -468,24 +503,7 @@ void StoreOrderedModes(const PeriodicSystem& system, const std::vector<FloquetMo
   const int n = static_cast<int>(modes.size());
   const std::vector<int> order = ModeDisplayOrder(modes);
   for (int k : order) r.modes.push_back(modes[k]);
-  if (with_shapes)
-    for (int k = 0; k < n; ++k)
-      if (r.modes[k].branch_margin < 0.05 && std::isfinite(r.modes[k].eigvec_residual)) {
-        std::ostringstream s;
-        const bool negative_real =
-            std::abs(std::abs(r.modes[k].log_multiplier.imag()) - kPi) < 1e-6;
-        if (negative_real) {
-          s << "mode " << k + 1
-            << ": negative real multiplier, so the exponent sits on the strip "
-               "edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the same solution; the "
-               "non-negative one is reported";
-        } else {
-          s << "mode " << k + 1 << ": branch ambiguous (margin " << r.modes[k].branch_margin
-            << "): its mode shape's Fourier energy is split between two neighbouring "
-               "harmonics; the smaller non-negative frequency was taken";
-        }
-        r.diagnostics.push_back(s.str());
-      }
+  if (with_shapes) ReportBranchTies(r);
   if (r.mode_samples.empty()) return;
   auto permute = [&](Eigen::MatrixXcd& m) {
     Eigen::MatrixXcd p(m.rows(), m.cols());

@@ -504,8 +504,12 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
       out.outputs[i].description = mbc.output_coordinates.descriptions[i];
       out.outputs[i].rotating_frame = false;
     }
-  out.diagnostics.push_back("in multi-blade coordinates (" + std::to_string(mbc.blades) +
-                            " blades): the transformed matrices at each azimuth, not averaged");
+  out.diagnostics.push_back(
+      mbc.blades > 0
+          ? "in multi-blade coordinates (" + std::to_string(mbc.blades) +
+                " blades): the transformed matrices at each azimuth, not averaged"
+          : std::string("no rotating-frame blade states: the multi-blade transform is the "
+                        "identity and the files' coordinates are used as they are"));
   return out;
 }
 
