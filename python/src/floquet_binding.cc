@@ -1,7 +1,10 @@
 // ltp.floquet: the monodromy route, and its result.
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "binding.h"
 #include "floquet_modes.h"
@@ -142,7 +145,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       "floquet",
       [](const System& system, const std::string& integrator, double tol, int steps,
          const py::object& segments, const std::string& multipliers, const std::string& estimate,
-         int mode_samples, int threads, double max_work) {
+         int mode_samples, int threads, double max_work, const py::object& progress) {
         FloquetOptions o;
         o.integrator.type = IntegratorFrom(integrator);
         o.integrator.rel_tol = tol;
@@ -158,11 +161,29 @@ formula beyond the error estimate): the diagnostics say why.)doc");
         o.threads = AnalysisThreads(system, threads);
         o.max_work_seconds = max_work;
         o.Validate();
-        return WithoutGil(system, [&] {
-          FloquetResult r = AnalyzeFloquet(system.system, o);
-          IncludeModelError(system.model_alternatives, o, r);  // sampled models, as the CLI
-          return r;
+        // A notebook's progress bar: called with the GIL, from whatever thread integrates (the
+        // library serialises the calls); what it raises is raised once the analysis is done.
+        std::exception_ptr raised;
+        if (!progress.is_none()) {
+          if (!PyCallable_Check(progress.ptr()))
+            throw InputError("progress must be a callable (phase, fraction) or None");
+          o.on_progress = [&progress, &raised](std::string_view phase, double fraction) {
+            if (raised) return;
+            py::gil_scoped_acquire gil;
+            try {
+              progress(std::string(phase), fraction);
+            } catch (...) {
+              raised = std::current_exception();
+            }
+          };
+        }
+        FloquetResult r = WithoutGil(system, [&] {
+          FloquetResult result = AnalyzeFloquet(system.system, o);
+          IncludeModelError(system.model_alternatives, o, result);  // sampled models, as the CLI
+          return result;
         });
+        if (raised) std::rethrow_exception(raised);
+        return r;
       },
       py::arg("system"), py::kw_only(),
       py::arg("integrator") = std::string(ToString(defaults.integrator.type)),
@@ -171,7 +192,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       py::arg("multipliers") = "schur",
       py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
       py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
-      py::arg("max_work") = defaults.max_work_seconds, R"doc(
+      py::arg("max_work") = defaults.max_work_seconds, py::arg("progress") = py::none(), R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
@@ -189,6 +210,9 @@ the same options and defaults.
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU
                 seconds than this even at its fastest (0 = no limit); an analysis estimated
                 beyond 10 s says so in its diagnostics
+  progress      None, or a callable progress(phase, fraction) told each phase of the work
+                ('run', 'refined run', 'mode shapes'; 'other model 1 of 2: run' for .lin data)
+                and the fraction of its period integrated, at most every half percent
 
 Returns a FloquetResult. Runs without the GIL. Raises ltp.InputError (a ValueError) for
 bad options; a failed analysis is not an exception: see result.ok and diagnostics.
