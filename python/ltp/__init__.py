@@ -17,6 +17,7 @@ Analyses (each runs without the GIL)
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
+    mbc(files) -> MbcResult                   `ltp mbc --no-floquet`: the MBC3 table of .lin files
     mbc_check(system, result) -> dict | None  `ltp floquet rotor`'s multi-blade-coordinate check
 
 Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
@@ -33,6 +34,7 @@ from ._ltp import (  # noqa: F401
     HillResult,
     HillStudy,
     InputError,
+    MbcResult,
     PfrfResult,
     ResourceError,
     SceneError,
@@ -44,6 +46,7 @@ from ._ltp import (  # noqa: F401
     floquet,
     hill,
     hill_study,
+    mbc,
     mbc_check,
     pfrf,
     scene,
@@ -52,7 +55,9 @@ from ._ltp import (  # noqa: F401
 )
 
 __all__ = [
-    "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "PfrfResult",
+    "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "MbcResult",
+    "PfrfResult",
     "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
-    "chart", "floquet", "hill", "hill_study", "mbc_check", "pfrf", "scene", "scenes", "snapshot",
+    "chart", "floquet", "hill", "hill_study", "mbc", "mbc_check", "pfrf", "scene", "scenes",
+    "snapshot",
 ]

@@ -130,5 +130,6 @@ void BindFloquet(py::module_& m);
 void BindHill(py::module_& m);
 void BindFrf(py::module_& m);
 void BindChart(py::module_& m);
+void BindMbc(py::module_& m);
 
 }  // namespace ltp::python

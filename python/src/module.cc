@@ -63,4 +63,5 @@ PYBIND11_MODULE(_ltp, m) {
   BindHill(m);
   BindFrf(m);
   BindChart(m);
+  BindMbc(m);
 }

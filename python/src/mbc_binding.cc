@@ -1,0 +1,162 @@
+// ltp.mbc: the MBC3 table of `ltp mbc --no-floquet` (openfast/mbc3.h) for a notebook. The Floquet
+// part is ltp.floquet(ltp.scene(files)), which carries the sampling error in its estimate.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "binding.h"
+#include "ltp/core/error.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
+
+namespace ltp::python {
+
+namespace {
+
+// One field of every mode, as a numpy array or a list.
+template <class T, class Get>
+std::vector<T> ModeColumn(const Mbc3Result& r, Get get) {
+  std::vector<T> v;
+  for (const MbcMode& m : r.modes) v.push_back(get(m));
+  return v;
+}
+
+// A numeric column as a numpy array (a copy).
+template <class T>
+py::array_t<T> AsArray(const std::vector<T>& v) {
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+}  // namespace
+
+void BindMbc(py::module_& m) {
+  py::class_<Mbc3Result> r(m, "MbcResult",
+                           "The MBC3 eigen-analysis of OpenFAST .lin files at one operating point "
+                           "(ltp mbc --no-floquet --json as an object). Modes are sorted by "
+                           "natural frequency; each complex pair is listed once.");
+  r.def_readonly("applicable", &Mbc3Result::applicable,
+                 "False for 1 or 2 blades (reason says why; no modes)")
+      .def_readonly("reason", &Mbc3Result::reason, "why MBC does not apply; empty when it does")
+      .def_readonly("blades", &Mbc3Result::blades, "number of rotor blades found in the states")
+      .def_readonly("rotor_speed", &Mbc3Result::rotor_speed, "mean Ω (rad/s)")
+      .def_readonly("azimuths", &Mbc3Result::azimuths, "ψ_k of the files (rad)")
+      .def_property_readonly(
+          "states",
+          [](const Mbc3Result& x) {
+            std::vector<std::string> s;
+            for (const LinChannel& c : x.states) s.push_back(c.description);
+            return s;
+          },
+          "the MBC state descriptions (collective, cosine, sine per blade family)")
+      .def_property_readonly(
+          "eigenvalues",
+          [](const Mbc3Result& x) {
+            return AsArray(
+                ModeColumn<std::complex<double>>(x, [](const MbcMode& m) { return m.eigenvalue; }));
+          },
+          "λ of the averaged MBC state matrix (1/s), Im λ >= 0")
+      .def_property_readonly(
+          "natural_frequencies_hz",
+          [](const Mbc3Result& x) {
+            return AsArray(
+                ModeColumn<double>(x, [](const MbcMode& m) { return m.natural_frequency_hz; }));
+          },
+          "|λ|/2π: what ACDC and openfast_toolbox tabulate")
+      .def_property_readonly(
+          "damped_frequencies_hz",
+          [](const Mbc3Result& x) {
+            return AsArray(
+                ModeColumn<double>(x, [](const MbcMode& m) { return m.damped_frequency_hz; }));
+          },
+          "Im λ/2π")
+      .def_property_readonly(
+          "damping_ratios",
+          [](const Mbc3Result& x) {
+            return AsArray(ModeColumn<double>(x, [](const MbcMode& m) {
+              return m.rigid_body ? std::numeric_limits<double>::quiet_NaN() : m.damping_ratio;
+            }));
+          },
+          "−Re λ/|λ| (NaN for the rigid rotation)")
+      .def_property_readonly(
+          "kinds",
+          [](const Mbc3Result& x) {
+            return ModeColumn<std::string>(
+                x, [](const MbcMode& m) { return std::string(ToString(m.kind)); });
+          },
+          "'oscillatory', 'real' or 'rigid-body' per mode")
+      .def_property_readonly(
+          "rigid_body",
+          [](const Mbc3Result& x) {
+            return ModeColumn<bool>(x, [](const MbcMode& m) { return m.rigid_body; });
+          },
+          "the rigid rotation of the rotor (left out of max_real_part)")
+      .def_property_readonly(
+          "whirl",
+          [](const Mbc3Result& x) {
+            return ModeColumn<py::object>(x, [](const MbcMode& m) -> py::object {
+              if (m.whirl.empty()) return py::none();
+              return py::str(m.whirl);
+            });
+          },
+          "'forward' or 'backward' for a cyclic mode whose pattern travels with or against the "
+          "rotor, else None")
+      .def_property_readonly(
+          "descriptions",
+          [](const Mbc3Result& x) {
+            return ModeColumn<std::string>(x, [](const MbcMode& m) { return m.description; });
+          },
+          "what carries each mode (shares per coordinate family)")
+      .def_property_readonly(
+          "eigenvectors",
+          [](const Mbc3Result& x) {
+            Eigen::MatrixXcd v(static_cast<Eigen::Index>(x.states.size()),
+                               static_cast<Eigen::Index>(x.modes.size()));
+            for (size_t k = 0; k < x.modes.size(); ++k)
+              v.col(static_cast<Eigen::Index>(k)) = x.modes[k].eigenvector;
+            return v;
+          },
+          "complex mode shapes in MBC coordinates, one column per mode (what one animates)")
+      .def_property_readonly(
+          "A", [](const Mbc3Result& x) { return x.average.A; }, "the averaged MBC state matrix")
+      .def_readonly("max_real_part", &Mbc3Result::max_real_part,
+                    "max Re λ over the modes that are not rigid-body (1/s)")
+      .def_readonly("periodic_part", &Mbc3Result::periodic_part,
+                    "max_k ‖A_NR(ψ_k) − mean‖/‖mean‖: what averaging discards (0: isotropic)")
+      .def_readonly("diagnostics", &Mbc3Result::diagnostics,
+                    "what the transform noticed, one line each")
+      .def("__repr__", [](const Mbc3Result& x) {
+        return "<ltp.MbcResult: " + std::to_string(x.modes.size()) + " modes, " +
+               std::to_string(x.blades) + " blades, max Re λ = " + std::to_string(x.max_real_part) +
+               " 1/s>";
+      });
+
+  m.def(
+      "mbc",
+      [](const py::object& files) {
+        std::vector<std::string> names;
+        if (py::isinstance<py::str>(files)) {
+          names.push_back(files.cast<std::string>());
+        } else {
+          try {
+            names = files.cast<std::vector<std::string>>();
+          } catch (const py::cast_error&) {
+            throw InputError("files must be a path (a folder or one .lin file) or a list of paths");
+          }
+        }
+        py::gil_scoped_release release;
+        return Mbc3(ReadLinOperatingPoint(names));
+      },
+      py::arg("files"), R"doc(
+The MBC3 eigen-analysis of OpenFAST .lin files at one operating point: `ltp mbc FILES
+--no-floquet --json` as a function (Bir 2008: each azimuth's matrices in multi-blade
+coordinates, averaged, eigenvalues). Natural and damped frequencies, damping, whirl direction
+(forward/backward), what carries each mode, complex mode shapes.
+
+The averaging drops the periodic part (periodic_part says how much); the exact answer with
+an error estimate that includes the sampling error is ltp.floquet(ltp.scene(files)).
+
+    m = ltp.mbc("tests/data/openfast/nrel5mw-rotating")
+    m.natural_frequencies_hz, m.damping_ratios, m.whirl, m.descriptions)doc");
+}
+
+}  // namespace ltp::python
