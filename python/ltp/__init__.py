@@ -17,6 +17,7 @@ Analyses (each runs without the GIL)
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
+    campbell(points, by=...) -> CampbellResult  `ltp campbell`: MBC3 modes tracked over operating points
     mbc(files) -> MbcResult                   `ltp mbc --no-floquet`: the MBC3 table of .lin files
     mbc_check(system, result) -> dict | None  `ltp floquet rotor`'s multi-blade-coordinate check
 
@@ -28,6 +29,7 @@ ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
     >>> r.exponents, r.verdict, r.error_estimate
 """
 from ._ltp import (  # noqa: F401
+    CampbellResult,
     ChartResult,
     Error,
     FloquetResult,
@@ -42,6 +44,7 @@ from ._ltp import (  # noqa: F401
     SnapshotResult,
     System,
     __version__,
+    campbell,
     chart,
     floquet,
     hill,
@@ -55,9 +58,9 @@ from ._ltp import (  # noqa: F401
 )
 
 __all__ = [
-    "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "MbcResult",
+    "CampbellResult", "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "MbcResult",
     "PfrfResult",
     "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
-    "chart", "floquet", "hill", "hill_study", "mbc", "mbc_check", "pfrf", "scene", "scenes",
+    "campbell", "chart", "floquet", "hill", "hill_study", "mbc", "mbc_check", "pfrf", "scene", "scenes",
     "snapshot",
 ]

@@ -20,6 +20,7 @@
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/integrator.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/campbell.h"
 
 namespace ltp::python {
 
@@ -131,5 +132,12 @@ void BindHill(py::module_& m);
 void BindFrf(py::module_& m);
 void BindChart(py::module_& m);
 void BindMbc(py::module_& m);
+void BindCampbell(py::module_& m);
+
+/// A Campbell diagram's lines (dicts with per-point arrays), its per-rev crossings (dicts) and
+/// weakly damped intervals, as ltp.chart and ltp.campbell give them (chart_binding.cc).
+py::list CampbellLines(const CampbellDiagram& d);
+py::list CampbellCrossings(const CampbellDiagram& d);
+py::array_t<double> WeaklyDamped(const CampbellDiagram& d);
 
 }  // namespace ltp::python

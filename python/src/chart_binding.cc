@@ -73,6 +73,37 @@ ChartResult ChartOfScene(const System& system, std::vector<SweepAxis> axes,
 
 }  // namespace
 
+py::list CampbellLines(const CampbellDiagram& d) {
+  py::list out;
+  for (const CampbellLine& line : d.lines)
+    out.append(py::dict(
+        py::arg("description") = line.description,
+        py::arg("description_end") = line.description_end,
+        py::arg("frequency_hz") = RealArray(line.frequency_hz),
+        py::arg("real_part") = RealArray(line.real_part),
+        py::arg("damping_ratio") = RealArray(line.damping_ratio),
+        py::arg("lost_after") = line.lost_after ? static_cast<long>(*line.lost_after) : -1L));
+  return out;
+}
+
+py::list CampbellCrossings(const CampbellDiagram& d) {
+  py::list out;
+  for (const CampbellCrossing& x : d.crossings)
+    out.append(
+        py::dict(py::arg("mode") = x.line + 1, py::arg("description") = d.lines[x.line].description,
+                 py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
+                 py::arg("parameter_error") = x.parameter_error,
+                 py::arg("rotor_speed") = x.rotor_speed, py::arg("frequency_hz") = x.frequency_hz,
+                 py::arg("real_part") = x.real_part, py::arg("damping_ratio") = x.damping_ratio));
+  return out;
+}
+
+py::array_t<double> WeaklyDamped(const CampbellDiagram& d) {
+  std::vector<std::vector<double>> v;
+  for (const auto& [lo, hi] : d.weakly_damped) v.push_back({lo, hi});
+  return RealTable(v, 2);
+}
+
 void BindChart(py::module_& m) {
   py::class_<ChartResult>(m, "ChartResult", R"doc(
 The result of ltp.chart: one Floquet analysis per grid point (arrays over the points, in
@@ -278,19 +309,7 @@ members of each conjugate pair).)doc")
           },
           "1-D: smallest accepted MAC and the points where a match was ambiguous")
       .def_property_readonly(
-          "lines",
-          [](const ChartResult& c) {
-            py::list out;
-            for (const CampbellLine& line : c.chart.analysis.campbell.lines)
-              out.append(py::dict(py::arg("description") = line.description,
-                                  py::arg("description_end") = line.description_end,
-                                  py::arg("frequency_hz") = RealArray(line.frequency_hz),
-                                  py::arg("real_part") = RealArray(line.real_part),
-                                  py::arg("damping_ratio") = RealArray(line.damping_ratio),
-                                  py::arg("lost_after") =
-                                      line.lost_after ? static_cast<long>(*line.lost_after) : -1L));
-            return out;
-          },
+          "lines", [](const ChartResult& c) { return CampbellLines(c.chart.analysis.campbell); },
           "1-D: one Campbell line per physical mode: description (states carrying it), per-point "
           "frequency_hz, real_part, damping_ratio (NaN where not tracked), lost_after (point index "
           "or -1)")
@@ -303,27 +322,11 @@ members of each conjugate pair).)doc")
           "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
       .def_property_readonly(
           "crossings",
-          [](const ChartResult& c) {
-            py::list out;
-            for (const CampbellCrossing& x : c.chart.analysis.campbell.crossings)
-              out.append(py::dict(
-                  py::arg("mode") = x.line + 1,
-                  py::arg("description") = c.chart.analysis.campbell.lines[x.line].description,
-                  py::arg("per_rev") = x.per_rev, py::arg("parameter") = x.parameter,
-                  py::arg("parameter_error") = x.parameter_error,
-                  py::arg("rotor_speed") = x.rotor_speed, py::arg("frequency_hz") = x.frequency_hz,
-                  py::arg("real_part") = x.real_part, py::arg("damping_ratio") = x.damping_ratio));
-            return out;
-          },
+          [](const ChartResult& c) { return CampbellCrossings(c.chart.analysis.campbell); },
           "1-D: where each line crosses a per-rev line (mode numbered as in lines, from 1)")
       .def_property_readonly(
           "weakly_damped",
-          [](const ChartResult& c) {
-            std::vector<std::vector<double>> v;
-            for (const auto& [lo, hi] : c.chart.analysis.campbell.weakly_damped)
-              v.push_back({lo, hi});
-            return RealTable(v, 2);
-          },
+          [](const ChartResult& c) { return WeaklyDamped(c.chart.analysis.campbell); },
           "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
       .def_property_readonly(
           "campbell_notes",

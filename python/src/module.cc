@@ -64,4 +64,5 @@ PYBIND11_MODULE(_ltp, m) {
   BindFrf(m);
   BindChart(m);
   BindMbc(m);
+  BindCampbell(m);
 }

@@ -1,0 +1,111 @@
+// ltp.campbell: the Campbell diagram of OpenFAST operating points (`ltp campbell`,
+// studies/lin_campbell.h) for a notebook: MBC3 at each point, modes tracked across them.
+#include <string>
+#include <vector>
+
+#include "binding.h"
+#include "ltp/core/error.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/studies/lin_campbell.h"
+
+namespace ltp::python {
+
+void BindCampbell(py::module_& m) {
+  py::class_<LinCampbellResult> r(
+      m, "CampbellResult",
+      "A Campbell diagram of OpenFAST operating points (ltp campbell as an object): the MBC3 "
+      "modes of each point, tracked across the points into lines.");
+  r.def_readonly("axis_label", &LinCampbellResult::axis_label,
+                 "'rotor speed [rpm]' or 'wind speed [m/s]'")
+      .def_property_readonly(
+          "parameter", [](const LinCampbellResult& x) { return RealArray(x.diagram.parameter); },
+          "the abscissa per point (rpm or m/s), ascending")
+      .def_property_readonly(
+          "rotor_speeds",
+          [](const LinCampbellResult& x) {
+            std::vector<double> v;
+            for (const LinCampbellPoint& p : x.points) v.push_back(p.rotor_speed);
+            return RealArray(v);
+          },
+          "rotor speed per point (rad/s)")
+      .def_property_readonly(
+          "wind_speeds",
+          [](const LinCampbellResult& x) {
+            std::vector<double> v;
+            for (const LinCampbellPoint& p : x.points)
+              v.push_back(p.wind_speed.value_or(std::numeric_limits<double>::quiet_NaN()));
+            return RealArray(v);
+          },
+          "wind speed per point (m/s; NaN where the files do not give it)")
+      .def_property_readonly(
+          "points",
+          [](const LinCampbellResult& x) {
+            std::vector<Mbc3Result> v;
+            for (const LinCampbellPoint& p : x.points) v.push_back(p.mbc);
+            return v;
+          },
+          "the MBC3 analysis of each point (ltp.MbcResult), in the order of parameter")
+      .def_property_readonly(
+          "files",
+          [](const LinCampbellResult& x) {
+            std::vector<std::vector<std::string>> v;
+            for (const LinCampbellPoint& p : x.points) v.push_back(p.files);
+            return v;
+          },
+          "the .lin files of each point, sorted by azimuth")
+      .def_property_readonly(
+          "lines", [](const LinCampbellResult& x) { return CampbellLines(x.diagram); },
+          "one line per tracked mode: description, per-point frequency_hz (damped), real_part, "
+          "damping_ratio (NaN where not tracked), lost_after (point index or -1)")
+      .def_property_readonly(
+          "crossings", [](const LinCampbellResult& x) { return CampbellCrossings(x.diagram); },
+          "where each line crosses a per-rev line n·Ω/2π (mode numbered as in lines, from 1)")
+      .def_property_readonly(
+          "per_rev", [](const LinCampbellResult& x) { return x.diagram.per_rev; },
+          "n of the per-rev lines drawn")
+      .def_property_readonly(
+          "weakly_damped", [](const LinCampbellResult& x) { return WeaklyDamped(x.diagram); },
+          "(lo, hi) intervals of the abscissa where some mode's damping ratio is low")
+      .def_property_readonly(
+          "notes",
+          [](const LinCampbellResult& x) {
+            std::vector<std::string> v = x.diagram.diagnostics;
+            for (const LinCampbellPoint& p : x.points)
+              for (const std::string& n : p.notes) v.push_back(n);
+            return v;
+          },
+          "what the diagram and each point noticed, one line each")
+      .def("__repr__", [](const LinCampbellResult& x) {
+        return "<ltp.CampbellResult: " + std::to_string(x.points.size()) + " points, " +
+               std::to_string(x.diagram.lines.size()) + " lines over " + x.axis_label + ">";
+      });
+
+  m.def(
+      "campbell",
+      [](const std::vector<std::string>& points, const std::string& by) {
+        LinCampbellOptions o;
+        if (by == "rotor-speed") {
+          o.axis = OperatingPointAxis::kRotorSpeed;
+        } else if (by == "wind-speed") {
+          o.axis = OperatingPointAxis::kWindSpeed;
+        } else {
+          throw InputError("by must be 'rotor-speed' or 'wind-speed', got '" + by + "'");
+        }
+        o.Validate();
+        py::gil_scoped_release release;
+        std::vector<LinOperatingPoint> ops;
+        for (const std::string& point : points) ops.push_back(ReadLinOperatingPoint({point}));
+        return MakeLinCampbell(ops, o);
+      },
+      py::arg("points"), py::kw_only(), py::arg("by") = "rotor-speed", R"doc(
+The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
+function. Each point is a folder (or a glob) of the .lin files of one operating point; each is
+analysed by MBC3 (as ltp.mbc) and the modes are tracked across the points by their shapes.
+
+  by   'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
+
+    c = ltp.campbell(sorted(glob.glob("runs/omega-*")))
+    for line in c.lines: plt.plot(c.parameter, line["frequency_hz"], label=line["description"]))doc");
+}
+
+}  // namespace ltp::python

@@ -1,0 +1,51 @@
+"""ltp.campbell gives `ltp campbell`'s diagram to the last digit.
+
+Reference: the command's JSON (lines, crossings, per-rev) and CSV (per point, each line's
+damped frequency and damping ratio, written with 12 digits) on the same operating points; and
+each point's MBC3 table equals ltp.mbc of that point alone (the same analysis, another door).
+"""
+import csv
+from pathlib import Path
+
+import numpy as np
+
+import ltp
+from conftest import same
+
+POINTS = sorted(str(p) for p in (Path(__file__).resolve().parents[1] / "data" / "openfast" /
+                                 "rotor-speeds").iterdir())
+
+
+def test_campbell_equals_cli(ltp_cli, tmp_path):
+    out = tmp_path / "c.csv"
+    j = ltp_cli("campbell", *POINTS, "--csv", str(out))
+    c = ltp.campbell(POINTS)
+    assert c.axis_label == j["axis"]
+    assert len(c.lines) == len(j["campbell"]["lines"])
+    assert [l["description"] for l in c.lines] == [l["description"] for l in j["campbell"]["lines"]]
+    assert list(c.per_rev) == j["campbell"]["per_rev"]
+    assert len(c.crossings) == len(j["campbell"]["crossings"])
+    for x, y in zip(c.crossings, j["campbell"]["crossings"]):
+        assert x["mode"] == y["mode"] and x["per_rev"] == y["per_rev"]
+        assert same(y["parameter"], x["parameter"]) and same(y["frequency_hz"], x["frequency_hz"])
+    for p, q in zip(j["points"], c.points):
+        assert same(p["max_real_part"], q.max_real_part)
+    rows = list(csv.DictReader(out.open()))
+    assert len(rows) == len(c.parameter)
+    for i, row in enumerate(rows):
+        assert float(row["rpm"]) == float(f"{c.parameter[i]:.12g}")
+        for k, line in enumerate(c.lines, start=1):
+            if np.isfinite(line["frequency_hz"][i]):
+                assert float(row[f"freq_hz_{k}"]) == float(f"{line['frequency_hz'][i]:.12g}")
+                assert float(row[f"damping_{k}"]) == float(f"{line['damping_ratio'][i]:.12g}")
+            else:
+                assert row[f"freq_hz_{k}"] == ""
+    # Each point's table is ltp.mbc of its files.
+    one = ltp.mbc(POINTS[0])
+    assert np.array_equal(one.eigenvalues, c.points[0].eigenvalues)
+
+
+def test_campbell_refuses_an_unknown_axis():
+    import pytest
+    with pytest.raises(ltp.InputError, match="by must be"):
+        ltp.campbell(POINTS, by="pitch")
