@@ -18,6 +18,8 @@
 // rotating frame, a 1P term: the model is then no longer constant in MBC coordinates and no
 // exact exponents are known, but A_R(ψ) still holds harmonics 0 and ±1 only, so three or more
 // azimuths determine it and the trigonometric route in blade coordinates is exact.
+#include <unistd.h>
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <complex>
@@ -163,8 +165,11 @@ inline std::vector<double> EvenAzimuths(int K) {
   return psi;
 }
 
-/// Writes the files into a fresh directory `dir` (created) and returns it.
-inline std::string WriteLinDirectory(const std::vector<LinFile>& files, const std::string& dir) {
+/// Writes the files into a fresh directory and returns its path: `dir` with this process's id
+/// appended, so that tests run as parallel processes (ctest -j) never write, remove or read
+/// one another's files.
+inline std::string WriteLinDirectory(const std::vector<LinFile>& files, std::string dir) {
+  dir.append("-").append(std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   for (const LinFile& f : files) WriteLinFile(dir + "/" + f.path, f);
