@@ -388,6 +388,13 @@ std::vector<double> SingleShotErrors(const std::vector<cd>& log_rho,
   return errors;
 }
 
+// The refined run's grid options: the run's, reporting progress as its own phase.
+internal::SegmentGridOptions RefinedRunOptions(internal::SegmentGridOptions o,
+                                               const internal::AnalysisProgress& progress) {
+  o.integrator.on_advance = progress.Phase("refined run");
+  return o;
+}
+
 // Step 3, the error estimate: a second run on a different grid at a 100× tighter tolerance
 // (twice the fixed steps). A different grid matters: on short segments an adaptive method may
 // take the same single step at both tolerances, and a same-grid comparison would then see no
@@ -398,13 +405,6 @@ std::vector<double> SingleShotErrors(const std::vector<cd>& log_rho,
 // replaced), so the difference bounds their error with a wide margin.
 // Returns each exponent's integration error, in the order of the new `eig` (∞ when the
 // reference run failed).
-// The refined run's grid options: the run's, reporting progress as its own phase.
-internal::SegmentGridOptions RefinedRunOptions(internal::SegmentGridOptions o,
-                                               const internal::AnalysisProgress& progress) {
-  o.integrator.on_advance = progress.Phase("refined run");
-  return o;
-}
-
 std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
                                            const FloquetOptions& options,
                                            internal::SegmentGridOptions fine,

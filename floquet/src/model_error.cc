@@ -16,6 +16,16 @@
 
 namespace ltp {
 
+namespace {
+
+// Each exponent's sampling error: the largest distance (modulo jΩp) of exponents[k] to its
+// match among each alternative's exponents (+inf when an analysis failed or found another
+// count), and what the analyses cost. `grid_segments` > 0 starts them from that grid.
+struct SamplingErrors {
+  std::vector<double> per_exponent;
+  long evaluations = 0;
+};
+
 SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternatives,
                                      const std::vector<std::complex<double>>& exponents, int states,
                                      double period, const FloquetOptions& options,
@@ -57,8 +67,6 @@ SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternat
   }
   return s;
 }
-
-namespace {
 
 std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes) {
   std::vector<std::complex<double>> a;
@@ -107,10 +115,6 @@ double PerModeBand(const std::vector<double>& e, double integration, double max_
 const char* kUndecided =
     "stability undecided (marginal): |max Re λ| is within its error estimate once the model's "
     "sampling error is included — linearise at more azimuths";
-
-}  // namespace
-
-namespace {
 
 // The term in a result of either route: e_k on each mode's band, the largest on the estimate,
 // the verdict from the per-mode band; `integration` is the route's own estimate.

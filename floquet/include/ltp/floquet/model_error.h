@@ -8,7 +8,6 @@
 // sample hold ↔ trigonometric polynomial) give a second model; how far its exponents are from
 // the analysed one's is the model error term, added to the estimate before the verdict
 // (docs/sampled-models.md states the rule and what it cannot see).
-#include <complex>
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
@@ -34,18 +33,6 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
 /// of 1e-13 on a model whose samples leave 1e-5 undetermined is not an estimate.
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, HillResult& h);
-
-/// Each exponent's sampling error: the largest distance (modulo jΩp) of exponents[k] to its
-/// match among each alternative's exponents (+inf when an analysis failed or found another
-/// count); what the analyses cost. `grid_segments` > 0 starts them from that grid.
-struct SamplingErrors {
-  std::vector<double> per_exponent;
-  long evaluations = 0;
-};
-SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternatives,
-                                     const std::vector<std::complex<double>>& exponents, int states,
-                                     double period, const FloquetOptions& options,
-                                     int grid_segments);
 
 /// The band on max Re λ that a verdict uses when exponent k carries its own error own[k]
 /// besides the common `integration` estimate: the largest distance from `max_real` to
