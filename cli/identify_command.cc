@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "command.h"
@@ -16,6 +17,7 @@
 #include "ltp/htf/frequency_range.h"
 #include "ltp/htf/identify.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/rotor_angle.h"
 #include "ltp/models/scene_input.h"
 #include "plot.h"
 #include "time_data_csv.h"
@@ -34,8 +36,27 @@ struct IdentifyArgs {
   std::string input = "0", output = "0", orders = "-2:2", plot_orders;
   std::string compare, csv, plot, convergence;
   std::vector<std::string> set;  ///< parameters of the --compare scene
+  std::string tacho, angle;      ///< aux channels giving the rotor's phase
+  int pulses_per_period = 1;
+  double tacho_angle_deg = 0;
   bool json = false;
 };
+
+// The records' phase from --tacho or --angle (none: the model's 2πt/T); the speeds measured.
+std::optional<MeasuredSpeeds> MeasureAngles(const IdentifyArgs& args, TimeData& data) {
+  if (args.tacho.empty() && args.angle.empty()) return std::nullopt;
+  if (!args.tacho.empty() && !args.angle.empty())
+    throw InputError("--tacho and --angle: give one source of the rotor's phase");
+  AngleChannel source;
+  source.kind = args.tacho.empty() ? AngleChannel::Kind::kEncoder : AngleChannel::Kind::kTacho;
+  const std::string& spec = args.tacho.empty() ? args.angle : args.tacho;
+  source.channel =
+      ResolveChannel(spec, data.auxiliary_names, static_cast<int>(data.auxiliary_names.size()),
+                     args.tacho.empty() ? "--angle" : "--tacho", "aux: channel");
+  source.tacho.pulses_per_period = args.pulses_per_period;
+  source.tacho.pulse_angle = args.tacho_angle_deg * std::numbers::pi / 180;
+  return SetMeasuredAngles(data, source);
+}
 
 // |H_z| per order against the excitation frequency: the estimates their 95 % bound resolves
 // (bound below |H_z|) with the bound as error bar, the others as grey dots (indistinguishable
@@ -160,7 +181,9 @@ int RunIdentify(const IdentifyArgs& args) {
   const double period = args.period > 0
                             ? args.period
                             : (args.rotor_speed > 0 ? 2 * std::numbers::pi / args.rotor_speed : 0);
-  const TimeData data = ReadTimeDataCsv(args.data, period);
+  const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
+  TimeData data = ReadTimeDataCsv(args.data, period, !measured_angle);
+  const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
   IdentifyOptions o;
   o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()),
                            "--input", "input");
@@ -178,7 +201,7 @@ int RunIdentify(const IdentifyArgs& args) {
   std::vector<std::vector<cd>> model;
   if (!args.compare.empty()) {
     const LoadedScene l = LoadSceneInput({args.compare}, args.set);
-    if (std::abs(l.system.period() - data.period) > 1e-9 * data.period)
+    if (!speeds && std::abs(l.system.period() - data.period) > 1e-9 * data.period)
       throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) +
                        " s is not the data's " + Num(data.period, 10) + " s");
     PfrfOptions po;
@@ -236,16 +259,19 @@ int RunIdentify(const IdentifyArgs& args) {
         h.push_back(e);
       }
       freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz},
+                       {"speed_rad_s", JsonNumber(r.frequencies[f].speed)},
                        {"separable", r.frequencies[f].separable},
                        {"noise_rms", JsonNumber(r.frequencies[f].noise)},
                        {"H", h}});
     }
-    std::cout << json{{"data", args.data},       {"method", method},
-                      {"period_s", data.period}, {"input", o.input},
-                      {"output", o.output},      {"records", data.records.size()},
-                      {"frequencies", freqs},    {"diagnostics", r.diagnostics}}
-                     .dump(2)
-              << "\n";
+    json out = {{"data", args.data},       {"method", method},
+                {"period_s", data.period}, {"input", o.input},
+                {"output", o.output},      {"records", data.records.size()},
+                {"frequencies", freqs},    {"diagnostics", r.diagnostics}};
+    if (speeds)
+      out["measured_speed_rad_s"] = {
+          {"min", speeds->min_speed}, {"max", speeds->max_speed}, {"mean", speeds->mean_speed}};
+    std::cout << out.dump(2) << "\n";
     return 0;
   }
   std::cout << "Partial FRFs identified from " << args.data
@@ -256,12 +282,18 @@ int RunIdentify(const IdentifyArgs& args) {
                     : " (step-sine, eq. 47): " + std::to_string(r.frequencies.size()) + " records")
             << ", T = " << Num(data.period, 10) << " s, output " << o.output << " / input "
             << o.input << "\n"
+            << (speeds ? "  rotor phase from --" +
+                             std::string(args.tacho.empty() ? "angle" : "tacho") + ": speed " +
+                             Num(speeds->min_speed, 6) + " … " + Num(speeds->max_speed, 6) +
+                             " rad/s, mean " + Num(speeds->mean_speed, 7) + " (2π/T of the data: " +
+                             Num(2 * std::numbers::pi / data.period, 7) + ")\n"
+                       : std::string())
             << "    f_exc [Hz]    z       |H_z|    ± 95 %     phase [°]"
             << (model.empty() ? "" : "   |model − H_z|") << "\n";
   for (size_t f = 0; f < r.frequencies.size(); ++f)
     for (int z = 0; z < Z; ++z) {
       const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
-      if (!r.frequencies[f].separable) {
+      if (!r.frequencies[f].separable && std::isnan(h.real())) {
         std::cout << Num(r.frequencies[f].excitation_hz, 7, 14) << Num(z + o.min_order, 3, 5)
                   << "   not separable from one record (a multiple of fp/2)\n";
         continue;
@@ -300,6 +332,17 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--period", args.period, "period T (s), when the file does not give it");
   cmd->add_option("--rotor-speed", args.rotor_speed, "or the rotor speed (rad/s): T = 2π/Ω");
+  cmd->add_option("--tacho", args.tacho,
+                  "aux: channel of a tacho (pulses): the rotor's phase is measured, so the speed "
+                  "may differ from 2π/T and drift (step-sine)");
+  cmd->add_option("--pulses-per-period", args.pulses_per_period, "tacho pulses per period T")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cmd->add_option("--tacho-angle", args.tacho_angle_deg,
+                  "the system's phase (degrees) when a tacho pulse rises through mid-level")
+      ->capture_default_str();
+  cmd->add_option("--angle", args.angle,
+                  "aux: channel of an encoder giving the phase in rad (wrapped or not)");
   cmd->add_option("--input", args.input, "input (index or name)")->capture_default_str();
   cmd->add_option("--output", args.output, "output (index or name)")->capture_default_str();
   cmd->add_option("--orders", args.orders, "ZMIN:ZMAX")->capture_default_str();

@@ -52,6 +52,8 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
     out << ",in:" << name(data.input_names, i, "u");
   for (Eigen::Index i = 0; i < first.outputs.cols(); ++i)
     out << ",out:" << name(data.output_names, i, "y");
+  for (Eigen::Index i = 0; i < first.auxiliary.cols(); ++i)
+    out << ",aux:" << name(data.auxiliary_names, i, "a");
   out << "\n";
   for (size_t r = 0; r < data.records.size(); ++r) {
     const TimeRecord& rec = data.records[r];
@@ -61,18 +63,20 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
         out << "," << rec.inputs(static_cast<Eigen::Index>(s), i);
       for (Eigen::Index i = 0; i < rec.outputs.cols(); ++i)
         out << "," << rec.outputs(static_cast<Eigen::Index>(s), i);
+      for (Eigen::Index i = 0; i < rec.auxiliary.cols(); ++i)
+        out << "," << rec.auxiliary(static_cast<Eigen::Index>(s), i);
       out << "\n";
     }
   }
   if (!out) throw InputError("cannot write '" + path + "'");
 }
 
-TimeData ReadTimeDataCsv(const std::string& path, double period) {
+TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_period) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read '" + path + "'");
   TimeData data;
   std::string line;
-  size_t number = 0, inputs = 0, outputs = 0;
+  size_t number = 0, inputs = 0, outputs = 0, auxiliaries = 0;
   bool header = false;
   long current = -1;
   std::vector<std::vector<double>> rows;
@@ -82,6 +86,8 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
     rec.excitation_hz = rows[0][1];
     rec.inputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(inputs));
     rec.outputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(outputs));
+    rec.auxiliary.resize(static_cast<Eigen::Index>(rows.size()),
+                         static_cast<Eigen::Index>(auxiliaries));
     for (size_t s = 0; s < rows.size(); ++s) {
       rec.time.push_back(rows[s][2]);
       for (size_t i = 0; i < inputs; ++i)
@@ -89,6 +95,9 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
       for (size_t i = 0; i < outputs; ++i)
         rec.outputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) =
             rows[s][3 + inputs + i];
+      for (size_t i = 0; i < auxiliaries; ++i)
+        rec.auxiliary(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) =
+            rows[s][3 + inputs + outputs + i];
     }
     data.records.push_back(std::move(rec));
     rows.clear();
@@ -118,15 +127,18 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
         throw InputError(where +
                          ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
       for (size_t c = 3; c < cells.size(); ++c) {
-        if (cells[c].rfind("in:", 0) == 0 && outputs == 0) {
+        if (cells[c].rfind("in:", 0) == 0 && outputs == 0 && auxiliaries == 0) {
           ++inputs;
           data.input_names.push_back(cells[c].substr(3));
-        } else if (cells[c].rfind("out:", 0) == 0) {
+        } else if (cells[c].rfind("out:", 0) == 0 && auxiliaries == 0) {
           ++outputs;
           data.output_names.push_back(cells[c].substr(4));
+        } else if (cells[c].rfind("aux:", 0) == 0) {
+          ++auxiliaries;
+          data.auxiliary_names.push_back(cells[c].substr(4));
         } else {
           throw InputError(where + ": column '" + cells[c] +
-                           "' is not in:NAME or out:NAME (inputs first)");
+                           "' is not in:NAME, out:NAME or aux:NAME (in that order)");
         }
       }
       if (inputs == 0 || outputs == 0)
@@ -134,9 +146,9 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
       header = true;
       continue;
     }
-    if (cells.size() != 3 + inputs + outputs)
+    if (cells.size() != 3 + inputs + outputs + auxiliaries)
       throw InputError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
-                       std::to_string(3 + inputs + outputs));
+                       std::to_string(3 + inputs + outputs + auxiliaries));
     std::vector<double> row;
     for (const std::string& c : cells) row.push_back(Number(c, where));
     const long record = std::lround(row[0]);
@@ -149,6 +161,7 @@ TimeData ReadTimeDataCsv(const std::string& path, double period) {
   flush();
   if (!header) throw InputError(path + ": no header line (record,excitation_hz,t,in:...,out:...)");
   if (period > 0) data.period = period;
+  if (!(data.period > 0) && !require_period) return data;  // the caller measures it
   if (!(data.period > 0))
     throw InputError(path +
                      ": no '# period_s:' line: give the period with --period T or --rotor-speed W");

@@ -4,8 +4,8 @@
 //   # ltp time data (comment lines start with '#')
 //   # period_s: 3.14159265358979
 //   # rotor_speed_rad_s: 100                      (when the system is a rotor)
-//   record,excitation_hz,t,in:u,out:y             (inputs "in:NAME", outputs "out:NAME")
-//   1,0.13,471.238898038469,1,0.0123
+//   record,excitation_hz,t,in:u,out:y,aux:tacho   (inputs "in:NAME", outputs "out:NAME",
+//   1,0.13,471.238898038469,1,0.0123,0             then other channels "aux:NAME")
 //
 // One row per sample; the rows of a record are consecutive. Measured data written this way
 // (one record per step of a step-sine test) can be identified the same way.
@@ -20,7 +20,8 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
 
 /// @throws InputError naming the line: unreadable file, no period (and `period` <= 0), a row
 /// with the wrong number of cells or a cell that is not a number, channels not marked in:/out:.
-/// `period` > 0 overrides the file's.
-TimeData ReadTimeDataCsv(const std::string& path, double period = 0);
+/// `period` > 0 overrides the file's; without either, `require_period` = false returns the data
+/// with period 0 (unvalidated) for a caller that measures it (a tacho).
+TimeData ReadTimeDataCsv(const std::string& path, double period = 0, bool require_period = true);
 
 }  // namespace ltp::cli

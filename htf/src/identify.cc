@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
+#include "line_fit.h"
 #include "ltp/core/error.h"
 
 namespace ltp {
@@ -67,68 +68,241 @@ struct LineEstimate {
   double line_variance = std::numeric_limits<double>::quiet_NaN();  // |residual|² / (R − q)
 };
 
+// One line of a record's fit: what it is and its frequency (rad/s, at the mean speed).
+struct Line {
+  double omega_factor = 0;  // multiple of ω
+  int order = 0;            // multiple of θ
+  double frequency = 0;     // |ν| = |kω + zΩ̄|
+};
+
+// The lines a record is fitted with: the requested orders first, then what else a rig's
+// response holds — further orders, the synchronous orders m·Ωp (unbalance), 2ω and 3ω
+// (nonlinearity) — each only below 0.9 × Nyquist and 1.5 bins from every line already taken,
+// so the extra lines keep energy out of the noise estimate without making a requested line
+// undetermined.
+std::vector<Line> LinesToFit(double omega, double speed, double nyquist, double bin,
+                             const IdentifyOptions& o) {
+  std::vector<Line> lines;
+  for (int z = o.min_order; z <= o.max_order; ++z)
+    lines.push_back({1, z, std::abs(omega + z * speed)});
+  const auto consider = [&](double k, int z) {
+    const double f = std::abs(k * omega + z * speed);
+    if (f > 0.9 * nyquist || f < 1.5 * bin) return;
+    for (const Line& l : lines)
+      if (std::abs(f - l.frequency) < 1.5 * bin) return;
+    lines.push_back({k, z, f});
+  };
+  for (int m = 1; m <= 10; ++m) consider(0, m);
+  for (int extra = 1; extra <= 8; ++extra) {
+    consider(1, o.max_order + extra);
+    consider(1, o.min_order - extra);
+  }
+  for (double k : {2.0, 3.0}) consider(k, 0);
+  return lines;
+}
+
+Eigen::MatrixXd LinePhases(const std::vector<Line>& lines, const std::vector<double>& time,
+                           const std::vector<double>& theta, double omega) {
+  Eigen::MatrixXd phases(static_cast<Eigen::Index>(time.size()),
+                         static_cast<Eigen::Index>(lines.size()));
+  for (size_t l = 0; l < lines.size(); ++l)
+    for (size_t n = 0; n < time.size(); ++n)
+      phases(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(l)) =
+          lines[l].omega_factor * omega * time[n] + lines[l].order * theta[n];
+  return phases;
+}
+
+// Samples in runs of ≥ 3 equal values at the channel's extreme: a clipped signal.
+long ClippedRuns(const Eigen::VectorXd& x) {
+  long runs = 0;
+  for (const double extreme : {x.maxCoeff(), x.minCoeff()}) {
+    long length = 0;
+    for (Eigen::Index i = 0; i <= x.size(); ++i) {
+      if (i < x.size() && x(i) == extreme) {
+        ++length;
+        continue;
+      }
+      if (length >= 3) ++runs;
+      length = 0;
+    }
+  }
+  return runs;
+}
+
+// The input's phase in each quarter of the record against the whole record's sine: dropped
+// samples whose times were written as if none were lost, or a drifting shaker, move it.
+// Returns the largest move (rad) that exceeds 6 standard deviations of the quarters' phases.
+double InputPhaseMove(const std::vector<double>& time, const Eigen::VectorXd& u, double omega) {
+  const long n = static_cast<long>(time.size()), q = n / 4;
+  if (q < 16) return 0;
+  std::vector<std::complex<double>> amplitude;
+  std::vector<double> sd;
+  for (long k = 0; k < 4; ++k) {
+    const std::vector<double> t(time.begin() + k * q, time.begin() + (k + 1) * q);
+    Eigen::MatrixXd phase(q, 1);
+    for (long i = 0; i < q; ++i) phase(i, 0) = omega * t[static_cast<size_t>(i)];
+    const internal::LineFit f = internal::FitLines(u.segment(k * q, q), phase);
+    amplitude.push_back(f.amplitude[0]);
+    sd.push_back(std::sqrt(f.variance[0]) / std::max(std::abs(f.amplitude[0]), 1e-300));
+  }
+  double move = 0;
+  for (long k = 1; k < 4; ++k) {
+    const double d = std::abs(std::arg(amplitude[k] / amplitude[0]));
+    if (d > 6 * std::hypot(sd[k], sd[0]) && d > 1e-6) move = std::max(move, d);
+  }
+  return move;
+}
+
+// What a record's data say about themselves, one line each where something is wrong.
+void RecordNotes(const TimeRecord& rec, const IdentifyOptions& o, double omega, double dt,
+                 const std::string& where, std::vector<std::string>& notes) {
+  long gaps = 0, first = 0;
+  for (size_t i = 1; i < rec.time.size(); ++i)
+    if (rec.time[i] - rec.time[i - 1] > 1.5 * dt && gaps++ == 0) first = static_cast<long>(i);
+  if (gaps > 0)
+    notes.push_back(where + ": " + std::to_string(gaps) + " gap(s) in t, the first at sample " +
+                    std::to_string(first + 1) +
+                    " (t = " + MessageNumber(rec.time[static_cast<size_t>(first)], 10) +
+                    " s); the fit uses the times as written");
+  for (const auto& [channel, name] :
+       {std::pair{rec.inputs.col(o.input), "input"}, {rec.outputs.col(o.output), "output"}}) {
+    const Eigen::VectorXd x = channel;
+    if (const long runs = ClippedRuns(x); runs >= 2)
+      notes.push_back(where + ": the " + name + " sits at its extreme value in " +
+                      std::to_string(runs) +
+                      " runs of 3 or more samples: clipped? A clipped record biases H_z");
+  }
+  if (const double move = InputPhaseMove(rec.time, rec.inputs.col(o.input), omega); move > 0)
+    notes.push_back(where + ": the input's phase moves by " +
+                    MessageNumber(move * 180 / std::numbers::pi, 3) +
+                    "° within the record: samples dropped while the times went on, or the "
+                    "shaker's frequency drifts — H_z is biased by as much");
+}
+
+// Lines beyond the requested ones that stand out of the noise, over all records (said once).
+struct ExtraLines {
+  std::set<int> synchronous;  // orders m of the lines m·θ
+  long harmonic_records = 0;  // records with a response at 2ω or 3ω
+  double speed_change = 0;    // largest relative change of dθ/dt within a record
+  long off_speed = 0;         // records without a measured angle whose lines sit off 2π/T
+  double largest_offset = 0;  // relative
+  long moved = 0;             // records whose input's frequency is not the written one
+  double largest_move = 0;    // Hz
+};
+
+// How much dθ/dt changes over a record, relative to its mean: θ(t) fitted by a quadratic
+// a + b s + c s² (s = t − mid), the change 2cL against b.
+double SpeedChange(const std::vector<double>& time, const std::vector<double>& theta) {
+  const Eigen::Index n = static_cast<Eigen::Index>(time.size());
+  if (n < 3) return 0;
+  const double mid = 0.5 * (time.front() + time.back()), L = time.back() - time.front();
+  Eigen::MatrixXd X(n, 3);
+  Eigen::VectorXd y(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double s = (time[static_cast<size_t>(i)] - mid) / L;
+    X.row(i) << 1, s, s * s;
+    y(i) = theta[static_cast<size_t>(i)];
+  }
+  const Eigen::Vector3d c = X.colPivHouseholderQr().solve(y);
+  return std::abs(2 * c(2) / c(1));
+}
+
 IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
-                                   size_t index, std::vector<std::string>& diagnostics) {
+                                   size_t index, std::vector<std::string>& diagnostics,
+                                   ExtraLines& extra) {
   const std::string where = "record " + std::to_string(index + 1);
-  const long N = static_cast<long>(rec.time.size());
-  const double dt = (rec.time.back() - rec.time.front()) / static_cast<double>(N - 1);
-  const double L = N * dt;
-  bool whole = false;
-  const long P = WholeNumber(L / T, &whole);  // periods in the record
-  if (!whole || P < 1)
-    throw InputError(where + ": " + MessageNumber(L / T, 8) +
-                     " periods long; identification needs whole periods");
-  const long kf = WholeNumber(rec.excitation_hz * L, &whole);
-  if (!whole || kf < 1)
-    throw InputError(
-        where + ": excitation " + MessageNumber(rec.excitation_hz, 8) + " Hz makes " +
-        MessageNumber(rec.excitation_hz * L, 8) +
-        " cycles; identification needs whole cycles (ltp simulate places the frequencies so)");
-  if (P > N || kf >= N)
-    throw InputError(where + ": " + std::to_string(N) + " samples cannot resolve the excitation (" +
-                     std::to_string(kf) + " cycles in " + std::to_string(P) +
-                     " periods): sample faster");
+  const double dt = SamplingStep(rec);
+  const double L = rec.time.back() - rec.time.front();
+  const double nyquist = std::numbers::pi / dt, bin = kTwoPi / L;
+  std::vector<double> theta = rec.angle;  // the system's phase: measured, or the model's
+  if (theta.empty())
+    for (double t : rec.time) theta.push_back(kTwoPi * t / T);
+  const double speed = (theta.back() - theta.front()) / L;
+  if (!(speed * L >= kTwoPi * (1 - 1e-9)))
+    throw InputError(where + ": " + MessageNumber(speed * L / kTwoPi, 6) +
+                     " periods long; the orders need at least one period to be told apart");
+  if (!(rec.excitation_hz > 0))
+    throw InputError(where + ": no excitation frequency (a broadband record: --method broadband)");
+  const Eigen::VectorXd u = rec.inputs.col(o.input), y = rec.outputs.col(o.output);
+  const double omega = internal::FitSineFrequency(rec.time, u, kTwoPi * rec.excitation_hz);
   for (int z : {o.min_order, o.max_order})
-    if (2 * std::abs(kf + z * P) >= N)
-      throw InputError(
-          where + ": the line of order " + std::to_string(z) +
-          " lies above the Nyquist frequency: " + "sample faster or ask for fewer orders");
-  const double t0 = rec.time.front();
-  const auto absolute = [&](const std::vector<cd>& c, long k) { return AbsoluteBin(c, k, t0, L); };
-  const std::vector<cd> u = Spectrum(rec.inputs.col(o.input));
-  const std::vector<cd> y = Spectrum(rec.outputs.col(o.output));
-  const cd U = absolute(u, kf);
-  if (!(std::abs(U) > 1e-12 * rec.inputs.col(o.input).cwiseAbs().maxCoeff()))
+    if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
+      throw InputError(where + ": the line of order " + std::to_string(z) +
+                       " lies above the Nyquist frequency: sample faster or ask for fewer orders");
+  Eigen::MatrixXd excitation(static_cast<Eigen::Index>(rec.time.size()), 1);
+  for (size_t n = 0; n < rec.time.size(); ++n)
+    excitation(static_cast<Eigen::Index>(n), 0) = omega * rec.time[n];
+  const internal::LineFit in = internal::FitLines(u, excitation);
+  const cd U = in.amplitude[0];
+  if (!(std::abs(U) > 1e-12 * u.cwiseAbs().maxCoeff()))
     throw InputError(where + ": input " + std::to_string(o.input) + " is not excited at " +
                      MessageNumber(rec.excitation_hz, 8) + " Hz");
-  // Noise power: the bins 1..N/2−1 off every response line ±kf + mP.
-  double power = 0;
-  long count = 0;
-  for (long k = 1; 2 * k < N; ++k) {
-    const long a = ((k - kf) % P + P) % P, b = ((k + kf) % P + P) % P;
-    if (a == 0 || b == 0) continue;
-    power += std::norm(y[static_cast<size_t>(k)]);
-    ++count;
-  }
+  const std::vector<Line> lines = LinesToFit(omega, speed, nyquist, bin, o);
+  const internal::LineFit out_fit =
+      internal::FitLines(y, LinePhases(lines, rec.time, theta, omega));
   IdentifiedFrequency out;
-  out.excitation_hz = rec.excitation_hz;
-  const double sigma = count > 0 ? std::sqrt(power / static_cast<double>(count)) : 0.0;
-  out.noise = sigma * std::sqrt(static_cast<double>(N));  // rms of white noise: E|c_k|² = rms² / N
-  out.separable = (2 * kf) % P != 0;
-  if (count == 0)
-    diagnostics.push_back(where +
-                          ": no bin is free of response lines: the noise (and the bounds) cannot "
-                          "be estimated; record more periods");
-  if (!out.separable)
-    diagnostics.push_back(where + ": " + MessageNumber(rec.excitation_hz, 8) +
-                          " Hz is a multiple of Ωp/2: H_z and the mirror of another "
-                          "order share each line, one record cannot separate them");
+  out.excitation_hz = omega / kTwoPi;
+  out.speed = speed;
+  out.noise = std::sqrt(out_fit.noise_variance);
+  const double input_variance = std::isfinite(in.variance[0]) ? in.variance[0] : 0;
   for (int z = o.min_order; z <= o.max_order; ++z) {
-    const cd h = absolute(y, kf + z * P) / U;
-    out.h.push_back(out.separable ? h : cd(std::numeric_limits<double>::quiet_NaN(), 0));
-    out.bound.push_back(count > 0 ? kBoundFactor * sigma / std::abs(U)
-                                  : std::numeric_limits<double>::infinity());
+    const size_t l = static_cast<size_t>(z - o.min_order);
+    const cd h = out_fit.amplitude[l] / U;
+    out.separable = out.separable && out_fit.determined[l];
+    out.h.push_back(h);
+    // Output noise through Y_z, input noise through U (first order; independent).
+    const double variance = (out_fit.variance[l] + std::norm(h) * input_variance) / std::norm(U);
+    out.bound.push_back(out_fit.dof > 0 && std::isfinite(variance)
+                            ? kBoundFactor * std::sqrt(variance)
+                            : std::numeric_limits<double>::infinity());
   }
+  if (out_fit.dof == 0)
+    diagnostics.push_back(where +
+                          ": as many lines as samples: the noise (and the bounds) cannot "
+                          "be estimated; record longer");
+  if (!out.separable) {
+    const double halves = 2 * omega / speed;
+    diagnostics.push_back(
+        where + ": " + MessageNumber(out.excitation_hz, 8) + " Hz" +
+        (std::abs(halves - std::round(halves)) < 1e-6
+             ? " is a multiple of Ωp/2: H_z and the mirror of another order share each line, "
+               "one record cannot separate them"
+             : ": two of its response lines coincide; those H_z are left out (NaN)"));
+  }
+  double largest = 0;
+  for (size_t l = 0; l < out.h.size(); ++l)
+    if (out_fit.determined[l]) largest = std::max(largest, std::abs(out_fit.amplitude[l]));
+  bool harmonic = false;
+  for (size_t l = out.h.size(); l < lines.size(); ++l) {
+    const double a = std::abs(out_fit.amplitude[l]);
+    if (!(a * a > 36 * out_fit.variance[l] && a > 1e-6 * largest)) continue;
+    if (lines[l].omega_factor == 0) extra.synchronous.insert(lines[l].order);
+    harmonic = harmonic || lines[l].omega_factor > 1;
+  }
+  extra.harmonic_records += harmonic;
+  extra.speed_change = std::max(extra.speed_change, SpeedChange(rec.time, theta));
+  if (rec.angle.empty() && (o.min_order != 0 || o.max_order != 0)) {
+    // Without a measured angle, the data themselves say at which speed their lines sit.
+    Eigen::MatrixXd base(static_cast<Eigen::Index>(rec.time.size()), o.max_order - o.min_order + 1);
+    std::vector<double> orders;
+    for (int z = o.min_order; z <= o.max_order; ++z) {
+      orders.push_back(z);
+      for (size_t n = 0; n < rec.time.size(); ++n)
+        base(static_cast<Eigen::Index>(n), z - o.min_order) = omega * rec.time[n];
+    }
+    const internal::FittedRate fitted = internal::FitLineRate(rec.time, y, base, orders, speed);
+    const double offset = std::abs(fitted.rate / speed - 1);
+    if (offset > 1e-6 && std::abs(fitted.rate - speed) > 6 * fitted.standard_error) {
+      ++extra.off_speed;
+      extra.largest_offset = std::max(extra.largest_offset, offset);
+    }
+  }
+  const double move = std::abs(out.excitation_hz - rec.excitation_hz);
+  if (move > std::max(1e-9 * rec.excitation_hz, 1e-3 / L)) {
+    ++extra.moved;
+    extra.largest_move = std::max(extra.largest_move, move);
+  }
+  RecordNotes(rec, o, omega, dt, where, diagnostics);
   return out;
 }
 
@@ -152,9 +326,51 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
   IdentifyResult r;
   r.min_order = options.min_order;
   r.max_order = options.max_order;
+  ExtraLines extra;
   for (size_t i = 0; i < data.records.size(); ++i)
     r.frequencies.push_back(
-        IdentifyRecord(data.records[i], data.period, options, i, r.diagnostics));
+        IdentifyRecord(data.records[i], data.period, options, i, r.diagnostics, extra));
+  if (!extra.synchronous.empty()) {
+    std::string orders;
+    for (int m : extra.synchronous)
+      orders += (orders.empty() ? "" : ", ") + std::to_string(m) + "×";
+    r.diagnostics.push_back("synchronous response at " + orders +
+                            " the system's frequency 1/T (unbalance, misalignment): fitted as "
+                            "lines of their own and kept out of the noise and the bounds");
+  }
+  if (extra.harmonic_records > 0)
+    r.diagnostics.push_back(std::to_string(extra.harmonic_records) + " of " +
+                            std::to_string(data.records.size()) +
+                            " records respond at 2 or 3 times the excitation frequency above the "
+                            "noise: the system is not linear at this amplitude (or the output "
+                            "clips); H_z is its linear part at best — excite less");
+  if (extra.off_speed > 0)
+    r.diagnostics.push_back(
+        "in " + std::to_string(extra.off_speed) + " of " + std::to_string(data.records.size()) +
+        " records the response's lines sit at a speed up to " +
+        MessageNumber(100 * extra.largest_offset, 3) +
+        " % off 2π/T (fitted from the data): the rotor did not turn at the model's speed, and "
+        "H_z (z ≠ 0) is biased by the phase it gained — measure its angle (a tacho or an "
+        "encoder channel) or give the period it turned at");
+  if (extra.moved > 0)
+    r.diagnostics.push_back(std::to_string(extra.moved) + " of " +
+                            std::to_string(data.records.size()) +
+                            " records excite at another frequency than the file says (by up to " +
+                            MessageNumber(extra.largest_move, 3) +
+                            " Hz): each input's own frequency is used and reported");
+  if (extra.speed_change > 1e-3)
+    r.diagnostics.push_back("the speed changes by up to " +
+                            MessageNumber(100 * extra.speed_change, 2) +
+                            " % within a record: H_z moves with it, and each estimate is the "
+                            "average over its record's speeds");
+  double offset = 0;
+  for (const IdentifiedFrequency& f : r.frequencies)
+    offset = std::max(offset, std::abs(f.speed * data.period / (2 * std::numbers::pi) - 1));
+  if (offset > 1e-6)
+    r.diagnostics.push_back("the measured speed differs from the model's 2π/T by up to " +
+                            MessageNumber(100 * offset, 3) +
+                            " %: H_z is the rig's at its own speed (each record's in "
+                            "`speed`); compare with the model at that speed");
   std::stable_sort(r.frequencies.begin(), r.frequencies.end(),
                    [](const auto& a, const auto& b) { return a.excitation_hz < b.excitation_hz; });
   return r;
@@ -162,6 +378,14 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
 
 IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options) {
   CheckData(data, options);
+  for (size_t r = 0; r < data.records.size(); ++r) {
+    const std::string where = "record " + std::to_string(r + 1);
+    RequireUniformSampling(data.records[r], where);  // the DFT needs the grid
+    if (!data.records[r].angle.empty())
+      throw InputError(where +
+                       ": broadband identification assumes the model's constant speed; "
+                       "with a measured angle use step-sine records");
+  }
   const TimeRecord& first = data.records.front();
   const long N = static_cast<long>(first.time.size());
   const double dt = (first.time.back() - first.time.front()) / static_cast<double>(N - 1);

@@ -1,5 +1,6 @@
 #include "ltp/htf/time_data.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "ltp/core/error.h"
@@ -15,24 +16,47 @@ void TimeData::Validate() const {
     const std::string where = "record " + std::to_string(r + 1);
     const Eigen::Index n = static_cast<Eigen::Index>(rec.time.size());
     if (n < 2) throw InputError(where + ": fewer than 2 samples");
-    if (rec.inputs.rows() != n || rec.outputs.rows() != n)
+    if (rec.inputs.rows() != n || rec.outputs.rows() != n ||
+        (rec.auxiliary.cols() > 0 && rec.auxiliary.rows() != n))
       throw InputError(where + ": " + std::to_string(n) + " times but " +
                        std::to_string(rec.inputs.rows()) + " input and " +
                        std::to_string(rec.outputs.rows()) + " output samples");
+    if (!rec.angle.empty() && rec.angle.size() != rec.time.size())
+      throw InputError(where + ": " + std::to_string(n) + " times but " +
+                       std::to_string(rec.angle.size()) + " angles");
     if (r > 0 && (rec.inputs.cols() != records[0].inputs.cols() ||
                   rec.outputs.cols() != records[0].outputs.cols()))
       throw InputError(where + ": other channels than record 1");
-    if (!rec.inputs.allFinite() || !rec.outputs.allFinite())
+    if (!rec.inputs.allFinite() || !rec.outputs.allFinite() || !rec.auxiliary.allFinite())
       throw InputError(where + ": holds a value that is not finite (NaN or inf)");
-    const double dt = (rec.time.back() - rec.time.front()) / static_cast<double>(n - 1);
-    if (!(dt > 0) || !std::isfinite(dt)) throw InputError(where + ": times do not increase");
+    for (double a : rec.angle)
+      if (!std::isfinite(a)) throw InputError(where + ": an angle is not finite");
     for (Eigen::Index i = 1; i < n; ++i) {
       const double step = rec.time[static_cast<size_t>(i)] - rec.time[static_cast<size_t>(i - 1)];
-      if (!(std::abs(step - dt) <= 1e-6 * dt))
-        throw InputError(where + ": unequal sampling at sample " + std::to_string(i + 1) +
-                         " (step " + std::to_string(step) + " s, mean " + std::to_string(dt) +
-                         " s): a gap or a jitter");
+      if (!(step > 0) || !std::isfinite(step))
+        throw InputError(where + ": times do not increase at sample " + std::to_string(i + 1) +
+                         " (t = " + MessageNumber(rec.time[static_cast<size_t>(i)], 10) + " s)");
     }
+  }
+}
+
+double SamplingStep(const TimeRecord& record) {
+  std::vector<double> steps;
+  for (size_t i = 1; i < record.time.size(); ++i)
+    steps.push_back(record.time[i] - record.time[i - 1]);
+  if (steps.empty()) return 0;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
+void RequireUniformSampling(const TimeRecord& record, const std::string& where, double tolerance) {
+  const double dt = SamplingStep(record);
+  for (size_t i = 1; i < record.time.size(); ++i) {
+    const double step = record.time[i] - record.time[i - 1];
+    if (!(std::abs(step - dt) <= tolerance * dt))
+      throw InputError(where + ": unequal sampling at sample " + std::to_string(i + 1) + " (t = " +
+                       MessageNumber(record.time[i], 10) + " s: step " + MessageNumber(step, 6) +
+                       " s, the record's " + MessageNumber(dt, 6) + " s): a gap or a jitter");
   }
 }
 

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <complex>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 
 #include "support/ltp_cli.h"
+#include "support/rig.h"
 
 namespace {
 
@@ -122,7 +125,8 @@ TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   const double bound = json::parse(id.out)["frequencies"][0]["H"][0]["bound_95"].get<double>();
   EXPECT_GT(bound, 1e-4);  // 30 dB of noise is seen
   EXPECT_LT(bound, 0.1);
-  // A file without a period, and one with a gap in time.
+  // A file without a period, and one with a gap in time for the broadband method (step-sine
+  // fits the times as written).
   const std::string no_period = Tmp("identify_no_period.csv");
   std::ofstream(no_period) << "record,excitation_hz,t,in:u,out:y\n1,0.1,0,1,0\n1,0.1,0.1,1,0\n";
   const auto r = RunLtp("identify " + no_period);
@@ -130,10 +134,56 @@ TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   EXPECT_NE(r.err.find("period"), std::string::npos) << r.err;
   const std::string gap = Tmp("identify_gap.csv");
   std::ofstream(gap)
-      << "# period_s: 1\nrecord,excitation_hz,t,in:u,out:y\n1,1,0,1,0\n1,1,0.1,1,0\n1,1,0.3,1,0\n";
-  const auto g = RunLtp("identify " + gap);
+      << "# period_s: 1\nrecord,excitation_hz,t,in:u,out:y\n1,0,0,1,0\n1,0,0.1,1,0\n1,0,0.2,1,0\n"
+      << "1,0,0.3,1,0\n1,0,0.5,1,0\n1,0,0.6,1,0\n";
+  const auto g = RunLtp("identify " + gap + " --method broadband");
   EXPECT_EQ(g.code, 2);
-  EXPECT_NE(g.err.find("unequal sampling"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("unequal sampling at sample 5"), std::string::npos) << g.err;
+}
+
+// Rig data as a rig writes them: no period line, a tacho column, the rotor 1 % fast, shakers
+// off any grid with rounded frequencies in the log, 20.3 periods per record (tests/support/rig.h,
+// closed-form partial FRFs at the rig's speed).
+TEST(IdentifyCli, ATachoChannelGivesTheRigsPartialFrfs) {
+  const ltp::testing::Rig rig;
+  const std::string csv = Tmp("identify_rig.csv");
+  {
+    std::ofstream out(csv);
+    out.precision(17);
+    out << "record,excitation_hz,t,in:force,out:accel,aux:tacho\n";
+    int record = 1;
+    for (const auto& [f, written] : {std::pair{0.1373, 0.14}, {0.6121, 0.61}}) {
+      const ltp::TimeRecord r = rig.Record(f, written);
+      for (size_t i = 0; i < r.time.size(); ++i) {
+        const auto s = static_cast<Eigen::Index>(i);
+        out << record << "," << written << "," << r.time[i] << "," << r.inputs(s, 0) << ","
+            << r.outputs(s, 0) << "," << r.auxiliary(s, 0) << "\n";
+      }
+      ++record;
+    }
+  }
+  const double pulse_deg = rig.PulseAngle() * 180 / std::numbers::pi;
+  const auto id = RunLtp("identify " + csv + " --tacho tacho --tacho-angle " +
+                         std::to_string(pulse_deg) + " --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const json j = json::parse(id.out);
+  EXPECT_NEAR(j["measured_speed_rad_s"]["mean"].get<double>() / rig.Speed(), 1, 1e-6);
+  EXPECT_NEAR(j["period_s"].get<double>() * rig.Speed() / (2 * std::numbers::pi), 1, 1e-6);
+  const double truth_hz[] = {0.1373, 0.6121};
+  for (size_t f = 0; f < 2; ++f) {
+    const json& e = j["frequencies"][f];
+    EXPECT_NEAR(e["excitation_hz"].get<double>(), truth_hz[f], 1e-9);
+    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
+    for (size_t z = 0; z < 5; ++z) {
+      const std::complex<double> h(e["H"][z]["re"].get<double>(), e["H"][z]["im"].get<double>());
+      EXPECT_LT(std::abs(h - truth[z]), 1e-6 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
+    }
+  }
+  // Without a period line, no tacho: the period is asked for; a tacho that is not a channel.
+  EXPECT_EQ(RunLtp("identify " + csv).code, 2);
+  const auto wrong = RunLtp("identify " + csv + " --tacho nope");
+  EXPECT_EQ(wrong.code, 2);
+  EXPECT_NE(wrong.err.find("nope"), std::string::npos) << wrong.err;
 }
 
 }  // namespace

@@ -126,23 +126,55 @@ TEST(IdentifyStepSine, BadDataIsRefusedWithTheReason) {
   s.samples_per_period = 16;
   SimulationResult sim = SimulateStepSine(system, s);
   IdentifyOptions o;
-  TimeData gap = sim.data;
-  gap.records[0].time[5] += 0.01;
-  EXPECT_THROW(IdentifyStepSine(gap, o), InputError);
   TimeData nan = sim.data;
   nan.records[0].outputs(3, 0) = std::nan("");
   EXPECT_THROW(IdentifyStepSine(nan, o), InputError);
-  TimeData cut = sim.data;  // not a whole number of periods any more
-  cut.records[0].time.pop_back();
-  cut.records[0].inputs.conservativeResize(cut.records[0].time.size(), Eigen::NoChange);
-  cut.records[0].outputs.conservativeResize(cut.records[0].time.size(), Eigen::NoChange);
-  EXPECT_THROW(IdentifyStepSine(cut, o), InputError);
+  TimeData backwards = sim.data;
+  backwards.records[0].time[5] = backwards.records[0].time[4];
+  EXPECT_THROW(IdentifyStepSine(backwards, o), InputError);
+  TimeData short_record = sim.data;  // less than one period: the orders are not separable
+  short_record.records[0].time.resize(10);
+  short_record.records[0].inputs.conservativeResize(10, Eigen::NoChange);
+  short_record.records[0].outputs.conservativeResize(10, Eigen::NoChange);
+  EXPECT_THROW(IdentifyStepSine(short_record, o), InputError);
+  TimeData gap = sim.data;  // broadband needs the uniform grid; it names the right sample
+  gap.records[0].excitation_hz = 0;
+  gap.records[0].time[40] += 0.01;
+  try {
+    IdentifyBroadband(gap, o);
+    ADD_FAILURE() << "a jittered sample was accepted by the broadband method";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unequal sampling at sample 41"), std::string::npos)
+        << e.what();
+  }
   o.max_order = 40;  // above Nyquist at 16 samples per period
   EXPECT_THROW(IdentifyStepSine(sim.data, o), InputError);
   SimulateOptions unstable = s;
   EXPECT_THROW(SimulateStepSine(LoadScene("mathieu").Build({{"c", "0"}, {"q", "0.3"}, {"a", "1"}}),
                                 unstable),
                InputError);  // undamped: no steady state
+}
+
+// A record cut off mid-period (rig records need not be whole periods): the least-squares lines
+// still give the model's values, noise-free.
+TEST(IdentifyStepSine, ARecordOfPartialPeriodsStillGivesTheModel) {
+  const PeriodicSystem system = Mathieu();
+  SimulateOptions s;
+  s.frequencies_hz = {0.13};
+  s.periods = 16;
+  SimulationResult sim = SimulateStepSine(system, s);
+  TimeRecord& rec = sim.data.records[0];
+  const Eigen::Index keep = rec.inputs.rows() - 23;
+  rec.time.resize(static_cast<size_t>(keep));
+  rec.inputs.conservativeResize(keep, Eigen::NoChange);
+  rec.outputs.conservativeResize(keep, Eigen::NoChange);
+  IdentifyOptions o;
+  const IdentifyResult id = IdentifyStepSine(sim.data, o);
+  const auto model = ModelAt(system, id);
+  double scale = 0;
+  for (const auto& h : model[0]) scale = std::max(scale, std::abs(h));
+  for (size_t z = 0; z < 5; ++z)
+    EXPECT_LT(std::abs(id.frequencies[0].h[z] - model[0][z]), 1e-6 * scale) << int(z) - 2;
 }
 
 TEST(IdentifyStepSine, AMultipleOfHalfTheParametricFrequencyIsNotSeparable) {

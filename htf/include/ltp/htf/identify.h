@@ -1,13 +1,17 @@
 #pragma once
 // Partial FRFs from step-sine time data (the paper's eq. 47): in the steady state under
-// u = a cos(ωt + φ) = U e^{jωt} + c.c., every output holds the lines ω + zΩp with complex
-// amplitudes U·H_z(ω) (and their mirrors). Over a record of whole periods that also holds
-// whole cycles of ω, the discrete Fourier transform puts each line on its own bin, so
-//   H_z(ω) = Y(ω + zΩp) / U,   U = the input's bin at ω,
-// exactly, without leakage. The other bins hold only noise: their mean power σ² gives each
-// estimate a 95 % bound sqrt(ln 20)·σ/|U| (the radius that circular Gaussian noise of power σ²
-// exceeds with probability 5 %). A frequency at a multiple of Ωp/2 puts H_z(ω) and the mirror
-// of H_{z'}(ω) on one bin: one record cannot separate them, and the estimate says so.
+// u = a cos(ωt + φ) = U e^{jωt} + c.c., every output holds the lines ω·t + z·θ(t) with complex
+// amplitudes U·H_z(ω) (and their mirrors), θ the system's phase (2πt/T at the model's speed, or
+// measured on a rig: rotor_angle.h). Each record is fitted by least squares with those lines,
+// ω measured from the input itself, and the lines a rig adds (further orders, the synchronous
+// m·θ of an unbalance, 2ω and 3ω of a nonlinearity) so that they do not count as noise:
+//   H_z(ω) = Y_z / U.
+// Over whole periods and cycles at the model's speed the lines are orthogonal and this is the
+// DFT bin ratio exactly; the fit needs neither (docs/rig-data.md). The residual's variance σ²
+// gives each estimate its variance σ²[(XᵀX)⁻¹] through Y_z, the input's residual through U,
+// and a 95 % bound sqrt(ln 20) × the standard deviation (the radius that circular Gaussian
+// noise exceeds with probability 5 %). A frequency at a multiple of Ωp/2 puts H_z(ω) and the
+// mirror of H_{z'}(ω) on one line: one record cannot separate them, and the estimate says so.
 #include <complex>
 #include <string>
 #include <vector>
@@ -29,6 +33,7 @@ struct IdentifiedFrequency {
   std::vector<double> bound;            ///< 95 % bound on |error| of each H_z
   double noise = 0;                     ///< rms of the noise bins (output units)
   bool separable = true;                ///< false at multiples of Ωp/2 (see the header)
+  double speed = 0;  ///< step-sine: the record's mean dθ/dt (rad/s; 2π/T without a measured angle)
   /// Broadband: per order, the condition number of the least-squares problem of the response
   /// line that determines H_z (∞: under-determined) and its quality 1 − |residual|²/|Y|²
   /// over the records (1: the lines explain the response; NaN: no residual to judge by).
@@ -41,9 +46,12 @@ struct IdentifyResult {
   std::vector<std::string> diagnostics;
 };
 
-/// @throws InputError when the data fail TimeData::Validate, a record does not span whole
-/// periods and whole cycles of its excitation, the input is not excited at the record's
-/// frequency, the sampling aliases a requested line, or the options do not fit the data.
+/// Notes in the diagnostics: a measured input frequency other than the written one, gaps in
+/// t, clipped channels, an input phase that moves within a record (dropped samples), a
+/// synchronous or harmonic response, a measured speed other than 2π/T.
+/// @throws InputError when the data fail TimeData::Validate, a record spans less than one
+/// period, the input is not excited at the record's frequency, the sampling aliases a
+/// requested line, or the options do not fit the data.
 IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& options);
 
 /// Partial FRFs from broadband records (multisine or noise, excitation_hz = 0; §4.2 of the

@@ -1,0 +1,125 @@
+#include "line_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ltp::internal {
+
+LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases) {
+  const Eigen::Index n = y.size(), lines = phases.cols(), p = 1 + 2 * lines;
+  Eigen::MatrixXd X(n, p);
+  X.col(0).setOnes();
+  for (Eigen::Index l = 0; l < lines; ++l) {
+    X.col(1 + 2 * l) = phases.col(l).array().cos();
+    X.col(2 + 2 * l) = phases.col(l).array().sin();
+  }
+  // Columns scaled to unit norm, so the rank decision compares directions, not sizes.
+  const Eigen::VectorXd scale = X.colwise().norm().transpose().cwiseMax(1e-300);
+  X = X * scale.cwiseInverse().asDiagonal();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(X, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& s = svd.singularValues();
+  const double cut = 1e-9 * s(0);
+  Eigen::Index rank = 0;
+  while (rank < s.size() && s(rank) > cut) ++rank;
+  const Eigen::MatrixXd& V = svd.matrixV();
+  // Minimum-norm solution and covariance factors on the determined subspace.
+  const Eigen::VectorXd coefficients =
+      V.leftCols(rank) *
+      (s.head(rank).cwiseInverse().asDiagonal() * (svd.matrixU().leftCols(rank).transpose() * y));
+  Eigen::VectorXd factor(p), undetermined(p);
+  for (Eigen::Index i = 0; i < p; ++i) {
+    factor(i) =
+        (V.row(i).head(rank).array().square() / s.head(rank).array().square().transpose()).sum() /
+        (scale(i) * scale(i));
+    undetermined(i) = V.row(i).tail(p - rank).squaredNorm();
+  }
+  LineFit fit;
+  fit.dof = static_cast<long>(n - rank);
+  const double residual = (y - X * coefficients).squaredNorm();
+  fit.noise_variance = fit.dof > 0 ? residual / static_cast<double>(fit.dof)
+                                   : std::numeric_limits<double>::quiet_NaN();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (Eigen::Index l = 0; l < lines; ++l) {
+    const Eigen::Index c = 1 + 2 * l, si = 2 + 2 * l;
+    const bool ok = undetermined(c) < 1e-6 && undetermined(si) < 1e-6;
+    const double a = coefficients(c) / scale(c), b = coefficients(si) / scale(si);
+    fit.determined.push_back(ok);
+    fit.amplitude.push_back(ok ? std::complex<double>(a, -b) / 2.0 : std::complex<double>(nan, 0));
+    fit.variance.push_back(ok ? fit.noise_variance * (factor(c) + factor(si)) / 4 : nan);
+  }
+  return fit;
+}
+
+FittedRate FitLineRate(const std::vector<double>& time, const Eigen::VectorXd& y,
+                       const Eigen::MatrixXd& base, const std::vector<double>& multiplier,
+                       double r0) {
+  const Eigen::Index n = y.size(), lines = base.cols(), p = 2 + 2 * lines;
+  // Centred time in the derivative column (an offset there only moves the phases' constants,
+  // which the amplitudes absorb) keeps it well conditioned.
+  const double mid = 0.5 * (time.front() + time.back()), L = time.back() - time.front();
+  Eigen::VectorXd t(n), tc(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    t(i) = time[static_cast<size_t>(i)];
+    tc(i) = (t(i) - mid) / L;
+  }
+  const double bin = 2 * std::acos(-1.0) / L;
+  FittedRate out{r0, std::numeric_limits<double>::quiet_NaN()};
+  Eigen::MatrixXd X(n, p);
+  for (int it = 0; it < 50; ++it) {
+    X.col(0).setOnes();
+    for (Eigen::Index l = 0; l < lines; ++l) {
+      const Eigen::ArrayXd phase = base.col(l).array() + multiplier[l] * out.rate * t.array();
+      X.col(1 + 2 * l) = phase.cos().matrix();
+      X.col(2 + 2 * l) = phase.sin().matrix();
+    }
+    const Eigen::VectorXd c = X.leftCols(p - 1).colPivHouseholderQr().solve(y);
+    X.col(p - 1).setZero();
+    for (Eigen::Index l = 0; l < lines; ++l)
+      X.col(p - 1).array() +=
+          multiplier[l] * tc.array() *
+          (-c(1 + 2 * l) * X.col(2 + 2 * l).array() + c(2 + 2 * l) * X.col(1 + 2 * l).array());
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+    if (qr.rank() < p) break;  // no line depends on the rate (all amplitudes 0)
+    const Eigen::VectorXd d = qr.solve(y);
+    const double delta = std::clamp(d(p - 1) / L, -bin / 4, bin / 4);
+    if (!std::isfinite(delta)) break;
+    out.rate += delta;
+    if (std::abs(delta) <= 1e-15 * std::abs(out.rate)) {
+      const double variance = (y - X * d).squaredNorm() / static_cast<double>(n - p);
+      const Eigen::MatrixXd inverse = (X.transpose() * X).inverse();
+      out.standard_error = std::sqrt(variance * inverse(p - 1, p - 1)) / L;
+      break;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// The residual of the least-squares sine at ω.
+double SineResidual(const Eigen::VectorXd& t, const Eigen::VectorXd& u, double omega) {
+  Eigen::MatrixXd X(t.size(), 3);
+  X.col(0).setOnes();
+  X.col(1) = (omega * t).array().cos();
+  X.col(2) = (omega * t).array().sin();
+  return (u - X * X.colPivHouseholderQr().solve(u)).squaredNorm();
+}
+
+}  // namespace
+
+double FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u, double omega0) {
+  const Eigen::Index n = u.size();
+  Eigen::VectorXd t(n);
+  for (Eigen::Index i = 0; i < n; ++i) t(i) = time[static_cast<size_t>(i)];
+  const double bin = 2 * std::acos(-1.0) / (time.back() - time.front());
+  double start = omega0, best = std::numeric_limits<double>::infinity();
+  for (int k = -16; k <= 16; ++k) {  // ±2 bins in eighths
+    const double w = omega0 + k * bin / 8;
+    const double r = w > 0 ? SineResidual(t, u, w) : best;
+    if (r < best) best = r, start = w;
+  }
+  return FitLineRate(time, u, Eigen::MatrixXd::Zero(n, 1), {1.0}, start).rate;
+}
+
+}  // namespace ltp::internal

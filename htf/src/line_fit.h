@@ -1,0 +1,40 @@
+#pragma once
+// Least-squares fit of spectral lines with known phases to a sampled signal:
+//   y(t_n) ≈ c + Σ_l (A_l e^{jφ_l(t_n)} + c.c.) + noise,
+// the step-sine estimator of identify.cc on measured angles (φ = ωt + zθ(t)): it needs neither
+// whole periods nor a uniform grid nor a constant speed, and reduces to the DFT bins of eq. 47
+// when those hold (the columns are then orthogonal). Internal to ltp::htf.
+#include <Eigen/Dense>
+#include <complex>
+#include <vector>
+
+namespace ltp::internal {
+
+struct LineFit {
+  std::vector<std::complex<double>> amplitude;  ///< A_l (NaN when not determined)
+  /// E|δA_l|² = (var a_l + var b_l)/4 from σ²(XᵀX)⁻¹, a_l, b_l the cosine and sine coefficients.
+  std::vector<double> variance;
+  /// false: the line's columns lie in the span of the others (two lines at one frequency).
+  std::vector<bool> determined;
+  double noise_variance = 0;  ///< σ² = |residual|² / (samples − rank)
+  long dof = 0;               ///< samples − rank
+};
+
+/// `phases` is samples × lines (φ_l(t_n), rad). A constant c is always fitted.
+LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases);
+
+/// A rate r in lines of phases φ_l(t) = base_l(t) + m_l · r · t, fitted with their amplitudes
+/// by Gauss–Newton from r0 (the column ∂y/∂r = Σ_l m_l t (−a_l sin φ_l + b_l cos φ_l)).
+struct FittedRate {
+  double rate = 0;
+  double standard_error = 0;  ///< of `rate`, from σ²(JᵀJ)⁻¹ at the optimum (NaN: none)
+};
+FittedRate FitLineRate(const std::vector<double>& time, const Eigen::VectorXd& y,
+                       const Eigen::MatrixXd& base, const std::vector<double>& multiplier,
+                       double r0);
+
+/// The frequency ω (rad/s) of the sine in u(t) nearest ω0: the best of a scan over ±2 bins of
+/// the record (2π/L) seeds FitLineRate with the one line ωt (machine precision on a clean sine).
+double FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u, double omega0);
+
+}  // namespace ltp::internal
