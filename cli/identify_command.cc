@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -58,10 +59,11 @@ std::optional<MeasuredSpeeds> MeasureAngles(const IdentifyArgs& args, TimeData& 
   return SetMeasuredAngles(data, source);
 }
 
-// |H_z| per order against the excitation frequency: the estimates their 95 % bound resolves
-// (bound below |H_z|) with the bound as error bar, the others as grey dots (indistinguishable
-// from 0 at this noise), the model's values as lines (--compare; orders whose model is zero to
-// round-off are left out).
+// |H_z| (log) and its phase per order against the excitation frequency: the estimates their
+// 95 % bound resolves (bound below |H_z|) with the bound as error bar (in phase: asin(bound /
+// |H_z|)), the others as grey dots on the magnitude panel (indistinguishable from 0 at this
+// noise), the model's values as lines (--compare; orders whose model is zero to round-off are
+// left out). Phase is where a rig's biases show (a speed offset turns H_±1, not its size).
 void PlotIdentified(const std::string& file, const IdentifyResult& r,
                     const std::vector<std::vector<cd>>& model, const std::string& title,
                     const std::string& method, std::pair<int, int> shown) {
@@ -69,8 +71,9 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
   const auto hidden = [&](int z) {
     return z + r.min_order < shown.first || z + r.min_order > shown.second;
   };
+  const auto degrees = [](cd h) { return PhaseDeg(h.real(), h.imag()); };
   std::ostringstream g;
-  g << GnuplotTerminal(file, 1000, 650) << "set output '" << file << "'\n";
+  g << GnuplotTerminal(file, 1000, 900) << "set output '" << file << "'\n";
   double model_max = 0;
   for (const auto& row : model)
     for (const cd& v : row) model_max = std::max(model_max, std::abs(v));
@@ -85,11 +88,13 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
     }
   g << "EOD\n";
   for (int z = 0; z < Z; ++z) {
-    g << "$E" << z << " << EOD\n";
+    g << "$E" << z << " << EOD\n";  // f, |H|, bound, phase, phase bound
     for (const auto& f : r.frequencies) {
-      const double h = std::abs(f.h[static_cast<size_t>(z)]);
-      if (f.separable && std::isfinite(h) && f.bound[static_cast<size_t>(z)] < h)
-        g << f.excitation_hz << " " << h << " " << f.bound[static_cast<size_t>(z)] << "\n";
+      const cd h = f.h[static_cast<size_t>(z)];
+      const double bound = f.bound[static_cast<size_t>(z)];
+      if (std::isfinite(std::abs(h)) && bound < std::abs(h))
+        g << f.excitation_hz << " " << std::abs(h) << " " << bound << " " << degrees(h) << " "
+          << std::asin(bound / std::abs(h)) * 180 / std::numbers::pi << "\n";
     }
     g << "EOD\n";
     double order_max = 0;
@@ -101,14 +106,30 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
       for (size_t f = 0; f < r.frequencies.size(); ++f)
         g << r.frequencies[f].excitation_hz << " " << std::abs(model[f][static_cast<size_t>(z)])
           << "\n";
+      g << "EOD\n$P" << z << " << EOD\n";
+      double previous = 0;
+      for (size_t f = 0; f < r.frequencies.size(); ++f) {
+        const double phase = degrees(model[f][static_cast<size_t>(z)]);
+        if (f > 0 && std::abs(phase - previous) > 180) g << "\n";  // wrapped: a new segment
+        previous = phase;
+        g << r.frequencies[f].excitation_hz << " " << phase << "\n";
+      }
       g << "EOD\n";
     }
   }
-  g << "set title \"" << GnuplotEscape(title) << "\"\nset xlabel 'excitation frequency  [Hz]'\n"
-    << "set ylabel '|H_z|'\nset logscale y\nset format y '10^{%L}'\nset grid\nset key outside "
-       "right top\n";
   const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                           "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const auto& f : r.frequencies) {
+    low = std::min(low, f.excitation_hz);
+    high = std::max(high, f.excitation_hz);
+  }
+  const double pad = high > low ? 0.02 * (high - low) : 0.05 * std::max(high, 1e-9);
+  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(title) << "\" font ',12'\n"
+    << "set xrange [" << low - pad << ":" << high + pad << "]\n"
+    << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 34\n"
+    << "set ylabel '|H_z|'\nset logscale y\nset format y '10^{%L}'\nset format x ''\n"
+    << "set bmargin 1\n";
   g << "plot $U using 1:2 with points pt 7 ps 0.25 lc rgb '#c0c0c0' title 'within the 95 % bound "
        "of 0'";
   for (int z = 0; z < Z; ++z) {
@@ -120,7 +141,20 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
       g << ", $M" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color
         << "' title 'z = " << z + r.min_order << " model'";
   }
-  g << "\n";
+  g << "\nunset logscale y\nset format y '%g'\nset format x '%g'\nset tmargin 1\nset bmargin\n"
+    << "set ylabel 'phase of H_z  [°]'\nset xlabel 'excitation frequency  [Hz]'\n"
+    << "set yrange [-180:180]\nset ytics 90\nset key off\nplot ";
+  bool first = true;
+  for (int z = 0; z < Z; ++z) {
+    if (hidden(z)) continue;
+    const std::string color = colors[z % 9];
+    g << (first ? "" : ", \\\n     ") << "$E" << z
+      << " using 1:4:5 with yerrorbars pt 7 ps 0.5 lc rgb '" << color << "' notitle";
+    first = false;
+    if (drawn_model[z])
+      g << ", $P" << z << " using 1:2 with lines lw 1.2 lc rgb '" << color << "' notitle";
+  }
+  g << "\nunset multiplot\n";
   RunGnuplot(file, g.str());
 }
 

@@ -28,6 +28,9 @@ struct SimulateArgs {
   int samples_per_period = SimulateOptions{}.samples_per_period;
   double amplitude = SimulateOptions{}.amplitude;
   double noise_db = SimulateOptions{}.noise_snr_db;
+  double input_noise_db = SimulateOptions{}.input_noise_snr_db;
+  double speed_offset_pct = 0, speed_ramp_pct = 0;
+  bool tacho = false;
   std::uint64_t seed = SimulateOptions{}.seed;
   int records = SimulateOptions{}.records;
   std::string out;
@@ -82,6 +85,10 @@ int RunSimulate(const SimulateArgs& args) {
   o.samples_per_period = args.samples_per_period;
   o.amplitude = args.amplitude;
   o.noise_snr_db = args.noise_db;
+  o.input_noise_snr_db = args.input_noise_db;
+  o.speed_offset = args.speed_offset_pct / 100;
+  o.speed_ramp = args.speed_ramp_pct / 100;
+  o.tacho = args.tacho;
   o.seed = args.seed;
   const SimulationResult r =
       kind == "step-sine" ? SimulateStepSine(l.system, o) : SimulateMultisine(l.system, o);
@@ -91,7 +98,15 @@ int RunSimulate(const SimulateArgs& args) {
       ", " + kind + " on input " + std::to_string(o.input) + ", amplitude " + Num(o.amplitude) +
       (std::isfinite(o.noise_snr_db)
            ? ", output noise " + Num(o.noise_snr_db) + " dB SNR, seed " + std::to_string(o.seed)
-           : "");
+           : "") +
+      (std::isfinite(o.input_noise_snr_db)
+           ? ", input noise " + Num(o.input_noise_snr_db) + " dB SNR"
+           : "") +
+      (o.speed_offset != 0 || o.speed_ramp != 0
+           ? ", rotor " + Num(100 * o.speed_offset) + " % off the model's speed, ramp " +
+                 Num(100 * o.speed_ramp) + " % per record"
+           : "") +
+      (o.tacho ? ", tacho pulse rising through mid-level at phase 0" : "");
   WriteTimeDataCsv(args.out, r.data, comment);
   size_t samples = 0;
   for (const TimeRecord& rec : r.data.records) samples += rec.time.size();
@@ -148,6 +163,15 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--amplitude", args.amplitude, "of the input sine")->capture_default_str();
   cmd->add_option("--noise", args.noise_db, "white output noise at this SNR (dB)");
+  cmd->add_option("--input-noise", args.input_noise_db,
+                  "white noise on the recorded input at this SNR (dB)");
+  cmd->add_option("--speed-offset", args.speed_offset_pct,
+                  "step-sine: the rotor turns this many % faster than the model's speed (a rig's; "
+                  "the system's phase runs faster, its coefficients are the model's)");
+  cmd->add_option("--speed-ramp", args.speed_ramp_pct,
+                  "step-sine: and its speed rises by this many % over each record");
+  cmd->add_flag("--tacho", args.tacho,
+                "step-sine: write a once-per-period tacho column aux:tacho (for identify --tacho)");
   cmd->add_option("--seed", args.seed, "noise (and multisine phase) generator seed")
       ->capture_default_str();
   cmd->add_option("--out", args.out, "the CSV file to write")->required();

@@ -224,7 +224,9 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   if (!(rec.excitation_hz > 0))
     throw InputError(where + ": no excitation frequency (a broadband record: --method broadband)");
   const Eigen::VectorXd u = rec.inputs.col(o.input), y = rec.outputs.col(o.output);
-  const double omega = internal::FitSineFrequency(rec.time, u, kTwoPi * rec.excitation_hz);
+  const internal::FittedRate excitation_rate =
+      internal::FitSineFrequency(rec.time, u, kTwoPi * rec.excitation_hz);
+  const double omega = excitation_rate.rate;
   for (int z : {o.min_order, o.max_order})
     if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
       throw InputError(where + ": the line of order " + std::to_string(z) +
@@ -297,8 +299,13 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
       extra.largest_offset = std::max(extra.largest_offset, offset);
     }
   }
+  // The written frequency is off when the input's own is further from it than its noise
+  // allows (six standard errors) and than the digits a log keeps.
   const double move = std::abs(out.excitation_hz - rec.excitation_hz);
-  if (move > std::max(1e-9 * rec.excitation_hz, 1e-3 / L)) {
+  const double uncertainty = std::isfinite(excitation_rate.standard_error)
+                                 ? 6 * excitation_rate.standard_error / kTwoPi
+                                 : 1e-3 / L;
+  if (move > std::max(1e-9 * rec.excitation_hz, uncertainty)) {
     ++extra.moved;
     extra.largest_move = std::max(extra.largest_move, move);
   }

@@ -108,7 +108,8 @@ double SineResidual(const Eigen::VectorXd& t, const Eigen::VectorXd& u, double o
 
 }  // namespace
 
-double FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u, double omega0) {
+FittedRate FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u,
+                            double omega0) {
   const Eigen::Index n = u.size();
   Eigen::VectorXd t(n);
   for (Eigen::Index i = 0; i < n; ++i) t(i) = time[static_cast<size_t>(i)];
@@ -119,7 +120,7 @@ double FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& 
     const double r = w > 0 ? SineResidual(t, u, w) : best;
     if (r < best) best = r, start = w;
   }
-  return FitLineRate(time, u, Eigen::MatrixXd::Zero(n, 1), {1.0}, start).rate;
+  return FitLineRate(time, u, Eigen::MatrixXd::Zero(n, 1), {1.0}, start);
 }
 
 }  // namespace ltp::internal

@@ -35,6 +35,7 @@ FittedRate FitLineRate(const std::vector<double>& time, const Eigen::VectorXd& y
 
 /// The frequency ω (rad/s) of the sine in u(t) nearest ω0: the best of a scan over ±2 bins of
 /// the record (2π/L) seeds FitLineRate with the one line ωt (machine precision on a clean sine).
-double FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u, double omega0);
+FittedRate FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u,
+                            double omega0);
 
 }  // namespace ltp::internal

@@ -1,5 +1,6 @@
 #include "ltp/htf/simulate.h"
 
+#include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <complex>
@@ -64,14 +65,36 @@ class Excitation {
   long lowest_ = 0;
 };
 
+// The system's phase in its own time (θ/Ωp) as a rig's rotor turns it: (1 + offset)·t, and from
+// `start` (the record) on a further ½·rate·(t − start)² — the speed rising linearly.
+struct RigPhase {
+  double factor = 1, rate = 0, start = 0;
+  double operator()(double t) const {
+    const double s = std::max(0.0, t - start);
+    return factor * t + 0.5 * rate * s * s;
+  }
+};
+
+// A once-per-period tacho at phase τ (model time): high for a quarter of the period, its
+// smoothstep edges `edge` wide (a fraction of the period) centred on τ = 0 mod T.
+double TachoSignal(double tau, double T, double edge) {
+  const auto step = [](double x) {
+    x = std::clamp(x, 0.0, 1.0);
+    return x * x * (3 - 2 * x);
+  };
+  const double x = tau / T - std::floor(tau / T + 0.5);  // in [−½, ½)
+  return step(x / edge + 0.5) * (1 - step((x - 0.25) / edge + 0.5));
+}
+
 struct ForcedRealRhs {
   const PeriodicSystem& system;
   int input;
   const Excitation& u;
+  RigPhase phase;
   mutable Eigen::MatrixXd a, b;
   void operator()(const State& x, State& dxdt, double t) const {
-    system.EvalA(t, a);
-    system.EvalB(t, b);
+    system.EvalA(phase(t), a);
+    system.EvalB(phase(t), b);
     Eigen::Map<const Eigen::VectorXd> xv(x.data(), static_cast<Eigen::Index>(x.size()));
     Eigen::Map<Eigen::VectorXd> dv(dxdt.data(), static_cast<Eigen::Index>(x.size()));
     dv.noalias() = a * xv;
@@ -174,7 +197,10 @@ TimeRecord SimulateRecord(const PeriodicSystem& system, const SimulateOptions& o
                           const RecordPlan& plan, const Excitation& u, std::uint64_t seed) {
   const int n = system.states(), m = system.inputs(), p = system.outputs();
   const double T = system.period();
-  ForcedRealRhs rhs{system, options.input, u, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
+  const RigPhase phase{1 + options.speed_offset,
+                       (1 + options.speed_offset) * options.speed_ramp / plan.length,
+                       plan.settle_time};
+  ForcedRealRhs rhs{system, options.input, u, phase, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
   const double dt0 = T / options.samples_per_period;
   // The absolute tolerance follows the size of the states, which depends on the system's
   // units (tower-rotor: displacements of 1e-6 m per newton): a pilot over the first period
@@ -199,29 +225,46 @@ TimeRecord SimulateRecord(const PeriodicSystem& system, const SimulateOptions& o
     rec.time[static_cast<size_t>(s)] = plan.settle_time + plan.length * s / plan.samples;
   rec.inputs = Eigen::MatrixXd::Zero(plan.samples, m);
   rec.outputs.resize(plan.samples, p);
+  if (options.tacho) rec.auxiliary.resize(plan.samples, 1);
+  // Edges eight samples wide: the four samples around mid-level lie on one cubic piece, which
+  // AngleFromTacho's cubic then times exactly.
+  const double edge = std::min(0.1, 8.0 / options.samples_per_period);
   Eigen::MatrixXd c(p, n), d(p, m);
   int s = 0;
   odeint::integrate_times(stepper, std::cref(rhs), x, rec.time.begin(), rec.time.end(), dt0,
                           [&](const State& xs, double t) {
-                            system.EvalC(t, c);
-                            system.EvalD(t, d);
+                            const double tau = phase(t);
+                            system.EvalC(tau, c);
+                            system.EvalD(tau, d);
                             const double ut = u(t);
                             Eigen::Map<const Eigen::VectorXd> xv(xs.data(), n);
                             rec.inputs(s, options.input) = ut;
                             rec.outputs.row(s) = (c * xv + d.col(options.input) * ut).transpose();
+                            if (options.tacho) rec.auxiliary(s, 0) = TachoSignal(tau, T, edge);
                             ++s;
                           });
   if (!rec.outputs.allFinite()) throw InputError("the simulation diverged");
-  if (std::isfinite(options.noise_snr_db)) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> normal;
-    for (int j = 0; j < p; ++j) {
-      const double rms = std::sqrt(rec.outputs.col(j).squaredNorm() / plan.samples);
-      const double sigma = rms * std::pow(10.0, -options.noise_snr_db / 20);
-      for (int i = 0; i < plan.samples; ++i) rec.outputs(i, j) += sigma * normal(rng);
-    }
-  }
+  // Each record's noise from its own stream (RecordSeed): seeds K and K + 1 share nothing
+  // (seed + record did: 26 of 27 records alike).
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  const auto add_noise = [&](Eigen::MatrixXd& channels, int column, double snr_db) {
+    if (!std::isfinite(snr_db)) return;
+    const double rms = std::sqrt(channels.col(column).squaredNorm() / plan.samples);
+    const double sigma = rms * std::pow(10.0, -snr_db / 20);
+    for (int i = 0; i < plan.samples; ++i) channels(i, column) += sigma * normal(rng);
+  };
+  for (int j = 0; j < p; ++j) add_noise(rec.outputs, j, options.noise_snr_db);
+  add_noise(rec.inputs, options.input, options.input_noise_snr_db);
   return rec;
+}
+
+// The noise stream of record k: (seed, k) hashed, not seed + k.
+std::uint64_t RecordSeed(const SimulateOptions& options, size_t k) {
+  std::uint64_t z = options.seed + 0x9E3779B97F4A7C15ULL * (static_cast<std::uint64_t>(k) + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;  // SplitMix64's finaliser
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -245,6 +288,12 @@ void SimulateOptions::Validate() const {
   if (!(settle_tol > 0 && settle_tol < 1))
     fail("settle_tol", MessageNumber(settle_tol, 10), "in (0, 1)");
   if (std::isnan(noise_snr_db)) fail("noise_snr_db", "nan", "a number (+inf = no noise)");
+  if (std::isnan(input_noise_snr_db))
+    fail("input_noise_snr_db", "nan", "a number (+inf = no noise)");
+  if (!(std::abs(speed_offset) <= 0.5))
+    fail("speed_offset", MessageNumber(speed_offset, 10), "within ±0.5 (relative)");
+  if (!(std::abs(speed_ramp) <= 0.5))
+    fail("speed_ramp", MessageNumber(speed_ramp, 10), "within ±0.5 (relative, over a record)");
   if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", MessageNumber(rel_tol, 10), "in (0, 0.01)");
   if (records < 1 || records > 10000) fail("records", std::to_string(records), "in 1..10000");
 }
@@ -255,12 +304,13 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
   const RecordPlan plan =
       PlanRecords(system, options, static_cast<double>(options.frequencies_hz.size()), r);
   const std::vector<double> grid = GridFrequencies(options, system.period(), r);
+  if (options.tacho) r.data.auxiliary_names = {"tacho"};
   for (size_t k = 0; k < grid.size(); ++k) {
     Excitation u(kTwoPi / plan.length);
     u.Add(std::lround(grid[k] * plan.length), options.amplitude, 0.0);
     u.Finish();
     try {
-      r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
+      r.data.records.push_back(SimulateRecord(system, options, plan, u, RecordSeed(options, k)));
     } catch (const InputError& e) {
       throw InputError(std::string(e.what()) + " at " + MessageNumber(grid[k], 10) + " Hz");
     }
@@ -271,6 +321,10 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
 
 SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateOptions& options) {
   options.Validate();
+  if (options.speed_offset != 0 || options.speed_ramp != 0 || options.tacho)
+    throw InputError(
+        "a rig's speed offset, ramp or tacho is simulated for step-sine tests "
+        "(broadband identification assumes the model's speed)");
   SimulationResult r;
   const RecordPlan plan = PlanRecords(system, options, options.records, r);
   const std::vector<double> grid = GridFrequencies(options, system.period(), r);
@@ -288,7 +342,8 @@ SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateO
       u.Add(std::lround(f * plan.length), a, phase(rng));
     }
     u.Finish();
-    r.data.records.push_back(SimulateRecord(system, options, plan, u, options.seed + k));
+    r.data.records.push_back(
+        SimulateRecord(system, options, plan, u, RecordSeed(options, static_cast<size_t>(k))));
     r.data.records.back().excitation_hz = 0;  // broadband
   }
   return r;

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "ltp/core/error.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/rotor_angle.h"
 #include "ltp/htf/simulate.h"
 #include "ltp/models/scene.h"
 
@@ -207,6 +209,78 @@ TEST(IdentifyStepSine, AMultipleOfHalfTheParametricFrequencyIsNotSeparable) {
   EXPECT_GT(std::abs(cycles_per_half_fp - std::round(cycles_per_half_fp)), 0.1);
   ASSERT_FALSE(sim.diagnostics.empty());
   EXPECT_NE(sim.diagnostics[0].find("off the multiples of fp/2"), std::string::npos);
+}
+
+// ltp simulate as a rig: the rotor 1 % fast with a tacho. The data are those of the same
+// coefficients run faster, A'(t) = A(1.01 t) with period T/1.01 — a system of its own, whose
+// partial FRFs the model's routes give; identified on the tacho's phase they must equal those.
+TEST(SimulateRig, ASpeedOffsetWithATachoIdentifiesTheFasterSystem) {
+  const PeriodicSystem system = Mathieu();
+  const double factor = 1.01;
+  PeriodicSystem::Functions warped;
+  warped.A = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalA(factor * t, out); };
+  warped.B = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalB(factor * t, out); };
+  warped.C = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalC(factor * t, out); };
+  warped.D = [&](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalD(factor * t, out); };
+  const PeriodicSystem faster = PeriodicSystem::FromFunctions(
+      system.period() / factor, system.states(), system.inputs(), system.outputs(), warped);
+  SimulateOptions s;
+  s.frequencies_hz = {0.13, 0.4};
+  s.periods = 16;
+  s.speed_offset = factor - 1;
+  s.tacho = true;
+  SimulationResult sim = SimulateStepSine(system, s);
+  ASSERT_EQ(sim.data.auxiliary_names.size(), 1u);
+  TimeData blind = sim.data;
+  const MeasuredSpeeds speeds = SetMeasuredAngles(sim.data, AngleChannel{});
+  EXPECT_NEAR(speeds.mean_speed * system.period() / (2 * std::numbers::pi), factor, 1e-7);
+  IdentifyOptions o;
+  const IdentifyResult id = IdentifyStepSine(sim.data, o);
+  const auto model = ModelAt(faster, id);
+  for (size_t f = 0; f < 2; ++f) {
+    double scale = 0;
+    for (const auto& h : model[f]) scale = std::max(scale, std::abs(h));
+    for (size_t z = 0; z < 5; ++z)
+      EXPECT_LT(std::abs(id.frequencies[f].h[z] - model[f][z]), 1e-6 * scale)
+          << id.frequencies[f].excitation_hz << " z=" << int(z) - 2;
+  }
+  // Read at the model's speed, the same data are biased, and the lines say why.
+  const IdentifyResult wrong = IdentifyStepSine(blind, o);
+  bool named = false;
+  for (const std::string& d : wrong.diagnostics)
+    named = named || d.find("records the response's lines sit at a speed up to 1 % off") !=
+                         std::string::npos;
+  EXPECT_TRUE(named);
+}
+
+// Seeds K and K + 1 give independent noise (each record's stream hashes seed and record; with
+// seed + record, K + 1's records were K's shifted by one).
+TEST(SimulateRig, NeighbouringSeedsShareNoNoise) {
+  SimulateOptions s;
+  s.frequencies_hz = {0.05, 0.1, 0.15};
+  s.periods = 16;
+  s.noise_snr_db = 20;
+  const SimulationResult clean = [&] {
+    SimulateOptions c = s;
+    c.noise_snr_db = std::numeric_limits<double>::infinity();
+    return SimulateStepSine(Mathieu(), c);
+  }();
+  s.seed = 7;
+  const SimulationResult a = SimulateStepSine(Mathieu(), s);
+  s.seed = 8;
+  const SimulationResult b = SimulateStepSine(Mathieu(), s);
+  ASSERT_EQ(a.data.records.size(), 3u);
+  ASSERT_EQ(b.data.records.size(), 3u);
+  ASSERT_EQ(clean.data.records.size(), 3u);
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t k = 0; k < 3; ++k) {
+      const Eigen::VectorXd na =
+          a.data.records[i].outputs.col(0) - clean.data.records[i].outputs.col(0);
+      const Eigen::VectorXd nb =
+          b.data.records[k].outputs.col(0) - clean.data.records[k].outputs.col(0);
+      const double correlation = std::abs(na.dot(nb)) / (na.norm() * nb.norm());
+      EXPECT_LT(correlation, 0.3) << "seed 7 record " << i << ", seed 8 record " << k;
+    }
 }
 
 // Broadband (multisine) records, least squares across records per response line (§4.2).

@@ -28,9 +28,19 @@ struct SimulateOptions {
   /// periods, before recording (the system must be asymptotically stable).
   double settle_tol = 1e-10;
   /// Output noise: white Gaussian, per output, with rms = rms(clean output) · 10^(−snr_db/20);
-  /// +inf = none. Each record draws from the generator seeded with seed + record index.
+  /// +inf = none. Each record draws from its own stream of the seed (seeds K and K + 1 share
+  /// no record's noise).
   double noise_snr_db = std::numeric_limits<double>::infinity();
+  /// Noise on the recorded input (the measurement's, not the force's), as noise_snr_db.
+  double input_noise_snr_db = std::numeric_limits<double>::infinity();
   std::uint64_t seed = 1;
+  /// A rig's rotor (step-sine): the system's phase runs at (1 + speed_offset) × its own speed,
+  /// and rises by a further speed_ramp over each record (relative); A(t), B, C, D are taken at
+  /// that phase — the coefficients' own dependence on the speed (gyroscopic terms) is not
+  /// changed. tacho: an auxiliary channel "tacho" with one flat-top pulse per period whose
+  /// edge rises through mid-level at phase 0 (`ltp identify --tacho tacho`).
+  double speed_offset = 0, speed_ramp = 0;
+  bool tacho = false;
   /// RKF78 tolerance; absolute: rel_tol · 1e-3 · the largest state in a pilot over the first
   /// period (the states' own scale, whatever their units).
   double rel_tol = 1e-10;
