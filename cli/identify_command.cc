@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "command.h"
+#include "daq_csv.h"
 #include "format.h"
 #include "frf_args.h"
 #include "ltp/core/channel.h"
@@ -31,9 +32,9 @@ using nlohmann::json;
 using cd = std::complex<double>;
 
 struct IdentifyArgs {
-  std::string data;
+  std::vector<std::string> files;
   std::string method = "auto";
-  double period = 0, rotor_speed = 0;
+  double period = 0, rotor_speed = 0, sample_rate = 0;
   std::string input = "0", output = "0", orders = "-2:2", plot_orders;
   std::string compare, csv, plot, convergence;
   std::vector<std::string> set;  ///< parameters of the --compare scene
@@ -42,6 +43,26 @@ struct IdentifyArgs {
   double tacho_angle_deg = 0;
   bool json = false;
 };
+
+// ltp's CSV (one file), or DAQ files (one record each, the channels named by --input and
+// --output; every column also an aux: channel for --tacho / --angle).
+TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_period) {
+  if (args.files.size() == 1 && IsLtpTimeData(args.files.front())) {
+    if (args.sample_rate != 0)
+      throw InputError("--sample-rate: ltp's time-data CSV has its own time column");
+    return ReadTimeDataCsv(args.files.front(), period, require_period);
+  }
+  std::vector<ChannelTable> tables;
+  for (const std::string& f : args.files) {
+    if (IsLtpTimeData(f))
+      throw InputError(f + ": ltp's time-data CSV is read alone, not with DAQ files");
+    tables.push_back(ReadDaqCsv(f, args.sample_rate));
+  }
+  TimeData data = TimeDataFromTables(tables, args.input, args.output, period);
+  if (period <= 0 && require_period)
+    throw InputError("DAQ files carry no period: give --period T, --rotor-speed W or --tacho");
+  return data;
+}
 
 // The records' phase from --tacho or --angle (none: the model's 2πt/T); the speeds measured.
 std::optional<MeasuredSpeeds> MeasureAngles(const IdentifyArgs& args, TimeData& data) {
@@ -216,7 +237,9 @@ int RunIdentify(const IdentifyArgs& args) {
                             ? args.period
                             : (args.rotor_speed > 0 ? 2 * std::numbers::pi / args.rotor_speed : 0);
   const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
-  TimeData data = ReadTimeDataCsv(args.data, period, !measured_angle);
+  TimeData data = ReadTimeData(args, period, !measured_angle);
+  std::string name = args.files.front();
+  for (size_t f = 1; f < args.files.size(); ++f) name += (f == 1 ? ", " : ", ") + args.files[f];
   const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
   IdentifyOptions o;
   o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()),
@@ -225,7 +248,8 @@ int RunIdentify(const IdentifyArgs& args) {
                             static_cast<int>(data.output_names.size()), "--output", "output");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
-  bool broadband = true;
+  // DAQ files write no frequency: step-sine records whose input says it.
+  bool broadband = args.files.size() == 1 && IsLtpTimeData(args.files.front());
   for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
   const std::string method =
       args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;
@@ -265,7 +289,7 @@ int RunIdentify(const IdentifyArgs& args) {
     if (!out) throw InputError("cannot write '" + args.csv + "'");
   }
   if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + args.data, method,
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method,
                    args.plot_orders.empty() ? std::make_pair(o.min_order, o.max_order)
                                             : ParseOrderRange(args.plot_orders, "--plot-orders"));
   if (!args.convergence.empty()) {
@@ -298,17 +322,21 @@ int RunIdentify(const IdentifyArgs& args) {
                        {"noise_rms", JsonNumber(r.frequencies[f].noise)},
                        {"H", h}});
     }
-    json out = {{"data", args.data},       {"method", method},
-                {"period_s", data.period}, {"input", o.input},
-                {"output", o.output},      {"records", data.records.size()},
-                {"frequencies", freqs},    {"diagnostics", r.diagnostics}};
+    json out = {{"data", name},
+                {"method", method},
+                {"period_s", data.period},
+                {"input", o.input},
+                {"output", o.output},
+                {"records", data.records.size()},
+                {"frequencies", freqs},
+                {"diagnostics", r.diagnostics}};
     if (speeds)
       out["measured_speed_rad_s"] = {
           {"min", speeds->min_speed}, {"max", speeds->max_speed}, {"mean", speeds->mean_speed}};
     std::cout << out.dump(2) << "\n";
     return 0;
   }
-  std::cout << "Partial FRFs identified from " << args.data
+  std::cout << "Partial FRFs identified from " << name
             << (broadband && method == "broadband"
                     ? " (broadband: least squares across " + std::to_string(data.records.size()) +
                           " records per response line, §4.2): " +
@@ -359,7 +387,12 @@ Command AddIdentifyCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "identify",
       "partial FRFs from step-sine or broadband time data (CSV of ltp simulate or a rig)");
-  cmd->add_option("data", args.data, "the time-data CSV")->required();
+  cmd->add_option("data", args.files,
+                  "ltp's time-data CSV, or a DAQ's CSV files (one step-sine record each: a "
+                  "header of channel names, a time column or --sample-rate)")
+      ->required();
+  cmd->add_option("--sample-rate", args.sample_rate,
+                  "DAQ files without a time column: samples per second");
   cmd->add_option("--method", args.method,
                   "auto (broadband when every record is), stepsine or broadband")
       ->check(CLI::IsMember({"auto", "stepsine", "broadband"}))

@@ -221,11 +221,11 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   if (!(speed * L >= kTwoPi * (1 - 1e-9)))
     throw InputError(where + ": " + MessageNumber(speed * L / kTwoPi, 6) +
                      " periods long; the orders need at least one period to be told apart");
-  if (!(rec.excitation_hz > 0))
-    throw InputError(where + ": no excitation frequency (a broadband record: --method broadband)");
   const Eigen::VectorXd u = rec.inputs.col(o.input), y = rec.outputs.col(o.output);
-  const internal::FittedRate excitation_rate =
-      internal::FitSineFrequency(rec.time, u, kTwoPi * rec.excitation_hz);
+  // No written frequency (a DAQ's file): the input's strongest line.
+  const bool written = rec.excitation_hz > 0;
+  const internal::FittedRate excitation_rate = internal::FitSineFrequency(
+      rec.time, u, written ? kTwoPi * rec.excitation_hz : internal::StrongestLine(rec.time, u));
   const double omega = excitation_rate.rate;
   for (int z : {o.min_order, o.max_order})
     if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
@@ -239,6 +239,14 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   if (!(std::abs(U) > 1e-12 * u.cwiseAbs().maxCoeff()))
     throw InputError(where + ": input " + std::to_string(o.input) + " is not excited at " +
                      MessageNumber(rec.excitation_hz, 8) + " Hz");
+  // One sine per record: a multisine or noise input has most of its power elsewhere.
+  const double centred = (u.array() - u.mean()).matrix().squaredNorm();
+  const double sine_power = 2 * std::norm(U) * static_cast<double>(u.size());
+  if (sine_power < 0.5 * centred)
+    throw InputError(where + ": the input is not one sine (" +
+                     MessageNumber(100 * (1 - sine_power / centred), 3) +
+                     " % of its power lies off its strongest line): step-sine identification "
+                     "needs one frequency per record (broadband records: --method broadband)");
   const std::vector<Line> lines = LinesToFit(omega, speed, nyquist, bin, o);
   const internal::LineFit out_fit =
       internal::FitLines(y, LinePhases(lines, rec.time, theta, omega));
@@ -301,7 +309,7 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   }
   // The written frequency is off when the input's own is further from it than its noise
   // allows (six standard errors) and than the digits a log keeps.
-  const double move = std::abs(out.excitation_hz - rec.excitation_hz);
+  const double move = written ? std::abs(out.excitation_hz - rec.excitation_hz) : 0.0;
   const double uncertainty = std::isfinite(excitation_rate.standard_error)
                                  ? 6 * excitation_rate.standard_error / kTwoPi
                                  : 1e-3 / L;

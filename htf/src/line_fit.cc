@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unsupported/Eigen/FFT>
 
 namespace ltp::internal {
 
@@ -107,6 +108,22 @@ double SineResidual(const Eigen::VectorXd& t, const Eigen::VectorXd& u, double o
 }
 
 }  // namespace
+
+double StrongestLine(const std::vector<double>& time, const Eigen::VectorXd& u) {
+  const Eigen::Index n = u.size();
+  const double L = time.back() - time.front();
+  const Eigen::VectorXd centred = u.array() - u.mean();
+  Eigen::FFT<double> fft;
+  std::vector<double> in(centred.data(), centred.data() + n);
+  std::vector<std::complex<double>> out;
+  fft.fwd(out, in);
+  Eigen::Index best = 1;
+  for (Eigen::Index k = 1; 2 * k < n; ++k)
+    if (std::abs(out[static_cast<size_t>(k)]) > std::abs(out[static_cast<size_t>(best)])) best = k;
+  // Bin k is k cycles over n samples, n steps of L/(n − 1).
+  return 2 * std::acos(-1.0) * static_cast<double>(best) * static_cast<double>(n - 1) /
+         (static_cast<double>(n) * L);
+}
 
 FittedRate FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u,
                             double omega0) {

@@ -33,6 +33,10 @@ FittedRate FitLineRate(const std::vector<double>& time, const Eigen::VectorXd& y
                        const Eigen::MatrixXd& base, const std::vector<double>& multiplier,
                        double r0);
 
+/// The frequency (rad/s) of the largest line in u's spectrum (the DFT on the record's median
+/// step, DC left out): where FitSineFrequency starts when no frequency was written.
+double StrongestLine(const std::vector<double>& time, const Eigen::VectorXd& u);
+
 /// The frequency ω (rad/s) of the sine in u(t) nearest ω0: the best of a scan over ±2 bins of
 /// the record (2π/L) seeds FitLineRate with the one line ωt (machine precision on a clean sine).
 FittedRate FitSineFrequency(const std::vector<double>& time, const Eigen::VectorXd& u,

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <complex>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/ltp_cli.h"
 #include "support/rig.h"
@@ -184,6 +187,62 @@ TEST(IdentifyCli, ATachoChannelGivesTheRigsPartialFrfs) {
   const auto wrong = RunLtp("identify " + csv + " --tacho nope");
   EXPECT_EQ(wrong.code, 2);
   EXPECT_NE(wrong.err.find("nope"), std::string::npos) << wrong.err;
+}
+
+// The same rig's records as a DAQ exports them: one file per step, a preamble line, a header of
+// names with units, semicolons and decimal commas (a German-locale export) in one file, tabs and
+// no time column (--sample-rate) in the other; no frequencies written.
+TEST(IdentifyCli, DaqFilesAreRecordsAndTheirFrequenciesComeFromTheInput) {
+  const ltp::testing::Rig rig;
+  const double fs = rig.samples_per_period / rig.model_period;
+  const double truth_hz[] = {0.1373, 0.6121};
+  std::vector<std::string> files;
+  for (int k = 0; k < 2; ++k) {
+    const ltp::TimeRecord r = rig.Record(truth_hz[k], 0);
+    files.push_back(Tmp("daq" + std::to_string(k) + (k == 0 ? ".csv" : ".txt")));
+    std::ofstream out(files.back());
+    out.precision(17);
+    const std::string sep = k == 0 ? ";" : "\t";
+    out << "Exported by a DAQ, channel list follows\n";
+    out << (k == 0 ? "Time [s];" : "") << "Force [N]" << sep << "Accel [m/s^2]" << sep
+        << "Tacho (V)\n";
+    for (size_t i = 0; i < r.time.size(); ++i) {
+      const auto s = static_cast<Eigen::Index>(i);
+      std::ostringstream row;
+      row.precision(17);
+      if (k == 0) row << r.time[i] << sep;
+      row << r.inputs(s, 0) << sep << r.outputs(s, 0) << sep << r.auxiliary(s, 0);
+      std::string text = row.str();
+      if (k == 0) std::replace(text.begin(), text.end(), '.', ',');  // decimal commas
+      out << text << "\n";
+    }
+  }
+  const double pulse_deg = rig.PulseAngle() * 180 / std::numbers::pi;
+  // The second file has no time column: its samples are counted from 0 at the rate given.
+  const auto id = RunLtp("identify " + files[0] + " " + files[1] + " --sample-rate " +
+                         std::to_string(fs) + " --input Force --output Accel --tacho Tacho " +
+                         "--tacho-angle " + std::to_string(pulse_deg) + " --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const json j = json::parse(id.out);
+  ASSERT_EQ(j["frequencies"].size(), 2u);
+  for (size_t f = 0; f < 2; ++f) {
+    const json& e = j["frequencies"][f];
+    EXPECT_NEAR(e["excitation_hz"].get<double>(), truth_hz[f], 1e-9);
+    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
+    for (size_t z = 0; z < 5; ++z) {
+      const std::complex<double> h(e["H"][z]["re"].get<double>(), e["H"][z]["im"].get<double>());
+      EXPECT_LT(std::abs(h - truth[z]), 1e-6 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
+    }
+  }
+  // Channels not named: input and output would be one channel.
+  const auto unnamed = RunLtp("identify " + files[0] + " --tacho Tacho");
+  EXPECT_EQ(unnamed.code, 2);
+  EXPECT_NE(unnamed.err.find("name the excitation and the response"), std::string::npos)
+      << unnamed.err;
+  // No period and no tacho: asked for.
+  const auto no_period = RunLtp("identify " + files[0] + " --input Force --output Accel");
+  EXPECT_EQ(no_period.code, 2);
+  EXPECT_NE(no_period.err.find("--period"), std::string::npos) << no_period.err;
 }
 
 }  // namespace

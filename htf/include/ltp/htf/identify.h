@@ -46,6 +46,7 @@ struct IdentifyResult {
   std::vector<std::string> diagnostics;
 };
 
+/// A record whose excitation_hz is 0 (not written) is excited at its input's strongest line.
 /// Notes in the diagnostics: a measured input frequency other than the written one, gaps in
 /// t, clipped channels, an input phase that moves within a record (dropped samples), a
 /// synchronous or harmonic response, a measured speed other than 2π/T.

@@ -1,0 +1,183 @@
+#include "daq_csv.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "ltp/core/channel.h"
+#include "ltp/core/error.h"
+
+namespace ltp::cli {
+
+namespace {
+
+std::string Trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r\"'");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r\"'");
+  return s.substr(a, b - a + 1);
+}
+
+// "Force [N]" / "Force (N)" / "Force_N"? Only brackets and parentheses count as units.
+std::string WithoutUnit(const std::string& name) {
+  const size_t at = name.find_first_of("[(");
+  return Trim(at == std::string::npos ? name : name.substr(0, at));
+}
+
+std::vector<std::string> Split(const std::string& line, char separator) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, separator)) cells.push_back(Trim(cell));
+  if (!line.empty() && line.back() == separator) cells.emplace_back();
+  return cells;
+}
+
+bool ParseNumber(std::string text, bool decimal_comma, double* x) {
+  if (decimal_comma) std::replace(text.begin(), text.end(), ',', '.');
+  if (text.empty()) return false;
+  size_t used = 0;
+  try {
+    *x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used == text.size();
+}
+
+bool IsComment(const std::string& line) {
+  const size_t a = line.find_first_not_of(" \t");
+  return a == std::string::npos || line[a] == '#' || line[a] == '%';
+}
+
+bool IsTimeName(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name == "time" || name == "t" || name == "time_s" || name == "zeit";
+}
+
+}  // namespace
+
+bool IsLtpTimeData(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line))
+    if (!IsComment(line)) return line.rfind("record,", 0) == 0;
+  return false;
+}
+
+// The separator a line uses most (comma, semicolon or tab).
+static char SeparatorOf(const std::string& line) {
+  char separator = ',';
+  size_t best = 0;
+  for (char c : {',', ';', '\t'})
+    if (const auto k = static_cast<size_t>(std::count(line.begin(), line.end(), c)); k > best)
+      best = k, separator = c;
+  return separator;
+}
+
+ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read '" + path + "'");
+  // The header is the last line before the first one that starts with a number (a DAQ may
+  // write a preamble above it).
+  std::vector<std::pair<size_t, std::string>> lines;
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!IsComment(line)) lines.emplace_back(number, line);
+  }
+  size_t first = 0;
+  for (; first < lines.size(); ++first) {
+    const std::string& text = lines[first].second;
+    double x = 0;
+    bool numeric = false;
+    for (char sep : {';', '\t', ','})
+      numeric = numeric || ParseNumber(Split(text, sep)[0], sep == ';', &x);
+    if (numeric) break;
+  }
+  if (first == 0 || first == lines.size())
+    throw InputError(path + ": " +
+                     (first == 0 ? "numbers before any header of channel names (Time [s],Force "
+                                   "[N],…)"
+                                 : "no line of numbers under a header of channel names"));
+  ChannelTable table;
+  table.path = path;
+  const char separator = SeparatorOf(lines[first - 1].second);
+  const bool decimal_comma = separator == ';';  // a semicolon file may write decimal commas
+  const std::vector<std::string> header = Split(lines[first - 1].second, separator);
+  int time_column = -1;
+  for (size_t c = 0; c < header.size(); ++c) {
+    const std::string name = WithoutUnit(header[c]);
+    if (time_column < 0 && IsTimeName(name)) {
+      time_column = static_cast<int>(c);
+      continue;
+    }
+    table.names.push_back(name.empty() ? "column " + std::to_string(c + 1) : name);
+  }
+  std::vector<std::vector<double>> rows;
+  for (size_t l = first; l < lines.size(); ++l) {
+    const std::string where = path + ":" + std::to_string(lines[l].first);
+    const std::vector<std::string> cells = Split(lines[l].second, separator);
+    if (cells.size() != header.size())
+      throw InputError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
+                       std::to_string(header.size()));
+    std::vector<double> row;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      double x = 0;
+      if (!ParseNumber(cells[c], decimal_comma, &x))
+        throw InputError(where + ": '" + cells[c] + "' is not a number");
+      if (static_cast<int>(c) == time_column)
+        table.time.push_back(x);
+      else
+        row.push_back(x);
+    }
+    rows.push_back(std::move(row));
+  }
+  if (rows.size() < 2) throw InputError(path + ": fewer than 2 rows of samples");
+  if (table.names.empty()) throw InputError(path + ": no channel besides the time");
+  if (time_column < 0) {
+    if (!(sample_rate > 0))
+      throw InputError(path + ": no time column (Time, t) and no --sample-rate");
+    for (size_t i = 0; i < rows.size(); ++i)
+      table.time.push_back(static_cast<double>(i) / sample_rate);
+  }
+  table.values.resize(static_cast<Eigen::Index>(rows.size()),
+                      static_cast<Eigen::Index>(table.names.size()));
+  for (size_t i = 0; i < rows.size(); ++i)
+    for (size_t c = 0; c < rows[i].size(); ++c)
+      table.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = rows[i][c];
+  return table;
+}
+
+TimeData TimeDataFromTables(const std::vector<ChannelTable>& tables, const std::string& input,
+                            const std::string& output, double period) {
+  TimeData data;
+  data.period = period;
+  for (const ChannelTable& t : tables) {
+    const int count = static_cast<int>(t.names.size());
+    const int in = ResolveChannel(input, t.names, count, "--input", "channel of " + t.path);
+    const int out = ResolveChannel(output, t.names, count, "--output", "channel of " + t.path);
+    if (in == out)
+      throw InputError("--input and --output name the same channel '" +
+                       t.names[static_cast<size_t>(in)] + "' of " + t.path +
+                       ": name the excitation and the response (--input NAME --output NAME)");
+    if (data.records.empty()) {
+      data.input_names = {t.names[static_cast<size_t>(in)]};
+      data.output_names = {t.names[static_cast<size_t>(out)]};
+      data.auxiliary_names = t.names;
+    } else if (t.names != data.auxiliary_names) {
+      throw InputError(t.path + ": other channels than " + tables.front().path);
+    }
+    TimeRecord r;
+    r.time = t.time;
+    r.inputs = t.values.col(in);
+    r.outputs = t.values.col(out);
+    r.auxiliary = t.values;
+    data.records.push_back(std::move(r));
+  }
+  return data;
+}
+
+}  // namespace ltp::cli
