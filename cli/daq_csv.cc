@@ -7,6 +7,7 @@
 
 #include "ltp/core/channel.h"
 #include "ltp/core/error.h"
+#include "time_data_csv.h"
 
 namespace ltp::cli {
 
@@ -60,6 +61,7 @@ bool IsTimeName(std::string name) {
 }  // namespace
 
 bool IsLtpTimeData(const std::string& path) {
+  RequireRegularFile(path);
   std::ifstream in(path);
   std::string line;
   while (std::getline(in, line))
@@ -78,6 +80,7 @@ static char SeparatorOf(const std::string& line) {
 }
 
 ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
+  RequireRegularFile(path);
   std::ifstream in(path);
   if (!in) throw InputError("cannot read '" + path + "'");
   // The header is the last line before the first one that starts with a number (a DAQ may
@@ -137,6 +140,11 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
   }
   if (rows.size() < 2) throw InputError(path + ": fewer than 2 rows of samples");
   if (table.names.empty()) throw InputError(path + ": no channel besides the time");
+  for (size_t a = 0; a < table.names.size(); ++a)
+    for (size_t b = a + 1; b < table.names.size(); ++b)
+      if (table.names[a] == table.names[b])
+        throw InputError(path + ": two columns are named '" + table.names[a] +
+                         "': a channel chosen by name would be ambiguous");
   if (time_column < 0) {
     if (!(sample_rate > 0))
       throw InputError(path + ": no time column (Time, t) and no --sample-rate");

@@ -34,7 +34,8 @@ using cd = std::complex<double>;
 struct IdentifyArgs {
   std::vector<std::string> files;
   std::string method = "auto";
-  double period = 0, rotor_speed = 0, sample_rate = 0;
+  // Empty: not given (a given 0 or nan is an error, not "absent").
+  std::string period, rotor_speed, sample_rate;
   std::string input = "0", output = "0", orders = "-2:2", plot_orders;
   std::string compare, csv, plot, convergence;
   std::vector<std::string> set;  ///< parameters of the --compare scene
@@ -44,11 +45,26 @@ struct IdentifyArgs {
   bool json = false;
 };
 
+// A number option that must be finite and > 0 when given; 0 when not.
+double PositiveOption(const std::string& text, const std::string& name) {
+  if (text.empty()) return 0;
+  size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(x > 0) || !std::isfinite(x))
+    throw InputError(name + " must be a finite number > 0, got '" + text + "'");
+  return x;
+}
+
 // ltp's CSV (one file), or DAQ files (one record each, the channels named by --input and
 // --output; every column also an aux: channel for --tacho / --angle).
 TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_period) {
   if (args.files.size() == 1 && IsLtpTimeData(args.files.front())) {
-    if (args.sample_rate != 0)
+    if (!args.sample_rate.empty())
       throw InputError("--sample-rate: ltp's time-data CSV has its own time column");
     return ReadTimeDataCsv(args.files.front(), period, require_period);
   }
@@ -56,7 +72,7 @@ TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_peri
   for (const std::string& f : args.files) {
     if (IsLtpTimeData(f))
       throw InputError(f + ": ltp's time-data CSV is read alone, not with DAQ files");
-    tables.push_back(ReadDaqCsv(f, args.sample_rate));
+    tables.push_back(ReadDaqCsv(f, PositiveOption(args.sample_rate, "--sample-rate")));
   }
   TimeData data = TimeDataFromTables(tables, args.input, args.output, period);
   if (period <= 0 && require_period)
@@ -231,11 +247,12 @@ void PlotConvergence(const std::string& file, const TimeData& data, const Identi
 }
 
 int RunIdentify(const IdentifyArgs& args) {
-  if (args.period < 0 || args.rotor_speed < 0)
-    throw InputError("--period and --rotor-speed must be > 0");
-  const double period = args.period > 0
-                            ? args.period
-                            : (args.rotor_speed > 0 ? 2 * std::numbers::pi / args.rotor_speed : 0);
+  if (!args.period.empty() && !args.rotor_speed.empty())
+    throw InputError("--period and --rotor-speed: give one of them");
+  const double rotor_speed = PositiveOption(args.rotor_speed, "--rotor-speed");
+  const double period = !args.period.empty()
+                            ? PositiveOption(args.period, "--period")
+                            : (rotor_speed > 0 ? 2 * std::numbers::pi / rotor_speed : 0);
   const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
   TimeData data = ReadTimeData(args, period, !measured_angle);
   std::string name = args.files.front();
@@ -247,6 +264,14 @@ int RunIdentify(const IdentifyArgs& args) {
   o.output = ResolveChannel(args.output, data.output_names,
                             static_cast<int>(data.output_names.size()), "--output", "output");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
+  if (static_cast<long>(o.max_order) - o.min_order > 200)
+    throw InputError("--orders " + args.orders + ": at most 201 orders (e.g. -100:100)");
+  const std::pair<int, int> plotted = args.plot_orders.empty()
+                                          ? std::make_pair(o.min_order, o.max_order)
+                                          : ParseOrderRange(args.plot_orders, "--plot-orders");
+  if (plotted.first < o.min_order || plotted.second > o.max_order)
+    throw InputError("--plot-orders " + args.plot_orders + " lies outside the estimated orders " +
+                     std::to_string(o.min_order) + ":" + std::to_string(o.max_order));
   // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
   // DAQ files write no frequency: step-sine records whose input says it.
   bool broadband = args.files.size() == 1 && IsLtpTimeData(args.files.front());
@@ -289,9 +314,7 @@ int RunIdentify(const IdentifyArgs& args) {
     if (!out) throw InputError("cannot write '" + args.csv + "'");
   }
   if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method,
-                   args.plot_orders.empty() ? std::make_pair(o.min_order, o.max_order)
-                                            : ParseOrderRange(args.plot_orders, "--plot-orders"));
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method, plotted);
   if (!args.convergence.empty()) {
     if (method != "broadband")
       throw InputError("--convergence: needs broadband records (it adds them one by one)");

@@ -1,7 +1,9 @@
 #include "time_data_csv.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -71,7 +73,14 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
   if (!out) throw InputError("cannot write '" + path + "'");
 }
 
+void RequireRegularFile(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+    throw InputError("'" + path + "' is not a regular file (a device, a pipe or a directory)");
+}
+
 TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_period) {
+  RequireRegularFile(path);
   std::ifstream in(path);
   if (!in) throw InputError("cannot read '" + path + "'");
   TimeData data;
@@ -80,10 +89,16 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
   bool header = false;
   long current = -1;
   std::vector<std::vector<double>> rows;
+  std::optional<double> file_period;
   const auto flush = [&]() {
     if (rows.empty()) return;
     TimeRecord rec;
     rec.excitation_hz = rows[0][1];
+    for (const std::vector<double>& row : rows)
+      if (!(row[1] == rec.excitation_hz))
+        throw InputError(path + ": record " + std::to_string(current) + " has excitation_hz " +
+                         MessageNumber(rec.excitation_hz, 10) + " and " +
+                         MessageNumber(row[1], 10) + ": one frequency per record");
     rec.inputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(inputs));
     rec.outputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(outputs));
     rec.auxiliary.resize(static_cast<Eigen::Index>(rows.size()),
@@ -113,10 +128,18 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
         const size_t at = line.find(key);
         if (at == std::string::npos) continue;
         const double x = Number(line.substr(at + key.size()), where);
-        if (field == 0)
-          data.period = x;
-        else
+        if (!(x > 0) || !std::isfinite(x))
+          throw InputError(where + ": " + key + " " + MessageNumber(x, 10) +
+                           " must be finite and > 0");
+        if (field == 1) {
           data.rotor_speed = x;
+        } else if (file_period && *file_period != x) {
+          throw InputError(where + ": a second period_s line (" + MessageNumber(x, 15) +
+                           ") disagrees with the first (" + MessageNumber(*file_period, 15) + ")");
+        } else {
+          file_period = x;
+          data.period = x;
+        }
       }
       continue;
     }
@@ -143,6 +166,12 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
       }
       if (inputs == 0 || outputs == 0)
         throw InputError(where + ": needs at least one in: and one out: column");
+      for (const auto* names : {&data.input_names, &data.output_names, &data.auxiliary_names})
+        for (size_t a = 0; a < names->size(); ++a)
+          for (size_t b = a + 1; b < names->size(); ++b)
+            if ((*names)[a] == (*names)[b])
+              throw InputError(where + ": two columns are named '" + (*names)[a] +
+                               "': a channel chosen by name would be ambiguous");
       header = true;
       continue;
     }
@@ -151,6 +180,8 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
                        std::to_string(3 + inputs + outputs + auxiliaries));
     std::vector<double> row;
     for (const std::string& c : cells) row.push_back(Number(c, where));
+    if (!(row[0] == std::round(row[0])) || std::abs(row[0]) > 1e9)
+      throw InputError(where + ": record '" + cells[0] + "' is not a whole number");
     const long record = std::lround(row[0]);
     if (record != current) {
       flush();

@@ -15,6 +15,9 @@
 
 namespace ltp::cli {
 
+/// @throws InputError for a path that exists but is not a regular file (/dev/zero, a FIFO).
+void RequireRegularFile(const std::string& path);
+
 /// @throws InputError when the file cannot be written.
 void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment);
 

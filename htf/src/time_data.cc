@@ -29,6 +29,13 @@ void TimeData::Validate() const {
       throw InputError(where + ": other channels than record 1");
     if (!rec.inputs.allFinite() || !rec.outputs.allFinite() || !rec.auxiliary.allFinite())
       throw InputError(where + ": holds a value that is not finite (NaN or inf)");
+    // Sums of squares must stay in the double range (least squares, spectra, noise power).
+    constexpr double kLargest = 1e150;
+    for (const Eigen::MatrixXd* m : {&rec.inputs, &rec.outputs, &rec.auxiliary})
+      if (m->size() > 0 && m->cwiseAbs().maxCoeff() > kLargest)
+        throw InputError(where + ": a value of magnitude " +
+                         MessageNumber(m->cwiseAbs().maxCoeff(), 3) +
+                         " — sums of squares would overflow; rescale the channel (units)");
     for (double a : rec.angle)
       if (!std::isfinite(a)) throw InputError(where + ": an angle is not finite");
     for (Eigen::Index i = 1; i < n; ++i) {

@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
@@ -142,6 +143,67 @@ TEST(IdentifyCli, NoisyDataCarryBoundsAndBadFilesAreRefused) {
   const auto g = RunLtp("identify " + gap + " --method broadband");
   EXPECT_EQ(g.code, 2);
   EXPECT_NE(g.err.find("unequal sampling at sample 5"), std::string::npos) << g.err;
+}
+
+// Edited copies of a simulated CSV (the round-2 hostile-input reproducers): each is refused with
+// one line naming its cause, never ignored, guessed or answered with NaN.
+TEST(IdentifyCli, HostileTimeDataGetsOneClearLine) {
+  const std::string csv = Tmp("identify_hostile.csv");
+  ASSERT_EQ(
+      RunLtp("simulate " + kScene + " --excitation stepsine:0.1:0.5:0.2 --periods 10 --out " + csv)
+          .code,
+      0);
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(csv);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  ASSERT_GT(lines.size(), 300u);
+  ASSERT_EQ(lines[1].rfind("# period_s:", 0), 0u);
+  // Writes the lines with `edit` applied, runs identify on them, returns the result.
+  const auto run = [&](const std::function<void(std::vector<std::string>&)>& edit,
+                       const std::string& options = "") {
+    std::vector<std::string> edited = lines;
+    edit(edited);
+    const std::string path = Tmp("identify_edited.csv");
+    std::ofstream out(path);
+    for (const std::string& l : edited) out << l << "\n";
+    out.close();
+    return RunLtp("identify " + path + " " + options);
+  };
+  const auto cell = [](std::string& line, size_t column, const std::string& value) {
+    size_t start = 0;
+    for (size_t c = 0; c < column; ++c) start = line.find(',', start) + 1;
+    const size_t end = line.find(',', start);
+    line.replace(start, end == std::string::npos ? std::string::npos : end - start, value);
+  };
+  const auto expect = [](const test::LtpRun& r, const std::string& text) {
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+  };
+  for (const char* bad : {"0", "-1", "nan"})
+    expect(run([&](auto& l) { l[1] = std::string("# period_s: ") + bad; }),
+           "must be finite and > 0");
+  expect(run([](auto&) {}, "--period 0"), "--period must be a finite number > 0");
+  expect(run([](auto&) {}, "--period nan"), "--period must be a finite number > 0");
+  expect(run([](auto& l) { l.insert(l.begin() + 2, "# period_s: 6.28318530717959"); }),
+         "disagrees with the first");
+  expect(run([&](auto& l) { cell(l[199], 0, "1.5"); }), "is not a whole number");
+  expect(run([&](auto& l) { cell(l[199], 1, "nan"); }), "one frequency per record");
+  expect(run([&](auto& l) {
+           for (size_t i = 3; i < l.size(); ++i) cell(l[i], 4, "1e308");
+         }),
+         "rescale the channel");
+  expect(run(
+             [&](auto& l) {
+               l[2] += ",out:y";
+               for (size_t i = 3; i < l.size(); ++i) l[i] += ",0";
+             },
+             "--output y"),
+         "two columns are named 'y'");
+  expect(run([](auto&) {}, "--orders -1000:1000"), "--orders -1000:1000: at most 201 orders");
+  expect(run([](auto&) {}, "--plot p.svg --plot-orders 5:9"), "lies outside the estimated orders");
+  expect(RunLtp("identify /dev/zero"), "is not a regular file");
 }
 
 // Rig data as a rig writes them: no period line, a tacho column, the rotor 1 % fast, shakers

@@ -30,7 +30,8 @@ struct TimeData {
   std::vector<std::string> input_names, output_names, auxiliary_names;
   std::vector<TimeRecord> records;
   /// @throws InputError naming the record and sample: T not positive, sizes that disagree,
-  /// non-finite values, times that do not increase, fewer than 2 samples.
+  /// non-finite values or values above 1e150 (their squares overflow), times that do not
+  /// increase, fewer than 2 samples.
   void Validate() const;
 };
 
