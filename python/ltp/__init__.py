@@ -20,6 +20,9 @@ Analyses (each runs without the GIL)
     campbell(points, by=...) -> CampbellResult  `ltp campbell`: MBC3 modes tracked over operating points
     mbc(files) -> MbcResult                   `ltp mbc --no-floquet`: the MBC3 table of .lin files
     mbc_check(system, result) -> dict | None  `ltp floquet rotor`'s multi-blade-coordinate check
+    simulate(system, freq, ...) -> SimulationResult  `ltp simulate`: time data of a test (a rig's
+                                              speed offset, ramp, tacho, input and output noise)
+    identify(time, input, output, ...) -> IdentifyResult  `ltp identify` on numpy arrays
 
 Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
 ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
@@ -35,12 +38,14 @@ from ._ltp import (  # noqa: F401
     FloquetResult,
     HillResult,
     HillStudy,
+    IdentifyResult,
     InputError,
     MbcResult,
     PfrfResult,
     ResourceError,
     SceneError,
     SingularMassError,
+    SimulationResult,
     SnapshotResult,
     System,
     __version__,
@@ -49,18 +54,20 @@ from ._ltp import (  # noqa: F401
     floquet,
     hill,
     hill_study,
+    identify,
     mbc,
     mbc_check,
     pfrf,
     scene,
     scenes,
+    simulate,
     snapshot,
 )
 
 __all__ = [
-    "CampbellResult", "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "InputError", "MbcResult",
-    "PfrfResult",
-    "ResourceError", "SceneError", "SingularMassError", "SnapshotResult", "System",
-    "campbell", "chart", "floquet", "hill", "hill_study", "mbc", "mbc_check", "pfrf", "scene", "scenes",
-    "snapshot",
+    "CampbellResult", "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "IdentifyResult",
+    "InputError", "MbcResult", "PfrfResult",
+    "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
+    "campbell", "chart", "floquet", "hill", "hill_study", "identify", "mbc", "mbc_check", "pfrf", "scene",
+    "scenes", "simulate", "snapshot",
 ]

@@ -65,4 +65,5 @@ PYBIND11_MODULE(_ltp, m) {
   BindChart(m);
   BindMbc(m);
   BindCampbell(m);
+  BindIdentify(m);
 }
