@@ -84,7 +84,8 @@ int RunCampbell(const CampbellArgs& args) {
     in.campbell = &r.diagram;
     in.sidebands = 0;
     in.eigenvalues = "MBC3 frequencies (azimuth-averaged)";
-    in.real_parts = "real parts of the MBC3 eigenvalues";
+    in.real_parts = "MBC3 eigenvalues";
+    in.damping_ratio_panel = true;
     plot_note = DrawChart(in, args.plot);
   }
   if (args.json) {

@@ -1,6 +1,7 @@
 #include "campbell_output.h"
 
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <ostream>
 
@@ -15,7 +16,11 @@ json CampbellJson(const CampbellDiagram& d) {
   json lines = json::array(), crossings = json::array(), weak = json::array();
   for (size_t k = 0; k < d.lines.size(); ++k) {
     const CampbellLine& line = d.lines[k];
-    json j = {{"mode", k + 1}, {"description", line.description}};
+    json j = {{"mode", k + 1},
+              {"description", line.description},
+              {"frequency_hz", JsonNumbers(line.frequency_hz)},
+              {"real_part", JsonNumbers(line.real_part)},
+              {"damping_ratio", JsonNumbers(line.damping_ratio)}};
     if (line.description_end != line.description) j["description_end"] = line.description_end;
     if (line.lost_after) j["lost_after"] = JsonNumber(d.parameter[*line.lost_after]);
     lines.push_back(j);
@@ -31,7 +36,8 @@ json CampbellJson(const CampbellDiagram& d) {
                          {"real_part", JsonNumber(c.real_part)},
                          {"damping_ratio", JsonNumber(c.damping_ratio)}});
   for (const auto& [lo, hi] : d.weakly_damped) weak.push_back({JsonNumber(lo), JsonNumber(hi)});
-  return {{"lines", lines},
+  return {{"frequency", d.frequency == CampbellFrequency::kNatural ? "natural" : "damped"},
+          {"lines", lines},
           {"per_rev", d.per_rev},
           {"crossings", crossings},
           {"weakly_damped", weak},
@@ -88,6 +94,17 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
 }
 
 void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
+  static const std::map<std::string, CampbellFrequency> kinds{
+      {"damped", CampbellFrequency::kDamped}, {"natural", CampbellFrequency::kNatural}};
+  cmd->add_option("--frequency", options.frequency,
+                  "Campbell: damped (Im λ/2π) or natural (|λ|/2π, as ACDC draws) frequencies")
+      ->transform(CLI::CheckedTransformer(kinds))
+      ->default_str("damped");
+  cmd->add_option("--max-damping", options.max_damping_ratio,
+                  "Campbell: leave out lines damped above this ratio wherever tracked (e.g. 0.3 "
+                  "hides inflow states; 1 = keep all)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 1.0));
   cmd->add_option("--per-rev", options.max_per_rev,
                   "Campbell: per-rev lines 1P..NP (0 = automatic: B..3B)")
       ->capture_default_str()

@@ -19,6 +19,20 @@ constexpr double kPi = std::numbers::pi;
 const char* kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
                          "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#000080", "#808000"};
 constexpr size_t kColorCount = sizeof kColors / sizeof kColors[0];
+// Filled and open markers at the computed points, cycled with the colours (every point on a
+// sparse diagram such as an OpenFAST set; a subset on a dense sweep).
+const int kPointTypes[] = {7, 5, 9, 11, 13, 4, 6, 8, 10, 12};
+constexpr size_t kPointTypeCount = sizeof kPointTypes / sizeof kPointTypes[0];
+
+// Line k's style: colour, marker at each point and, once the colours repeat, a dash pattern,
+// so no two of up to kColorCount × 4 lines look alike.
+// On a dense sweep every `pi`-th point carries its marker (about 25 per line).
+std::string LineStyle(size_t k, size_t points) {
+  return "lc rgb '" + std::string(kColors[k % kColorCount]) + "' pt " +
+         std::to_string(kPointTypes[k % kPointTypeCount]) + " pi " +
+         std::to_string(std::max<size_t>(1, points / 25)) + " dt " +
+         std::to_string(1 + (k / kColorCount) % 4);
+}
 
 std::string V(double x) { return std::isfinite(x) ? Num(x, 9) : std::string("NaN"); }
 
@@ -58,7 +72,7 @@ struct CampbellExtras {
   bool compare = false;  // snapshot and averaged eigenvalues ($S, $A)
 };
 
-// The data blocks: $M (x, then per line frequency, Re λ and the sidebands f ± kΩp/2π), $R
+// The data blocks: $M (x, then per line frequency, Re λ, ζ in % and the sidebands f ± kΩp/2π), $R
 // (per-rev lines), $X (crossings), $L (lost lines), $S/$A (frozen eigenvalues).
 CampbellExtras CampbellData(const ChartPlotInput& in, std::ostringstream& g) {
   const CampbellDiagram& d = *in.campbell;
@@ -73,7 +87,7 @@ CampbellExtras CampbellData(const ChartPlotInput& in, std::ostringstream& g) {
     for (const CampbellLine& line : d.lines) {
       const double f = line.frequency_hz[p];
       if (std::isfinite(f)) fmax = std::max(fmax, f);
-      g << " " << V(f) << " " << V(line.real_part[p]);
+      g << " " << V(f) << " " << V(line.real_part[p]) << " " << V(100 * line.damping_ratio[p]);
       for (int s = 1; s <= in.sidebands; ++s) g << " " << V(f + s * fp) << " " << V(f - s * fp);
     }
     g << "\n";
@@ -143,9 +157,15 @@ void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostr
   std::string shading;
   if (in.intervals && !in.intervals->empty()) shading += "; red: unstable";
   if (!d.weakly_damped.empty()) shading += "; yellow: weakly damped";
-  g << "set title '" << in.eigenvalues << " (one line per mode, tracked by MAC)"
-    << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π, circles: crossings") << shading << "'\n"
-    << "set ylabel 'frequency  [Hz]'\nset yrange [0:" << V(x.ytop) << "]\n";
+  const size_t every = std::max<size_t>(1, d.parameter.size() / 25);
+  g << "set title '" << in.eigenvalues << ", tracked by MAC; markers: "
+    << (every == 1 ? std::string("computed points")
+                   : "every " + std::to_string(every) + "th computed point")
+    << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π; circles: crossings") << shading << "'\n"
+    << "set ylabel '"
+    << (d.frequency == CampbellFrequency::kNatural ? "natural frequency |λ|/2π"
+                                                   : "damped frequency Im λ/2π")
+    << "  [Hz]'\nset yrange [0:" << V(x.ytop) << "]\n";
   PerRevLabels(d, x.ytop, g);
   std::ostringstream plot;
   plot << "plot ";
@@ -154,10 +174,10 @@ void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostr
     plot << (first ? "" : ", \\\n     ") << item;
     first = false;
   };
-  const int stride = 2 + 2 * in.sidebands;
+  const int stride = 3 + 2 * in.sidebands;
   for (size_t k = 0; k < L; ++k)
     for (int s = 0; s < 2 * in.sidebands; ++s)
-      add("$M using 1:" + std::to_string(2 + k * stride + 2 + s) +
+      add("$M using 1:" + std::to_string(2 + k * stride + 3 + s) +
           " with lines lw 0.6 lc rgb '#e6e6e6' notitle");
   for (size_t k = 0; k < d.per_rev.size(); ++k) {
     // Multiples of the blade count excite the fixed frame: drawn darker.
@@ -172,8 +192,9 @@ void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostr
                 : "notitle"));
   }
   for (size_t k = 0; k < L; ++k)
-    add("$M using 1:" + std::to_string(2 + k * stride) + " with lines lw 2 lc rgb '" +
-        kColors[k % kColorCount] + "' title \"" + LegendTitle(k, d.lines[k].description) + "\"");
+    add("$M using 1:" + std::to_string(2 + k * stride) + " with linespoints lw 2 ps 0.7 " +
+        LineStyle(k, d.parameter.size()) + " title \"" + LegendTitle(k, d.lines[k].description) +
+        "\"");
   if (!d.crossings.empty())
     add("$X using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb '#000000' title 'crossings'");
   if (x.lost)
@@ -187,18 +208,26 @@ void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostr
   for (size_t k = 0; k < d.per_rev.size(); ++k) g << "unset label " << 100 + k << "\n";
 }
 
-// Bottom panel: Re λ of every line, in the frequency panel's colours.
+// Bottom panel: the damping ratio ζ in % (MBC3) or Re λ (Floquet) of every line, in the
+// frequency panel's styles.
 void DampingPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostringstream& g) {
   const CampbellDiagram& d = *in.campbell;
-  const int stride = 2 + 2 * in.sidebands;
-  g << "set title 'Damping diagram: " << in.real_parts << " (above 0: unstable)'\n"
-    << "set ylabel 'Re λ  [1/s]'\nset autoscale y\nset yrange [*:*]\n"
+  const int stride = 3 + 2 * in.sidebands;
+  const bool zeta = in.damping_ratio_panel;
+  if (zeta)
+    g << "set title 'Damping diagram: damping ratio ζ = −Re λ/|λ| of the " << in.real_parts
+      << " (below 0: unstable)'\nset ylabel 'ζ  [%]'\n";
+  else
+    g << "set title 'Damping diagram: " << in.real_parts << " (above 0: unstable)'\n"
+      << "set ylabel 'Re λ  [1/s]'\n";
+  g << "set autoscale y\nset yrange [*:*]\n"
     << "set arrow 100 from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#000000' lw 1\n";
   g << "plot ";
   for (size_t k = 0; k < d.lines.size(); ++k)
-    g << (k == 0 ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + 1
-      << " with lines lw 2 lc rgb '" << kColors[k % kColorCount] << "' notitle";
-  if (x.lost) g << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
+    g << (k == 0 ? "" : ", \\\n     ") << "$M using 1:" << 2 + k * stride + (zeta ? 2 : 1)
+      << " with linespoints lw 2 ps 0.7 " << LineStyle(k, d.parameter.size()) << " notitle";
+  if (x.lost && !zeta)
+    g << ", \\\n     $L using 1:3 with points pt 2 ps 1.6 lw 2 lc rgb '#d00000' notitle";
   g << "\n";
 }
 

@@ -21,7 +21,10 @@ struct ChartPlotInput {
   const CampbellDiagram* campbell = nullptr;        ///< 1-D
   const std::vector<UnstableInterval>* intervals = nullptr;  ///< 1-D
   const std::vector<BoundaryPoint>* boundary = nullptr;      ///< 2-D
-  int sidebands = 2;     ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
+  int sidebands = 2;  ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
+  /// The lower Campbell panel shows the damping ratio ζ in % (eigenvalues of one averaged
+  /// system, MBC3) instead of Re λ (Floquet exponents, whose ζ depends on the branch).
+  bool damping_ratio_panel = false;
   bool compare = false;  ///< draw snapshot and averaged-system frequencies (1-D)
 };
 

@@ -34,6 +34,12 @@ nlohmann::json JsonNumber(double x) {
   return x > 0 ? "inf" : "-inf";
 }
 
+nlohmann::json JsonNumbers(const std::vector<double>& x) {
+  nlohmann::json a = nlohmann::json::array();
+  for (double v : x) a.push_back(JsonNumber(v));
+  return a;
+}
+
 void AppendCsvNumber(std::string& out, double x) {
   if (!std::isfinite(x)) {
     out += std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");

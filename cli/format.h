@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace ltp::cli {
 
@@ -15,6 +16,8 @@ std::string Num(std::optional<double> x, int precision = 6, int width = 0);
 nlohmann::json JsonNumber(double x);
 /// null when the quantity was not computed.
 nlohmann::json JsonNumber(std::optional<double> x);
+/// An array of JsonNumber.
+nlohmann::json JsonNumbers(const std::vector<double>& x);
 /// A CSV cell: 12 significant digits ("%.12g"), non-finite values spelled out; appended to
 /// `out` (a row is built in one string: a stream per number was a fifth of a map's time).
 void AppendCsvNumber(std::string& out, double x);

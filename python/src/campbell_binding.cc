@@ -82,8 +82,14 @@ void BindCampbell(py::module_& m) {
 
   m.def(
       "campbell",
-      [](const std::vector<std::string>& points, const std::string& by) {
+      [](const std::vector<std::string>& points, const std::string& by,
+         const std::string& frequency, double max_damping) {
         LinCampbellOptions o;
+        if (frequency != "damped" && frequency != "natural")
+          throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
+        o.campbell.frequency =
+            frequency == "natural" ? CampbellFrequency::kNatural : CampbellFrequency::kDamped;
+        o.campbell.max_damping_ratio = max_damping;
         if (by == "rotor-speed") {
           o.axis = OperatingPointAxis::kRotorSpeed;
         } else if (by == "wind-speed") {
@@ -97,12 +103,15 @@ void BindCampbell(py::module_& m) {
         for (const std::string& point : points) ops.push_back(ReadLinOperatingPoint({point}));
         return MakeLinCampbell(ops, o);
       },
-      py::arg("points"), py::kw_only(), py::arg("by") = "rotor-speed", R"doc(
+      py::arg("points"), py::kw_only(), py::arg("by") = "rotor-speed",
+      py::arg("frequency") = "damped", py::arg("max_damping") = 1.0, R"doc(
 The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
 function. Each point is a folder (or a glob) of the .lin files of one operating point; each is
 analysed by MBC3 (as ltp.mbc) and the modes are tracked across the points by their shapes.
 
-  by   'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
+  by           'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
+  frequency    'damped' (Im λ/2π) | 'natural' (|λ|/2π, as ACDC and openfast_toolbox draw)
+  max_damping  leave out lines damped above this ratio wherever tracked (1: keep all)
 
     c = ltp.campbell(sorted(glob.glob("runs/omega-*")))
     for line in c.lines: plt.plot(c.parameter, line["frequency_hz"], label=line["description"]))doc");

@@ -125,8 +125,9 @@ per broadband realisation), ready for ltp.identify(r.time, r.input, r.output, pe
       .def_property_readonly(
           "settle_time", [](const SimulatedRecords& s) { return s.result.settle_time; },
           "s integrated before each record")
-      .def_property_readonly("diagnostics",
-                             [](const SimulatedRecords& s) { return s.result.diagnostics; });
+      .def_property_readonly(
+          "diagnostics", [](const SimulatedRecords& s) { return s.result.diagnostics; },
+          "e.g. frequencies moved to the record's grid");
 
   const SimulateOptions defaults;
   m.def(
@@ -258,8 +259,9 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
             return d;
           },
           "{'min', 'max', 'mean'} rad/s from the tacho or the encoder, else None")
-      .def_property_readonly("diagnostics",
-                             [](const IdentifiedRecords& r) { return r.result.diagnostics; });
+      .def_property_readonly(
+          "diagnostics", [](const IdentifiedRecords& r) { return r.result.diagnostics; },
+          "what the data say about themselves (speed, gaps, clipping, …), one line each");
 
   m.def(
       "identify",

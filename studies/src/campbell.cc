@@ -81,7 +81,7 @@ std::string Describe(const SweepPoint& point, int mode, const SystemLabels& labe
 }
 
 CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking& tracking,
-                       int label, const CampbellModeNamer& describe) {
+                       int label, const CampbellModeNamer& describe, CampbellFrequency kind) {
   CampbellLine line;
   line.label = label;
   const size_t P = points.size();
@@ -99,7 +99,7 @@ CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking
     const double f = std::abs(tracking.frequency_hz[p][static_cast<size_t>(label)]);
     const double re = m.exponent.real();
     const double magnitude = std::hypot(re, kTwoPi * f);
-    line.frequency_hz[p] = f;
+    line.frequency_hz[p] = kind == CampbellFrequency::kNatural ? magnitude / kTwoPi : f;
     line.real_part[p] = re;
     line.damping_ratio[p] = magnitude > 0 ? -re / magnitude : 0;
     if (first < 0)
@@ -291,6 +291,9 @@ void CampbellOptions::Validate() const {
   if (max_per_rev < 0 || max_per_rev > 100)
     throw InputError("CampbellOptions::max_per_rev = " + std::to_string(max_per_rev) +
                      ". Violated constraint: in 0..100 (0 = automatic)");
+  if (!(max_damping_ratio > 0 && max_damping_ratio <= 1))
+    throw InputError("CampbellOptions::max_damping_ratio = " + MessageNumber(max_damping_ratio) +
+                     ". Violated constraint: in (0, 1]");
   if (!(weak_damping_ratio >= 0 && weak_damping_ratio < 1))
     throw InputError("CampbellOptions::weak_damping_ratio = " + MessageNumber(weak_damping_ratio) +
                      ". Violated constraint: in [0, 1)");
@@ -306,6 +309,7 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     throw InputError("mode tracking covers " + std::to_string(tracking.labels.size()) +
                      " points of " + std::to_string(points.size()));
   CampbellDiagram d;
+  d.frequency = options.frequency;
   d.blades = labels.blades;
   for (const SweepPoint& p : points) {
     if (p.values.size() != 1) throw InputError("a Campbell diagram needs a 1-D sweep");
@@ -316,8 +320,16 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     return Describe(points[p], mode, labels, options.description);
   };
   const CampbellModeNamer& describe = namer ? namer : by_shape;
+  long overdamped = 0;
   for (int label : PhysicalLabels(points, tracking)) {
-    d.lines.push_back(TraceLine(points, tracking, label, describe));
+    CampbellLine traced = TraceLine(points, tracking, label, describe, options.frequency);
+    if (options.max_damping_ratio < 1 &&
+        std::none_of(traced.damping_ratio.begin(), traced.damping_ratio.end(),
+                     [&](double z) { return z <= options.max_damping_ratio; })) {
+      ++overdamped;  // NaN (not tracked) compares false: a line tracked nowhere goes too
+      continue;
+    }
+    d.lines.push_back(std::move(traced));
     CampbellLine& line = d.lines.back();
     const std::string name = "mode " + std::to_string(d.lines.size());
     if (line.description.empty()) line.description = name;
@@ -334,6 +346,11 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
                               MessageNumber(d.parameter[at]) + ": " + why);
     }
   }
+  if (overdamped > 0)
+    d.diagnostics.push_back(std::to_string(overdamped) + (overdamped == 1 ? " line" : " lines") +
+                            " left out: damped above " +
+                            MessageNumber(100 * options.max_damping_ratio, 3) +
+                            " % wherever tracked (overdamped states such as inflow dynamics)");
   d.per_rev = PerRevLines(d, options.max_per_rev);
   for (size_t k = 0; k < d.lines.size(); ++k) FindCrossings(d, k, d.crossings, d.diagnostics);
   std::stable_sort(d.crossings.begin(), d.crossings.end(), [](const auto& a, const auto& b) {

@@ -126,6 +126,25 @@ TEST(ChartCli, CampbellOfAnOperatingPointSet) {
   EXPECT_EQ(table.substr(0, table.find(',')), "rpm");
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 8);  // header + 7 points
   EXPECT_TRUE(std::filesystem::exists(Tmp("campbell_set-crossings.csv")));
+  // Each line carries its values per point; the CSV's columns are the JSON's numbers.
+  EXPECT_EQ(j["campbell"]["frequency"], "damped");
+  for (const json& line : j["campbell"]["lines"]) {
+    ASSERT_EQ(line["frequency_hz"].size(), 7u);
+    ASSERT_EQ(line["damping_ratio"].size(), 7u);
+  }
+  // Natural frequencies |λ|/2π = sqrt(f_d² + (Re λ/2π)²) of the same eigenvalues.
+  const auto natural = RunLtp("campbell" + dirs + " --frequency natural --json");
+  ASSERT_EQ(natural.code, 0) << natural.err;
+  const json n = json::parse(natural.out)["campbell"];
+  EXPECT_EQ(n["frequency"], "natural");
+  for (size_t k = 0; k < 5; ++k)
+    for (size_t p = 0; p < 7; ++p) {
+      const double fd = j["campbell"]["lines"][k]["frequency_hz"][p].get<double>();
+      const double re = j["campbell"]["lines"][k]["real_part"][p].get<double>();
+      EXPECT_NEAR(n["lines"][k]["frequency_hz"][p].get<double>(), std::hypot(fd, re / (2 * M_PI)),
+                  1e-12 * fd);
+    }
+  EXPECT_EQ(RunLtp("campbell" + dirs + " --frequency undamped").code, 2);
   // The same directory twice is one operating point twice: refused, naming the files.
   const auto twice = RunLtp("campbell " + root + "/omega-0.4 " + root + "/omega-0.4");
   EXPECT_EQ(twice.code, 2);

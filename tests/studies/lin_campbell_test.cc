@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -81,6 +83,45 @@ TEST(LinCampbell, RotorSetsRoundTripToTheScenesFloquetExponents) {
     EXPECT_FALSE(line.description.empty());
     EXPECT_FALSE(line.lost_after.has_value());
   }
+}
+
+// Natural frequencies are |λ|/2π of the scene's own Floquet exponents (the round trip above makes
+// the lines' λ those exponents), and the damped-line filter drops exactly the lines damped
+// above the limit wherever tracked.
+TEST(LinCampbell, NaturalFrequenciesAndTheDampingFilter) {
+  const std::vector<double> speeds = {0.4, 0.8, 1.2, 1.6};
+  std::vector<LinOperatingPoint> ops;
+  for (const std::string& dir : WriteSets("lin_campbell_natural", speeds))
+    ops.push_back(ReadLinOperatingPoint({dir}));
+  const LinCampbellResult damped = MakeLinCampbell(ops);
+  LinCampbellOptions o;
+  o.campbell.frequency = CampbellFrequency::kNatural;
+  const LinCampbellResult natural = MakeLinCampbell(ops, o);
+  ASSERT_EQ(natural.diagram.lines.size(), damped.diagram.lines.size());
+  EXPECT_EQ(natural.diagram.frequency, CampbellFrequency::kNatural);
+  for (size_t k = 0; k < damped.diagram.lines.size(); ++k)
+    for (size_t p = 0; p < speeds.size(); ++p) {
+      const CampbellLine& a = damped.diagram.lines[k];
+      const double wn = std::hypot(a.real_part[p], 2 * kPi * a.frequency_hz[p]) / (2 * kPi);
+      EXPECT_NEAR(natural.diagram.lines[k].frequency_hz[p], wn, 1e-13 * wn);
+      EXPECT_GE(natural.diagram.lines[k].frequency_hz[p], a.frequency_hz[p]);
+    }
+  // The filter: the median of the lines' smallest damping ratios as the limit.
+  std::vector<double> least;
+  for (const CampbellLine& line : damped.diagram.lines)
+    least.push_back(*std::min_element(line.damping_ratio.begin(), line.damping_ratio.end()));
+  std::vector<double> sorted = least;
+  std::sort(sorted.begin(), sorted.end());
+  o.campbell.max_damping_ratio = sorted[sorted.size() / 2];
+  const LinCampbellResult filtered = MakeLinCampbell(ops, o);
+  size_t kept = 0;
+  for (double z : least) kept += z <= o.campbell.max_damping_ratio;
+  EXPECT_EQ(filtered.diagram.lines.size(), kept);
+  EXPECT_LT(kept, least.size());
+  bool said = false;
+  for (const std::string& d : filtered.diagram.diagnostics)
+    said = said || d.find(std::to_string(least.size() - kept) + " lines left out") == 0;
+  EXPECT_TRUE(said);
 }
 
 // tests/data/openfast/rotor-speeds holds the sets the README draws: they must be what the

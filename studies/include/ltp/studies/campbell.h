@@ -26,7 +26,18 @@
 
 namespace ltp {
 
+/// Which frequency a Campbell line shows.
+enum class CampbellFrequency {
+  kDamped,   ///< Im λ/2π on the tracked branch
+  kNatural,  ///< |λ|/2π (what ACDC and openfast_toolbox draw; above the damped one by ζ²/2)
+};
+
 struct CampbellOptions {
+  CampbellFrequency frequency = CampbellFrequency::kDamped;
+  /// Lines whose damping ratio is above this wherever they are tracked are left out (1 = keep
+  /// all): overdamped states such as AeroDyn's DBEMT inflow, which crowd a design review's
+  /// chart; a diagnostic counts them.
+  double max_damping_ratio = 1;
   /// Per-rev lines n = 1..max_per_rev; 0 = those below the highest mode frequency at the
   /// median rotor speed, at least up to the blade count B and at most to 3B (6 without blades).
   int max_per_rev = 0;
@@ -44,8 +55,9 @@ struct CampbellLine {
   /// The mode's states at the first and the last point where it is tracked (they differ when
   /// the mode changes character along the sweep, e.g. near a veering); "mode k" without shapes.
   std::string description, description_end;
-  /// Per point (NaN where the mode is not tracked): |frequency| on the tracked branch (Hz; a
-  /// branch below zero is shown by its conjugate), Re λ (1/s) and damping ratio −Re λ/|λ|.
+  /// Per point (NaN where the mode is not tracked): |frequency| on the tracked branch (Hz,
+  /// damped or natural as CampbellOptions::frequency says; a branch below zero is shown by its
+  /// conjugate), Re λ (1/s) and damping ratio −Re λ/|λ|.
   std::vector<double> frequency_hz, real_part, damping_ratio;
   /// Index of the last point before the line is first lost (a failed point); nullopt when
   /// the line runs through the whole sweep.
@@ -63,10 +75,11 @@ struct CampbellCrossing {
 };
 
 struct CampbellDiagram {
-  std::vector<double> parameter;    ///< swept value per point
-  std::vector<double> rotor_speed;  ///< rad/s per point (NaN: not a rotor)
-  int blades = 0;                   ///< SystemLabels::blades (per-rev multiples to emphasise)
-  std::vector<int> per_rev;         ///< n of the drawn per-rev lines; empty without a rotor speed
+  CampbellFrequency frequency = CampbellFrequency::kDamped;  ///< what frequency_hz holds
+  std::vector<double> parameter;                             ///< swept value per point
+  std::vector<double> rotor_speed;                           ///< rad/s per point (NaN: not a rotor)
+  int blades = 0;            ///< SystemLabels::blades (per-rev multiples to emphasise)
+  std::vector<int> per_rev;  ///< n of the drawn per-rev lines; empty without a rotor speed
   std::vector<CampbellLine> lines;
   std::vector<CampbellCrossing> crossings;  ///< by line, then per-rev, then parameter
   /// Intervals of the swept parameter where the system is stable but weakly damped.
