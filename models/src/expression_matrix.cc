@@ -46,7 +46,15 @@ int ExpressionMatrices::Add(const ExpressionMatrixText& text) {
       for (double t : {0.0, period_ / 3, 2 * period_ / 3})
         CheckFinite(entry, (*expression)(t), t, true);
       if (expression->may_jump()) {
-        const auto found = FindJumps([&](double t) { return (*expression)(t); }, period_);
+        constexpr int kGrid = 4096;
+        const auto found = FindJumps([&](double t) { return (*expression)(t); }, period_, kGrid);
+        // Jumps in a quarter of the scan's steps: the scan does not resolve them (sign(sin(1e9 t))
+        // jumps 3e5 times per step), and an integrator restarted at each would not finish.
+        if (found.size() > kGrid / 4)
+          Fail(entry, "jumps at least " + std::to_string(found.size()) + " times per period (in " +
+                          std::to_string(found.size()) + " of the " + std::to_string(kGrid) +
+                          " steps the period was scanned in): more jumps than can be located "
+                          "and integrated between; check the expression's time scale");
         jumps_.insert(jumps_.end(), found.begin(), found.end());
       }
       compiled.varying.push_back({r, c, static_cast<int>(varying_texts_.size())});

@@ -497,6 +497,12 @@ size_t InvalidUtf8At(const std::string& text) {
     if (extra < 0 || (extra == 1 && c < 0xC2) || i + extra >= n + (extra == 0 ? 1 : 0)) return i;
     for (int k = 1; k <= extra; ++k)
       if (i + k >= n || (b[i + k] & 0xC0) != 0x80) return i;
+    // Well-formed sequences only (RFC 3629): no overlong 3- and 4-byte forms, no UTF-16
+    // surrogates U+D800…DFFF (ED A0…BF), nothing above U+10FFFF (F4 90… and F5…).
+    if (extra == 2 && ((c == 0xE0 && b[i + 1] < 0xA0) || (c == 0xED && b[i + 1] >= 0xA0))) return i;
+    if (extra == 3 &&
+        ((c == 0xF0 && b[i + 1] < 0x90) || (c == 0xF4 && b[i + 1] >= 0x90) || c > 0xF4))
+      return i;
     i += extra + 1;
   }
   return std::string::npos;

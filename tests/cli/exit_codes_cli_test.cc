@@ -76,6 +76,18 @@ TEST(ExitCodes, BadSceneTextAndPeriodsAreRefusedWithTheirReason) {
   EXPECT_EQ(utf.code, 2);
   EXPECT_NE(utf.err.find("not valid UTF-8"), std::string::npos) << utf.err;
   EXPECT_EQ(utf.err.find("json.exception"), std::string::npos) << utf.err;
+  // Byte patterns of UTF-8's shape that are not UTF-8: an encoded surrogate (ED A0 80) and a
+  // code point above U+10FFFF (F4 90 80 80) passed the check, then broke the JSON writer.
+  for (const char* file : {"json_surrogate_name.yaml", "json_above_unicode_name.yaml"}) {
+    const auto bad =
+        RunLtp("floquet " + Src(std::string("tests/data/robustness/") + file) + " --json");
+    EXPECT_EQ(bad.code, 2) << file;
+    EXPECT_NE(bad.err.find("not valid UTF-8"), std::string::npos) << bad.err;
+  }
+  // sign(sin(1e9 t)): more jumps than the scan locates; it used to run 21 s and then fail.
+  const auto jumps = RunLtp("floquet " + Src("tests/data/robustness/hang_sign_sin_1e9t.yaml"));
+  EXPECT_EQ(jumps.code, 2);
+  EXPECT_NE(jumps.err.find("more jumps than can be located"), std::string::npos) << jumps.err;
   // T = 1e-320 s (subnormal): Ωp = inf, every exponent NaN — used to exit 0 saying UNSTABLE.
   const auto tiny = RunLtp("floquet " + Src("tests/data/robustness/nonsense_denormal_period.yaml"));
   EXPECT_EQ(tiny.code, 2);
