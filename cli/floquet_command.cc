@@ -454,9 +454,9 @@ Command AddFloquetCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--steps", args.options.integrator.steps_per_period,
-                  "fixed-step methods: steps per period (0 = automatic)")
+                  "fixed-step methods: steps per period (0 = automatic, at most 1e8)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000000));
   cmd->add_option("--method", args.method,
                   "monodromy | hill | both (both: side by side, with their disagreement)")
       ->capture_default_str();

@@ -11,7 +11,7 @@
 namespace ltp::cli {
 
 ProgressBar::ProgressBar(std::string label, bool enabled)
-    : label_(std::move(label)), enabled_(enabled && isatty(STDERR_FILENO)) {}
+    : label_(std::move(label)), enabled_(enabled), terminal_(isatty(STDERR_FILENO) != 0) {}
 
 ProgressBar::~ProgressBar() { Clear(); }
 
@@ -34,6 +34,20 @@ void ProgressBar::Update(double done, double total, std::string_view unit, std::
   const double fraction = std::clamp(done / total, 0.0, 1.0);
   const double rate = (done - first_done_) /
                       std::max(std::chrono::duration<double>(now - phase_start_).count(), 1e-9);
+  if (!terminal_) {
+    const double eta = rate > 0 ? (total - done) / rate : 0;
+    if (!announced_ && elapsed >= 2 && eta > 10) {
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(0) << "ltp: " << label_
+        << (phase.empty() ? "" : " (" + std::string(phase) + ")") << ": about " << eta << " s more";
+      if (!unit.empty())
+        s << " for " << static_cast<long>(total - done) << " " << unit << " (" << done << " in "
+          << elapsed << " s)";
+      std::cerr << s.str() << "\n" << std::flush;
+      announced_ = true;
+    }
+    return;
+  }
   const int width = 30, filled = static_cast<int>(width * fraction);
   std::ostringstream s;
   s << "\r  " << label_;

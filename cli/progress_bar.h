@@ -1,7 +1,8 @@
 #pragma once
 // The one progress bar of the commands: a line on stderr, redrawn at most 10 times a second,
-// with the elapsed time and an ETA; nothing when stderr is not a terminal (logs and CI stay
-// clean) and nothing for work that ends within half a second (no flicker).
+// with the elapsed time and an ETA; nothing for work that ends within half a second (no
+// flicker). When stderr is not a terminal (a log, a batch job) no bar is drawn, but work whose
+// ETA after 2 s is above 10 s says so in one line, so a long job is never silent.
 #include <chrono>
 #include <string>
 #include <string_view>
@@ -26,7 +27,7 @@ class ProgressBar {
  private:
   using Clock = std::chrono::steady_clock;
   std::string label_;
-  bool enabled_ = false, shown_ = false;
+  bool enabled_ = false, terminal_ = false, shown_ = false, announced_ = false;
   Clock::time_point start_ = Clock::now(), last_{}, phase_start_{};
   std::string phase_;
   double first_done_ = -1;

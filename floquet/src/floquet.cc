@@ -257,8 +257,11 @@ void WeighTheWork(const PeriodicSystem& system, std::optional<SystemTraits>& tra
   if (system.states() == 0) return;
   const double pieces = static_cast<double>(system.breakpoints().size()) + 1;
   const double per_evaluation = SecondsPerEvaluation(system);
+  // Fixed steps set the count themselves, whatever the system (3 nodes, 3.5 passes at most).
   const double most =
-      MostEvaluations(period_scale, pieces, segments, options.integrator.rel_tol) * per_evaluation;
+      std::max(MostEvaluations(period_scale, pieces, segments, options.integrator.rel_tol),
+               10.5 * options.integrator.steps_per_period) *
+      per_evaluation;
   const double limit = options.max_work_seconds > 0 ? options.max_work_seconds : HUGE_VAL;
   if (most <= std::min(limit, options.announce_work_seconds)) return;
   if (!traits) traits = MeasureSystemTraits(system);

@@ -178,8 +178,10 @@ void IntegratorOptions::Validate() const {
     ThrowOption("rel_tol", rel_tol, "1e-15 <= rel_tol < 1 (double precision delivers no more)");
   if (!(abs_tol >= 0 && std::isfinite(abs_tol)))
     ThrowOption("abs_tol", abs_tol, "0 <= abs_tol < inf");
-  if (steps_per_period < 0)
-    ThrowOption("steps_per_period", steps_per_period, "steps_per_period >= 0");
+  // 10^8 steps per period is hours of fixed steps already; the refined run doubles the count,
+  // which must stay an int.
+  if (steps_per_period < 0 || steps_per_period > 100000000)
+    ThrowOption("steps_per_period", steps_per_period, "0 <= steps_per_period <= 1e8");
   if (max_steps <= 0) ThrowOption("max_steps", static_cast<double>(max_steps), "max_steps > 0");
 }
 

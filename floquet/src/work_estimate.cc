@@ -67,7 +67,16 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
   w.seconds_per_evaluation = seconds_per_evaluation;
   std::ostringstream s;
   s.precision(3);
-  if (integrator.type == IntegratorType::kExpm) {
+  const bool magnus =
+      integrator.type == IntegratorType::kMagnus4 || integrator.type == IntegratorType::kMagnus6;
+  if (magnus && integrator.steps_per_period > 0) {
+    // Fixed steps: the count is the user's, the nodes per step the method's; the refined run
+    // of the estimate doubles it, the mode samples add about half a pass.
+    const double nodes = integrator.type == IntegratorType::kMagnus4 ? 2 : 3;
+    w.fewest_evaluations = nodes * integrator.steps_per_period;
+    w.evaluations = 3.5 * w.fewest_evaluations;
+    s << integrator.steps_per_period << " fixed steps per period, " << nodes << " evaluations each";
+  } else if (integrator.type == IntegratorType::kExpm) {
     w.fewest_evaluations = pieces;
     w.evaluations = kProductsPerPiece * pieces;
     s << pieces << " constant pieces, one matrix exponential each";

@@ -46,6 +46,33 @@ TEST(WorkEstimate, BracketsTheEvaluationsTheAnalysisCounts) {
       }
 }
 
+// Fixed steps set the count themselves: the estimate brackets the integrators' tally, and a
+// step count no machine finishes in time is refused before the first step (--steps 1e8 on a
+// 2-state system ran silently for minutes).
+TEST(WorkEstimate, FixedStepsAreCountedAndRefusedUpFront) {
+  for (IntegratorType type : {IntegratorType::kMagnus4, IntegratorType::kMagnus6}) {
+    FloquetOptions o;
+    o.integrator.type = type;
+    o.integrator.steps_per_period = 4000;
+    const PeriodicSystem system = FastOscillator(30);
+    const FloquetResult r = AnalyzeFloquet(system, o);
+    ASSERT_TRUE(r.ok);
+    const WorkEstimate e =
+        EstimateFloquetWork(MeasureSystemTraits(system), o.integrator, 1, r.segments, 1e-7);
+    const double counted = static_cast<double>(r.rhs_evals);
+    EXPECT_GE(counted, e.fewest_evaluations) << ToString(type);
+    EXPECT_LE(counted, 3 * e.evaluations) << ToString(type);
+    EXPECT_GE(counted, e.evaluations / 3) << ToString(type);
+  }
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kMagnus4;
+  o.integrator.steps_per_period = 100000000;
+  o.max_work_seconds = 0.01;  // 2e8 evaluations: beyond it at even 50 ps each
+  EXPECT_THROW(AnalyzeFloquet(FastOscillator(30), o), InputError);
+  o.integrator.steps_per_period = 200000000;  // beyond what the refined run's doubling keeps
+  EXPECT_THROW(AnalyzeFloquet(FastOscillator(30), o), InputError);
+}
+
 TEST(WorkEstimate, AnAnalysisBeyondTheLimitIsRefusedWithTheEstimate) {
   // 2e9 radians per period: even a fifth of the typical count at a nanosecond each is a minute.
   FloquetOptions o;
