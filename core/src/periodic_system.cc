@@ -102,6 +102,14 @@ PeriodicSystem PeriodicSystem::FromFunctions(double period, int states, int inpu
   if (!functions.A) throw InputError("A(t) is missing");
   if (inputs > 0 && !functions.B) throw InputError("B(t) is missing but the system has inputs");
   if (outputs > 0 && !functions.C) throw InputError("C(t) is missing but the system has outputs");
+  // Every piece restarts the integrators (tens of evaluations at least): 10^5 jumps per period is
+  // beyond any coefficient worth integrating piece by piece (10^6 ran silently for minutes).
+  constexpr size_t kMostBreakpoints = 100000;
+  if (breakpoints.size() > kMostBreakpoints)
+    throw InputError(std::to_string(breakpoints.size()) + " breakpoints: at most " +
+                     std::to_string(kMostBreakpoints) +
+                     " per period (each piece restarts the integration); a coefficient that "
+                     "jumps that often is better given as a smooth or averaged function");
   for (double b : breakpoints)
     if (!std::isfinite(b) || b < 0 || b >= period)
       throw InputError("breakpoint " + std::to_string(b) + " outside [0, T)");

@@ -98,8 +98,13 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
 void PfrfOptions::Validate() const {
   auto fail = [](const std::string& what) { throw InputError("pfrf: " + what); };
   if (frequencies_hz.empty()) fail("no frequencies to evaluate");
+  // As the CLI's grids: a million frequencies is hours of work at the slower routes.
+  if (frequencies_hz.size() > 1000000)
+    fail(std::to_string(frequencies_hz.size()) + " frequencies: at most a million per call");
   for (double f : frequencies_hz)
-    if (!std::isfinite(f)) fail("frequencies must be finite numbers");
+    if (!std::isfinite(f) || std::abs(f) > 1e15)
+      fail("frequencies must be finite numbers of at most 1e15 Hz (got " + MessageNumber(f) +
+           "; beyond, ω·t has no correct digit over a period)");
   if (min_order > max_order) fail("min_order must be <= max_order");
   if (std::max(std::abs(min_order), std::abs(max_order)) > 1000) fail("orders beyond ±1000");
   if (input < 0 || output < 0) fail("input and output indices must be >= 0");

@@ -120,3 +120,28 @@ def test_an_htf_truncation_beyond_memory_is_a_resource_error():
     # interpreter gone (hostile input, round 2).
     with pytest.raises(ltp.ResourceError, match="GiB"):
         ltp.pfrf(ltp.scene("mathieu", c=0.3), "0.1:0.3:0.1", htf_harmonics=10**7)
+
+
+def test_sizes_and_times_past_what_the_cli_accepts_are_refused():
+    # Hostile input, round 2: the Python door had no caps (the CLI caps grids at a million
+    # frequencies) and answered NaN for times and frequencies past the double range.
+    s = ltp.scene("mathieu", c=0.3)
+    with pytest.raises(ltp.InputError, match="at most a million"):
+        ltp.pfrf(s, np.linspace(0, 1, 10**6 + 1))
+    with pytest.raises(ltp.InputError, match="at most 1e15 Hz"):
+        ltp.pfrf(s, [1e308])
+    A = lambda t: np.array([[0.0, 1.0], [-(1 - 0.4 * np.cos(2 * t)), -0.3]])  # noqa: E731
+    with pytest.raises(ltp.InputError, match="at most 100000 per period"):
+        ltp.System.from_function(np.pi, A, breakpoints=list(np.linspace(0, np.pi, 10**5 + 1, endpoint=False)))
+    r = ltp.floquet(s)
+    with pytest.raises(ltp.InputError, match="finite"):
+        r.mode_matrix(float("nan"))
+    with pytest.raises(ltp.InputError, match="finite"):
+        r.left_modes(float("inf"))
+    with pytest.raises(ltp.InputError, match="finite"):
+        s.A(float("nan"))
+    # A periodic quantity at any finite time is its value at the time's remainder (exact fmod).
+    T = s.period
+    t = 3 * T + 0.25
+    np.testing.assert_array_equal(s.A(1e308), s.A(np.fmod(1e308, T)))
+    np.testing.assert_allclose(r.mode_matrix(t), r.mode_matrix(np.fmod(t, T)), rtol=1e-12, atol=1e-12)
