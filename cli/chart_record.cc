@@ -16,6 +16,7 @@
 
 #include "format.h"
 #include "ltp/core/error.h"
+#include "time_data_csv.h"
 
 namespace ltp::cli {
 
@@ -40,6 +41,7 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, co
   }
   const std::string journal = journal_path();
   if (resume) {
+    RequireRegularFile(journal);  // a directory, /dev/zero or a FIFO is not a journal
     std::ifstream in(journal, std::ios::binary);
     if (!in)
       throw InputError("--resume: no journal '" + journal + "' (the sweep of '" + path_ +
@@ -54,7 +56,14 @@ ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, co
     const std::optional<std::string> header =
         payloads.empty() ? std::nullopt : DecodeHeader(payloads.front());
     if (!header) throw InputError("--resume: '" + journal + "' has no intact header record");
-    if (json::parse(*header, nullptr, false) != identity)
+    // A header that is not JSON compares unequal to nothing (nlohmann's discarded value), so
+    // it is refused by name, not waved through.
+    const json recorded = json::parse(*header, nullptr, false);
+    if (recorded.is_discarded())
+      throw InputError("--resume: '" + journal +
+                       "' has a damaged header record (its identity is not JSON); run without "
+                       "--resume to start over");
+    if (recorded != identity)
       throw InputError(
           "--resume: '" + journal +
           "' belongs to a different sweep (scene, "
@@ -199,8 +208,17 @@ std::string ChartRecord::JournalRecord(const SweepPoint& point) {
   return writer_.Records(point, JournalShapes());
 }
 
+// Whether process `pid` runs ltp (its /proc command name): a lock whose pid was reused by an
+// unrelated process is stale. Without /proc, any live process counts.
+static bool IsLtp(long pid) {
+  std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+  std::string name;
+  if (!(comm >> name)) return true;
+  return name.rfind("ltp", 0) == 0 || name.rfind("cli_tests", 0) == 0;
+}
+
 // One writer per FILE: the lock file holds the writer's pid; a lock whose process is gone
-// (kill -9) is stale and taken over.
+// (kill -9) or is not ltp (its pid reused) is stale and taken over.
 void ChartRecord::Lock() {
   const std::string lock = path_ + ".lock";
   for (int attempt = 0; attempt < 2; ++attempt) {
@@ -218,9 +236,12 @@ void ChartRecord::Lock() {
     long owner = 0;
     in >> owner;
     if (owner > 0 && owner != ::getpid() &&
-        (::kill(static_cast<pid_t>(owner), 0) == 0 || errno == EPERM))
+        (::kill(static_cast<pid_t>(owner), 0) == 0 || errno == EPERM) && IsLtp(owner))
       throw InputError("another ltp chart (process " + std::to_string(owner) + ") is writing '" +
-                       path_ + "'; wait for it, or use another --csv file");
+                       path_ +
+                       "'; wait for it, or use another --csv file (if it is not a chart "
+                       "of this file, the lock is stale: remove '" +
+                       lock + "')");
     std::filesystem::remove(lock);  // stale: its writer is gone
   }
   throw InputError("cannot lock '" + path_ + "' (" + lock + ")");

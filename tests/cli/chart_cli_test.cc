@@ -1,6 +1,8 @@
 // `ltp chart` end to end: intervals in the JSON summary, the CSV columns, failed points,
 // resume after an interruption, and MPI ranks against threads.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -290,17 +292,78 @@ TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   EXPECT_NE(old.err.find("not a journal"), std::string::npos) << old.err;
 }
 
-// One writer per CSV: a live writer's lock refuses a second run; a lock left by a killed
-// process (its pid gone) is taken over.
+// Journals that are not what they seem (the round-2 reproducers): a header record whose identity
+// is not JSON (re-checksummed) was waved through and a c = 0.5 sweep's points were resumed into
+// another; a directory gave libstdc++'s raw text; /dev/zero read until memory ran out.
+TEST(ChartCli, ResumeRefusesJournalsThatAreNotJournals) {
+  const std::string sweep = "chart mathieu --sweep a=0:3:0.05 --threads 1 ";
+  const std::string csv = Tmp("chart_header.csv"), journal = csv + ".journal";
+  ASSERT_EQ(RunLtp(sweep + "--set c=0.5 --csv " + csv + " --stop-after 20").code, 130);
+  {  // the header's identity replaced by an empty text, its checksum made right again
+    const std::string bytes = ReadFile(journal);
+    const size_t magic = std::string("ltp-journal 2\n").size();
+    std::uint32_t size = 0;
+    std::memcpy(&size, bytes.data() + magic, 4);
+    std::string payload = "H";
+    const std::uint32_t empty = 0;
+    payload.append(reinterpret_cast<const char*>(&empty), 4);
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a, as the journal frames it
+    for (unsigned char c : payload) {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+    const auto length = static_cast<std::uint32_t>(payload.size());
+    std::string frame(reinterpret_cast<const char*>(&length), 4);
+    frame.append(reinterpret_cast<const char*>(&h), 8);
+    std::ofstream out(journal, std::ios::binary | std::ios::trunc);
+    out << bytes.substr(0, magic) << frame << payload << bytes.substr(magic + 12 + size);
+  }
+  const auto damaged = RunLtp(sweep + "--csv " + csv + " --resume");
+  EXPECT_EQ(damaged.code, 2);
+  EXPECT_NE(damaged.err.find("damaged header record"), std::string::npos) << damaged.err;
+  std::filesystem::remove(journal);
+  std::filesystem::create_directory(journal);
+  const auto directory = RunLtp(sweep + "--csv " + csv + " --resume");
+  EXPECT_EQ(directory.code, 2);
+  EXPECT_NE(directory.err.find("not a regular file"), std::string::npos) << directory.err;
+  std::filesystem::remove(journal);
+  std::filesystem::create_symlink("/dev/zero", journal);
+  const auto zero = RunLtp(sweep + "--csv " + csv + " --resume");
+  EXPECT_EQ(zero.code, 2);
+  EXPECT_NE(zero.err.find("not a regular file"), std::string::npos) << zero.err;
+  std::filesystem::remove(journal);
+}
+
+// One writer per CSV: a live ltp's lock refuses a second run; a lock left by a killed process
+// (its pid gone) or holding the pid of a process that is not ltp (pid 1; a reused pid) is taken
+// over.
 TEST(ChartCli, OneWriterPerCsv) {
   const std::string csv = Tmp("chart_locked.csv");
+  // A live process whose command name starts with "ltp": /bin/sleep run through a link.
+  const std::string holder = Tmp("ltp-holder");
+  std::filesystem::remove(holder);
+  std::filesystem::create_symlink("/bin/sleep", holder);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl(holder.c_str(), holder.c_str(), "30", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_GT(pid, 0);
   {
     std::ofstream lock(csv + ".lock");
-    lock << 1 << "\n";  // pid 1 is always alive
+    lock << pid << "\n";
   }
   const auto busy = RunLtp("chart mathieu --sweep a=0:1:0.5 --csv " + csv);
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  std::filesystem::remove(holder);
   EXPECT_EQ(busy.code, 2);
   EXPECT_NE(busy.err.find("another ltp chart"), std::string::npos) << busy.err;
+  {
+    std::ofstream lock(csv + ".lock", std::ios::trunc);
+    lock << 1 << "\n";  // alive, but not ltp: stale
+  }
+  EXPECT_EQ(RunLtp("chart mathieu --sweep a=0:1:0.5 --csv " + csv).code, 0);
   {
     std::ofstream lock(csv + ".lock", std::ios::trunc);
     lock << 999999999 << "\n";  // no such process
