@@ -332,6 +332,14 @@ class Parser {
       Fail(at, "matrix " + name + " declares " + std::to_string(rows) +
                    " rows but the file has only " + std::to_string(lines_.size() - at - 1) +
                    " lines after its header");
+    // A row of `cols` numbers takes at least 2·cols − 1 characters.
+    size_t longest = 0;
+    for (size_t i = at + 1; i <= at + static_cast<size_t>(rows); ++i)
+      longest = std::max(longest, lines_[i].size());
+    if (static_cast<size_t>(cols) > (longest + 1) / 2)
+      Fail(at, "matrix " + name + " declares " + std::to_string(cols) +
+                   " columns but its longest row has " + std::to_string(longest) +
+                   " characters, too few for that many numbers");
     m->resize(rows, cols);
     size_t i = at + 1;
     for (int r = 0; r < rows; ++r, ++i) {

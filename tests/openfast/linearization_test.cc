@@ -205,6 +205,11 @@ TEST(OpenFastLin, MalformedFilesNameFileLineAndWhatWasExpected) {
   text.replace(text.find("A: 2 x 2"), 8, "A: 99999999 x 99999999");
   m = message(text);
   EXPECT_NE(m.find("declares 99999999 rows but the file has only"), std::string::npos) << m;
+  // ... and 2 rows of 99 999 999 columns likewise (16 GB: std::bad_alloc, round 2).
+  text = SmallFile();
+  text.replace(text.find("A: 2 x 2"), 8, "A: 2 x 99999999");
+  m = message(text);
+  EXPECT_NE(m.find("declares 99999999 columns but its longest row has"), std::string::npos) << m;
 
   // A table row of a vertical tab or form feed (found by the lin_file fuzzer): blank to the
   // tokenizer, so it must be blank to the table reader too, not a row with no row number.
