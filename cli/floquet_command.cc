@@ -355,6 +355,11 @@ int RunFloquet(FloquetArgs& args) {
   if (run_hill) {
     HillOptions ho;
     ho.solver = *ParseHillSolver(args.hill_solver);
+    ho.max_work_seconds = args.options.max_work_seconds;
+    ho.on_long_work = [](const WorkEstimate& w) {
+      std::cerr << "ltp floquet: Hill's method: about " << Num(w.seconds(), 2)
+                << " s of CPU work ahead (" << w.basis << ")\n";
+    };
     if (run_mono && r.ok) {  // shifts for the structured solver from the monodromy route
       for (const auto& m : r.modes) ho.expected.push_back(m.exponent);
     }

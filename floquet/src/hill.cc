@@ -601,10 +601,71 @@ void HillOptions::Validate() const {
   if (koopman_max_size < 0) fail("koopman_max_size", koopman_max_size, "koopman_max_size >= 0");
   if (!(max_dense_bytes > 0) || !std::isfinite(max_dense_bytes))
     fail("max_dense_bytes", max_dense_bytes, "finite and > 0");
+  if (!(max_work_seconds >= 0)) fail("max_work_seconds", max_work_seconds, ">= 0");
+  if (!(announce_work_seconds >= 0)) fail("announce_work_seconds", announce_work_seconds, ">= 0");
   for (const auto& e : expected)
     if (!std::isfinite(e.real()) || !std::isfinite(e.imag()))
       fail("expected", e.real() + e.imag(), "every expected exponent finite");
 }
+
+namespace {
+
+// One complex n×n product per n³ on this machine now (n = 128, the fastest of three).
+double ComplexProductSecondsPerCube() {
+  constexpr int k = 128;
+  const Eigen::MatrixXcd a = Eigen::MatrixXcd::Random(k, k);
+  Eigen::MatrixXcd c(k, k);
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < 3; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    c.noalias() = a * a;
+    best = std::min(best, SecondsSince(start));
+  }
+  return best / (static_cast<double>(k) * k * k);
+}
+
+// The dense solve's cost (HillOptions::max_work_seconds): refused far beyond the limit,
+// announced above announce_work_seconds.
+void WeighTheDenseWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
+  hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
+  const double m = static_cast<double>(n) * (2.0 * N + 1);
+  if (m < 300) return;  // well under a second anywhere
+  const int delta = o.delta_harmonics < 0   ? -1
+                    : o.delta_harmonics > 0 ? o.delta_harmonics
+                                            : std::max(2, (N + 1) / 2);
+  const double m2 = delta < 0 ? 0.0 : static_cast<double>(n) * (2.0 * (N + delta) + 1);
+  const bool koopman = o.koopman_check && m <= o.koopman_max_size;
+  constexpr double kProductsPerCube = 4;
+  WorkEstimate w;
+  w.evaluations = m * m * m * (koopman ? 3 : 1) + m2 * m2 * m2;
+  w.seconds_per_evaluation = kProductsPerCube * ComplexProductSecondsPerCube();
+  w.fewest_evaluations = w.evaluations / 3;
+  std::ostringstream basis;
+  basis.precision(3);
+  basis << "dense Hill eigen-solves of size " << static_cast<long>(m) << (m2 > 0 ? " and " : "")
+        << (m2 > 0 ? std::to_string(static_cast<long>(m2)) : std::string()) << " ("
+        << (koopman ? "with" : "without") << " the Koopman–Hill expm), ~" << kProductsPerCube
+        << " complex products per size³";
+  w.basis = basis.str();
+  if (o.max_work_seconds > 0 && w.fewest_seconds() > o.max_work_seconds) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "Hill's method at N = " << N << " would take at least " << w.fewest_seconds()
+      << " CPU s (about " << w.seconds() << " s; " << w.basis
+      << "), beyond HillOptions::max_work_seconds = " << o.max_work_seconds
+      << " (ltp: --max-work); use the structured solver or fewer harmonics";
+    throw InputError(s.str());
+  }
+  if (w.seconds() > o.announce_work_seconds) {
+    std::ostringstream s;
+    s.precision(2);
+    s << "work estimate before the analysis: about " << w.seconds() << " CPU s (" << w.basis << ")";
+    notes.push_back(s.str());
+    if (o.on_long_work) o.on_long_work(w);
+  }
+}
+
+}  // namespace
 
 HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requested) {
   requested.Validate();
@@ -638,6 +699,8 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     options.solver = c.solver;
     notes.push_back("solver auto → " + std::string(ToString(c.solver)) + ": " + c.reason);
   }
+  if (options.solver == HillSolver::kDense)
+    WeighTheDenseWork(A.rows(), options.harmonics, options, notes);
   HillResult r = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, options);
   // A structured result that failed its own checks (e.g. one eigenpair of a double exponent
   // found twice and another family missed) is replaced by the dense solver's, which sees the

@@ -11,6 +11,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/hill.h"
 #include "ltp/floquet/integrator_choice.h"
 
 namespace ltp {
@@ -71,6 +72,44 @@ TEST(WorkEstimate, FixedStepsAreCountedAndRefusedUpFront) {
   EXPECT_THROW(AnalyzeFloquet(FastOscillator(30), o), InputError);
   o.integrator.steps_per_period = 200000000;  // beyond what the refined run's doubling keeps
   EXPECT_THROW(AnalyzeFloquet(FastOscillator(30), o), InputError);
+}
+
+// Hill's dense solver weighs its eigen-solves before it starts: announced through the hook and
+// the diagnostics, refused far beyond the limit (N = 1000 on 2 states: sizes 4002 and 6002,
+// minutes anywhere), silent for a small solve.
+TEST(WorkEstimate, DenseHillIsWeighedBeforeItStarts) {
+  const PeriodicSystem system = FastOscillator(3);
+  HillOptions o;
+  o.solver = HillSolver::kDense;
+  o.harmonics = 80;  // matrix 322: above the weighing's floor, under a second
+  o.announce_work_seconds = 0;
+  int calls = 0;
+  WorkEstimate seen;
+  o.on_long_work = [&](const WorkEstimate& w) {
+    ++calls;
+    seen = w;
+  };
+  const HillResult r = AnalyzeHill(system, o);
+  EXPECT_EQ(calls, 1);
+  EXPECT_GT(seen.seconds(), 0);
+  EXPECT_NE(seen.basis.find("size 322 and 482"), std::string::npos) << seen.basis;
+  bool said = false;
+  for (const std::string& d : r.diagnostics) said = said || d.find("work estimate") == 0;
+  EXPECT_TRUE(said);
+  HillOptions quiet = o;
+  quiet.announce_work_seconds = HillOptions{}.announce_work_seconds;
+  calls = 0;
+  AnalyzeHill(system, quiet);
+  EXPECT_EQ(calls, 0);
+  HillOptions huge = o;
+  huge.harmonics = 1000;
+  huge.max_work_seconds = 1e-3;  // 7e10 size³: beyond it at any speed of this century
+  try {
+    AnalyzeHill(system, huge);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would take at least"), std::string::npos) << e.what();
+  }
 }
 
 TEST(WorkEstimate, AnAnalysisBeyondTheLimitIsRefusedWithTheEstimate) {
