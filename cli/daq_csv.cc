@@ -37,14 +37,9 @@ std::vector<std::string> Split(const std::string& line, char separator) {
 
 bool ParseNumber(std::string text, bool decimal_comma, double* x) {
   if (decimal_comma) std::replace(text.begin(), text.end(), ',', '.');
-  if (text.empty()) return false;
-  size_t used = 0;
-  try {
-    *x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used == text.size();
+  const std::optional<double> value = NumberIn(text);
+  if (value) *x = *value;
+  return value.has_value();
 }
 
 bool IsComment(const std::string& line) {

@@ -48,16 +48,10 @@ struct IdentifyArgs {
 // A number option that must be finite and > 0 when given; 0 when not.
 double PositiveOption(const std::string& text, const std::string& name) {
   if (text.empty()) return 0;
-  size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(x > 0) || !std::isfinite(x))
+  const std::optional<double> x = NumberIn(text);
+  if (!x || !(*x > 0) || !std::isfinite(*x))
     throw InputError(name + " must be a finite number > 0, got '" + text + "'");
-  return x;
+  return *x;
 }
 
 // ltp's CSV (one file), or DAQ files (one record each, the channels named by --input and

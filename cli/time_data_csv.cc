@@ -23,16 +23,9 @@ std::vector<std::string> SplitCsv(const std::string& line) {
 }
 
 double Number(const std::string& text, const std::string& where) {
-  size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || text.find_first_not_of(" \t\r", used) != std::string::npos)
-    throw InputError(where + ": '" + text + "' is not a number");
-  return x;
+  const std::optional<double> x = NumberIn(text);
+  if (!x) throw InputError(where + ": '" + text + "' is not a number");
+  return *x;
 }
 
 }  // namespace
@@ -71,6 +64,18 @@ void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::
     }
   }
   if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+std::optional<double> NumberIn(const std::string& text) {
+  size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used == 0 || text.find_first_not_of(" \t\r", used) != std::string::npos) return std::nullopt;
+  return x;
 }
 
 void RequireRegularFile(const std::string& path) {

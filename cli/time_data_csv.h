@@ -9,11 +9,15 @@
 //
 // One row per sample; the rows of a record are consecutive. Measured data written this way
 // (one record per step of a step-sine test) can be identified the same way.
+#include <optional>
 #include <string>
 
 #include "ltp/htf/time_data.h"
 
 namespace ltp::cli {
+
+/// The number `text` spells, the whole of it (trailing blanks allowed); nullopt otherwise.
+std::optional<double> NumberIn(const std::string& text);
 
 /// @throws InputError for a path that exists but is not a regular file (/dev/zero, a FIFO).
 void RequireRegularFile(const std::string& path);

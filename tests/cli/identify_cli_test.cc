@@ -206,6 +206,21 @@ TEST(IdentifyCli, HostileTimeDataGetsOneClearLine) {
   expect(RunLtp("identify /dev/zero"), "is not a regular file");
 }
 
+// The identified frequencies (as measured) and H_z, |z| ≤ 2, against the rig's closed form.
+void ExpectTheRigsPartialFrfs(const ltp::testing::Rig& rig, const json& j,
+                              const double (&truth_hz)[2]) {
+  ASSERT_EQ(j["frequencies"].size(), 2u);
+  for (size_t f = 0; f < 2; ++f) {
+    const json& e = j["frequencies"][f];
+    EXPECT_NEAR(e["excitation_hz"].get<double>(), truth_hz[f], 1e-9);
+    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
+    for (size_t z = 0; z < 5; ++z) {
+      const std::complex<double> h(e["H"][z]["re"].get<double>(), e["H"][z]["im"].get<double>());
+      EXPECT_LT(std::abs(h - truth[z]), 1e-6 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
+    }
+  }
+}
+
 // Rig data as a rig writes them: no period line, a tacho column, the rotor 1 % fast, shakers
 // off any grid with rounded frequencies in the log, 20.3 periods per record (tests/support/rig.h,
 // closed-form partial FRFs at the rig's speed).
@@ -235,15 +250,7 @@ TEST(IdentifyCli, ATachoChannelGivesTheRigsPartialFrfs) {
   EXPECT_NEAR(j["measured_speed_rad_s"]["mean"].get<double>() / rig.Speed(), 1, 1e-6);
   EXPECT_NEAR(j["period_s"].get<double>() * rig.Speed() / (2 * std::numbers::pi), 1, 1e-6);
   const double truth_hz[] = {0.1373, 0.6121};
-  for (size_t f = 0; f < 2; ++f) {
-    const json& e = j["frequencies"][f];
-    EXPECT_NEAR(e["excitation_hz"].get<double>(), truth_hz[f], 1e-9);
-    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
-    for (size_t z = 0; z < 5; ++z) {
-      const std::complex<double> h(e["H"][z]["re"].get<double>(), e["H"][z]["im"].get<double>());
-      EXPECT_LT(std::abs(h - truth[z]), 1e-6 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
-    }
-  }
+  ExpectTheRigsPartialFrfs(rig, j, truth_hz);
   // Without a period line, no tacho: the period is asked for; a tacho that is not a channel.
   EXPECT_EQ(RunLtp("identify " + csv).code, 2);
   const auto wrong = RunLtp("identify " + csv + " --tacho nope");
@@ -287,15 +294,7 @@ TEST(IdentifyCli, DaqFilesAreRecordsAndTheirFrequenciesComeFromTheInput) {
   ASSERT_EQ(id.code, 0) << id.err;
   const json j = json::parse(id.out);
   ASSERT_EQ(j["frequencies"].size(), 2u);
-  for (size_t f = 0; f < 2; ++f) {
-    const json& e = j["frequencies"][f];
-    EXPECT_NEAR(e["excitation_hz"].get<double>(), truth_hz[f], 1e-9);
-    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
-    for (size_t z = 0; z < 5; ++z) {
-      const std::complex<double> h(e["H"][z]["re"].get<double>(), e["H"][z]["im"].get<double>());
-      EXPECT_LT(std::abs(h - truth[z]), 1e-6 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
-    }
-  }
+  ExpectTheRigsPartialFrfs(rig, j, truth_hz);
   // Channels not named: input and output would be one channel.
   const auto unnamed = RunLtp("identify " + files[0] + " --tacho Tacho");
   EXPECT_EQ(unnamed.code, 2);
