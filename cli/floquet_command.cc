@@ -342,8 +342,8 @@ int RunFloquet(FloquetArgs& args) {
                               : s < 7200 ? Num(s / 60, 2) + " min"
                                          : Num(s / 3600, 2) + " h";
     std::cerr << "ltp floquet: about " << about << " of CPU work ahead (" << Num(w.evaluations, 2)
-              << " evaluations of A(t)·Φ at " << Num(w.seconds_per_evaluation * 1e6, 2)
-              << " µs each)\n";
+              << " evaluations of A(t)·Φ, or their worth of linear algebra, at "
+              << Num(w.seconds_per_evaluation * 1e6, 2) << " µs each)\n";
   };
   ProgressBar progress("floquet", !args.json);  // long integrations: a bar on a terminal
   args.options.on_progress = [&progress](std::string_view phase, double fraction) {
