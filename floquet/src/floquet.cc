@@ -213,7 +213,7 @@ Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
 std::string FloquetResult::BriefReport() const {
   std::ostringstream s;
   s << (ok ? "" : "FAILED: ") << "K = " << segments << ", max Re λ = " << max_real_exponent
-    << " 1/s (" << (stable ? "stable" : "unstable") << "), ";
+    << " 1/s (" << ToString(verdict) << "), ";
   if (error_estimate)
     s << "error ≈ " << *error_estimate;
   else

@@ -738,8 +738,8 @@ std::string HillResult::SolverDescription() const {
 std::string HillResult::BriefReport() const {
   std::ostringstream s;
   s << "Hill N = " << harmonics << " (" << SolverDescription() << ", size " << matrix_size
-    << "): max Re λ = " << max_real_exponent << " (" << (stable ? "stable" : "unstable")
-    << "), N vs N+" << delta_harmonics << ": ";
+    << "): max Re λ = " << max_real_exponent << " (" << ToString(verdict) << "), N vs N+"
+    << delta_harmonics << ": ";
   if (truncation_estimate)
     s << *truncation_estimate;
   else

@@ -145,3 +145,11 @@ def test_sizes_and_times_past_what_the_cli_accepts_are_refused():
     t = 3 * T + 0.25
     np.testing.assert_array_equal(s.A(1e308), s.A(np.fmod(1e308, T)))
     np.testing.assert_allclose(r.mode_matrix(t), r.mode_matrix(np.fmod(t, T)), rtol=1e-12, atol=1e-12)
+
+
+def test_the_repr_says_the_verdict():
+    # The repr said "(unstable)" for every result that was not stable, marginal ones included.
+    r = ltp.floquet(ltp.scene("mathieu", c=0, a=1.5, q=0.3))  # undamped, between tongues
+    assert r.verdict == "marginal" and "(marginal)" in repr(r)
+    h = ltp.hill(ltp.scene("mathieu", c=0, a=1.5, q=0.3), harmonics=16)
+    assert h.verdict in repr(h)
