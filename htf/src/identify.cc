@@ -227,6 +227,14 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   const internal::FittedRate excitation_rate = internal::FitSineFrequency(
       rec.time, u, written ? kTwoPi * rec.excitation_hz : internal::StrongestLine(rec.time, u));
   const double omega = excitation_rate.rate;
+  // The lines' phases are taken on absolute time: beyond ~1e12 rad a double keeps no digit of
+  // them (times written as epoch seconds at kHz would do that).
+  const double latest = std::max(std::abs(rec.time.front()), std::abs(rec.time.back()));
+  if (!(std::max(omega, std::abs(speed)) * latest < 1e12))
+    throw InputError(where + ": times up to " + MessageNumber(latest, 6) + " s at " +
+                     MessageNumber(omega / kTwoPi, 6) +
+                     " Hz leave the phase ωt no correct digit; give times from the start of "
+                     "the test (the model's phase must then be referenced to that start)");
   for (int z : {o.min_order, o.max_order})
     if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
       throw InputError(where + ": the line of order " + std::to_string(z) +

@@ -139,6 +139,14 @@ TEST(IdentifyStepSine, BadDataIsRefusedWithTheReason) {
   short_record.records[0].inputs.conservativeResize(10, Eigen::NoChange);
   short_record.records[0].outputs.conservativeResize(10, Eigen::NoChange);
   EXPECT_THROW(IdentifyStepSine(short_record, o), InputError);
+  TimeData epoch = sim.data;  // times as epoch-like seconds: ωt keeps no digit of its phase
+  for (double& t : epoch.records[0].time) t += 1e13;
+  try {
+    IdentifyStepSine(epoch, o);
+    ADD_FAILURE() << "times of 1e13 s were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no correct digit"), std::string::npos) << e.what();
+  }
   TimeData gap = sim.data;  // broadband needs the uniform grid; it names the right sample
   gap.records[0].excitation_hz = 0;
   gap.records[0].time[40] += 0.01;
