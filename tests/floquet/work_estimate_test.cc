@@ -76,12 +76,13 @@ TEST(WorkEstimate, FixedStepsAreCountedAndRefusedUpFront) {
 
 // Hill's dense solver weighs its eigen-solves before it starts: announced through the hook and
 // the diagnostics, refused far beyond the limit (N = 1000 on 2 states: sizes 4002 and 6002,
-// minutes anywhere), silent for a small solve.
+// minutes anywhere), not weighed for a small solve. No assertion depends on this machine's speed.
 TEST(WorkEstimate, DenseHillIsWeighedBeforeItStarts) {
   const PeriodicSystem system = FastOscillator(3);
   HillOptions o;
   o.solver = HillSolver::kDense;
-  o.harmonics = 80;  // matrix 322: above the weighing's floor, under a second
+  o.harmonics = 80;         // matrix 322: above the weighing's floor, under a second
+  o.koopman_check = false;  // not needed here, and slow in an instrumented build
   o.announce_work_seconds = 0;
   int calls = 0;
   WorkEstimate seen;
@@ -96,10 +97,12 @@ TEST(WorkEstimate, DenseHillIsWeighedBeforeItStarts) {
   bool said = false;
   for (const std::string& d : r.diagnostics) said = said || d.find("work estimate") == 0;
   EXPECT_TRUE(said);
-  HillOptions quiet = o;
-  quiet.announce_work_seconds = HillOptions{}.announce_work_seconds;
+  // A small solve (matrix below 300) is not weighed at all — whatever the machine's speed (an
+  // instrumented build takes seconds where a plain one takes milliseconds).
+  HillOptions small = o;
+  small.harmonics = 16;  // matrix 66
   calls = 0;
-  AnalyzeHill(system, quiet);
+  AnalyzeHill(system, small);
   EXPECT_EQ(calls, 0);
   HillOptions huge = o;
   huge.harmonics = 1000;
