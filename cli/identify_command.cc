@@ -56,8 +56,10 @@ double PositiveOption(const std::string& text, const std::string& name) {
 
 // ltp's CSV (one file), or DAQ files (one record each, the channels named by --input and
 // --output; every column also an aux: channel for --tacho / --angle).
-TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_period) {
-  if (args.files.size() == 1 && IsLtpTimeData(args.files.front())) {
+TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_period,
+                      bool* ltp_format) {
+  *ltp_format = args.files.size() == 1 && IsLtpTimeData(args.files.front());
+  if (*ltp_format) {
     if (!args.sample_rate.empty())
       throw InputError("--sample-rate: ltp's time-data CSV has its own time column");
     return ReadTimeDataCsv(args.files.front(), period, require_period);
@@ -248,7 +250,8 @@ int RunIdentify(const IdentifyArgs& args) {
                             ? PositiveOption(args.period, "--period")
                             : (rotor_speed > 0 ? 2 * std::numbers::pi / rotor_speed : 0);
   const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
-  TimeData data = ReadTimeData(args, period, !measured_angle);
+  bool ltp_format = false;
+  TimeData data = ReadTimeData(args, period, !measured_angle, &ltp_format);
   std::string name = args.files.front();
   for (size_t f = 1; f < args.files.size(); ++f) name += (f == 1 ? ", " : ", ") + args.files[f];
   const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
@@ -268,7 +271,7 @@ int RunIdentify(const IdentifyArgs& args) {
                      std::to_string(o.min_order) + ":" + std::to_string(o.max_order));
   // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
   // DAQ files write no frequency: step-sine records whose input says it.
-  bool broadband = args.files.size() == 1 && IsLtpTimeData(args.files.front());
+  bool broadband = ltp_format;
   for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
   const std::string method =
       args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;

@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   ltp::fuzz::RefuseOnlyWithLtpErrors([&] {
     ltp::TimeData d;
-    if (ltp::cli::IsLtpTimeData(path)) {
+    const bool ltp_format = ltp::cli::IsLtpTimeData(path);
+    if (ltp_format) {
       d = ltp::cli::ReadTimeDataCsv(path, 0, false);
     } else {
       const ltp::cli::ChannelTable t = ltp::cli::ReadDaqCsv(path, 100);
@@ -37,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     bool broadband = true;
     for (const ltp::TimeRecord& r : d.records) broadband = broadband && r.excitation_hz == 0;
     ltp::IdentifyOptions o;
-    if (broadband && ltp::cli::IsLtpTimeData(path))
+    if (broadband && ltp_format)
       (void)ltp::IdentifyBroadband(d, o);
     else
       (void)ltp::IdentifyStepSine(d, o);

@@ -14,6 +14,19 @@ namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
+// The polynomial through (x[k], y(k)), k = first … last, at t (Lagrange's form).
+template <class Values>
+double Polynomial(const std::vector<double>& x, const Values& y, long first, long last, double t) {
+  double value = 0;
+  for (long i = first; i <= last; ++i) {
+    double basis = 1;
+    for (long j = first; j <= last; ++j)
+      if (j != i) basis *= (t - x[j]) / (x[i] - x[j]);
+    value += basis * y(i);
+  }
+  return value;
+}
+
 // θ at t from the cubic through the (up to) four pulses around it.
 double InterpolateAngle(const std::vector<double>& tau, const std::vector<double>& theta,
                         double t) {
@@ -21,14 +34,8 @@ double InterpolateAngle(const std::vector<double>& tau, const std::vector<double
   const long right = std::upper_bound(tau.begin(), tau.end(), t) - tau.begin();
   const long points = std::min<long>(4, n);
   const long first = std::clamp<long>(right - 2, 0, n - points);
-  double value = 0;
-  for (long i = first; i < first + points; ++i) {
-    double basis = 1;
-    for (long j = first; j < first + points; ++j)
-      if (j != i) basis *= (t - tau[j]) / (tau[i] - tau[j]);
-    value += basis * theta[i];
-  }
-  return value;
+  return Polynomial(
+      tau, [&](long k) { return theta[k]; }, first, first + points - 1, t);
 }
 
 // The time in [t_{i−1}, t_i] where the cubic through the samples i−2 … i+1 (fewer at the
@@ -39,14 +46,9 @@ double CrossingTime(const std::vector<double>& time, const Eigen::VectorXd& sign
   const long n = static_cast<long>(time.size());
   const long first = std::max(0L, i - 2), last = std::min(n - 1, i + 1);
   const auto value = [&](double t) {
-    double v = 0;
-    for (long a = first; a <= last; ++a) {
-      double basis = 1;
-      for (long b = first; b <= last; ++b)
-        if (b != a) basis *= (t - time[b]) / (time[a] - time[b]);
-      v += basis * signal(a);
-    }
-    return v - level;
+    return Polynomial(
+               time, [&](long k) { return signal(k); }, first, last, t) -
+           level;
   };
   double lo = time[i - 1], hi = time[i];
   if (value(lo) >= 0 || value(hi) < 0) {  // the cubic overshoots a sharp edge: the chord

@@ -123,6 +123,10 @@ int ChannelFrom(const py::object& channel, const std::vector<std::string>& names
 /// names the value (built only then).
 py::array RealValued(const py::handle& value, const std::function<std::string()>& what);
 
+/// t of a periodic quantity of period `period`: finite (else InputError naming `what`), reduced
+/// exactly to [0, T) by fmod, so t = 1e308 is the value at its remainder, not cos(ω·1e308)'s NaN.
+double PeriodicTime(double t, double period, const std::string& what);
+
 /// An integrator by the CLI's name. @throws InputError listing the names.
 IntegratorType IntegratorFrom(const std::string& name);
 

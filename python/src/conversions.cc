@@ -174,4 +174,11 @@ int ChannelFrom(const py::object& channel, const std::vector<std::string>& names
   return ResolveChannel(text, names, count, what, what);
 }
 
+double PeriodicTime(double t, double period, const std::string& what) {
+  if (!std::isfinite(t)) throw InputError(what + ": t must be finite");
+  if (t >= 0 && t < period) return t;
+  const double r = std::fmod(t, period);
+  return r < 0 ? r + period : r;
+}
+
 }  // namespace ltp::python

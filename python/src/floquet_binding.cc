@@ -17,14 +17,6 @@ namespace ltp::python {
 
 namespace {
 
-// t for a periodic quantity of `f`: finite, reduced exactly to [0, T).
-double PeriodicTime(const FloquetResult& f, double t) {
-  if (!std::isfinite(t)) throw InputError("t must be finite");
-  if (t >= 0 && t < f.period) return t;
-  const double r = std::fmod(t, f.period);
-  return r < 0 ? r + f.period : r;
-}
-
 int SegmentsFrom(const py::object& segments) {
   if (py::isinstance<py::str>(segments) && segments.cast<std::string>() == "auto") return 0;
   if (py::isinstance<py::int_>(segments) && !py::isinstance<py::bool_>(segments)) {
@@ -144,12 +136,16 @@ formula beyond the error estimate): the diagnostics say why.)doc");
                     "what the analysis noticed, one line each")
       .def(
           "mode_matrix",
-          [](const FloquetResult& f, double t) { return f.ModeMatrix(PeriodicTime(f, t)); },
+          [](const FloquetResult& f, double t) {
+            return f.ModeMatrix(PeriodicTime(t, f.period, "mode_matrix"));
+          },
           py::arg("t"),
           "Ξ(t): the mode shapes at time t (spectral interpolation), n×n, column k = mode k")
       .def(
           "left_modes",
-          [](const FloquetResult& f, double t) { return f.LeftModes(PeriodicTime(f, t)); },
+          [](const FloquetResult& f, double t) {
+            return f.LeftModes(PeriodicTime(t, f.period, "left_modes"));
+          },
           py::arg("t"), "rows of Ξ(t)⁻¹")
       .def("__repr__",
            [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });

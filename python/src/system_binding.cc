@@ -223,11 +223,7 @@ py::object MaybeFourier(const FourierMatrix* f) {
 }
 
 Eigen::MatrixXd Evaluate(const System& s, char which, double t) {
-  if (!std::isfinite(t)) throw InputError(std::string(1, which) + "(t): t must be finite");
-  // A periodic quantity: any finite t is reduced to [0, T) exactly (fmod), so t = 1e308 gives
-  // the value at its remainder, not the NaN of cos(ω·1e308).
-  const double T = s.system.period();
-  if (t < 0 || t >= T) t = std::fmod(t, T) + (std::fmod(t, T) < 0 ? T : 0);
+  t = PeriodicTime(t, s.system.period(), std::string(1, which) + "(t)");
   if (s.callbacks) s.callbacks->Reset();
   Eigen::MatrixXd m;
   switch (which) {
