@@ -78,6 +78,13 @@ struct IdentifiedRecords {
   std::string method;
 };
 
+// One number of every identified frequency, as an array.
+py::array_t<double> PerFrequency(const IdentifiedRecords& r, double IdentifiedFrequency::*field) {
+  std::vector<double> v;
+  for (const IdentifiedFrequency& x : r.result.frequencies) v.push_back(x.*field);
+  return RealArray(v);
+}
+
 }  // namespace
 
 void BindIdentify(py::module_& m) {
@@ -198,9 +205,7 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
       .def_property_readonly(
           "excitation_hz",
           [](const IdentifiedRecords& r) {
-            std::vector<double> f;
-            for (const IdentifiedFrequency& x : r.result.frequencies) f.push_back(x.excitation_hz);
-            return RealArray(f);
+            return PerFrequency(r, &IdentifiedFrequency::excitation_hz);
           },
           "the frequencies (Hz), as measured from the inputs (step-sine)")
       .def_property_readonly(
@@ -231,19 +236,11 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
           "95 % bound on |error| of each H_z")
       .def_property_readonly(
           "speed",
-          [](const IdentifiedRecords& r) {
-            std::vector<double> v;
-            for (const IdentifiedFrequency& x : r.result.frequencies) v.push_back(x.speed);
-            return RealArray(v);
-          },
+          [](const IdentifiedRecords& r) { return PerFrequency(r, &IdentifiedFrequency::speed); },
           "step-sine: each record's mean dθ/dt (rad/s)")
       .def_property_readonly(
           "noise",
-          [](const IdentifiedRecords& r) {
-            std::vector<double> v;
-            for (const IdentifiedFrequency& x : r.result.frequencies) v.push_back(x.noise);
-            return RealArray(v);
-          },
+          [](const IdentifiedRecords& r) { return PerFrequency(r, &IdentifiedFrequency::noise); },
           "rms of the noise left by the fit (output units)")
       .def_readonly("period", &IdentifiedRecords::period,
                     "T (s): given, or 2π / the measured speed")
