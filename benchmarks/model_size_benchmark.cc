@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 
 #include "ltp/floquet/floquet.h"
@@ -64,6 +65,50 @@ BENCHMARK(SampledRotor)
     ->Args({124, 600})
     ->Args({64, 25})
     ->Args({64, 100})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// A wind-turbine-like set: natural frequencies 0.3…630 rad/s (0.05–100 Hz) spread
+// log-uniformly, 10 rpm, a gravity-like 1P term of 0.2 1/s² (≈ 1 % of a first flap mode's
+// stiffness), 3 azimuths; the analysis of the modes below CUTOFF_CENTIHZ/100 Hz (0 = all),
+// model-error term included, as `ltp floquet --modes-below` runs it.
+void SampledTurbineModesBelow(benchmark::State& state) {
+  const int states = static_cast<int>(state.range(0));
+  const double cutoff_hz = state.range(1) / 100.0;
+  const int blade_dofs = (states / 2 - 2) / 3;
+  const double omega = 2 * std::numbers::pi / 6;
+  const auto model = ltp::test::MakeIsotropicRotorLin(blade_dofs, 2, ltp::test::EvenAzimuths(3),
+                                                      omega, 3, 0.2, 0.02, 0.3, 630.0, true);
+  const std::string dir = ltp::test::WriteLinDirectory(
+      model.files,
+      (std::filesystem::temp_directory_path() / ("ltp-turbine-" + std::to_string(states)))
+          .string());
+  ltp::FloquetOptions o;
+  o.modes_below = 2 * std::numbers::pi * cutoff_hz;
+  long evaluations = 0;
+  int kept = 0;
+  double max_real = 0, estimate = 0;
+  for (auto _ : state) {
+    const ltp::LoadedScene l = ltp::LoadSceneInput({dir}, {});
+    ltp::FloquetResult r = ltp::AnalyzeFloquet(l.system, o);
+    ltp::IncludeModelError(l.model_alternatives, o, r);
+    evaluations = r.rhs_evals;
+    max_real = r.max_real_exponent;
+    estimate = r.error_estimate.value_or(-1);
+    kept = r.reduction ? r.reduction->kept : r.states;
+  }
+  state.counters["states"] = 2 * (3 * blade_dofs + 2);
+  state.counters["kept"] = kept;
+  state.counters["evaluations"] = static_cast<double>(evaluations);
+  state.counters["max_real"] = max_real;
+  state.counters["estimate"] = estimate;
+}
+BENCHMARK(SampledTurbineModesBelow)
+    ->Args({64, 300})
+    ->Args({64, 0})
+    ->Args({124, 300})
+    ->Args({252, 300})
+    ->Args({504, 300})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 

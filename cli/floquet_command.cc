@@ -42,6 +42,7 @@ struct FloquetArgs {
   bool keep_going = false;
   std::string modes_csv;
   std::string plot;
+  double modes_below_hz = 0;
 };
 
 // Turns the string options into the library's enums and counts. @throws InputError.
@@ -53,6 +54,11 @@ void ResolveOptions(FloquetArgs& args) {
     throw InputError("--hill-solver must be auto, dense or structured, got '" + args.hill_solver +
                      "'");
   args.options.integrator.type = *type;
+  args.options.modes_below = 2 * kPi * args.modes_below_hz;
+  if (args.modes_below_hz > 0 && args.method != "monodromy")
+    throw InputError(
+        "--modes-below works with --method monodromy (Hill's route analyses every "
+        "mode)");
   if (args.segments == "auto") {
     args.options.segments = 0;
   } else {
@@ -117,6 +123,22 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
   return exps;
 }
 
+// What an analysis of the modes below a cut-off left out (null for a full analysis).
+json ReductionJson(const std::optional<ModalReduction>& m) {
+  if (!m) return nullptr;
+  json dropped = json::array();
+  for (const auto& l : m->dropped)
+    dropped.push_back({{"re", JsonNumber(l.real())}, {"im", JsonNumber(l.imag())}});
+  return {{"cutoff_hz", m->cutoff / (2 * kPi)},
+          {"states", m->kept},
+          {"check_cutoff_hz", m->check_cutoff / (2 * kPi)},
+          {"check_states", m->check_kept},
+          {"truncation_change", JsonNumber(m->truncation_change)},
+          {"tail", JsonNumber(m->tail)},
+          {"dropped_mean_eigenvalues", dropped},
+          {"periodic_part", JsonNumber(m->periodic_part)}};
+}
+
 json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
   json mults, modes;
   json exps = ModesJson(r.modes, &mults, &modes);
@@ -142,6 +164,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"error_estimate", JsonNumber(r.error_estimate)},
           {"error_estimate_method", ToString(r.error_estimate_method)},
           {"model_error", r.model_error ? JsonNumber(*r.model_error) : json(nullptr)},
+          {"modes_below", ReductionJson(r.reduction)},
           {"liouville_residual", JsonNumber(r.liouville_residual)},
           {"mode_condition", JsonNumber(r.mode_condition)},
           {"rhs_evals", r.rhs_evals},
@@ -228,6 +251,20 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
   for (const auto& d : diagnostics) std::cout << "    - " << d << "\n";
 }
 
+void PrintReduction(const ModalReduction& m, int states) {
+  double dropped_max = -std::numeric_limits<double>::infinity();
+  for (const auto& l : m.dropped) dropped_max = std::max(dropped_max, l.real());
+  std::cout << "\n  modes below " << Num(m.cutoff / (2 * kPi), 4) << " Hz only: " << m.kept
+            << " of " << states << " states (the numbers from the projection at "
+            << Num(m.check_cutoff / (2 * kPi), 4) << " Hz, " << m.check_kept
+            << " states; truncation moves them by " << Num(m.truncation_change, 2)
+            << " 1/s, the modes beyond by about " << Num(m.tail, 2) << ")\n";
+  if (!m.dropped.empty())
+    std::cout << "  left out: " << m.dropped.size()
+              << " modes, mean-A eigenvalues up to Re λ = " << Num(dropped_max, 4)
+              << " 1/s, periodic part ‖A(t) − Ā‖ ≤ " << Num(m.periodic_part, 2) << "\n";
+}
+
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   std::cout << "  monodromy by " << ToString(r.integrator)
             << (args.integrator == "auto" ? " (picked by --integrator auto; " : " (") << "rel tol "
@@ -241,6 +278,7 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   if (!r.ok)
     std::cout << "\n  FAILED its own checks (see diagnostics): the exponents below are wrong\n";
   PrintModeTable(r.modes, r.mode_descriptions);
+  if (r.reduction) PrintReduction(*r.reduction, r.states);
   std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
             << VerdictText(r.verdict) << "   (max log|ρ| = " << Num(r.max_log_abs_multiplier, 8)
             << ")\n"
@@ -377,13 +415,14 @@ int RunFloquet(FloquetArgs& args) {
     std::ofstream csv(args.modes_csv);
     if (!csv) throw InputError("cannot write '" + args.modes_csv + "'");
     csv << "t";
-    for (int k = 0; k < r.states; ++k)
+    const int modes = static_cast<int>(r.modes.size());  // fewer than states with --modes-below
+    for (int k = 0; k < modes; ++k)
       for (int i = 0; i < r.states; ++i)
         csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
     csv << "\n" << std::setprecision(12);
     for (size_t s = 0; s < r.mode_samples.size(); ++s) {
       csv << r.sample_times[s];
-      for (int k = 0; k < r.states; ++k)
+      for (int k = 0; k < modes; ++k)
         for (int i = 0; i < r.states; ++i)
           csv << "," << r.mode_samples[s](i, k).real() << "," << r.mode_samples[s](i, k).imag();
       csv << "\n";
@@ -484,6 +523,11 @@ Command AddFloquetCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--threads", args.options.threads, "OpenMP threads (0 = all cores)")
       ->capture_default_str();
+  cmd->add_option("--modes-below", args.modes_below_hz,
+                  "analyse only the modes whose eigenvalue of the mean A(t) is below this many Hz "
+                  "(|λ|/2π), checked against twice the cut-off; 0 = every mode")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-work", args.options.max_work_seconds,
                   "refuse an analysis estimated to need more CPU seconds than this even at its "
                   "fastest (0 = no limit)")

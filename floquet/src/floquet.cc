@@ -19,6 +19,7 @@
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/floquet/threads.h"
+#include "modes_below.h"
 #include "rigid_body.h"
 #include "segment_grid.h"
 #include "state_balancing.h"
@@ -129,6 +130,8 @@ void FloquetOptions::Validate() const {
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
     fail("mode_samples", mode_samples, "0 or a power of two >= 4");
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
+  if (!(modes_below >= 0) || !std::isfinite(modes_below))
+    fail("modes_below", modes_below, "a finite modes_below >= 0 (rad/s; 0 = every mode)");
   if (error_estimate_method != ErrorEstimateMethod::kRefinedRun &&
       error_estimate_method != ErrorEstimateMethod::kLocalErrors)
     fail("error_estimate_method", static_cast<int>(error_estimate_method),
@@ -159,15 +162,16 @@ std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes) {
   return order;
 }
 
-double IntegralOfTrace(const PeriodicSystem& system) {
+Eigen::MatrixXd MeanOfA(const PeriodicSystem& system) {
   const double T = system.period();
-  if (const FourierMatrix* fa = system.fourier_A()) return T * (*fa)[0].real().trace();
+  const int n = system.states();
+  if (const FourierMatrix* fa = system.fourier_A()) return (*fa)[0].real();
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(n, n);
   if (system.form() == PeriodicSystem::Form::kPiecewiseConstant) {
     const auto& times = system.sample_times();
-    double sum = 0;
     for (size_t k = 0; k < times.size(); ++k) {
       const double end = k + 1 < times.size() ? times[k + 1] : times.front() + T;
-      sum += (end - times[k]) * system.samples()[k].A.trace();
+      sum += (end - times[k]) / T * system.samples()[k].A;
     }
     return sum;
   }
@@ -180,8 +184,7 @@ double IntegralOfTrace(const PeriodicSystem& system) {
   for (double b : system.breakpoints())
     if (b > 0) cuts.push_back(b);
   cuts.push_back(T);
-  Eigen::MatrixXd a(system.states(), system.states());
-  double sum = 0;
+  Eigen::MatrixXd a(n, n);
   for (size_t p = 0; p + 1 < cuts.size(); ++p) {
     const int panels = 16;
     const double h = (cuts[p + 1] - cuts[p]) / panels;
@@ -190,11 +193,15 @@ double IntegralOfTrace(const PeriodicSystem& system) {
       for (int i = 0; i < 5; ++i)
         for (double sgn : {-1.0, 1.0}) {
           system.EvalA(mid + sgn * x[i] * h / 2, a);
-          sum += w[i] * h / 2 * a.trace();
+          sum += w[i] * h / 2 / T * a;
         }
     }
   }
   return sum;
+}
+
+double IntegralOfTrace(const PeriodicSystem& system) {
+  return system.period() * MeanOfA(system).trace();
 }
 
 Eigen::MatrixXcd FloquetResult::ModeMatrix(double t) const {
@@ -625,6 +632,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
 
 FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& requested) {
   requested.Validate();
+  if (requested.modes_below > 0) return internal::AnalyzeModesBelow(given, requested);
   const auto start = std::chrono::steady_clock::now();
   // States in units far apart (a finite-element rotor's metres and radians, stiffness entries
   // of 1e9 N/m) are rescaled by powers of two before anything is measured or integrated;

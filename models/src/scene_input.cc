@@ -49,7 +49,18 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
     if (rotating) {
       other = parameters;
       other.at("mbc") = 1 - other.at("mbc");
-      alternatives.push_back(scene.build(other));
+      // A trigonometric model is carried into the analysed model's coordinates (the same
+      // exponents, a finite Fourier series again): an analysis of the modes below a cut-off
+      // projects both on one state space, and in the multi-blade frame the blade-coordinate
+      // model is as nearly constant as the analysed one. Held samples are not: T(ψ) turns
+      // within each hold.
+      PeriodicSystem built = scene.build(other);
+      if (built.form() == PeriodicSystem::Form::kFourier) try {
+          built = TransformedMultiBlade(built, *op, parameters.at("mbc") == 1);
+        } catch (const InputError&) {
+          // not a finite series after all: compared in its own coordinates
+        }
+      alternatives.push_back(std::move(built));
     }
   }
   return {std::move(scene), std::move(parameters), std::move(system), std::move(notes),

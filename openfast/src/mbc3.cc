@@ -11,6 +11,7 @@
 #include <regex>
 
 #include "ltp/core/error.h"
+#include "ltp/core/fourier_fit.h"
 #include "ltp/core/multiblade.h"
 
 namespace ltp {
@@ -511,6 +512,32 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
           : std::string("no rotating-frame blade states: the multi-blade transform is the "
                         "identity and the files' coordinates are used as they are"));
   return out;
+}
+
+PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
+                                     bool to_multiblade) {
+  const Mbc3Result mbc = Mbc3(op);
+  if (!mbc.applicable) throw InputError("multi-blade coordinates do not apply to this model");
+  const BladeCoordinates states = mbc.state_coordinates;
+  const std::vector<int> rate_of = RateOf(op.states);
+  const double omega = op.rotor_speed;
+  const int n = system.states();
+  const PeriodicSystem::MatrixFunction a = [=](double t, Eigen::Ref<MatrixXd> out) {
+    const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
+    const Eigen::PartialPivLU<MatrixXd> lu(x.T);
+    const MatrixXd given = system.A(t);
+    out = to_multiblade ? MatrixXd(lu.solve(given * x.T - x.T_dot))
+                        : MatrixXd((x.T * given + x.T_dot) * lu.inverse());
+  };
+  FourierFitOptions fit;
+  fit.tol = 1e-14;
+  fit.max_samples = 256;  // harmonics of ψ up to those of A plus two: a few dozen at most
+  const FourierFit f = FitFourier(a, n, n, system.period(), fit);
+  if (!f.converged)
+    throw InputError("the model in the other coordinates is not a finite Fourier series");
+  return PeriodicSystem::FromFourier(system.period(), f.series)
+      .WithLabels(system.labels())
+      .WithRotorSpeed(omega);
 }
 
 }  // namespace ltp

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -103,7 +104,27 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       .def_readonly("mode_condition", &FloquetResult::mode_condition,
                     "cond Ξ(t), the best of up to 16 sample times; large = (near-)defective; None "
                     "without mode shapes")
-      .def_readonly("monodromy", &FloquetResult::monodromy, "Φ(T, 0), n×n")
+      .def_readonly("monodromy", &FloquetResult::monodromy,
+                    "Φ(T, 0), n×n (with modes_below: the part of the modes analysed, U Φ_r Wᵀ)")
+      .def_property_readonly(
+          "reduction",
+          [](const FloquetResult& f) -> py::object {
+            if (!f.reduction) return py::none();
+            const ModalReduction& m = *f.reduction;
+            return py::dict(py::arg("cutoff_hz") = m.cutoff / (2 * std::numbers::pi),
+                            py::arg("states") = m.kept,
+                            py::arg("check_cutoff_hz") = m.check_cutoff / (2 * std::numbers::pi),
+                            py::arg("check_states") = m.check_kept,
+                            py::arg("truncation_change") = m.truncation_change,
+                            py::arg("tail") = m.tail,
+                            py::arg("dropped_mean_eigenvalues") = ComplexArray(m.dropped),
+                            py::arg("periodic_part") = m.periodic_part);
+          },
+          "None, or with modes_below: what was analysed and left out — cutoff_hz, states, "
+          "check_cutoff_hz, check_states, truncation_change (1/s, in every estimate), tail (the "
+          "modes "
+          "beyond the check, second order; twice in every estimate), "
+          "dropped_mean_eigenvalues, periodic_part (max ‖A(t) − Ā‖_F)")
       .def_readonly("mode_descriptions", &FloquetResult::mode_descriptions,
                     "what carries each mode: shares of its displacement energy per state at t = 0, "
                     "blade states "
@@ -113,11 +134,15 @@ formula beyond the error estimate): the diagnostics say why.)doc");
           "uniform times of mode_samples")
       .def_property_readonly(
           "mode_samples",
-          [](const FloquetResult& f) { return ComplexStack(f.mode_samples, f.states, f.states); },
+          [](const FloquetResult& f) {
+            return ComplexStack(f.mode_samples, f.states, static_cast<int>(f.modes.size()));
+          },
           "ξ_k(t_s): shape (S, n, n), column k of [s] is mode k at sample_times[s]")
       .def_property_readonly(
           "mode_harmonics",
-          [](const FloquetResult& f) { return ComplexStack(f.mode_fourier, f.states, f.states); },
+          [](const FloquetResult& f) {
+            return ComplexStack(f.mode_fourier, f.states, static_cast<int>(f.modes.size()));
+          },
           "Fourier coefficients of the mode shapes: shape (2H+1, n, n), [v + H][:, k] is "
           "harmonic v of mode k (v = -H..H, see mode_harmonic_orders)")
       .def_property_readonly(
@@ -155,7 +180,8 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       "floquet",
       [](const System& system, const std::string& integrator, double tol, int steps,
          const py::object& segments, const std::string& multipliers, const std::string& estimate,
-         int mode_samples, int threads, double max_work, const py::object& progress) {
+         int mode_samples, int threads, double max_work, double modes_below,
+         const py::object& progress) {
         FloquetOptions o;
         o.integrator.type = IntegratorFrom(integrator);
         o.integrator.rel_tol = tol;
@@ -170,6 +196,7 @@ formula beyond the error estimate): the diagnostics say why.)doc");
         o.mode_samples = mode_samples;
         o.threads = AnalysisThreads(system, threads);
         o.max_work_seconds = max_work;
+        o.modes_below = 2 * std::numbers::pi * modes_below;
         o.Validate();
         // A notebook's progress bar: called with the GIL, from whatever thread integrates (the
         // library serialises the calls); what it raises is raised once the analysis is done.
@@ -202,7 +229,8 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       py::arg("multipliers") = "schur",
       py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
       py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
-      py::arg("max_work") = defaults.max_work_seconds, py::arg("progress") = py::none(), R"doc(
+      py::arg("max_work") = defaults.max_work_seconds, py::arg("modes_below") = 0.0,
+      py::arg("progress") = py::none(), R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
@@ -220,6 +248,9 @@ the same options and defaults.
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU
                 seconds than this even at its fastest (0 = no limit); an analysis estimated
                 beyond 10 s says so in its diagnostics
+  modes_below   analyse only the modes whose eigenvalue of the mean A(t) is below this many Hz
+                (|λ|/2π), checked against twice the cut-off (its change is in each estimate;
+                result.reduction says what was left out); 0 = every mode
   progress      None, or a callable progress(phase, fraction) told each phase of the work
                 ('run', 'refined run', 'mode shapes'; 'other model 1 of 2: run' for .lin data)
                 and the fraction of its period integrated, at most every half percent

@@ -152,6 +152,42 @@ TEST(MbcCli, FloquetOnLinFilesDefaultsToTheExactRouteAndCountsTheModelError) {
   EXPECT_NE(j["verdict"], "unstable");
 }
 
+TEST(MbcCli, FloquetOfTheModesBelowAFrequency) {
+  // Modes 0.05…50 Hz, log-uniform, Ω = 1 rad/s, constant in multi-blade coordinates: the
+  // exponents below 1 Hz are eig(A_MBC) modulo jΩ (tests/support/isotropic_rotor_lin.h).
+  const auto model = ltp::test::MakeIsotropicRotorLin(5, 2, ltp::test::EvenAzimuths(3), 1.0, 5, 0.0,
+                                                      0.02, 0.3, 300.0, true);
+  const std::string dir =
+      ltp::test::WriteLinDirectory(model.files, std::string(::testing::TempDir()) + "below-cli");
+  Outcome r = Ltp("floquet " + dir + " --modes-below 1 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  const int kept = j["modes_below"]["states"].get<int>();
+  int slow = 0;
+  for (auto l : model.exponents) slow += std::abs(l) <= 2 * 3.141592653589793;
+  EXPECT_EQ(kept, slow);
+  EXPECT_EQ(j["exponents"].size(), static_cast<size_t>(kept));
+  EXPECT_EQ(j["modes_below"]["dropped_mean_eigenvalues"].size(),
+            model.exponents.size() - static_cast<size_t>(kept));
+  EXPECT_GT(j["modes_below"]["check_states"].get<int>(), kept);
+  EXPECT_EQ(j["verdict"], "stable");
+  for (const auto& e : j["exponents"]) {
+    double nearest = 1e300;
+    for (auto l : model.exponents)
+      nearest =
+          std::min(nearest, std::hypot(e["re"].get<double>() - l.real(),
+                                       std::remainder(e["im"].get<double>() - l.imag(), 1.0)));
+    EXPECT_LE(nearest, e["error_estimate"].get<double>());
+  }
+  r = Ltp("floquet " + dir + " --modes-below 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("modes below 1 Hz only: " + std::to_string(kept) + " of"), std::string::npos)
+      << r.out;
+  r = Ltp("floquet " + dir + " --modes-below 1 --method hill");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--modes-below works with --method monodromy"), std::string::npos) << r.err;
+}
+
 TEST(MbcCli, ClusteredAzimuthsRefusedByFloquetSkippedByMbc) {
   const double deg = 3.141592653589793 / 180;
   const auto model = ltp::test::MakeIsotropicRotorLin(2, 2, {0.5 * deg, 10 * deg, 20 * deg});

@@ -52,3 +52,23 @@ def test_finite_element_rotor_in_si_units_matches_scipy():
     reference = scipy_max_real_exponent(period, system.fourier_A)
     assert abs(r.max_real_exponent - reference) <= r.error_estimate
 
+
+
+def test_modes_below_a_frequency_match_the_full_analysis():
+    # The same 40-state rotor, only the modes of the mean A below the 12th smallest |λ|: the
+    # reference is the full analysis (no projection), whose own estimate is far smaller.
+    period, M, D, K = fe_rotor(4)
+    system = ltp.System.from_second_order(period, M=M, K=K, D=D)
+    moduli = np.sort(np.abs(np.linalg.eigvals(system.fourier_A[system.fourier_A.shape[0] // 2].real)))
+    cutoff_hz = 0.5 * (moduli[11] + moduli[12]) / (2 * np.pi)
+    full = ltp.floquet(system)
+    r = ltp.floquet(system, modes_below=cutoff_hz)
+    assert r.ok and r.reduction["states"] == 12 and r.reduction["check_states"] > 12
+    assert len(r.reduction["dropped_mean_eigenvalues"]) == 28
+    assert r.mode_samples.shape[1:] == (40, 12)  # shapes in the given states
+    w = 2 * np.pi / period
+    for e, est in zip(r.exponents, r.exponent_error_estimates):
+        d = np.hypot((full.exponents - e).real,
+                     np.remainder((full.exponents - e).imag + w / 2, w) - w / 2).min()
+        assert d <= est - full.error_estimate
+    assert ltp.floquet(system).reduction is None

@@ -39,10 +39,14 @@ struct IsotropicRotorLin {
   std::vector<LinFile> files;                   ///< one per azimuth, blade coordinates
 };
 
+/// Natural frequencies (rad/s) are drawn uniformly from [lowest, highest], or log-uniformly
+/// when `log_spread` (a structure whose modes span decades: BeamDyn blades to 100 Hz).
 inline IsotropicRotorLin MakeIsotropicRotorLin(int blade_dofs, int fixed_dofs,
                                                const std::vector<double>& azimuths,
                                                double omega = 1.0, unsigned seed = 1,
-                                               double gravity = 0, double zeta = 0.02) {
+                                               double gravity = 0, double zeta = 0.02,
+                                               double lowest = 0.5, double highest = 4.0,
+                                               bool log_spread = false) {
   using Eigen::MatrixXcd;
   using Eigen::MatrixXd;
   constexpr double pi = std::numbers::pi;
@@ -50,7 +54,9 @@ inline IsotropicRotorLin MakeIsotropicRotorLin(int blade_dofs, int fixed_dofs,
   const int pairs = nf / 2, axial = nf - 2 * pairs;
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> frequency(0.5, 4.0);
+  std::uniform_real_distribution<double> uniform(log_spread ? std::log(lowest) : lowest,
+                                                 log_spread ? std::log(highest) : highest);
+  auto frequency = [&](std::mt19937& g) { return log_spread ? std::exp(uniform(g)) : uniform(g); };
   std::vector<int> col;
   std::vector<std::pair<int, int>> cyc;
   for (int j = 0; j < nb; ++j) col.push_back(3 * j);

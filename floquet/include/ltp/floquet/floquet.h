@@ -94,6 +94,15 @@ struct FloquetOptions {
   /// for the other models of sampled data) and the fraction of its period done, at most every
   /// half percent; one call at a time, possibly from a worker thread.
   std::function<void(std::string_view phase, double fraction)> on_progress;
+  /// Analyse only the modes whose eigenvalue of the mean Ā = (1/T)∫A dt has modulus at most
+  /// this (rad/s); 0 = every mode. The system is projected on Ā's invariant subspace of those
+  /// modes, analysed, and measured against the projection with kModesBelowCheck times the
+  /// cut-off (further when that adds fewer than a quarter of the modes kept): the change is
+  /// added to each exponent's estimate. What a Campbell diagram or a
+  /// verdict on the slow modes needs, at a cost set by the cut-off instead of the stiffest
+  /// mode (docs/model-sizes.md, "Modes below a frequency"). FloquetResult::reduction says what
+  /// was left out.
+  double modes_below = 0;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
@@ -102,6 +111,30 @@ struct FloquetOptions {
 /// one analysis inside a larger job ("other model 1 of 2: run").
 std::function<void(std::string_view, double)> PrefixedProgress(
     std::function<void(std::string_view, double)> sink, std::string prefix);
+
+/// The second cut-off of a reduced analysis, as a multiple of FloquetOptions::modes_below.
+inline constexpr double kModesBelowCheck = 2;
+
+/// What an analysis of the modes below a cut-off (FloquetOptions::modes_below) kept and left out.
+struct ModalReduction {
+  double cutoff = 0;        ///< rad/s: the modes of Ā with |λ| ≤ cutoff were analysed
+  int kept = 0;             ///< states of the reduced system (= the modes reported)
+  double check_cutoff = 0;  ///< rad/s: the cut-off of the analysis the numbers come from
+  int check_kept = 0;       ///< its states
+  /// Largest distance (1/s, modulo jΩp) between an exponent at `cutoff` and at
+  /// `check_cutoff`: what the truncation moves; in every exponent's estimate.
+  double truncation_change = 0;
+  /// Largest second-order effect (1/s) of the modes beyond `check_cutoff` on an exponent
+  /// through the periodic part (+inf at a resonance); twice each exponent's own is in its
+  /// estimate.
+  double tail = 0;
+  /// Eigenvalues of Ā (1/s) of the modes left out, and max_t ‖A(t) − Ā‖_F in the balanced
+  /// states: how far the periodic part may move their exponents from these (an estimate, not a
+  /// bound: ill-conditioned eigenvectors move further). The verdict is `stable` only when
+  /// max Re of them plus this stays below 0.
+  std::vector<std::complex<double>> dropped;
+  double periodic_part = 0;
+};
 
 struct FloquetMode {
   std::complex<double> exponent;        ///< λ on the chosen branch (1/s)
@@ -177,7 +210,11 @@ struct FloquetResult {
   /// column k, harmonics v = −H..H.
   std::vector<Eigen::MatrixXcd> mode_fourier;
   int mode_harmonics = 0;  ///< H
-  long rhs_evals = 0;      ///< evaluations of A(t)Φ; kTaylor: products A_j Φ_k of the series
+  /// Set when only the modes below FloquetOptions::modes_below were analysed: `modes` then
+  /// holds those (shapes n × reduction->kept), `monodromy` is their part U Φ_r Wᵀ (rank
+  /// `kept`) and max_real_exponent is over them.
+  std::optional<ModalReduction> reduction;
+  long rhs_evals = 0;  ///< evaluations of A(t)Φ; kTaylor: products A_j Φ_k of the series
   double elapsed_s = 0;
   std::vector<std::string> diagnostics;
 
@@ -202,6 +239,9 @@ FloquetMode MakeFloquetMode(std::complex<double> log_multiplier, int branch, dou
 /// The order in which both routes (monodromy and Hill) report modes: by |Im λ|, positive
 /// frequency first, then by Re λ descending. Returns indices into `modes`.
 std::vector<int> ModeDisplayOrder(const std::vector<FloquetMode>& modes);
+
+/// Ā = (1/T) ∫_0^T A(t) dt, by the rules of IntegralOfTrace.
+Eigen::MatrixXd MeanOfA(const PeriodicSystem& system);
 
 /// ∫_0^T tr A(t) dt: exact for Fourier and piecewise-constant systems, Gauss–Legendre on the
 /// smooth pieces between breakpoints otherwise.

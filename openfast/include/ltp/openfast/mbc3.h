@@ -158,4 +158,15 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options = {});
 /// mode shapes in the fixed frame. @throws InputError when MBC does not apply.
 LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc3Result& mbc);
 
+/// A model of `op`'s samples in the files' (blade) coordinates carried into multi-blade
+/// coordinates, x_R = T(ψ) x_NR with ψ = Ω t, A_NR = T⁻¹(A_R T − Ṫ) — or, with
+/// `to_multiblade` false, a multi-blade model carried back, A_R = (T A_NR + Ṫ) T⁻¹. A periodic
+/// Lyapunov transformation: the exponents are unchanged, and the model shares the state space
+/// of one built in the other coordinates, so the two can be compared mode by mode (the
+/// sampling error of docs/sampled-models.md, on the modes below a cut-off). A and T hold
+/// finitely many harmonics of ψ, so the result is a Fourier series, fitted exactly by FFT.
+/// @throws InputError when MBC does not apply.
+PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
+                                     bool to_multiblade);
+
 }  // namespace ltp

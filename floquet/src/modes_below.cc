@@ -1,0 +1,286 @@
+#include "modes_below.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "ltp/core/elapsed.h"
+#include "ltp/core/exponent_match.h"
+#include "ltp/core/mode_description.h"
+#include "ltp/floquet/model_error.h"
+#include "rigid_body.h"
+#include "spectral_split.h"
+#include "state_balancing.h"
+#include "truncation_tail.h"
+
+namespace ltp::internal {
+namespace {
+
+using cd = std::complex<double>;
+
+// q' = Wᵀ A(t) U q, in the form the system has: Fourier coefficients and samples are projected
+// once; a time function is projected at every evaluation.
+PeriodicSystem Projected(const PeriodicSystem& s, const SpectralSplit& split) {
+  const Eigen::MatrixXd wt = split.left.transpose();
+  const Eigen::MatrixXd& u = split.right;
+  const int k = static_cast<int>(u.cols());
+  PeriodicSystem out = [&] {
+    if (const FourierMatrix* fa = s.fourier_A()) {
+      FourierMatrix r(k, k, fa->max_harmonic());
+      for (int w = 0; w <= fa->max_harmonic(); ++w)
+        r.SetHarmonic(w, wt.cast<cd>() * (*fa)[w] * u.cast<cd>());
+      return PeriodicSystem::FromFourier(s.period(), r);
+    }
+    if (s.form() == PeriodicSystem::Form::kPiecewiseConstant) {
+      std::vector<LtiSystem> samples;
+      for (const LtiSystem& x : s.samples()) samples.push_back({wt * x.A * u, {}, {}, {}});
+      return PeriodicSystem::FromSamples(s.period(), s.sample_times(), samples);
+    }
+    PeriodicSystem::Functions f;
+    const int n = s.states();
+    f.A = [s, wt, u, n](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+      thread_local Eigen::MatrixXd a;
+      a.resize(n, n);
+      s.EvalA(t, a);
+      out.noalias() = wt * (a * u);
+    };
+    return PeriodicSystem::FromFunctions(s.period(), k, 0, 0, f, s.breakpoints());
+  }();
+  return s.rotor_speed() ? out.WithRotorSpeed(*s.rotor_speed()) : out;
+}
+
+// max_t ‖A(t) − Ā‖_F: Σ_w ‖A_w‖_F over the harmonics (a bound) for a Fourier series, else the
+// largest of the samples, or of 64 times for a time function.
+double PeriodicPart(const PeriodicSystem& s, const Eigen::MatrixXd& mean) {
+  if (const FourierMatrix* fa = s.fourier_A()) {
+    double sum = 0;
+    for (int w = 1; w <= fa->max_harmonic(); ++w) sum += 2 * (*fa)[w].norm();
+    return sum;
+  }
+  double largest = 0;
+  if (s.form() == PeriodicSystem::Form::kPiecewiseConstant) {
+    for (const LtiSystem& x : s.samples()) largest = std::max(largest, (x.A - mean).norm());
+    return largest;
+  }
+  Eigen::MatrixXd a(s.states(), s.states());
+  for (int i = 0; i < 64; ++i) {
+    s.EvalA((i + 0.5) * s.period() / 64, a);
+    largest = std::max(largest, (a - mean).norm());
+  }
+  return largest;
+}
+
+// The reduced result's shapes in the given states: x = S U q for the columns `keep`.
+Eigen::MatrixXcd ToStates(const Eigen::MatrixXcd& q, const Eigen::MatrixXd& u,
+                          const Eigen::VectorXd& scale, const std::vector<int>& keep) {
+  Eigen::MatrixXcd picked(q.rows(), keep.size());
+  for (size_t j = 0; j < keep.size(); ++j) picked.col(j) = q.col(keep[j]);
+  Eigen::MatrixXcd x = u.cast<cd>() * picked;
+  if (scale.size()) x = scale.cast<cd>().asDiagonal() * x;
+  return x;
+}
+
+std::string Hz(double rad_per_s) {
+  std::ostringstream s;
+  s << rad_per_s / (2 * std::acos(-1.0)) << " Hz";
+  return s.str();
+}
+
+FloquetOptions Unreduced(const FloquetOptions& options, int states, bool shapes) {
+  FloquetOptions o = options;
+  o.modes_below = 0;
+  o.compute_modes = options.compute_modes && shapes;
+  o.estimate_error = options.estimate_error && shapes;  // the first run: exponents only
+  o.on_progress = PrefixedProgress(options.on_progress,
+                                   "modes below (" + std::to_string(states) + " states): ");
+  return o;
+}
+
+// The verdict on the kept modes (each exponent with its own estimate), made `marginal` when the
+// modes left out might reach Re λ ≥ 0.
+void Classify(const ModalReduction& m, FloquetResult& r) {
+  r.max_real_exponent = MaxRealExponent(r.modes);
+  r.max_log_abs_multiplier = r.max_real_exponent * r.period;
+  std::vector<double> real_parts, own;
+  std::vector<bool> rigid;
+  for (const FloquetMode& mode : r.modes) {
+    real_parts.push_back(mode.exponent.real());
+    own.push_back(mode.error_estimate.value_or(r.error_estimate.value_or(0)));
+    rigid.push_back(mode.rigid_body);
+  }
+  const std::optional<double> band =
+      r.error_estimate ? std::optional<double>(PerExponentBand(
+                             real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate))
+                       : std::nullopt;
+  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
+  double reach = -std::numeric_limits<double>::infinity();
+  for (const cd& l : m.dropped) reach = std::max(reach, l.real() + m.periodic_part);
+  if (r.verdict == StabilityVerdict::kStable && reach >= 0) {
+    r.verdict = StabilityVerdict::kMarginal;
+    std::ostringstream s;
+    s << "stability undecided (marginal): the modes below the cut-off are stable, but those "
+         "left out have mean eigenvalues up to Re λ = "
+      << reach - m.periodic_part << " 1/s, and the periodic part (" << m.periodic_part
+      << ") may move them past 0 — raise the cut-off or analyse every mode";
+    r.diagnostics.push_back(s.str());
+  }
+  r.stable = r.verdict == StabilityVerdict::kStable;
+}
+
+}  // namespace
+
+FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const double inf = std::numeric_limits<double>::infinity();
+  // Split in balanced states: an orthonormal basis of metres and radians against N/m would
+  // weigh the subspace by the units.
+  const Eigen::VectorXd scale = StateBalancing(given);
+  const PeriodicSystem system = scale.size() ? given.WithStateScaling(scale) : given;
+  const Eigen::MatrixXd mean = MeanOfA(system);
+  ModalReduction m;
+  m.cutoff = options.modes_below;
+  m.check_cutoff = kModesBelowCheck * options.modes_below;
+  const SpectralSplit low = SplitAtModulus(mean, m.cutoff);
+  // The check must add modes to measure anything: past twice the cut-off, at least the next
+  // quarter of the kept count (two at least) of the modes left out, nearest first.
+  std::vector<double> beyond;
+  for (const cd& l : low.dropped) beyond.push_back(std::abs(l));
+  std::sort(beyond.begin(), beyond.end());
+  const size_t added = std::max<size_t>(2, (low.kept.size() + 3) / 4);
+  if (!beyond.empty())
+    m.check_cutoff = std::max(m.check_cutoff, beyond[std::min(added, beyond.size()) - 1]);
+  const SpectralSplit check = SplitAtModulus(mean, m.check_cutoff);
+  FloquetResult r;
+  r.states = system.states();
+  r.period = system.period();
+  if (!low.ok || !check.ok || low.kept.empty()) {
+    r.failure = !low.ok || !check.ok
+                    ? "the mean of A(t) has no Schur form (non-finite entries)"
+                    : "no mode of the mean A(t) has |λ| ≤ " + std::to_string(m.cutoff) +
+                          " rad/s (" + Hz(m.cutoff) + "): raise the cut-off";
+    r.diagnostics.push_back(r.failure);
+    r.elapsed_s = SecondsSince(start);
+    return r;
+  }
+  m.kept = static_cast<int>(low.kept.size());
+  m.check_kept = static_cast<int>(check.kept.size());
+  m.dropped = low.dropped;
+  m.periodic_part = PeriodicPart(system, mean);
+
+  // Without an estimate there is nothing to check: one projection, at the cut-off.
+  const bool checked = options.estimate_error;
+  if (!checked) {
+    m.check_cutoff = m.cutoff;
+    m.check_kept = m.kept;
+  }
+  const SpectralSplit& used = checked ? check : low;
+  const FloquetResult first =
+      checked ? AnalyzeFloquet(Projected(system, low), Unreduced(options, m.kept, false))
+              : FloquetResult{};
+  FloquetResult second =
+      AnalyzeFloquet(Projected(system, used), Unreduced(options, m.check_kept, true));
+  // The numbers are the larger projection's, for the modes the smaller one has.
+  std::vector<cd> a, b;
+  for (const FloquetMode& x : (checked ? first : second).modes) a.push_back(x.exponent);
+  for (const FloquetMode& x : second.modes) b.push_back(x.exponent);
+  const std::vector<int> match = MatchExponentIndices(a, b, system.omega());
+  // The projection's own round-off: Schur form and Sylvester solve are backward stable, so the
+  // reduced matrices are those of an Ā moved by a few ε‖Ā‖, amplified by the decoupling.
+  const double projection_floor = 16 * std::numeric_limits<double>::epsilon() * mean.norm() *
+                                  (1 + std::max(low.coupling, check.coupling));
+  std::vector<int> keep;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (match[i] < 0) continue;
+    const double change = ExponentDistance(a[i], b[match[i]], system.omega()) + projection_floor;
+    m.truncation_change = std::max(m.truncation_change, change);
+    FloquetMode mode = second.modes[match[i]];
+    if (mode.error_estimate) *mode.error_estimate += change;
+    mode.rigid_body = false;
+    r.modes.push_back(mode);
+    keep.push_back(match[i]);
+  }
+  if (keep.size() != a.size()) m.truncation_change = inf;
+  // The modes beyond the check's cut-off are in neither projection: their second-order effect
+  // (truncation_tail.h), twice, joins each estimate — the change between two truncations alone
+  // misses a slowly converging tail (a finite-element shaft whose stiffness asymmetry couples
+  // every mode: 7.6e-4 between 12 and 16 states against a true 0.05).
+  if (checked && !r.modes.empty()) {
+    std::vector<cd> reported;
+    for (const FloquetMode& mode : r.modes) reported.push_back(mode.exponent);
+    const std::vector<double> tail = TruncationTail(system, mean, m.check_cutoff, reported);
+    for (size_t k = 0; k < r.modes.size(); ++k) {
+      m.tail = std::max(m.tail, tail[k]);
+      if (r.modes[k].error_estimate) *r.modes[k].error_estimate += 2 * tail[k];
+    }
+  }
+  // Back in the display order of both routes.
+  const std::vector<int> order = ModeDisplayOrder(r.modes);
+  std::vector<FloquetMode> ordered;
+  std::vector<int> kept_columns;
+  for (int i : order) {
+    ordered.push_back(r.modes[i]);
+    kept_columns.push_back(keep[i]);
+  }
+  r.modes = std::move(ordered);
+  r.ok = (first.ok || !checked) && second.ok && std::isfinite(m.truncation_change);
+  r.failure = checked && !first.ok ? "the analysis at the cut-off failed: " + first.failure
+              : !second.ok         ? second.failure
+              : r.ok               ? ""
+                                   : "the analyses at the two cut-offs found different modes";
+  r.integrator = second.integrator;
+  r.multiplier_method = second.multiplier_method;
+  r.error_estimate_method = second.error_estimate_method;
+  r.segments = second.segments;
+  r.grid_segments = second.grid_segments;
+  r.segment_times = second.segment_times;
+  r.liouville_residual = second.liouville_residual;
+  r.mode_condition = second.mode_condition;
+  r.mode_harmonics = second.mode_harmonics;
+  r.sample_times = second.sample_times;
+  for (const auto& q : second.mode_samples)
+    r.mode_samples.push_back(ToStates(q, used.right, scale, kept_columns));
+  for (const auto& q : second.mode_fourier)
+    r.mode_fourier.push_back(ToStates(q, used.right, scale, kept_columns));
+  r.monodromy = used.right * second.monodromy * used.left.transpose();
+  if (scale.size())
+    r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
+  if (!r.mode_samples.empty())
+    r.mode_descriptions = DescribeModeShapes(given.labels(), r.mode_samples.front());
+  for (std::string& line : FlagRigidBodyModes(
+           given.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
+           r.modes))
+    r.diagnostics.push_back(std::move(line));
+  if (second.error_estimate) {
+    double largest = 0;
+    for (const FloquetMode& mode : r.modes) largest = std::max(largest, *mode.error_estimate);
+    r.error_estimate = std::max(largest, *second.error_estimate + m.truncation_change + 2 * m.tail);
+  }
+  {
+    std::ostringstream s;
+    s << "modes below " << Hz(m.cutoff) << " (|λ| ≤ " << m.cutoff
+      << " rad/s of the mean A): " << m.kept << " of " << r.states << " states analysed";
+    if (checked)
+      s << ", the numbers from the projection at " << Hz(m.check_cutoff) << " (" << m.check_kept
+        << " states); between the two the exponents move by at most " << m.truncation_change
+        << " 1/s, and the modes beyond the second by about " << m.tail
+        << " (second order in the periodic part): both, the latter twice, added to each "
+           "estimate (docs/model-sizes.md)";
+    else
+      s << "; what the modes left out change is not measured (no error estimate asked for)";
+    if (low.coupling > 1e6)
+      s << "; the cut-off separates eigenvalues of the mean that are close (decoupling "
+        << low.coupling << ")";
+    r.diagnostics.push_back(s.str());
+  }
+  for (const std::string& d : second.diagnostics) r.diagnostics.push_back(d);
+  if (!r.failure.empty() && r.failure != second.failure) r.diagnostics.push_back(r.failure);
+  r.rhs_evals = first.rhs_evals + second.rhs_evals;
+  r.reduction = m;
+  Classify(m, r);
+  r.elapsed_s = SecondsSince(start);
+  return r;
+}
+
+}  // namespace ltp::internal
