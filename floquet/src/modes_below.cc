@@ -164,6 +164,16 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
     r.elapsed_s = SecondsSince(start);
     return r;
   }
+  if (low.dropped.empty()) {  // nothing to leave out: the ordinary analysis
+    FloquetOptions every = options;
+    every.modes_below = 0;
+    FloquetResult full = AnalyzeFloquet(given, every);
+    full.diagnostics.insert(full.diagnostics.begin(),
+                            "every mode of the mean A(t) is below " + Hz(m.cutoff) +
+                                ": all analysed, none left out");
+    full.elapsed_s = SecondsSince(start);
+    return full;
+  }
   m.kept = static_cast<int>(low.kept.size());
   m.check_kept = static_cast<int>(check.kept.size());
   m.dropped = low.dropped;
