@@ -168,9 +168,9 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
     FloquetOptions every = options;
     every.modes_below = 0;
     FloquetResult full = AnalyzeFloquet(given, every);
-    full.diagnostics.insert(full.diagnostics.begin(),
-                            "every mode of the mean A(t) is below " + Hz(m.cutoff) +
-                                ": all analysed, none left out");
+    full.diagnostics.insert(
+        full.diagnostics.begin(),
+        "every mode of the mean A(t) is below " + Hz(m.cutoff) + ": all analysed, none left out");
     full.elapsed_s = SecondsSince(start);
     return full;
   }
