@@ -129,11 +129,128 @@ void Classify(const ModalReduction& m, FloquetResult& r) {
   r.stable = r.verdict == StabilityVerdict::kStable;
 }
 
+// The check's cut-off: twice the cut-off, and past at least the next quarter of the kept
+// count (two at least) of the modes left out, nearest first — the check must add modes to
+// measure anything.
+double CheckCutoff(const SpectralSplit& low, double cutoff) {
+  std::vector<double> beyond;
+  for (const cd& l : low.dropped) beyond.push_back(std::abs(l));
+  std::sort(beyond.begin(), beyond.end());
+  const size_t added = std::max<size_t>(2, (low.kept.size() + 3) / 4);
+  double check = kModesBelowCheck * cutoff;
+  if (!beyond.empty()) check = std::max(check, beyond[std::min(added, beyond.size()) - 1]);
+  return check;
+}
+
+// The reported modes: the larger projection's (`numbers`) matched to the smaller one's
+// (`first`), each estimate grown by its change plus `floor`; `columns` gets each one's column
+// in `numbers`' shapes. Returns the largest change (+inf when a mode found no match).
+double MergeMatched(const FloquetResult& first, const FloquetResult& numbers, double omega,
+                    double floor, std::vector<FloquetMode>& modes, std::vector<int>& columns) {
+  std::vector<cd> a, b;
+  for (const FloquetMode& x : first.modes) a.push_back(x.exponent);
+  for (const FloquetMode& x : numbers.modes) b.push_back(x.exponent);
+  const std::vector<int> match = MatchExponentIndices(a, b, omega);
+  double largest = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (match[i] < 0) return std::numeric_limits<double>::infinity();
+    const double change = ExponentDistance(a[i], b[match[i]], omega) + floor;
+    largest = std::max(largest, change);
+    FloquetMode mode = numbers.modes[match[i]];
+    if (mode.error_estimate) *mode.error_estimate += change;
+    mode.rigid_body = false;  // flagged again from the shapes in the given states
+    modes.push_back(mode);
+    columns.push_back(match[i]);
+  }
+  return largest;
+}
+
+// Twice the modes beyond the check's second-order effect (truncation_tail.h) in each
+// estimate: the change between two truncations alone misses a slowly converging tail (a
+// finite-element shaft whose stiffness asymmetry couples every mode: 7.6e-4 between 12 and 16
+// states against a true 0.05). Returns the largest effect.
+double AddTail(const PeriodicSystem& system, const Eigen::MatrixXd& mean, double cutoff,
+               std::vector<FloquetMode>& modes) {
+  std::vector<cd> reported;
+  for (const FloquetMode& mode : modes) reported.push_back(mode.exponent);
+  const std::vector<double> tail = TruncationTail(system, mean, cutoff, reported);
+  double largest = 0;
+  for (size_t k = 0; k < modes.size(); ++k) {
+    largest = std::max(largest, tail[k]);
+    if (modes[k].error_estimate) *modes[k].error_estimate += 2 * tail[k];
+  }
+  return largest;
+}
+
+// Grid, checks and shapes of the analysis the numbers come from, the shapes and monodromy in
+// the given states (x = S U q), the modes in display order with their descriptions and the
+// rigid-body flag.
+void TakeFromProjection(const FloquetResult& numbers, const SpectralSplit& used,
+                        const Eigen::VectorXd& scale, const SystemLabels& labels,
+                        std::vector<FloquetMode> modes, const std::vector<int>& columns,
+                        FloquetResult& r) {
+  std::vector<int> kept_columns;
+  for (int i : ModeDisplayOrder(modes)) {
+    r.modes.push_back(modes[i]);
+    kept_columns.push_back(columns[i]);
+  }
+  r.integrator = numbers.integrator;
+  r.multiplier_method = numbers.multiplier_method;
+  r.error_estimate_method = numbers.error_estimate_method;
+  r.segments = numbers.segments;
+  r.grid_segments = numbers.grid_segments;
+  r.segment_times = numbers.segment_times;
+  r.liouville_residual = numbers.liouville_residual;
+  r.mode_condition = numbers.mode_condition;
+  r.mode_harmonics = numbers.mode_harmonics;
+  r.sample_times = numbers.sample_times;
+  for (const auto& q : numbers.mode_samples)
+    r.mode_samples.push_back(ToStates(q, used.right, scale, kept_columns));
+  for (const auto& q : numbers.mode_fourier)
+    r.mode_fourier.push_back(ToStates(q, used.right, scale, kept_columns));
+  r.monodromy = used.right * numbers.monodromy * used.left.transpose();
+  if (scale.size())
+    r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
+  if (!r.mode_samples.empty())
+    r.mode_descriptions = DescribeModeShapes(labels, r.mode_samples.front());
+  for (std::string& line : FlagRigidBodyModes(
+           labels, r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(), r.modes))
+    r.diagnostics.push_back(std::move(line));
+}
+
+std::string SummaryLine(const ModalReduction& m, int states, bool checked, double decoupling) {
+  std::ostringstream s;
+  s << "modes below " << Hz(m.cutoff) << " (|λ| ≤ " << m.cutoff
+    << " rad/s of the mean A): " << m.kept << " of " << states << " states analysed";
+  if (checked)
+    s << ", the numbers from the projection at " << Hz(m.check_cutoff) << " (" << m.check_kept
+      << " states); between the two the exponents move by at most " << m.truncation_change
+      << " 1/s, and the modes beyond the second by about " << m.tail
+      << " (second order in the periodic part): both, the latter twice, added to each "
+         "estimate (docs/model-sizes.md)";
+  else
+    s << "; what the modes left out change is not measured (no error estimate asked for)";
+  if (decoupling > 1e6)
+    s << "; the cut-off separates eigenvalues of the mean that are close (decoupling " << decoupling
+      << ")";
+  return s.str();
+}
+
+FloquetResult Failed(std::string why, const PeriodicSystem& system,
+                     std::chrono::steady_clock::time_point start) {
+  FloquetResult r;
+  r.states = system.states();
+  r.period = system.period();
+  r.failure = std::move(why);
+  r.diagnostics.push_back(r.failure);
+  r.elapsed_s = SecondsSince(start);
+  return r;
+}
+
 }  // namespace
 
 FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const double inf = std::numeric_limits<double>::infinity();
   // Split in balanced states: an orthonormal basis of metres and radians against N/m would
   // weigh the subspace by the units.
   const Eigen::VectorXd scale = StateBalancing(given);
@@ -141,29 +258,15 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
   const Eigen::MatrixXd mean = MeanOfA(system);
   ModalReduction m;
   m.cutoff = options.modes_below;
-  m.check_cutoff = kModesBelowCheck * options.modes_below;
   const SpectralSplit low = SplitAtModulus(mean, m.cutoff);
-  // The check must add modes to measure anything: past twice the cut-off, at least the next
-  // quarter of the kept count (two at least) of the modes left out, nearest first.
-  std::vector<double> beyond;
-  for (const cd& l : low.dropped) beyond.push_back(std::abs(l));
-  std::sort(beyond.begin(), beyond.end());
-  const size_t added = std::max<size_t>(2, (low.kept.size() + 3) / 4);
-  if (!beyond.empty())
-    m.check_cutoff = std::max(m.check_cutoff, beyond[std::min(added, beyond.size()) - 1]);
+  m.check_cutoff = CheckCutoff(low, m.cutoff);
   const SpectralSplit check = SplitAtModulus(mean, m.check_cutoff);
-  FloquetResult r;
-  r.states = system.states();
-  r.period = system.period();
-  if (!low.ok || !check.ok || low.kept.empty()) {
-    r.failure = !low.ok || !check.ok
-                    ? "the mean of A(t) has no Schur form (non-finite entries)"
-                    : "no mode of the mean A(t) has |λ| ≤ " + std::to_string(m.cutoff) +
-                          " rad/s (" + Hz(m.cutoff) + "): raise the cut-off";
-    r.diagnostics.push_back(r.failure);
-    r.elapsed_s = SecondsSince(start);
-    return r;
-  }
+  if (!low.ok || !check.ok)
+    return Failed("the mean of A(t) has no Schur form (non-finite entries)", system, start);
+  if (low.kept.empty())
+    return Failed("no mode of the mean A(t) has |λ| ≤ " + std::to_string(m.cutoff) + " rad/s (" +
+                      Hz(m.cutoff) + "): raise the cut-off",
+                  system, start);
   if (low.dropped.empty()) {  // nothing to leave out: the ordinary analysis
     FloquetOptions every = options;
     every.modes_below = 0;
@@ -178,7 +281,6 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
   m.check_kept = static_cast<int>(check.kept.size());
   m.dropped = low.dropped;
   m.periodic_part = PeriodicPart(system, mean);
-
   // Without an estimate there is nothing to check: one projection, at the cut-off.
   const bool checked = options.estimate_error;
   if (!checked) {
@@ -189,104 +291,37 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
   const FloquetResult first =
       checked ? AnalyzeFloquet(Projected(system, low), Unreduced(options, m.kept, false))
               : FloquetResult{};
-  FloquetResult second =
+  const FloquetResult numbers =
       AnalyzeFloquet(Projected(system, used), Unreduced(options, m.check_kept, true));
-  // The numbers are the larger projection's, for the modes the smaller one has.
-  std::vector<cd> a, b;
-  for (const FloquetMode& x : (checked ? first : second).modes) a.push_back(x.exponent);
-  for (const FloquetMode& x : second.modes) b.push_back(x.exponent);
-  const std::vector<int> match = MatchExponentIndices(a, b, system.omega());
   // The projection's own round-off: Schur form and Sylvester solve are backward stable, so the
   // reduced matrices are those of an Ā moved by a few ε‖Ā‖, amplified by the decoupling.
   const double projection_floor = 16 * std::numeric_limits<double>::epsilon() * mean.norm() *
                                   (1 + std::max(low.coupling, check.coupling));
-  std::vector<int> keep;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (match[i] < 0) continue;
-    const double change = ExponentDistance(a[i], b[match[i]], system.omega()) + projection_floor;
-    m.truncation_change = std::max(m.truncation_change, change);
-    FloquetMode mode = second.modes[match[i]];
-    if (mode.error_estimate) *mode.error_estimate += change;
-    mode.rigid_body = false;
-    r.modes.push_back(mode);
-    keep.push_back(match[i]);
-  }
-  if (keep.size() != a.size()) m.truncation_change = inf;
-  // The modes beyond the check's cut-off are in neither projection: their second-order effect
-  // (truncation_tail.h), twice, joins each estimate — the change between two truncations alone
-  // misses a slowly converging tail (a finite-element shaft whose stiffness asymmetry couples
-  // every mode: 7.6e-4 between 12 and 16 states against a true 0.05).
-  if (checked && !r.modes.empty()) {
-    std::vector<cd> reported;
-    for (const FloquetMode& mode : r.modes) reported.push_back(mode.exponent);
-    const std::vector<double> tail = TruncationTail(system, mean, m.check_cutoff, reported);
-    for (size_t k = 0; k < r.modes.size(); ++k) {
-      m.tail = std::max(m.tail, tail[k]);
-      if (r.modes[k].error_estimate) *r.modes[k].error_estimate += 2 * tail[k];
-    }
-  }
-  // Back in the display order of both routes.
-  const std::vector<int> order = ModeDisplayOrder(r.modes);
-  std::vector<FloquetMode> ordered;
-  std::vector<int> kept_columns;
-  for (int i : order) {
-    ordered.push_back(r.modes[i]);
-    kept_columns.push_back(keep[i]);
-  }
-  r.modes = std::move(ordered);
-  r.ok = (first.ok || !checked) && second.ok && std::isfinite(m.truncation_change);
+  std::vector<FloquetMode> modes;
+  std::vector<int> columns;
+  m.truncation_change = MergeMatched(checked ? first : numbers, numbers, system.omega(),
+                                     projection_floor, modes, columns);
+  if (checked && std::isfinite(m.truncation_change))
+    m.tail = AddTail(system, mean, m.check_cutoff, modes);
+  FloquetResult r;
+  r.states = system.states();
+  r.period = system.period();
+  r.ok = (first.ok || !checked) && numbers.ok && std::isfinite(m.truncation_change);
   r.failure = checked && !first.ok ? "the analysis at the cut-off failed: " + first.failure
-              : !second.ok         ? second.failure
+              : !numbers.ok        ? numbers.failure
               : r.ok               ? ""
                                    : "the analyses at the two cut-offs found different modes";
-  r.integrator = second.integrator;
-  r.multiplier_method = second.multiplier_method;
-  r.error_estimate_method = second.error_estimate_method;
-  r.segments = second.segments;
-  r.grid_segments = second.grid_segments;
-  r.segment_times = second.segment_times;
-  r.liouville_residual = second.liouville_residual;
-  r.mode_condition = second.mode_condition;
-  r.mode_harmonics = second.mode_harmonics;
-  r.sample_times = second.sample_times;
-  for (const auto& q : second.mode_samples)
-    r.mode_samples.push_back(ToStates(q, used.right, scale, kept_columns));
-  for (const auto& q : second.mode_fourier)
-    r.mode_fourier.push_back(ToStates(q, used.right, scale, kept_columns));
-  r.monodromy = used.right * second.monodromy * used.left.transpose();
-  if (scale.size())
-    r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
-  if (!r.mode_samples.empty())
-    r.mode_descriptions = DescribeModeShapes(given.labels(), r.mode_samples.front());
-  for (std::string& line : FlagRigidBodyModes(
-           given.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
-           r.modes))
-    r.diagnostics.push_back(std::move(line));
-  if (second.error_estimate) {
+  TakeFromProjection(numbers, used, scale, given.labels(), std::move(modes), columns, r);
+  if (numbers.error_estimate) {
     double largest = 0;
     for (const FloquetMode& mode : r.modes) largest = std::max(largest, *mode.error_estimate);
-    r.error_estimate = std::max(largest, *second.error_estimate + m.truncation_change + 2 * m.tail);
+    r.error_estimate =
+        std::max(largest, *numbers.error_estimate + m.truncation_change + 2 * m.tail);
   }
-  {
-    std::ostringstream s;
-    s << "modes below " << Hz(m.cutoff) << " (|λ| ≤ " << m.cutoff
-      << " rad/s of the mean A): " << m.kept << " of " << r.states << " states analysed";
-    if (checked)
-      s << ", the numbers from the projection at " << Hz(m.check_cutoff) << " (" << m.check_kept
-        << " states); between the two the exponents move by at most " << m.truncation_change
-        << " 1/s, and the modes beyond the second by about " << m.tail
-        << " (second order in the periodic part): both, the latter twice, added to each "
-           "estimate (docs/model-sizes.md)";
-    else
-      s << "; what the modes left out change is not measured (no error estimate asked for)";
-    if (low.coupling > 1e6)
-      s << "; the cut-off separates eigenvalues of the mean that are close (decoupling "
-        << low.coupling << ")";
-    r.diagnostics.push_back(s.str());
-  }
-  for (const std::string& d : second.diagnostics) r.diagnostics.push_back(d);
-  if (!r.failure.empty() && r.failure != second.failure) r.diagnostics.push_back(r.failure);
-  r.rhs_evals = first.rhs_evals + second.rhs_evals;
+  r.diagnostics.push_back(SummaryLine(m, r.states, checked, low.coupling));
+  for (const std::string& d : numbers.diagnostics) r.diagnostics.push_back(d);
+  if (!r.failure.empty() && r.failure != numbers.failure) r.diagnostics.push_back(r.failure);
+  r.rhs_evals = first.rhs_evals + numbers.rhs_evals;
   r.reduction = m;
   Classify(m, r);
   r.elapsed_s = SecondsSince(start);
