@@ -374,7 +374,7 @@ int RunFloquet(FloquetArgs& args) {
   FloquetResult r;
   HillResult h;
   // A long analysis says so before it starts (the library's estimate), on stderr.
-  args.options.on_long_work = [](const WorkEstimate& w) {
+  args.options.on_long_work = [reduced = args.modes_below_hz > 0](const WorkEstimate& w) {
     const double s = w.seconds();
     const std::string about = s < 120    ? Num(s, 2) + " s"
                               : s < 7200 ? Num(s / 60, 2) + " min"
@@ -382,6 +382,9 @@ int RunFloquet(FloquetArgs& args) {
     std::cerr << "ltp floquet: about " << about << " of CPU work ahead (" << Num(w.evaluations, 2)
               << " evaluations of A(t)·Φ, or their worth of linear algebra, at "
               << Num(w.seconds_per_evaluation * 1e6, 2) << " µs each)\n";
+    if (!reduced)
+      std::cerr << "ltp floquet: if only the slower modes matter (a Campbell diagram to a few "
+                   "Hz), --modes-below HZ analyses those and says what the rest change\n";
   };
   ProgressBar progress("floquet", !args.json);  // long integrations: a bar on a terminal
   args.options.on_progress = [&progress](std::string_view phase, double fraction) {
