@@ -599,16 +599,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
     r.diagnostics.push_back(s.str());
   }
   std::optional<double> band = r.error_estimate;
-  if (r.error_estimate) {
-    std::vector<double> real_parts, own;
-    std::vector<bool> rigid;
-    for (const FloquetMode& m : r.modes) {
-      real_parts.push_back(m.exponent.real());
-      own.push_back(m.error_estimate.value_or(*r.error_estimate));
-      rigid.push_back(m.rigid_body);
-    }
-    band = PerExponentBand(real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate);
-  }
+  if (r.error_estimate) band = PerModeBand(r.modes, r.max_real_exponent, *r.error_estimate);
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate)

@@ -96,18 +96,12 @@ std::string SamplingErrorLine(double term, size_t alternatives) {
 
 // Gives each mode its band (own estimate + e_k) and returns the band on max Re λ that the
 // verdict uses; says so when it is narrower than the largest.
-double PerModeBand(const std::vector<double>& e, double integration, double max_real,
-                   double estimate, std::vector<FloquetMode>& modes,
-                   std::vector<std::string>& diagnostics) {
-  std::vector<double> real_parts, own;
-  std::vector<bool> rigid;
-  for (size_t k = 0; k < modes.size(); ++k) {
-    real_parts.push_back(modes[k].exponent.real());
-    own.push_back(e[k] + modes[k].error_estimate.value_or(integration));
-    rigid.push_back(modes[k].rigid_body);
-    modes[k].error_estimate = own.back();
-  }
-  const double band = PerExponentBand(real_parts, own, rigid, 0, max_real, estimate);
+double SamplingBand(const std::vector<double>& e, double integration, double max_real,
+                    double estimate, std::vector<FloquetMode>& modes,
+                    std::vector<std::string>& diagnostics) {
+  for (size_t k = 0; k < modes.size(); ++k)
+    modes[k].error_estimate = e[k] + modes[k].error_estimate.value_or(integration);
+  const double band = PerModeBand(modes, max_real, estimate);
   if (band < estimate) {
     std::ostringstream v;
     v << "verdict: max Re λ is within ±" << band
@@ -132,7 +126,7 @@ void ApplySamplingErrors(const std::vector<double>& e, double integration, size_
   r.diagnostics.push_back(SamplingErrorLine(term, alternatives));
   // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
   const double band =
-      PerModeBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
+      SamplingBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
   const StabilityVerdict before = r.verdict;
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
@@ -164,6 +158,17 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                       h.error_estimate.value_or(std::numeric_limits<double>::infinity()),
                       alternatives.size(), h);
   h.elapsed_s += SecondsSince(start);
+}
+
+double PerModeBand(const std::vector<FloquetMode>& modes, double max_real, double fallback) {
+  std::vector<double> real_parts, own;
+  std::vector<bool> rigid;
+  for (const FloquetMode& m : modes) {
+    real_parts.push_back(m.exponent.real());
+    own.push_back(m.error_estimate.value_or(fallback));
+    rigid.push_back(m.rigid_body);
+  }
+  return PerExponentBand(real_parts, own, rigid, 0, max_real, fallback);
 }
 
 double PerExponentBand(const std::vector<double>& real_parts, const std::vector<double>& own,

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "ltp/core/elapsed.h"
@@ -84,7 +85,7 @@ Eigen::MatrixXcd ToStates(const Eigen::MatrixXcd& q, const Eigen::MatrixXd& u,
 
 std::string Hz(double rad_per_s) {
   std::ostringstream s;
-  s << rad_per_s / (2 * std::acos(-1.0)) << " Hz";
+  s << rad_per_s / (2 * std::numbers::pi) << " Hz";
   return s.str();
 }
 
@@ -103,17 +104,10 @@ FloquetOptions Unreduced(const FloquetOptions& options, int states, bool shapes)
 void Classify(const ModalReduction& m, FloquetResult& r) {
   r.max_real_exponent = MaxRealExponent(r.modes);
   r.max_log_abs_multiplier = r.max_real_exponent * r.period;
-  std::vector<double> real_parts, own;
-  std::vector<bool> rigid;
-  for (const FloquetMode& mode : r.modes) {
-    real_parts.push_back(mode.exponent.real());
-    own.push_back(mode.error_estimate.value_or(r.error_estimate.value_or(0)));
-    rigid.push_back(mode.rigid_body);
-  }
   const std::optional<double> band =
-      r.error_estimate ? std::optional<double>(PerExponentBand(
-                             real_parts, own, rigid, 0, r.max_real_exponent, *r.error_estimate))
-                       : std::nullopt;
+      r.error_estimate
+          ? std::optional<double>(PerModeBand(r.modes, r.max_real_exponent, *r.error_estimate))
+          : std::nullopt;
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   double reach = -std::numeric_limits<double>::infinity();
   for (const cd& l : m.dropped) reach = std::max(reach, l.real() + m.periodic_part);

@@ -39,14 +39,13 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
     // only in what the samples miss — and alias differently: a 1P blade term is harmonic 1 in
     // blade coordinates but 0 and ±3 in MBC, where three azimuths fold it onto a constant
     // that both interpolations share (docs/sampled-models.md).
-    bool rotating = false;  // no blade states: both coordinates are the files'
+    std::optional<Mbc3Result> mbc;  // none without blade states: both coordinates are the files'
     try {
-      const Mbc3Result mbc = Mbc3(*op);
-      rotating = mbc.applicable && mbc.blades >= 3;
+      mbc = Mbc3(*op);
     } catch (const InputError&) {
-      rotating = false;
+      mbc.reset();
     }
-    if (rotating) {
+    if (mbc && mbc->applicable && mbc->blades >= 3) {
       other = parameters;
       other.at("mbc") = 1 - other.at("mbc");
       // A trigonometric model is carried into the analysed model's coordinates (the same
@@ -56,7 +55,7 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
       // within each hold.
       PeriodicSystem built = scene.build(other);
       if (built.form() == PeriodicSystem::Form::kFourier) try {
-          built = TransformedMultiBlade(built, *op, parameters.at("mbc") == 1);
+          built = TransformedMultiBlade(built, *op, *mbc, parameters.at("mbc") == 1);
         } catch (const InputError&) {
           // not a finite series after all: compared in its own coordinates
         }

@@ -515,8 +515,7 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
 }
 
 PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
-                                     bool to_multiblade) {
-  const Mbc3Result mbc = Mbc3(op);
+                                     const Mbc3Result& mbc, bool to_multiblade) {
   if (!mbc.applicable) throw InputError("multi-blade coordinates do not apply to this model");
   const BladeCoordinates states = mbc.state_coordinates;
   const std::vector<int> rate_of = RateOf(op.states);

@@ -43,4 +43,8 @@ double PerExponentBand(const std::vector<double>& real_parts, const std::vector<
                        const std::vector<bool>& skip, double integration, double max_real,
                        double fallback);
 
+/// The same over modes: each with its own FloquetMode::error_estimate (`fallback` for a mode
+/// without one), rigid-body modes skipped.
+double PerModeBand(const std::vector<FloquetMode>& modes, double max_real, double fallback);
+
 }  // namespace ltp

@@ -165,8 +165,8 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
 /// of one built in the other coordinates, so the two can be compared mode by mode (the
 /// sampling error of docs/sampled-models.md, on the modes below a cut-off). A and T hold
 /// finitely many harmonics of ψ, so the result is a Fourier series, fitted exactly by FFT.
-/// @throws InputError when MBC does not apply.
+/// `mbc` is Mbc3(op). @throws InputError when MBC does not apply.
 PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
-                                     bool to_multiblade);
+                                     const Mbc3Result& mbc, bool to_multiblade);
 
 }  // namespace ltp
