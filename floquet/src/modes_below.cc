@@ -252,9 +252,10 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
   const Eigen::MatrixXd mean = MeanOfA(system);
   ModalReduction m;
   m.cutoff = options.modes_below;
-  const SpectralSplit low = SplitAtModulus(mean, m.cutoff);
+  const RealSchurForm schur = SchurOfMean(mean);  // one Schur form, reordered for each split
+  const SpectralSplit low = SplitAtModulus(schur, m.cutoff);
   m.check_cutoff = CheckCutoff(low, m.cutoff);
-  const SpectralSplit check = SplitAtModulus(mean, m.check_cutoff);
+  const SpectralSplit check = SplitAtModulus(schur, m.check_cutoff);
   if (!low.ok || !check.ok)
     return Failed("the mean of A(t) has no Schur form (non-finite entries)", system, start);
   if (low.kept.empty())

@@ -7,18 +7,38 @@
 
 namespace ltp::internal {
 
-SpectralSplit SplitAtModulus(const Eigen::MatrixXd& mean, double cutoff) {
-  SpectralSplit s;
+RealSchurForm SchurOfMean(const Eigen::MatrixXd& mean) {
+  RealSchurForm f;
   const lapack_int n = static_cast<lapack_int>(mean.rows());
-  if (n == 0 || !mean.allFinite()) return s;
-  // Real Schur form Ā = Q T Qᵀ, then the kept eigenvalues moved to the leading block (a
-  // conjugate pair has one modulus, so both of it are selected or neither).
-  Eigen::MatrixXd t = mean, q(n, n);
+  if (n == 0 || !mean.allFinite()) return f;
+  f.t = mean;
+  f.q.resize(n, n);
   Eigen::VectorXd wr(n), wi(n);
   lapack_int sdim = 0;
-  if (LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, t.data(), n, &sdim, wr.data(),
-                    wi.data(), q.data(), n) != 0)
-    return s;
+  f.ok = LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, f.t.data(), n, &sdim, wr.data(),
+                       wi.data(), f.q.data(), n) == 0;
+  return f;
+}
+
+SpectralSplit SplitAtModulus(const RealSchurForm& schur, double cutoff) {
+  SpectralSplit s;
+  if (!schur.ok) return s;
+  const lapack_int n = static_cast<lapack_int>(schur.t.rows());
+  // The kept eigenvalues moved to the leading block (a conjugate pair has one modulus, so both
+  // of it are selected or neither).
+  Eigen::MatrixXd t = schur.t, q = schur.q;
+  Eigen::VectorXd wr(n), wi(n);
+  for (lapack_int i = 0; i < n; ++i) {  // the eigenvalues of T's 1×1 and 2×2 diagonal blocks
+    wr[i] = t(i, i);
+    wi[i] = 0;
+    if (i + 1 < n && t(i + 1, i) != 0) {
+      const double im = std::sqrt(std::abs(t(i + 1, i))) * std::sqrt(std::abs(t(i, i + 1)));
+      wr[i + 1] = t(i + 1, i + 1);
+      wi[i] = im;
+      wi[i + 1] = -im;
+      ++i;
+    }
+  }
   std::vector<lapack_logical> select(n);
   for (lapack_int i = 0; i < n; ++i) select[i] = std::hypot(wr[i], wi[i]) <= cutoff;
   lapack_int k = 0, info = 0;

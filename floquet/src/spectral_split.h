@@ -22,6 +22,14 @@ struct SpectralSplit {
   bool ok = false;  ///< false when LAPACK failed (a matrix with non-finite entries)
 };
 
-SpectralSplit SplitAtModulus(const Eigen::MatrixXd& mean, double cutoff);
+/// Ā's real Schur form Ā = Q T Qᵀ (LAPACK dgees), computed once for any number of splits;
+/// ok = false for non-finite entries or a LAPACK failure.
+struct RealSchurForm {
+  Eigen::MatrixXd t, q;
+  bool ok = false;
+};
+RealSchurForm SchurOfMean(const Eigen::MatrixXd& mean);
+
+SpectralSplit SplitAtModulus(const RealSchurForm& schur, double cutoff);
 
 }  // namespace ltp::internal
