@@ -16,6 +16,7 @@
 #include "ltp/core/error.h"
 #include "ltp/htf/frequency_range.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/pfrf_model_error.h"
 #include "plot.h"
 #include "progress_bar.h"
 #include "scene_args.h"
@@ -172,8 +173,10 @@ json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
           {"modal_reliable", r.modal ? json(r.modal->reliable) : json(nullptr)},
           {"modal_condition", r.modal ? JsonNumber(r.modal->condition) : json(nullptr)},
           {"settle_time", JsonNumber(r.settle_time)},
+          {"model_error", JsonNumber(r.model_error)},
           {"floquet_exponents", exps},
           {"stable", r.floquet.stable},
+          {"verdict", ToString(r.floquet.verdict)},
           {"resonances", res},
           {"values", points},
           {"elapsed_s", r.elapsed_s},
@@ -194,6 +197,9 @@ void PrintRoutes(const PfrfResult& r, const PfrfOptions& o) {
   std::cout << "\n  max disagreement between routes " << Num(r.max_disagreement, 3) << " ("
             << Num(r.max_relative_disagreement, 3) << " of max |H_z|), checked on every "
             << o.check_every << "th frequency";
+  if (r.model_error)
+    std::cout << "\n  sampling error of the model (the other interpolations of its samples) "
+              << Num(*r.model_error, 3) << ", in every estimate";
   if (r.htf_harmonics > 0)
     std::cout << "\n  htf truncation N = " << r.htf_harmonics << ", change against N + Δ "
               << Num(r.htf_truncation_change, 3);
@@ -203,8 +209,7 @@ void PrintRoutes(const PfrfResult& r, const PfrfOptions& o) {
               << (r.modal->reliable ? "reliable" : "UNRELIABLE") << ", built in "
               << Num(r.modal->elapsed_s * 1e3, 3) << " ms";
   std::cout << "\n  Floquet: max Re λ = " << Num(r.floquet.max_real_exponent, 6) << " 1/s ("
-            << (r.floquet.stable ? "stable" : "UNSTABLE") << "), "
-            << Num(r.floquet.elapsed_s * 1e3, 3) << " ms\n";
+            << ToString(r.floquet.verdict) << "), " << Num(r.floquet.elapsed_s * 1e3, 3) << " ms\n";
 }
 
 // max |H_z| per order; every value when there are few; the resonances.
@@ -289,7 +294,8 @@ int RunPfrf(PfrfArgs& args) {
   PfrfOptions o = OptionsFrom(args, sys);
   ProgressBar progress("pfrf");
   o.progress = [&progress](int done, int total) { progress.Update(done, total, "frequencies"); };
-  const PfrfResult r = ComputePartialFrf(sys, o);
+  PfrfResult r = ComputePartialFrf(sys, o);
+  IncludeModelError(l.model_alternatives, o, r);  // sampled (.lin) models: their sampling error
   ChannelNames names;
   if (o.input < static_cast<int>(sys.labels().inputs.size()))
     names.input = sys.labels().inputs[o.input];

@@ -528,13 +528,45 @@ PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOper
     out = to_multiblade ? MatrixXd(lu.solve(given * x.T - x.T_dot))
                         : MatrixXd((x.T * given + x.T_dot) * lu.inverse());
   };
+  // Inputs and outputs as the analysed model has them: u_R = T_u u_NR, y_NR = T_y⁻¹ y_R, so that
+  // its partial FRFs compare channel by channel (identity transforms for untransformed tables).
+  const BladeCoordinates inputs = mbc.input_coordinates, outputs = mbc.output_coordinates;
+  const int m = system.inputs(), p = system.outputs();
+  auto channel = [](const BladeCoordinates& c, int size, double psi, bool inverse) {
+    if (static_cast<int>(c.group_of.size()) != size)
+      return MatrixXd(MatrixXd::Identity(size, size));
+    const MatrixXd t_c = MbcChannelTransformAt(c, psi);
+    return inverse ? MatrixXd(t_c.inverse()) : t_c;
+  };
+  const bool to = to_multiblade;
+  const PeriodicSystem::MatrixFunction b_of = [=](double t, Eigen::Ref<MatrixXd> out) {
+    const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
+    const MatrixXd given = system.B(t);
+    out = to ? MatrixXd(x.T.partialPivLu().solve(given * channel(inputs, m, omega * t, false)))
+             : MatrixXd(x.T * given * channel(inputs, m, omega * t, true));
+  };
+  const PeriodicSystem::MatrixFunction c_of = [=](double t, Eigen::Ref<MatrixXd> out) {
+    const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
+    const MatrixXd given = system.C(t);
+    out =
+        to ? MatrixXd(channel(outputs, p, omega * t, true) * given * x.T)
+           : MatrixXd(channel(outputs, p, omega * t, false) * given * x.T.partialPivLu().inverse());
+  };
+  const PeriodicSystem::MatrixFunction d_of = [=](double t, Eigen::Ref<MatrixXd> out) {
+    out = channel(outputs, p, omega * t, to) * system.D(t) * channel(inputs, m, omega * t, !to);
+  };
   FourierFitOptions fit;
   fit.tol = 1e-14;
   fit.max_samples = 256;  // harmonics of ψ up to those of A plus two: a few dozen at most
-  const FourierFit f = FitFourier(a, n, n, system.period(), fit);
-  if (!f.converged)
-    throw InputError("the model in the other coordinates is not a finite Fourier series");
-  return PeriodicSystem::FromFourier(system.period(), f.series)
+  auto fitted = [&](const PeriodicSystem::MatrixFunction& matrix, int rows, int cols) {
+    if (rows == 0 || cols == 0) return FourierMatrix();
+    const FourierFit f = FitFourier(matrix, rows, cols, system.period(), fit);
+    if (!f.converged)
+      throw InputError("the model in the other coordinates is not a finite Fourier series");
+    return f.series;
+  };
+  return PeriodicSystem::FromFourier(system.period(), fitted(a, n, n), fitted(b_of, n, m),
+                                     fitted(c_of, p, n), fitted(d_of, p, m))
       .WithLabels(system.labels())
       .WithRotorSpeed(omega);
 }

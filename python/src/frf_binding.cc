@@ -4,6 +4,7 @@
 #include "binding.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/pfrf_model_error.h"
 #include "ltp/htf/snapshot.h"
 
 namespace ltp::python {
@@ -119,6 +120,9 @@ estimate for every value from the independent routes' disagreement.
                     "max |H(N) − H(N+Δ)| where the htf route ran; None when it did not")
       .def_readonly("settle_time", &PfrfResult::settle_time,
                     "time route: settling time (s); None when it did not run")
+      .def_readonly("model_error", &PfrfResult::model_error,
+                    "systems from .lin files: max |H_z| difference to the other models of the "
+                    "same samples (in every estimate); None otherwise")
       .def_readonly("floquet", &PfrfResult::floquet,
                     "the Floquet decomposition behind the modal route")
       .def_property_readonly(
@@ -184,7 +188,11 @@ estimate for every value from the independent routes' disagreement.
                            "'");
         o.floquet.threads = AnalysisThreads(system, o.floquet.threads);
         o.Validate();
-        return WithoutGil(system, [&] { return ComputePartialFrf(system.system, o); });
+        return WithoutGil(system, [&] {
+          PfrfResult r = ComputePartialFrf(system.system, o);
+          IncludeModelError(system.model_alternatives, o, r);  // sampled models, as the CLI
+          return r;
+        });
       },
       py::arg("system"), py::arg("freq"), py::kw_only(), py::arg("input") = 0,
       py::arg("output") = 0,

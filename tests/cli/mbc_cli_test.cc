@@ -188,6 +188,41 @@ TEST(MbcCli, FloquetOfTheModesBelowAFrequency) {
   EXPECT_NE(r.err.find("--modes-below works with --method monodromy"), std::string::npos) << r.err;
 }
 
+TEST(MbcCli, PfrfOfLinFilesCountsTheSamplingError) {
+  // A gravity rotor with blade force inputs and deflection outputs (tests/support/
+  // isotropic_rotor_lin.h) at 3 azimuths: the multi-blade model's 3P content folds onto a
+  // constant, the routes agree with one another on a model that is off. Reference: 9 azimuths
+  // (exact; the library test checks 9 against 12).
+  auto written = [](int azimuths, const std::string& name) {
+    auto model =
+        ltp::test::MakeIsotropicRotorLin(2, 2, ltp::test::EvenAzimuths(azimuths), 1.0, 5, 0.4);
+    ltp::test::AddBladeChannels(model);
+    return ltp::test::WriteLinDirectory(model.files, std::string(::testing::TempDir()) + name);
+  };
+  const std::string sweep = " --freq 0.1:0.6:0.1 --orders -1:1 --output 1";
+  const std::string dir3 = written(3, "pfrf-cli3");
+  const Outcome three = Ltp("pfrf " + dir3 + sweep + " --json");
+  const Outcome nine = Ltp("pfrf " + written(9, "pfrf-cli9") + sweep + " --json");
+  ASSERT_EQ(three.code, 0) << three.err;
+  ASSERT_EQ(nine.code, 0) << nine.err;
+  const auto j = nlohmann::json::parse(three.out), ref = nlohmann::json::parse(nine.out);
+  ASSERT_TRUE(j["model_error"].is_number());
+  ASSERT_EQ(j["values"].size(), ref["values"].size());
+  double worst = 0;
+  for (size_t i = 0; i < j["values"].size(); ++i) {
+    const auto& v = j["values"][i];
+    const auto& w = ref["values"][i];
+    const double error = std::hypot(v["re"].get<double>() - w["re"].get<double>(),
+                                    v["im"].get<double>() - w["im"].get<double>());
+    worst = std::max(worst, error);
+    EXPECT_GE(v["error_estimate"].get<double>() + w["error_estimate"].get<double>(), error) << i;
+  }
+  EXPECT_GT(worst, 1e-3);  // a real sampling error, not round-off
+  const Outcome text = Ltp("pfrf " + dir3 + sweep);
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("sampling error of the model"), std::string::npos) << text.out;
+}
+
 TEST(MbcCli, ClusteredAzimuthsRefusedByFloquetSkippedByMbc) {
   const double deg = 3.141592653589793 / 180;
   const auto model = ltp::test::MakeIsotropicRotorLin(2, 2, {0.5 * deg, 10 * deg, 20 * deg});

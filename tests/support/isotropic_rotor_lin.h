@@ -164,6 +164,39 @@ inline IsotropicRotorLin MakeIsotropicRotorLin(int blade_dofs, int fixed_dofs,
   return out;
 }
 
+/// Gives every file of `model` (made with fixed_dofs > 0) inputs and outputs that are constant
+/// in blade coordinates: a force on blade DOF a of each blade (per unit modal mass, on its
+/// rate) and that DOF's displacement, plus the first tower DOF's displacement. A(ψ) is
+/// unchanged, so the model's exactness in each coordinate system is too.
+inline void AddBladeChannels(IsotropicRotorLin& model) {
+  for (LinFile& f : model.files) {
+    const int n = f.continuous_states, nd = n / 2;
+    auto channel = [](const std::string& what, bool rotating) {
+      LinChannel c;
+      c.description = what;
+      c.rotating_frame = rotating;
+      return c;
+    };
+    f.input_channels.clear();
+    f.output_channels.clear();
+    f.B = Eigen::MatrixXd::Zero(n, 3);
+    f.C = Eigen::MatrixXd::Zero(4, n);
+    f.D = Eigen::MatrixXd::Zero(4, 3);
+    for (int b = 0; b < 3; ++b) {  // blade DOF a of blade b + 1 is state b
+      f.input_channels.push_back(channel("ED Blade " + std::to_string(b + 1) + " force, N", true));
+      f.output_channels.push_back(
+          channel("ED Blade " + std::to_string(b + 1) + " deflection, m", true));
+      f.B(nd + b, b) = 1;
+      f.C(b, b) = 1;
+    }
+    f.output_channels.push_back(channel("ED Tower deflection, m", false));
+    for (int r = 0; r < nd; ++r)
+      if (f.states[r].description.find("tower dof a") != std::string::npos) f.C(3, r) = 1;
+    f.inputs = 3;
+    f.outputs = 4;
+  }
+}
+
 /// K evenly spaced azimuths from 0.
 inline std::vector<double> EvenAzimuths(int K) {
   std::vector<double> psi;

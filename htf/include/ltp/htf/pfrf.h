@@ -342,9 +342,12 @@ struct PfrfResult {
   /// max |H(N) − H(N+Δ)| at the points the htf route ran (empty when it did not).
   std::optional<double> htf_truncation_change;
   std::optional<double> settle_time;  ///< time route: settling time (s); else empty
-  FloquetResult floquet;              ///< the decomposition (modes sorted as reported)
-  std::optional<ModalModel> modal;    ///< when the modal route ran
-  std::vector<double> order_max;      ///< max_f |H_z| per order
+  /// Sampled models: max |H_other − H| (absolute) over the other models of the same samples
+  /// (ltp/htf/pfrf_model_error.h; part of every estimate); empty for other systems.
+  std::optional<double> model_error;
+  FloquetResult floquet;            ///< the decomposition (modes sorted as reported)
+  std::optional<ModalModel> modal;  ///< when the modal route ran
+  std::vector<double> order_max;    ///< max_f |H_z| per order
   std::vector<Resonance> resonances;
   double elapsed_s = 0;
   std::vector<std::string> diagnostics;

@@ -165,7 +165,9 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
 /// of one built in the other coordinates, so the two can be compared mode by mode (the
 /// sampling error of docs/sampled-models.md, on the modes below a cut-off). A and T hold
 /// finitely many harmonics of ψ, so the result is a Fourier series, fitted exactly by FFT.
-/// `mbc` is Mbc3(op). @throws InputError when MBC does not apply.
+/// B, C, D are carried with the states and take the channels of the other coordinates
+/// (u_R = T_u u_NR, y_NR = T_y⁻¹ y_R for the tables MBC transforms), so partial FRFs compare
+/// channel by channel too. `mbc` is Mbc3(op). @throws InputError when MBC does not apply.
 PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
                                      const Mbc3Result& mbc, bool to_multiblade);
 
