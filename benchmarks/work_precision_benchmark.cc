@@ -29,9 +29,15 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_fit.h"
+#include "ltp/floquet/model_error.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/htf/pfrf_model_error.h"
 #include "ltp/models/scene.h"
+#include "ltp/models/scene_input.h"
+#include "ltp/studies/stability_boundary.h"
 #include "support/failure_map.h"
+#include "support/isotropic_rotor_lin.h"
+#include "support/sweep.h"
 #include "support/systems.h"
 #include "support/work_precision_common.h"
 
@@ -211,6 +217,23 @@ std::vector<StudyScene> MakeScenes(const Config& cfg) {
     sc.max_dense_size = 400;
     sc.max_structured_n = 64;
     scenes.push_back(std::move(sc));
+  }
+  if (want("reducible")) {
+    // The honesty issue's case: Hill's truncation edge produced a spurious pair with a tiny
+    // estimate here (exact exponents l1, l2; tests/support/systems.h).
+    StudyScene sc = ClosedFormScene(
+        "reducible", "reducible R(t + e sin t), exponents 120, -120.5 (n = 2, ρ = e^{754})",
+        test::ReducibleRotation(120, -120.5, 0.5), {cd(120, 0), cd(-120.5, 0)},
+        "closed form (Lyapunov-reducible: l1, l2)");
+    sc.scale = Scale(MonoReference(sc.sys, 1e-13));  // |λ| on the physical branch
+    scenes.push_back(std::move(sc));
+  }
+  if (want("poisson")) {
+    // Harmonics r^|w| (Poisson kernel, r = 0.9): Hill's estimate fell just short here.
+    // References: Hill at N = 360 (0.9^360 ≈ 3e-17) and rkf78 at 1e-14.
+    scenes.push_back(CrossReferencedScene(
+        "poisson", "Poisson kernel a=0.8, b=0.2, r=0.9, c=0.02 (n = 2, ‖A_w‖ ~ 0.9^|w|)",
+        test::PoissonKernel(0.8, 0.2, 0.9, 0.02), 1e-14, 360));
   }
   if (want("rotor")) {
     StudyScene sc = CrossReferencedScene("rotor", "rotor, 2 blades (n = 8, time-function form)",
@@ -672,6 +695,145 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
   }
 }
 
+// --- honesty on sampled models and chart boundaries ------------------------------------------
+
+// A point of the honesty table that is not on a work–precision line.
+Row HonestyPoint(const std::string& scene, const std::string& method, const std::string& knob_name,
+                 double knob, double estimate, double error, double floor) {
+  Row row;
+  row.scene = scene;
+  row.panel = "honesty";
+  row.method = method;
+  row.knob_name = knob_name;
+  row.knob = knob;
+  row.ok = std::isfinite(error);
+  row.estimate = estimate;
+  row.estimate_error = row.error_abs = error;
+  row.floor = floor;
+  return row;
+}
+
+// Generated rotating-frame `.lin` sets (tests/support/isotropic_rotor_lin.h) with a 1P gravity
+// term, analysed as `ltp floquet DIR` and `ltp pfrf DIR` analyse them (sampling error included).
+// References: the trigonometric route in blade coordinates, exact because A(ψ) there holds
+// harmonics 0 and ±1 only (3 and 9 azimuths agree, their distance is the floor), and for H_z
+// the default route at 9 azimuths (exact: the multi-blade model holds harmonics 0 and ±3).
+void RunSampledHonesty(const Config& cfg, std::vector<Row>& rows) {
+  const double gravity = 0.4;
+  auto load = [&](int azimuths, bool channels, const std::vector<std::string>& set) {
+    auto model =
+        test::MakeIsotropicRotorLin(channels ? 2 : 4, channels ? 2 : 4,
+                                    test::EvenAzimuths(azimuths), 1.0, channels ? 5 : 3, gravity);
+    if (channels) test::AddBladeChannels(model);
+    const std::string dir = test::WriteLinDirectory(
+        model.files, cfg.out + "/lin-" + std::to_string(azimuths) + (channels ? "-io" : ""));
+    return LoadSceneInput({dir}, set);
+  };
+  FloquetOptions tight;
+  tight.integrator.rel_tol = 1e-13;
+  const FloquetResult ref3 = AnalyzeFloquet(load(3, false, {"mbc=0"}).system, tight);
+  const FloquetResult ref9 = AnalyzeFloquet(load(9, false, {"mbc=0"}).system, tight);
+  const double omega = 1.0;  // the generated rotor's speed
+  const double floor =
+      std::max(2 * ExponentError(Exponents(ref9.modes), Exponents(ref3.modes), omega), 1e-13);
+  const std::vector<std::pair<std::string, std::vector<std::string>>> routes = {
+      {"default (trigonometric, multi-blade)", {}},
+      {"held samples", {"trig=0"}},
+      {"held, blade coordinates", {"trig=0", "mbc=0"}}};
+  for (int K : {3, 5, 8}) {
+    for (const auto& [name, set] : routes) {
+      const LoadedScene l = load(K, false, set);
+      FloquetResult r = AnalyzeFloquet(l.system);
+      IncludeModelError(l.model_alternatives, FloquetOptions{}, r);
+      const double error =
+          r.ok ? ExponentError(Exponents(r.modes), Exponents(ref3.modes), omega) : kInf;
+      Row row = HonestyPoint("sampled", "ltp floquet on .lin (sampling error included)", "azimuths",
+                             K, r.error_estimate.value_or(-1), error, floor);
+      row.note = name;
+      rows.push_back(row);
+      std::cerr << "  sampled K=" << K << " " << name << " err " << Fmt(error) << " estimate "
+                << Fmt(row.estimate) << "\n";
+    }
+  }
+  PfrfOptions po;
+  for (double f = 0.05; f < 0.7; f += 0.05) po.frequencies_hz.push_back(f);
+  po.min_order = -1;
+  po.max_order = 1;
+  for (int output : {0, 1}) {
+    po.output = output;
+    const PfrfResult ref = ComputePartialFrf(load(9, true, {}).system, po);
+    const LoadedScene l = load(3, true, {});
+    PfrfResult r = ComputePartialFrf(l.system, po);
+    IncludeModelError(l.model_alternatives, po, r);
+    double peak = 0;
+    for (double m : ref.order_max) peak = std::max(peak, m);
+    for (size_t i = 0; i < r.values.size(); ++i)
+      for (size_t z = 0; z < r.values[i].size(); ++z)
+        rows.push_back(HonestyPoint("sampled", "ltp pfrf on .lin (sampling error included)",
+                                    "freq_hz", po.frequencies_hz[i], r.error_estimate[i][z],
+                                    std::abs(r.values[i][z] - ref.values[i][z]),
+                                    std::max(2 * ref.error_estimate[i][z], 1e-14 * peak)));
+  }
+}
+
+// The refined stability boundaries of the undamped Meissner map over the honesty issue's grid
+// (a = −1…6, b = 0…3, step 0.025), each against the nearest root of |tr Φ| − 2 on its line
+// (closed-form monodromy, bisected to round-off): is the boundary within its bracket?
+void RunBoundaryHonesty(std::vector<Row>& rows) {
+  const Scene scene = LoadScene("meissner");
+  const ParameterMap base = scene.Resolve({{"c", "0"}});
+  const SweepGrid grid =
+      MakeSweepGrid(scene, {SweepAxis::Parse("a=-1:6:0.025"), SweepAxis::Parse("b=0:3:0.025")});
+  SweepOptions o;
+  o.modes = false;
+  const std::vector<SweepPoint> points = test::SweepAll(scene, base, grid, o);
+  BoundaryOptions b;
+  b.max_lines = 0;
+  int refined = 0;
+  for (const BoundaryPoint& p : RefineBoundaryPoints(scene, base, grid, points, o, b)) {
+    if (!p.estimate.refined) continue;
+    ++refined;
+    const double a = p.values[0], bb = p.values[1], x0 = p.values[p.axis];
+    auto indicator = [&](double x) {
+      const Eigen::Matrix2d phi =
+          p.axis == 0 ? test::MeissnerMonodromy(x, bb) : test::MeissnerMonodromy(a, x);
+      return std::abs(phi.trace()) - 2;
+    };
+    // The nearest sign change within a grid step, bisected; a tangent root (a tongue's tip on
+    // the b = 0 axis, where |tr Φ| − 2 touches 0 from above) is the sample nearest zero, known
+    // to a cell.
+    double truth = kInf, floor = 1e-13, smallest = kInf, at_smallest = kInf;
+    const int cells = 400;
+    for (int i = 0; i < cells; ++i) {
+      double lo = x0 - 0.025 + 0.05 * i / cells, hi = lo + 0.05 / cells;
+      double flo = indicator(lo);
+      if (std::abs(flo) < smallest) {
+        smallest = std::abs(flo);
+        at_smallest = lo;
+      }
+      if ((flo < 0) == (indicator(hi) < 0)) continue;
+      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(lo)); ++it) {
+        const double mid = 0.5 * (lo + hi), fm = indicator(mid);
+        if ((fm < 0) == (flo < 0)) {
+          lo = mid;
+          flo = fm;
+        } else {
+          hi = mid;
+        }
+      }
+      if (std::abs(0.5 * (lo + hi) - x0) < std::abs(truth - x0)) truth = 0.5 * (lo + hi);
+    }
+    if (!std::isfinite(truth) && smallest < 1e-10) {
+      truth = at_smallest;
+      floor = 0.05 / cells;
+    }
+    rows.push_back(HonestyPoint("meissner-map", "chart boundary bracket (Meissner c = 0 map)",
+                                p.axis == 0 ? "a" : "b", x0, p.estimate.bracket,
+                                std::abs(truth - x0), floor));
+  }
+  std::cerr << "  meissner-map: " << refined << " refined boundary points\n";
+}
+
 // --- output ---------------------------------------------------------------------------------
 
 void WriteCsv(const std::vector<Row>& rows, const std::string& path) {
@@ -887,14 +1049,16 @@ int main(int argc, char** argv) {
     } else if (a == "--repeats" && i + 1 < argc) {
       cfg.repeats = std::atoi(argv[++i]);
     } else if (a == "--help" || a == "-h") {
-      std::cout << "usage: work_precision_benchmark [--out DIR] [--quick] [--scenes a,b,...] "
-                   "[--repeats R]\n"
-                   "       [--failure-map-only | --no-failure-map]\n"
-                   "scenes: mathieu meissner stiff stiff-coupled rotor tower-rotor; writes "
-                   "DIR/work_precision.csv, "
-                   "DIR/<scene>.gp, DIR/honesty.md, DIR/auto_choice.md, DIR/failure_map.md, "
-                   "DIR/references.txt,\n"
-                   "DIR/pfrf_reference.csv\n";
+      std::cout
+          << "usage: work_precision_benchmark [--out DIR] [--quick] [--scenes a,b,...] "
+             "[--repeats R]\n"
+             "       [--failure-map-only | --no-failure-map]\n"
+             "scenes: mathieu meissner stiff stiff-coupled reducible poisson rotor tower-rotor, "
+             "and the honesty-only sampled meissner-map; writes "
+             "DIR/work_precision.csv, "
+             "DIR/<scene>.gp, DIR/honesty.md, DIR/auto_choice.md, DIR/failure_map.md, "
+             "DIR/references.txt,\n"
+             "DIR/pfrf_reference.csv\n";
       return 0;
     } else {
       std::cerr << "work_precision_benchmark: error: unrecognized argument '" << a << "'\n";
@@ -930,6 +1094,16 @@ int main(int argc, char** argv) {
     if (sc.pfrf) RunPfrf(sc, cfg, rows, log);
     WriteCsv(rows, cfg.out + "/work_precision.csv");  // after every scene: partial results survive
   }
+  auto want = [&](const std::string& n) { return cfg.scenes.empty() || cfg.scenes.count(n); };
+  if (run_study && want("sampled")) {
+    std::cerr << "sampled .lin models (" << Fmt(WallNow() - t0) << " s)\n";
+    RunSampledHonesty(cfg, rows);
+  }
+  if (run_study && want("meissner-map")) {
+    std::cerr << "Meissner map boundaries (" << Fmt(WallNow() - t0) << " s)\n";
+    RunBoundaryHonesty(rows);
+  }
+  WriteCsv(rows, cfg.out + "/work_precision.csv");
   for (const StudyScene& sc : scenes)
     WriteGnuplot(sc, rows, cfg.out, cfg.out + "/work-precision-" + sc.name + ".svg");
   if (run_study) {
