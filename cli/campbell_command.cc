@@ -24,7 +24,8 @@ using nlohmann::json;
 
 struct CampbellArgs {
   std::vector<std::string> points;
-  std::string by = "rotor-speed";
+  std::string by = "auto";
+  bool keep_going = false;
   CampbellOptions campbell;
   std::string csv, plot;
   bool json = false;
@@ -32,12 +33,11 @@ struct CampbellArgs {
 
 LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   LinCampbellOptions o;
-  if (args.by == "rotor-speed")
-    o.axis = OperatingPointAxis::kRotorSpeed;
-  else if (args.by == "wind-speed")
-    o.axis = OperatingPointAxis::kWindSpeed;
-  else
-    throw InputError("--by must be rotor-speed or wind-speed, got '" + args.by + "'");
+  const auto axis = ParseOperatingPointAxis(args.by);
+  if (!axis)
+    throw InputError("--by must be auto, rotor-speed or wind-speed, got '" + args.by + "'");
+  o.axis = *axis;
+  o.keep_going = args.keep_going;
   o.campbell = args.campbell;
   return o;
 }
@@ -64,13 +64,23 @@ void WriteLinesCsv(const std::string& path, const LinCampbellResult& r, const st
   if (!out) throw InputError("cannot write '" + path + "'");
 }
 
+// Where a point's files are, as one pattern: "omega-0.4/rotor.*.lin" (OpenFAST numbers the
+// linearisations of a simulation <root>.<k>.lin).
+std::string FilesPattern(const std::vector<std::string>& files) {
+  const std::filesystem::path first(files.front());
+  std::string name = first.filename().string();
+  const size_t dot = name.rfind('.', name.size() - 5);
+  if (files.size() > 1 && dot != std::string::npos &&
+      name.find_first_not_of("0123456789", dot + 1) == name.size() - 4)
+    name = name.substr(0, dot) + ".*.lin";
+  return (first.parent_path().filename() / name).string();
+}
+
 int RunCampbell(const CampbellArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // a bad extension fails first
   const LinCampbellOptions options = MakeOptions(args);
-  std::vector<LinOperatingPoint> ops;
-  for (const std::string& point : args.points) ops.push_back(ReadLinOperatingPoint({point}));
-  const LinCampbellResult r = MakeLinCampbell(ops, options);
-  const std::string axis = options.axis == OperatingPointAxis::kRotorSpeed ? "rpm" : "wind_speed";
+  const LinCampbellResult r = ComputeLinCampbell(args.points, options);
+  const std::string axis = r.axis == OperatingPointAxis::kRotorSpeed ? "rpm" : "wind_speed";
   if (!args.csv.empty()) {
     WriteLinesCsv(args.csv, r, axis);
     WriteCrossingsCsv(CrossingsCsvPath(args.csv), r.diagram, axis);
@@ -99,11 +109,9 @@ int RunCampbell(const CampbellArgs& args) {
            {"blades", p.mbc.blades},
            {"max_real_part", JsonNumber(p.mbc.max_real_part)},
            {"notes", p.notes}});
-    json j = {{"axis", r.axis_label},
-              {"points", points},
-              {"campbell", CampbellJson(r.diagram)},
-              {"csv", args.csv},
-              {"plot", args.plot}};
+    json j = {{"axis", r.axis_label}, {"points", points},
+              {"skipped", r.skipped}, {"campbell", CampbellJson(r.diagram)},
+              {"csv", args.csv},      {"plot", args.plot}};
     if (!plot_note.empty()) j["plot_note"] = plot_note;
     std::cout << j.dump(2) << "\n";
     return 0;
@@ -111,15 +119,17 @@ int RunCampbell(const CampbellArgs& args) {
   std::cout << "Campbell diagram of " << r.points.size()
             << " operating points (MBC3 at each, modes tracked by MAC)\n"
             << "  "
-            << (options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]"
-                                                                : "wind speed [m/s]")
-            << "   files   blades   max Re λ [1/s]   directory\n";
+            << (r.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]"
+                                                          : "wind speed [m/s]")
+            << "   files   blades   max Re λ [1/s]   files of the point\n";
   for (const LinCampbellPoint& p : r.points) {
     std::cout << "  " << Num(p.parameter, 6, 17) << Num(static_cast<double>(p.files.size()), 3, 8)
               << Num(p.mbc.blades, 3, 9) << Num(p.mbc.max_real_part, 4, 17) << "   "
-              << std::filesystem::path(p.files.front()).parent_path().filename().string() << "\n";
+              << FilesPattern(p.files) << "\n";
     for (const std::string& note : p.notes) std::cout << "        note: " << note << "\n";
   }
+  for (const std::string& why : r.skipped)
+    std::cout << "  left out (--keep-going): " << why << "\n";
   std::cout << "\n";
   PrintCampbell(std::cout, r.diagram, axis);
   if (!args.csv.empty())
@@ -139,12 +149,17 @@ Command AddCampbellCommand(CLI::App& app) {
       "Campbell diagram of OpenFAST .lin files at several operating points (MBC3 at "
       "each, modes tracked across points, per-rev crossings)");
   cmd->add_option("points", args.points,
-                  "one argument per operating point: a directory of its azimuth .lin files, or a "
-                  "quoted glob")
+                  "the operating points: directories, .lin files or globs; OpenFAST's "
+                  "<root>.<k>.lin files are grouped by root, so a flat output folder of several "
+                  "simulations gives one point each")
       ->required();
   cmd->add_option("--by", args.by,
-                  "order and plot the points by rotor-speed (rpm) or wind-speed (m/s)")
+                  "order and plot the points by rotor-speed (rpm) or wind-speed (m/s); auto: "
+                  "rotor speed unless two points share one")
       ->capture_default_str();
+  cmd->add_flag("--keep-going", args.keep_going,
+                "leave out an operating point that cannot be read or analysed (said which and "
+                "why) instead of failing the diagram");
   AddCampbellArgs(cmd, args.campbell);
   cmd->add_option("--csv", args.csv, "one row per operating point (and FILE-crossings.csv)");
   cmd->add_option("--plot", args.plot, "Campbell + damping diagram (FILE.svg|.png)");

@@ -830,10 +830,105 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   return op;
 }
 
+namespace {
+std::string LinRootName(const std::filesystem::path& file);
+}  // namespace
+
 LinOperatingPoint ReadLinOperatingPoint(const std::vector<std::string>& arguments) {
   std::vector<LinFile> files;
   for (const std::string& path : ExpandLinPaths(arguments)) files.push_back(ReadLinFile(path));
-  return MakeLinOperatingPoint(std::move(files));
+  try {
+    return MakeLinOperatingPoint(std::move(files));
+  } catch (const InputError& e) {
+    const auto groups = GroupLinFiles(arguments);
+    if (groups.size() < 2) throw;
+    std::string roots;
+    for (size_t g = 0; g < groups.size() && g < 4; ++g) {
+      const std::string root = LinRootName(groups[g].front());
+      roots += (g ? ", " : "") + (root.empty() ? groups[g].front() : root + ".*.lin");
+    }
+    throw InputError(std::string(e.what()) + " — the files are " + std::to_string(groups.size()) +
+                     " OpenFAST simulations (" + roots + (groups.size() > 4 ? ", …" : "") +
+                     "): name the files of one (a quoted glob), or draw them all with ltp "
+                     "campbell");
+  }
+}
+
+namespace {
+
+// `<root>.<k>.lin` → root; "" for a name without the linearisation number.
+std::string LinRootName(const std::filesystem::path& file) {
+  std::string name = file.filename().string();
+  name = name.substr(0, name.size() - 4);  // ".lin" (ExpandLinPaths checked the extension)
+  const size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || dot + 1 == name.size()) return "";
+  for (size_t i = dot + 1; i < name.size(); ++i)
+    if (!std::isdigit(static_cast<unsigned char>(name[i]))) return "";
+  return name.substr(0, dot);
+}
+
+// The files of one group split by the operating condition in their headers (rotor speed and
+// wind speed within 1e-3, as MakeLinOperatingPoint accepts them).
+std::vector<std::vector<LinFile>> SplitByOperatingCondition(std::vector<LinFile> files) {
+  std::vector<std::vector<LinFile>> points;
+  auto near = [](const std::optional<double>& a, const std::optional<double>& b, double floor) {
+    if (!a || !b) return a.has_value() == b.has_value();
+    return std::abs(*a - *b) <= 1e-3 * std::max(std::abs(*b), floor);
+  };
+  for (LinFile& f : files) {
+    auto same = std::find_if(points.begin(), points.end(), [&](const std::vector<LinFile>& p) {
+      return near(f.rotor_speed, p.front().rotor_speed, 1e-9) &&
+             near(f.wind_speed, p.front().wind_speed, 1.0);
+    });
+    if (same == points.end())
+      points.push_back({std::move(f)});
+    else
+      same->push_back(std::move(f));
+  }
+  return points;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> GroupLinFiles(const std::vector<std::string>& arguments) {
+  std::vector<std::vector<std::string>> groups;
+  std::map<std::pair<std::string, std::string>, size_t> index;  // (directory, root) → group
+  for (const std::string& file : ExpandLinPaths(arguments)) {
+    const std::filesystem::path path(file);
+    const auto key = std::make_pair(path.parent_path().string(), LinRootName(path));
+    const auto [at, added] = index.emplace(key, groups.size());
+    if (added) groups.emplace_back();
+    groups[at->second].push_back(file);
+  }
+  return groups;
+}
+
+std::vector<LinOperatingPoint> ReadLinOperatingPoints(const std::vector<std::string>& arguments,
+                                                      std::vector<std::string>* failures) {
+  std::vector<LinOperatingPoint> points;
+  for (const std::vector<std::string>& group : GroupLinFiles(arguments)) {
+    try {
+      std::vector<LinFile> files;
+      for (const std::string& path : group) files.push_back(ReadLinFile(path));
+      for (std::vector<LinFile>& point : SplitByOperatingCondition(std::move(files))) {
+        const std::string first = point.front().path;
+        try {
+          points.push_back(MakeLinOperatingPoint(std::move(point)));
+        } catch (const InputError& e) {
+          if (!failures) throw;
+          failures->push_back(first + " and the files at its operating point: " + e.what());
+        }
+      }
+    } catch (const Error& e) {
+      if (!failures) throw;
+      failures->push_back(group.front() + " (" + std::to_string(group.size()) +
+                          " files): " + e.what());
+    }
+  }
+  if (points.empty())
+    throw InputError("no operating point could be read" +
+                     (failures && !failures->empty() ? ": " + failures->front() : std::string()));
+  return points;
 }
 
 double AzimuthLebesgueConstant(const std::vector<double>& azimuths) {

@@ -17,6 +17,8 @@ void BindCampbell(py::module_& m) {
       "modes of each point, tracked across the points into lines.");
   r.def_readonly("axis_label", &LinCampbellResult::axis_label,
                  "'rotor speed [rpm]' or 'wind speed [m/s]'")
+      .def_readonly("skipped", &LinCampbellResult::skipped,
+                    "operating points left out by keep_going: 'files: reason', one each")
       .def_property_readonly(
           "parameter", [](const LinCampbellResult& x) { return RealArray(x.diagram.parameter); },
           "the abscissa per point (rpm or m/s), ascending")
@@ -83,33 +85,33 @@ void BindCampbell(py::module_& m) {
   m.def(
       "campbell",
       [](const std::vector<std::string>& points, const std::string& by,
-         const std::string& frequency, double max_damping) {
+         const std::string& frequency, double max_damping, bool keep_going) {
         LinCampbellOptions o;
         if (frequency != "damped" && frequency != "natural")
           throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
         o.campbell.frequency =
             frequency == "natural" ? CampbellFrequency::kNatural : CampbellFrequency::kDamped;
         o.campbell.max_damping_ratio = max_damping;
-        if (by == "rotor-speed") {
-          o.axis = OperatingPointAxis::kRotorSpeed;
-        } else if (by == "wind-speed") {
-          o.axis = OperatingPointAxis::kWindSpeed;
-        } else {
-          throw InputError("by must be 'rotor-speed' or 'wind-speed', got '" + by + "'");
-        }
+        const auto axis = ParseOperatingPointAxis(by);
+        if (!axis)
+          throw InputError("by must be 'auto', 'rotor-speed' or 'wind-speed', got '" + by + "'");
+        o.axis = *axis;
+        o.keep_going = keep_going;
         o.Validate();
         py::gil_scoped_release release;
-        std::vector<LinOperatingPoint> ops;
-        for (const std::string& point : points) ops.push_back(ReadLinOperatingPoint({point}));
-        return MakeLinCampbell(ops, o);
+        return ComputeLinCampbell(points, o);
       },
-      py::arg("points"), py::kw_only(), py::arg("by") = "rotor-speed",
-      py::arg("frequency") = "damped", py::arg("max_damping") = 1.0, R"doc(
+      py::arg("points"), py::kw_only(), py::arg("by") = "auto", py::arg("frequency") = "damped",
+      py::arg("max_damping") = 1.0, py::arg("keep_going") = false, R"doc(
 The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
-function. Each point is a folder (or a glob) of the .lin files of one operating point; each is
-analysed by MBC3 (as ltp.mbc) and the modes are tracked across the points by their shapes.
+function. `points` are folders, .lin files or globs; OpenFAST's <root>.<k>.lin files are
+grouped by root, so one flat output folder of several simulations gives one point each. Each
+point is analysed by MBC3 (as ltp.mbc) and the modes are tracked across the points by their
+shapes.
 
-  by           'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
+  by           'auto' (rotor speed unless two points share one, then wind speed) |
+               'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
+  keep_going   leave out a point that cannot be read or analysed (reasons in .skipped)
   frequency    'damped' (Im λ/2π) | 'natural' (|λ|/2π, as ACDC and openfast_toolbox draw)
   max_damping  leave out lines damped above this ratio wherever tracked (1: keep all)
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "ltp/core/error.h"
 
@@ -74,7 +75,45 @@ SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index, std::vector<int
   return s;
 }
 
+// Rotor speed unless two points share one; then wind speed when every point has its own.
+OperatingPointAxis ResolveAxis(const std::vector<LinOperatingPoint>& points,
+                               OperatingPointAxis asked) {
+  if (asked != OperatingPointAxis::kAuto) return asked;
+  auto distinct = [&](auto value) {
+    for (size_t i = 0; i < points.size(); ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (!value(points[i]) || !value(points[j]) ||
+            std::abs(*value(points[i]) - *value(points[j])) <=
+                1e-9 * std::max(std::abs(*value(points[j])), 1.0))
+          return false;
+    return true;
+  };
+  const auto rotor = [](const LinOperatingPoint& p) {
+    return std::optional<double>(p.rotor_speed);
+  };
+  const auto wind = [](const LinOperatingPoint& p) { return p.wind_speed; };
+  if (!distinct(rotor) && distinct(wind)) return OperatingPointAxis::kWindSpeed;
+  return OperatingPointAxis::kRotorSpeed;
+}
+
+std::string SameAbscissaMessage(const LinCampbellPoint& a, const LinCampbellPoint& b,
+                                const std::string& axis_label, OperatingPointAxis axis) {
+  std::string m = a.files.front() + " and " + b.files.front() + " are at the same " + axis_label +
+                  " " + MessageNumber(a.parameter) + ": one set of files per operating point";
+  if (axis == OperatingPointAxis::kRotorSpeed && a.wind_speed && b.wind_speed &&
+      *a.wind_speed != *b.wind_speed)
+    m += " (their wind speeds differ: order them by wind speed, --by wind-speed)";
+  return m;
+}
+
 }  // namespace
+
+std::optional<OperatingPointAxis> ParseOperatingPointAxis(std::string_view name) {
+  if (name == "auto") return OperatingPointAxis::kAuto;
+  if (name == "rotor-speed") return OperatingPointAxis::kRotorSpeed;
+  if (name == "wind-speed") return OperatingPointAxis::kWindSpeed;
+  return std::nullopt;
+}
 
 void LinCampbellOptions::Validate() const { campbell.Validate(); }
 
@@ -83,25 +122,50 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   options.Validate();
   if (points.empty()) throw InputError("a Campbell diagram needs at least one operating point");
   LinCampbellResult r;
+  r.axis = ResolveAxis(points, options.axis);
   r.axis_label =
-      options.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]";
-  for (const LinOperatingPoint& op : points) r.points.push_back(AnalysePoint(op, options));
+      r.axis == OperatingPointAxis::kRotorSpeed ? "rotor speed [rpm]" : "wind speed [m/s]";
+  LinCampbellOptions resolved = options;
+  resolved.axis = r.axis;
+  for (const LinOperatingPoint& op : points) try {
+      r.points.push_back(AnalysePoint(op, resolved));
+    } catch (const InputError& e) {
+      if (!options.keep_going) throw;
+      r.skipped.push_back(e.what());
+    }
+  if (r.points.empty())
+    throw InputError("no operating point could be analysed: " + r.skipped.front());
   std::stable_sort(r.points.begin(), r.points.end(),
                    [](const auto& a, const auto& b) { return a.parameter < b.parameter; });
-  const auto& reference = r.points.front();
-  for (size_t i = 0; i < r.points.size(); ++i) {
-    const auto& p = r.points[i];
-    if (i > 0 && p.parameter == r.points[i - 1].parameter)
-      throw InputError(p.files.front() + " and " + r.points[i - 1].files.front() +
-                       " are at the same " + r.axis_label + " " + MessageNumber(p.parameter) +
-                       ": one set of files per operating point");
-    bool same = p.mbc.states.size() == reference.mbc.states.size();
-    for (size_t k = 0; same && k < p.mbc.states.size(); ++k)
-      same = p.mbc.states[k].description == reference.mbc.states[k].description;
-    if (!same)
-      throw InputError(p.files.front() + " has other states than " + reference.files.front() +
-                       ": modes can only be tracked across operating points of one model");
+  for (size_t i = 1; i < r.points.size(); ++i)
+    if (r.points[i].parameter == r.points[i - 1].parameter)
+      throw InputError(SameAbscissaMessage(r.points[i], r.points[i - 1], r.axis_label, r.axis));
+  auto same_states = [](const LinCampbellPoint& a, const LinCampbellPoint& b) {
+    bool same = a.mbc.states.size() == b.mbc.states.size();
+    for (size_t k = 0; same && k < a.mbc.states.size(); ++k)
+      same = a.mbc.states[k].description == b.mbc.states[k].description;
+    return same;
+  };
+  // The model most points share is the diagram's (the first point's when none is left out).
+  size_t model = 0, shared = 0;
+  for (size_t i = 0; i < r.points.size() && options.keep_going; ++i) {
+    const auto n =
+        static_cast<size_t>(std::count_if(r.points.begin(), r.points.end(), [&](const auto& p) {
+          return same_states(p, r.points[i]);
+        }));
+    if (n > shared) std::tie(model, shared) = std::make_pair(i, n);
   }
+  const LinCampbellPoint reference_point = r.points[model];
+  const std::string reference_file = reference_point.files.front();
+  std::erase_if(r.points, [&](const LinCampbellPoint& p) {
+    if (same_states(p, reference_point)) return false;
+    const std::string why = p.files.front() + " has other states than " + reference_file +
+                            ": modes can only be tracked across operating points of one model";
+    if (!options.keep_going) throw InputError(why);
+    r.skipped.push_back(why);
+    return true;
+  });
+  const auto& reference = r.points.front();
   std::vector<std::vector<int>> index_of(r.points.size());
   for (size_t i = 0; i < r.points.size(); ++i)
     r.sweep.push_back(AsSweepPoint(r.points[i], i, index_of[i]));
@@ -117,6 +181,17 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
         .description;
   };
   r.diagram = MakeCampbellDiagram(r.sweep, r.tracking, labels, options.campbell, by_mbc);
+  return r;
+}
+
+LinCampbellResult ComputeLinCampbell(const std::vector<std::string>& arguments,
+                                     const LinCampbellOptions& options) {
+  options.Validate();
+  std::vector<std::string> unreadable;
+  const std::vector<LinOperatingPoint> points =
+      ReadLinOperatingPoints(arguments, options.keep_going ? &unreadable : nullptr);
+  LinCampbellResult r = MakeLinCampbell(points, options);
+  r.skipped.insert(r.skipped.begin(), unreadable.begin(), unreadable.end());
   return r;
 }
 

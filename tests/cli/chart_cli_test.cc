@@ -147,10 +147,44 @@ TEST(ChartCli, CampbellOfAnOperatingPointSet) {
                   1e-12 * fd);
     }
   EXPECT_EQ(RunLtp("campbell" + dirs + " --frequency undamped").code, 2);
-  // The same directory twice is one operating point twice: refused, naming the files.
-  const auto twice = RunLtp("campbell " + root + "/omega-0.4 " + root + "/omega-0.4");
+  // A copy of a point elsewhere is one operating point twice: refused, naming the files.
+  const std::string copy = Tmp("omega-0.4-copy");
+  std::filesystem::remove_all(copy);
+  std::filesystem::copy(root + "/omega-0.4", copy);
+  const auto twice = RunLtp("campbell " + root + "/omega-0.4 " + copy);
   EXPECT_EQ(twice.code, 2);
   EXPECT_NE(twice.err.find("same rotor speed [rpm]"), std::string::npos) << twice.err;
+}
+
+// OpenFAST's own layout: the seven simulations' <root>.<k>.lin files in one folder. ltp
+// campbell groups them by root (the same diagram as one directory per point); ltp mbc, which
+// analyses one point, says what the folder holds; --keep-going leaves out a broken simulation.
+TEST(ChartCli, CampbellOfAFlatOpenFastFolder) {
+  const std::string root = test::Src("tests/data/openfast/rotor-speeds");
+  const std::string flat = Tmp("campbell_flat");
+  std::filesystem::remove_all(flat);
+  std::filesystem::create_directories(flat);
+  std::string dirs;
+  for (const char* w : {"0.4", "0.6", "0.8", "1.0", "1.2", "1.4", "1.6"}) {
+    dirs += " " + root + "/omega-" + w;
+    for (int k = 1; k <= 3; ++k)
+      std::filesystem::copy_file(root + "/omega-" + w + "/rotor." + std::to_string(k) + ".lin",
+                                 flat + "/omega" + w + "." + std::to_string(k) + ".lin");
+  }
+  const auto per_directory = RunLtp("campbell" + dirs + " --json");
+  const auto folder = RunLtp("campbell " + flat + " --json");
+  ASSERT_EQ(folder.code, 0) << folder.err;
+  ASSERT_EQ(per_directory.code, 0) << per_directory.err;
+  EXPECT_EQ(json::parse(folder.out)["campbell"], json::parse(per_directory.out)["campbell"]);
+  const auto mbc = RunLtp("mbc " + flat + " --no-floquet");
+  EXPECT_EQ(mbc.code, 2);
+  EXPECT_NE(mbc.err.find("7 OpenFAST simulations"), std::string::npos) << mbc.err;
+  std::ofstream(flat + "/broken.1.lin") << "not a linearisation\n";
+  EXPECT_EQ(RunLtp("campbell " + flat).code, 2);
+  const auto kept = RunLtp("campbell " + flat + " --keep-going");
+  ASSERT_EQ(kept.code, 0) << kept.err;
+  EXPECT_NE(kept.out.find("left out (--keep-going): "), std::string::npos) << kept.out;
+  EXPECT_NE(kept.out.find("broken.1.lin"), std::string::npos) << kept.out;
 }
 
 TEST(ChartCli, FailedPointsAreRowsWithTheirReason) {

@@ -49,3 +49,25 @@ def test_campbell_refuses_an_unknown_axis():
     import pytest
     with pytest.raises(ltp.InputError, match="by must be"):
         ltp.campbell(POINTS, by="pitch")
+
+
+def test_campbell_of_a_flat_output_folder_and_keep_going(tmp_path):
+    # OpenFAST's layout: every simulation's <root>.<k>.lin in one folder. Reference: the same
+    # files one directory per point (the diagram above).
+    import shutil
+    import pytest
+    for point in POINTS:
+        for f in Path(point).glob("*.lin"):
+            shutil.copy(f, tmp_path / f"{Path(point).name}.{f.name.split('.')[1]}.lin")
+    flat = ltp.campbell([str(tmp_path)])
+    per_point = ltp.campbell(POINTS)
+    assert len(flat.points) == len(POINTS)
+    assert np.array_equal(flat.parameter, per_point.parameter)
+    for a, b in zip(flat.lines, per_point.lines):
+        assert np.array_equal(a["frequency_hz"], b["frequency_hz"], equal_nan=True)
+    (tmp_path / "broken.1.lin").write_text("not a linearisation\n")
+    with pytest.raises(ltp.InputError):
+        ltp.campbell([str(tmp_path)])
+    kept = ltp.campbell([str(tmp_path)], keep_going=True)
+    assert len(kept.points) == len(POINTS)
+    assert len(kept.skipped) == 1 and "broken.1.lin" in kept.skipped[0]

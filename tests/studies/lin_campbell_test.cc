@@ -5,11 +5,13 @@
 #include "ltp/studies/lin_campbell.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <sstream>
 
@@ -151,6 +153,97 @@ TEST(LinCampbell, RefusesMixedModelsAndRepeatedPoints) {
   LinCampbellOptions by_wind;
   by_wind.axis = OperatingPointAxis::kWindSpeed;  // the rotor files have no wind speed
   EXPECT_THROW(MakeLinCampbell({ops[0]}, by_wind), InputError);
+}
+
+// OpenFAST output as it comes: several simulations' <root>.<k>.lin files in one folder.
+// Returns the folder; `roots[i]` names the simulation at speeds[i]. Headers may be edited first.
+std::string WriteFlatFolder(const std::string& name, const std::vector<double>& speeds,
+                            const std::vector<std::string>& roots,
+                            const std::function<void(size_t, LinFile&)>& edit = {}) {
+  const std::string dir = ::testing::TempDir() + name + "-" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (size_t i = 0; i < speeds.size(); ++i) {
+    auto files = test::RotorLinFiles(Rotor(speeds[i]), {0.0, 2 * kPi / 3, 4 * kPi / 3});
+    for (size_t k = 0; k < files.size(); ++k) {
+      if (edit) edit(i, files[k]);
+      WriteLinFile(dir + "/" + roots[i] + "." + std::to_string(k + 1) + ".lin", files[k]);
+    }
+  }
+  return dir;
+}
+
+TEST(LinCampbell, FlatOutputFolderGivesOnePointPerSimulation) {
+  // Reference: the same sets one directory per point, as before grouping existed.
+  const std::vector<double> speeds = {0.4, 0.8, 1.2, 1.6};
+  std::vector<LinOperatingPoint> ops;
+  for (const std::string& dir : WriteSets("lin_campbell_flat_ref", speeds))
+    ops.push_back(ReadLinOperatingPoint({dir}));
+  const LinCampbellResult reference = MakeLinCampbell(ops);
+  const std::string flat =
+      WriteFlatFolder("lin_campbell_flat", speeds, {"ws04", "ws08", "ws12", "ws16"});
+  std::vector<std::string> one_by_one;  // what an unquoted glob hands over
+  for (const auto& e : std::filesystem::directory_iterator(flat)) one_by_one.push_back(e.path());
+  for (const auto& arguments : {std::vector<std::string>{flat}, one_by_one}) {
+    const LinCampbellResult r = ComputeLinCampbell(arguments);
+    ASSERT_EQ(r.points.size(), speeds.size());
+    EXPECT_EQ(r.axis, OperatingPointAxis::kRotorSpeed);
+    ASSERT_EQ(r.diagram.lines.size(), reference.diagram.lines.size());
+    for (size_t k = 0; k < r.diagram.lines.size(); ++k)
+      EXPECT_EQ(r.diagram.lines[k].frequency_hz, reference.diagram.lines[k].frequency_hz);
+    for (const LinCampbellPoint& p : r.points) EXPECT_EQ(p.files.size(), 3u);
+  }
+  // One analysis of the folder cannot be: the error says what it holds.
+  try {
+    ReadLinOperatingPoint({flat});
+    ADD_FAILURE() << "a folder of four simulations read as one operating point";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("4 OpenFAST simulations"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LinCampbell, WindSweepAtConstantRotorSpeedIsOrderedByWindSpeed) {
+  // Above rated the rotor speed is constant: every header says 1.2 rad/s, the wind speeds
+  // (written out of order) tell the points apart.
+  const std::vector<double> winds = {18, 12, 24, 15};
+  const std::string flat = WriteFlatFolder("lin_campbell_wind", {0.4, 0.8, 1.2, 1.6},
+                                           {"a", "b", "c", "d"}, [&](size_t i, LinFile& f) {
+                                             f.rotor_speed = 1.2;
+                                             f.wind_speed = winds[i];
+                                           });
+  const LinCampbellResult r = ComputeLinCampbell({flat});
+  EXPECT_EQ(r.axis, OperatingPointAxis::kWindSpeed);
+  EXPECT_EQ(r.axis_label, "wind speed [m/s]");
+  EXPECT_EQ(r.diagram.parameter, (std::vector<double>{12, 15, 18, 24}));
+  LinCampbellOptions by_rotor;
+  by_rotor.axis = OperatingPointAxis::kRotorSpeed;
+  try {
+    ComputeLinCampbell({flat}, by_rotor);
+    ADD_FAILURE() << "four points at one rotor speed ordered by rotor speed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--by wind-speed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LinCampbell, KeepGoingLeavesOutPointsThatCannotBeUsed) {
+  const std::string flat =
+      WriteFlatFolder("lin_campbell_keep", {0.4, 0.8, 1.2}, {"op1", "op2", "op3"});
+  std::ofstream(flat + "/op4.1.lin") << "not an OpenFAST file\n";  // a broken simulation
+  {  // and one of another model: two blades, where MBC3 does not apply
+    RotorParameters two = Rotor(1.6);
+    two.blades = 2;
+    const auto files = test::RotorLinFiles(two, {0.0, 2 * kPi / 3, 4 * kPi / 3});
+    for (size_t k = 0; k < files.size(); ++k)
+      WriteLinFile(flat + "/op5." + std::to_string(k + 1) + ".lin", files[k]);
+  }
+  EXPECT_THROW(ComputeLinCampbell({flat}), InputError);
+  LinCampbellOptions o;
+  o.keep_going = true;
+  const LinCampbellResult r = ComputeLinCampbell({flat}, o);
+  EXPECT_EQ(r.points.size(), 3u);
+  ASSERT_EQ(r.skipped.size(), 2u);
+  EXPECT_NE(r.skipped[0].find("op4.1.lin"), std::string::npos) << r.skipped[0];
+  EXPECT_NE(r.skipped[1].find("op5."), std::string::npos) << r.skipped[1];
 }
 
 TEST(LinCampbell, TheNrel5MwFilesAreAOnePointSet) {

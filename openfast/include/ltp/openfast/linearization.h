@@ -105,8 +105,26 @@ struct LinOperatingPoint {
 /// wind speeds that differ by more than 1e-3 relative, two files at the same azimuth, no rotor
 /// speed or azimuth in a header, or no state matrix.
 LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files);
-/// ExpandLinPaths + ReadLinFile + MakeLinOperatingPoint.
+/// ExpandLinPaths + ReadLinFile + MakeLinOperatingPoint. When the files are not one operating
+/// point and GroupLinFiles finds several among them, the error lists those.
 LinOperatingPoint ReadLinOperatingPoint(const std::vector<std::string>& arguments);
+
+/// The files of `arguments` (ExpandLinPaths) grouped as OpenFAST names its output: by
+/// directory and root name, `<root>.<k>.lin` being linearisation k of the simulation `root`.
+/// A flat output folder of several simulations gives one group per simulation; the files of
+/// one simulation given one by one (an unquoted glob) give one group; files without a numbered
+/// name form one group per directory. Groups in the order of their first file, each sorted.
+/// @throws InputError as ExpandLinPaths.
+std::vector<std::vector<std::string>> GroupLinFiles(const std::vector<std::string>& arguments);
+
+/// Every operating point among `arguments`: GroupLinFiles, each group split where its headers
+/// give other rotor or wind speeds (OpenFAST can linearise one simulation at several times),
+/// read and matched (MakeLinOperatingPoint). Without `failures` the first group that cannot be
+/// read or is not one operating point throws; with it, that group is left out and described
+/// there ("file …: reason") — what a Campbell diagram with --keep-going needs.
+/// @throws InputError (bad arguments, or a group's error without `failures`, or no point at all).
+std::vector<LinOperatingPoint> ReadLinOperatingPoints(const std::vector<std::string>& arguments,
+                                                      std::vector<std::string>* failures = nullptr);
 
 /// How matrices given at K azimuths are extended to the whole revolution.
 enum class SampleInterpolation {

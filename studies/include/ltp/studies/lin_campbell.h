@@ -11,6 +11,7 @@
 // not modulo the rotor speed); damping ratios −Re λ/|λ|.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ltp/openfast/linearization.h"
@@ -22,12 +23,20 @@
 namespace ltp {
 
 enum class OperatingPointAxis {
+  /// Rotor speed when the points' rotor speeds differ; wind speed when they repeat (a sweep
+  /// below rated at minimum speed, or above rated at rated speed) and the wind speeds differ.
+  kAuto,
   kRotorSpeed,  ///< order and plot by rotor speed (rpm)
   kWindSpeed,   ///< by wind speed (m/s, from the files' headers)
 };
+/// "auto", "rotor-speed" or "wind-speed" (the CLI's --by, Python's by=); nullopt otherwise.
+std::optional<OperatingPointAxis> ParseOperatingPointAxis(std::string_view name);
 
 struct LinCampbellOptions {
-  OperatingPointAxis axis = OperatingPointAxis::kRotorSpeed;
+  OperatingPointAxis axis = OperatingPointAxis::kAuto;
+  /// Leave out an operating point that cannot be read or analysed (its reason in
+  /// LinCampbellResult::skipped) instead of failing the diagram; at least one must remain.
+  bool keep_going = false;
   Mbc3Options mbc;
   CampbellOptions campbell;
   /// @throws InputError naming the field and the violated constraint.
@@ -46,7 +55,10 @@ struct LinCampbellPoint {
 };
 
 struct LinCampbellResult {
-  std::string axis_label;                ///< "rotor speed [rpm]" or "wind speed [m/s]"
+  OperatingPointAxis axis = OperatingPointAxis::kRotorSpeed;  ///< as resolved (never kAuto)
+  std::string axis_label;  ///< "rotor speed [rpm]" or "wind speed [m/s]"
+  /// Operating points left out (keep_going): "files: reason", one each.
+  std::vector<std::string> skipped;
   std::vector<LinCampbellPoint> points;  ///< ordered by the abscissa
   std::vector<SweepPoint> sweep;         ///< per point: the MBC3 modes as a sweep point
   ModeTracking tracking;
@@ -58,5 +70,13 @@ struct LinCampbellResult {
 /// abscissa, or wind speeds are asked for and a point's files do not give one.
 LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
                                   const LinCampbellOptions& options = {});
+
+/// The whole job from file arguments, as `ltp campbell` and Python's ltp.campbell run it: the
+/// operating points among `arguments` (ReadLinOperatingPoints: OpenFAST output folders, globs,
+/// one directory per point), then MakeLinCampbell; with keep_going, points that cannot be read
+/// join those MBC3 cannot analyse in `skipped`.
+/// @throws InputError as ReadLinOperatingPoints and MakeLinCampbell.
+LinCampbellResult ComputeLinCampbell(const std::vector<std::string>& arguments,
+                                     const LinCampbellOptions& options = {});
 
 }  // namespace ltp
