@@ -16,6 +16,7 @@
 #include "ltp/floquet/model_error.h"
 #include "ltp/models/rotor.h"
 #include "ltp/studies/rotor_mbc_check.h"
+#include "modal_reduction_output.h"
 #include "plot.h"
 #include "progress_bar.h"
 #include "scene_args.h"
@@ -124,21 +125,6 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
 }
 
 // What an analysis of the modes below a cut-off left out (null for a full analysis).
-json ReductionJson(const std::optional<ModalReduction>& m) {
-  if (!m) return nullptr;
-  json dropped = json::array();
-  for (const auto& l : m->dropped)
-    dropped.push_back({{"re", JsonNumber(l.real())}, {"im", JsonNumber(l.imag())}});
-  return {{"cutoff_hz", m->cutoff / (2 * kPi)},
-          {"states", m->kept},
-          {"check_cutoff_hz", m->check_cutoff / (2 * kPi)},
-          {"check_states", m->check_kept},
-          {"truncation_change", JsonNumber(m->truncation_change)},
-          {"tail", JsonNumber(m->tail)},
-          {"dropped_mean_eigenvalues", dropped},
-          {"periodic_part", JsonNumber(m->periodic_part)}};
-}
-
 json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
   json mults, modes;
   json exps = ModesJson(r.modes, &mults, &modes);
@@ -249,20 +235,6 @@ void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
   if (diagnostics.empty()) return;
   std::cout << "  diagnostics:\n";
   for (const auto& d : diagnostics) std::cout << "    - " << d << "\n";
-}
-
-void PrintReduction(const ModalReduction& m, int states) {
-  double dropped_max = -std::numeric_limits<double>::infinity();
-  for (const auto& l : m.dropped) dropped_max = std::max(dropped_max, l.real());
-  std::cout << "\n  modes below " << Num(m.cutoff / (2 * kPi), 4) << " Hz only: " << m.kept
-            << " of " << states << " states (the numbers from the projection at "
-            << Num(m.check_cutoff / (2 * kPi), 4) << " Hz, " << m.check_kept
-            << " states; truncation moves them by " << Num(m.truncation_change, 2)
-            << " 1/s, the modes beyond by about " << Num(m.tail, 2) << ")\n";
-  if (!m.dropped.empty())
-    std::cout << "  left out: " << m.dropped.size()
-              << " modes, mean-A eigenvalues up to Re λ = " << Num(dropped_max, 4)
-              << " 1/s, periodic part ‖A(t) − Ā‖ ≤ " << Num(m.periodic_part, 2) << "\n";
 }
 
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {

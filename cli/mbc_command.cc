@@ -18,6 +18,7 @@
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
 #include "ltp/studies/sampled_floquet.h"
+#include "modal_reduction_output.h"
 #include "progress_bar.h"
 
 namespace ltp::cli {
@@ -38,6 +39,7 @@ struct MbcArgs {
   bool floquet = true;
   std::string speed = "operating-point";
   double tol = 1e-10;
+  double modes_below_hz = 0;
 };
 
 std::string Hz(double rad_per_s) { return Num(rad_per_s / (2 * kPi), 6); }
@@ -97,6 +99,7 @@ json FloquetJson(const SampledFloquetResult& f) {
           {"error_estimate_hold", JsonNumber(f.hold.error_estimate)},
           {"error_estimate_trig", JsonNumber(f.trig.error_estimate)},
           {"elapsed_s", f.hold.elapsed_s + f.trig.elapsed_s},
+          {"modes_below", ReductionJson(f.trig.reduction)},
           {"diagnostics_hold", f.hold.diagnostics},
           {"diagnostics_trig", f.trig.diagnostics},
           {"notes", f.notes}};
@@ -191,6 +194,7 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
     for (const auto& d : f.trig.diagnostics) std::cout << "    - trig: " << d << "\n";
     return;
   }
+  if (f.trig.reduction) PrintReduction(*f.trig.reduction, f.trig.states);
   const bool with_mbc = !f.modes.empty() && f.modes.front().mbc_mode.has_value();
   std::cout << "\n  mode" << (with_mbc ? "   MBC f_n [Hz]    MBC ζ" : "")
             << "   hold f_n [Hz]   hold ζ   trig f_n [Hz]   trig ζ   |hold−trig| [1/s]"
@@ -255,6 +259,7 @@ int RunMbc(const MbcArgs& args) {
   if (args.floquet && op.rotor_speed > 0 && !sampling) {
     SampledFloquetOptions fo;
     fo.floquet.integrator.rel_tol = args.tol;
+    fo.floquet.modes_below = 2 * kPi * args.modes_below_hz;
     ProgressBar progress("mbc: Floquet", !args.json);
     fo.floquet.on_progress = [&progress](std::string_view phase, double fraction) {
       progress.Update(fraction, 1, {}, phase);
@@ -321,6 +326,12 @@ Command AddMbcCommand(CLI::App& app) {
   cmd->add_option("--tol", args.tol, "relative tolerance of the Floquet integrations")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--modes-below", args.modes_below_hz,
+                  "Floquet part: only the modes whose MBC eigenvalue is below this many Hz "
+                  "(|λ|/2π), checked against twice the cut-off, as ltp floquet --modes-below; 0 = "
+                  "every mode")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   return {cmd, [] { return RunMbc(args); }};
 }
 

@@ -111,6 +111,11 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   std::vector<bool> ref_rigid;
   if (mbc.applicable && !mbc.modes.empty()) {
     for (size_t k = 0; k < mbc.modes.size(); ++k) {
+      // The modes below a cut-off are those of the mean of the samples, which is MBC3's
+      // averaged matrix: the analysed exponents match the MBC modes below it.
+      if (options.floquet.modes_below > 0 &&
+          std::abs(mbc.modes[k].eigenvalue) > options.floquet.modes_below)
+        continue;
       refs.push_back(mbc.modes[k].eigenvalue);
       ref_mode.push_back(static_cast<int>(k));
       ref_rigid.push_back(mbc.modes[k].rigid_body);
@@ -172,6 +177,11 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   r.error_estimate = PerExponentBand(real_parts, own, rigid, integration, r.max_real_trig,
                                      integration + r.max_difference);
   r.verdict = ClassifyStability(r.ok, r.max_real_trig, r.error_estimate);
+  // An analysis of the modes below a cut-off is stable only if the modes left out cannot
+  // reach Re λ = 0 either (its own verdict says so).
+  if (r.trig.reduction && r.verdict == StabilityVerdict::kStable &&
+      r.trig.verdict != StabilityVerdict::kStable)
+    r.verdict = r.trig.verdict;
   r.stable = r.verdict == StabilityVerdict::kStable;
 
   r.notes.push_back("each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +

@@ -188,6 +188,40 @@ TEST(MbcCli, FloquetOfTheModesBelowAFrequency) {
   EXPECT_NE(r.err.find("--modes-below works with --method monodromy"), std::string::npos) << r.err;
 }
 
+TEST(MbcCli, MbcFloquetPartOfTheModesBelowAFrequency) {
+  // The same generated rotor as above (modes 0.05…50 Hz, constant in multi-blade coordinates,
+  // exact exponents eig(A_MBC) modulo jΩ): ltp mbc's Floquet part of the modes below 1 Hz lists
+  // exactly the MBC modes below it, each route's exponent within its estimate of the exact one.
+  const auto model = ltp::test::MakeIsotropicRotorLin(5, 2, ltp::test::EvenAzimuths(3), 1.0, 5, 0.0,
+                                                      0.02, 0.3, 300.0, true);
+  const std::string dir =
+      ltp::test::WriteLinDirectory(model.files, std::string(::testing::TempDir()) + "below-mbc");
+  Outcome r = Ltp("mbc " + dir + " --modes-below 1 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& f = j["floquet"];
+  int slow = 0, slow_listed = 0;
+  for (auto l : model.exponents) {
+    slow += std::abs(l) <= 2 * 3.141592653589793;
+    slow_listed += std::abs(l) <= 2 * 3.141592653589793 && l.imag() >= 0;
+  }
+  EXPECT_EQ(f["modes_below"]["states"].get<int>(), slow);
+  ASSERT_EQ(f["modes"].size(), static_cast<size_t>(slow_listed));
+  EXPECT_EQ(f["verdict"], "stable");
+  const double estimate = f["error_estimate"].get<double>();
+  for (const auto& m : f["modes"]) {
+    const double re = m["trig"]["re"].get<double>(), im = m["trig"]["im"].get<double>();
+    double nearest = 1e300;
+    for (auto l : model.exponents)
+      nearest = std::min(nearest, std::hypot(re - l.real(), std::remainder(im - l.imag(), 1.0)));
+    EXPECT_LE(nearest, estimate);
+  }
+  r = Ltp("mbc " + dir + " --modes-below 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("modes below 1 Hz only: " + std::to_string(slow) + " of"), std::string::npos)
+      << r.out;
+}
+
 TEST(MbcCli, PfrfOfLinFilesCountsTheSamplingError) {
   // A gravity rotor with blade force inputs and deflection outputs (tests/support/
   // isotropic_rotor_lin.h) at 3 azimuths: the multi-blade model's 3P content folds onto a

@@ -28,7 +28,9 @@ namespace ltp {
 
 struct SampledFloquetOptions {
   /// Options of the trigonometric route (smooth A(t): the default integrator and tolerance);
-  /// the nearest-sample route uses the same options with the exact kExpm integrator.
+  /// the nearest-sample route uses the same options with the exact kExpm integrator. With
+  /// floquet.modes_below both routes analyse the modes below it (FloquetResult::reduction),
+  /// and the table lists the MBC modes with |λ| at most the cut-off.
   FloquetOptions floquet;
   /// Analyse the MBC-transformed samples when MBC applies (false: the files' coordinates).
   bool multiblade_coordinates = true;
