@@ -624,16 +624,19 @@ double ComplexProductSecondsPerCube() {
   return best / (static_cast<double>(k) * k * k);
 }
 
-// The dense solve's cost (HillOptions::max_work_seconds): refused far beyond the limit,
-// announced above announce_work_seconds.
-void WeighTheDenseWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
-  hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
-  const double m = static_cast<double>(n) * (2.0 * N + 1);
-  if (m < 300) return;  // well under a second anywhere
+// Rows of the Hill matrices at N and, for the estimate, at N + Δ (0 when Δ is off).
+std::pair<double, double> HillRows(int n, int N, const HillOptions& o) {
   const int delta = o.delta_harmonics < 0   ? -1
                     : o.delta_harmonics > 0 ? o.delta_harmonics
                                             : std::max(2, (N + 1) / 2);
-  const double m2 = delta < 0 ? 0.0 : static_cast<double>(n) * (2.0 * (N + delta) + 1);
+  return {static_cast<double>(n) * (2.0 * N + 1),
+          delta < 0 ? 0.0 : static_cast<double>(n) * (2.0 * (N + delta) + 1)};
+}
+
+// Dense: the eigen-solves at N and N + Δ and the Koopman–Hill expm cost about 4 complex
+// products per size³ (calibrated on Mathieu, m = 402…1602: 1.3–78 s).
+WorkEstimate DenseHillWork(int n, int N, const HillOptions& o) {
+  const auto [m, m2] = HillRows(n, N, o);
   const bool koopman = o.koopman_check && m <= o.koopman_max_size;
   constexpr double kProductsPerCube = 4;
   WorkEstimate w;
@@ -641,19 +644,45 @@ void WeighTheDenseWork(int n, int N, const HillOptions& o, std::vector<std::stri
   w.seconds_per_evaluation = kProductsPerCube * ComplexProductSecondsPerCube();
   w.fewest_evaluations = w.evaluations / 3;
   std::ostringstream basis;
-  basis.precision(3);
   basis << "dense Hill eigen-solves of size " << static_cast<long>(m) << (m2 > 0 ? " and " : "")
         << (m2 > 0 ? std::to_string(static_cast<long>(m2)) : std::string()) << " ("
         << (koopman ? "with" : "without") << " the Koopman–Hill expm), ~" << kProductsPerCube
         << " complex products per size³";
   w.basis = basis.str();
+  return w;
+}
+
+// Structured: one banded shift-invert Arnoldi run per state, each linear in the rows. Measured
+// (Mathieu n = 2, N = 1e4 and 1e5; tower-rotor n = 22, N = 200 and 600: 2 s, 29 s, 64 s, 194 s)
+// against the timed product: 9e3 product-cubes per row·n² over both truncations. The rotor
+// (n = 12, N = 1000: 8.4 s) costs a sixth of that, so the fewest count is a tenth.
+WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o) {
+  const auto [m, m2] = HillRows(n, N, o);
+  constexpr double kCubesPerRowAndState2 = 9e3;
+  WorkEstimate w;
+  w.evaluations = (m + m2) * n * n;
+  w.seconds_per_evaluation = kCubesPerRowAndState2 * ComplexProductSecondsPerCube();
+  w.fewest_evaluations = w.evaluations / 10;
+  std::ostringstream basis;
+  basis << "structured (banded shift-invert) Hill solves of " << static_cast<long>(m)
+        << (m2 > 0 ? " and " + std::to_string(static_cast<long>(m2)) : std::string())
+        << " rows, one per state (" << n << "), ~" << kCubesPerRowAndState2
+        << " product-cubes per row·n²";
+  w.basis = basis.str();
+  return w;
+}
+
+// HillOptions::max_work_seconds: refused when even the fewest seconds exceed the limit,
+// announced above announce_work_seconds.
+void WeighHillWork(const WorkEstimate& w, int N, const HillOptions& o, const char* advice,
+                   std::vector<std::string>& notes) {
   if (o.max_work_seconds > 0 && w.fewest_seconds() > o.max_work_seconds) {
     std::ostringstream s;
     s.precision(3);
     s << "Hill's method at N = " << N << " would take at least " << w.fewest_seconds()
       << " CPU s (about " << w.seconds() << " s; " << w.basis
       << "), beyond HillOptions::max_work_seconds = " << o.max_work_seconds
-      << " (ltp: --max-work); use the structured solver or fewer harmonics";
+      << " (ltp: --max-work); " << advice;
     throw InputError(s.str());
   }
   if (w.seconds() > o.announce_work_seconds) {
@@ -662,6 +691,18 @@ void WeighTheDenseWork(int n, int N, const HillOptions& o, std::vector<std::stri
     s << "work estimate before the analysis: about " << w.seconds() << " CPU s (" << w.basis << ")";
     notes.push_back(s.str());
     if (o.on_long_work) o.on_long_work(w);
+  }
+}
+
+void WeighTheWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
+  if (o.solver == HillSolver::kDense) {
+    hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
+    if (n * (2.0 * N + 1) < 300) return;                       // well under a second anywhere
+    WeighHillWork(DenseHillWork(n, N, o), N, o, "use the structured solver or fewer harmonics",
+                  notes);
+  } else if (n * (2.0 * N + 1) >= 2000) {  // below: well under a second
+    WeighHillWork(StructuredHillWork(n, N, o), N, o,
+                  "fewer harmonics (--harmonics auto stops where the estimate is met)", notes);
   }
 }
 
@@ -699,17 +740,26 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     options.solver = c.solver;
     notes.push_back("solver auto → " + std::string(ToString(c.solver)) + ": " + c.reason);
   }
-  if (options.solver == HillSolver::kDense)
-    WeighTheDenseWork(A.rows(), options.harmonics, options, notes);
+  WeighTheWork(A.rows(), options.harmonics, options, notes);
   HillResult r = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, options);
   // A structured result that failed its own checks (e.g. one eigenpair of a double exponent
   // found twice and another family missed) is replaced by the dense solver's, which sees the
   // whole spectrum, when that fits.
   const double dense_bytes = std::pow((2.0 * options.harmonics + 1) * A.rows(), 2) * sizeof(cd);
+  HillOptions dense = options;
+  dense.solver = HillSolver::kDense;
+  // The fallback only where its dense solve costs no more than the limit allows.
+  const bool affordable = options.max_work_seconds <= 0 ||
+                          DenseHillWork(A.rows(), options.harmonics, dense).fewest_seconds() <=
+                              options.max_work_seconds;
   if (!r.ok && !r.modes.empty() && options.solver == HillSolver::kStructured &&
-      options.structured_fallback && dense_bytes <= options.max_dense_bytes) {
-    HillOptions dense = options;
-    dense.solver = HillSolver::kDense;
+      options.structured_fallback && dense_bytes <= options.max_dense_bytes && !affordable)
+    notes.push_back(
+        "structured solver's exponents failed their checks; the dense solver would take longer "
+        "than max_work_seconds, so the result stays as it is");
+  if (!r.ok && !r.modes.empty() && options.solver == HillSolver::kStructured &&
+      options.structured_fallback && dense_bytes <= options.max_dense_bytes && affordable) {
+    WeighTheWork(A.rows(), options.harmonics, dense, notes);  // announced when long
     HillResult d = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, dense);
     notes.push_back("structured solver's exponents failed their checks (" +
                     (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +

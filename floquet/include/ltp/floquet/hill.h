@@ -79,12 +79,15 @@ struct HillOptions {
   /// HillConvergenceStudy reports progress as (work done, total work) after each solve, the
   /// work of a truncation counted as its matrix size cubed (what a dense solve costs).
   std::function<void(double done, double total)> progress;
-  /// Cost before the work (dense solver): the eigen-solves at N and N + Δ and the Koopman–Hill
+  /// Cost before the work. Dense solver: the eigen-solves at N and N + Δ and the Koopman–Hill
   /// expm cost about 4 complex n×n-product equivalents per m³ (m = n(2N+1), calibrated on
-  /// Mathieu, m = 402…1602: 1.3–78 s), the product timed on this machine at the start. A
-  /// solve whose estimate exceeds 3 × max_work_seconds (0 = no limit) is refused before it
-  /// starts; one above announce_work_seconds calls on_long_work first (seconds() is the
-  /// estimate, basis says what decided it) and says so in the diagnostics.
+  /// Mathieu, m = 402…1602: 1.3–78 s). Structured solver: one banded shift-invert run per
+  /// state, about 9e3 product-cubes per row·n² over both truncations (calibrated on Mathieu
+  /// and tower-rotor, 2–194 s; the rotor takes a sixth). The product is timed on this machine at
+  /// the start. A solve whose estimate exceeds 3 × max_work_seconds (0 = no limit) is refused
+  /// before it starts (and a structured result is not replaced by a dense one that would be); one
+  /// above announce_work_seconds calls on_long_work first (seconds() is the estimate, basis says
+  /// what decided it) and says so in the diagnostics.
   double max_work_seconds = 3600;
   double announce_work_seconds = 10;
   std::function<void(const WorkEstimate&)> on_long_work;
