@@ -746,26 +746,28 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   // found twice and another family missed) is replaced by the dense solver's, which sees the
   // whole spectrum, when that fits.
   const double dense_bytes = std::pow((2.0 * options.harmonics + 1) * A.rows(), 2) * sizeof(cd);
-  HillOptions dense = options;
-  dense.solver = HillSolver::kDense;
-  // The fallback only where its dense solve costs no more than the limit allows.
-  const bool affordable = options.max_work_seconds <= 0 ||
-                          DenseHillWork(A.rows(), options.harmonics, dense).fewest_seconds() <=
-                              options.max_work_seconds;
   if (!r.ok && !r.modes.empty() && options.solver == HillSolver::kStructured &&
-      options.structured_fallback && dense_bytes <= options.max_dense_bytes && !affordable)
-    notes.push_back(
-        "structured solver's exponents failed their checks; the dense solver would take longer "
-        "than max_work_seconds, so the result stays as it is");
-  if (!r.ok && !r.modes.empty() && options.solver == HillSolver::kStructured &&
-      options.structured_fallback && dense_bytes <= options.max_dense_bytes && affordable) {
-    WeighTheWork(A.rows(), options.harmonics, dense, notes);  // announced when long
-    HillResult d = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, dense);
-    notes.push_back("structured solver's exponents failed their checks (" +
-                    (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +
-                    "); replaced by the dense solver's");
-    d.dense_fallback = true;
-    r = std::move(d);
+      options.structured_fallback && dense_bytes <= options.max_dense_bytes) {
+    HillOptions dense = options;
+    dense.solver = HillSolver::kDense;
+    // The fallback only where its dense solve costs no more than the limit allows (weighed
+    // here, not on every structured call: the weighing times a product).
+    const bool affordable = options.max_work_seconds <= 0 ||
+                            DenseHillWork(A.rows(), options.harmonics, dense).fewest_seconds() <=
+                                options.max_work_seconds;
+    if (!affordable) {
+      notes.push_back(
+          "structured solver's exponents failed their checks; the dense solver would take longer "
+          "than max_work_seconds, so the result stays as it is");
+    } else {
+      WeighTheWork(A.rows(), options.harmonics, dense, notes);  // announced when long
+      HillResult d = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, dense);
+      notes.push_back("structured solver's exponents failed their checks (" +
+                      (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +
+                      "); replaced by the dense solver's");
+      d.dense_fallback = true;
+      r = std::move(d);
+    }
   }
   if (fit && !fit->converged && !r.modes.empty()) FitErrorEstimate(system, options, *fit, r);
   // The rigid rotation of a free angle (rigid_body.h): left out of max Re λ and the verdict,

@@ -649,6 +649,15 @@ void CheckHeaders(const std::vector<LinFile>& files) {
   }
 }
 
+// Headers of one operating point agree to 1e-3 relative (OpenFAST writes 6–7 digits).
+bool SameRotorSpeed(double speed, double reference) {
+  const double d = std::abs(speed - reference);
+  return d <= 1e-3 * std::max(std::abs(reference), 1e-12) || d <= 1e-12;
+}
+bool SameWindSpeed(double speed, double reference) {
+  return std::abs(speed - reference) <= 1e-3 * std::max(std::abs(reference), 1.0);
+}
+
 // One model at one operating point: sizes, rotor speed and wind speed as the reference file's.
 void CheckSameOperatingPoint(const LinFile& f, const LinFile& ref) {
   if (f.continuous_states != ref.continuous_states || f.inputs != ref.inputs ||
@@ -659,13 +668,11 @@ void CheckSameOperatingPoint(const LinFile& f, const LinFile& ref) {
                      ", " + std::to_string(ref.inputs) + ", " + std::to_string(ref.outputs) +
                      ": not one model");
   const double speed = *f.rotor_speed, ref_speed = *ref.rotor_speed;
-  if (std::abs(speed - ref_speed) > 1e-3 * std::max(std::abs(ref_speed), 1e-12) &&
-      std::abs(speed - ref_speed) > 1e-12)
+  if (!SameRotorSpeed(speed, ref_speed))
     throw InputError(f.path + ": rotor speed " + FormatNumber(speed, "%.6g") + " rad/s but " +
                      ref.path + " has " + FormatNumber(ref_speed, "%.6g") +
                      " rad/s: the files are not one operating point");
-  if (f.wind_speed && ref.wind_speed &&
-      std::abs(*f.wind_speed - *ref.wind_speed) > 1e-3 * std::max(std::abs(*ref.wind_speed), 1.0))
+  if (f.wind_speed && ref.wind_speed && !SameWindSpeed(*f.wind_speed, *ref.wind_speed))
     throw InputError(f.path + ": wind speed " + FormatNumber(*f.wind_speed, "%.6g") + " m/s but " +
                      ref.path + " has " + FormatNumber(*ref.wind_speed, "%.6g") +
                      " m/s: the files are not one operating point");
@@ -868,17 +875,17 @@ std::string LinRootName(const std::filesystem::path& file) {
 }
 
 // The files of one group split by the operating condition in their headers (rotor speed and
-// wind speed within 1e-3, as MakeLinOperatingPoint accepts them).
+// wind speed as MakeLinOperatingPoint accepts them; a header without one is its own group).
 std::vector<std::vector<LinFile>> SplitByOperatingCondition(std::vector<LinFile> files) {
   std::vector<std::vector<LinFile>> points;
-  auto near = [](const std::optional<double>& a, const std::optional<double>& b, double floor) {
-    if (!a || !b) return a.has_value() == b.has_value();
-    return std::abs(*a - *b) <= 1e-3 * std::max(std::abs(*b), floor);
+  auto near = [](const std::optional<double>& a, const std::optional<double>& b,
+                 bool (*same)(double, double)) {
+    return a && b ? same(*a, *b) : a.has_value() == b.has_value();
   };
   for (LinFile& f : files) {
     auto same = std::find_if(points.begin(), points.end(), [&](const std::vector<LinFile>& p) {
-      return near(f.rotor_speed, p.front().rotor_speed, 1e-9) &&
-             near(f.wind_speed, p.front().wind_speed, 1.0);
+      return near(f.rotor_speed, p.front().rotor_speed, SameRotorSpeed) &&
+             near(f.wind_speed, p.front().wind_speed, SameWindSpeed);
     });
     if (same == points.end())
       points.push_back({std::move(f)});

@@ -140,25 +140,23 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   for (size_t i = 1; i < r.points.size(); ++i)
     if (r.points[i].parameter == r.points[i - 1].parameter)
       throw InputError(SameAbscissaMessage(r.points[i], r.points[i - 1], r.axis_label, r.axis));
-  auto same_states = [](const LinCampbellPoint& a, const LinCampbellPoint& b) {
-    bool same = a.mbc.states.size() == b.mbc.states.size();
-    for (size_t k = 0; same && k < a.mbc.states.size(); ++k)
-      same = a.mbc.states[k].description == b.mbc.states[k].description;
-    return same;
+  auto same_states = [](const std::vector<LinChannel>& a, const std::vector<LinChannel>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                      [](const auto& x, const auto& y) { return x.description == y.description; });
   };
   // The model most points share is the diagram's (the first point's when none is left out).
   size_t model = 0, shared = 0;
   for (size_t i = 0; i < r.points.size() && options.keep_going; ++i) {
     const auto n =
         static_cast<size_t>(std::count_if(r.points.begin(), r.points.end(), [&](const auto& p) {
-          return same_states(p, r.points[i]);
+          return same_states(p.mbc.states, r.points[i].mbc.states);
         }));
     if (n > shared) std::tie(model, shared) = std::make_pair(i, n);
   }
-  const LinCampbellPoint reference_point = r.points[model];
-  const std::string reference_file = reference_point.files.front();
+  const std::vector<LinChannel> reference_states = r.points[model].mbc.states;
+  const std::string reference_file = r.points[model].files.front();
   std::erase_if(r.points, [&](const LinCampbellPoint& p) {
-    if (same_states(p, reference_point)) return false;
+    if (same_states(p.mbc.states, reference_states)) return false;
     const std::string why = p.files.front() + " has other states than " + reference_file +
                             ": modes can only be tracked across operating points of one model";
     if (!options.keep_going) throw InputError(why);
