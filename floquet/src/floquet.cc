@@ -314,8 +314,13 @@ internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int s
   grid.integrator = options.integrator;
   grid.integrator.carry_local_errors =
       options.estimate_error && options.error_estimate_method == ErrorEstimateMethod::kLocalErrors;
+  // With carried local errors there is no refined run to put the mode samples on grid
+  // points, so the run itself starts from one segment per sample (80-state FE rotor: the
+  // shapes' propagation within 8 segments cost more than the run).
+  const bool one_run = grid.integrator.carry_local_errors;
   grid.uniform_segments = options.segments > 0           ? options.segments
                           : options.initial_segments > 0 ? options.initial_segments
+                          : one_run                      ? samples
                                                          : ModeSegments(samples, n);
   grid.refine = options.segments == 0;
   grid.max_factor_condition = options.max_factor_condition;
@@ -429,8 +434,8 @@ internal::SegmentGridOptions RefinedRunOptions(internal::SegmentGridOptions o,
 std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
                                            const FloquetOptions& options,
                                            internal::SegmentGridOptions fine,
-                                           internal::SegmentGrid& grid, LogEigenvalues& eig,
-                                           FloquetResult& r) {
+                                           int mode_samples, internal::SegmentGrid& grid,
+                                           LogEigenvalues& eig, FloquetResult& r) {
   fine.refine = false;
   fine.integrator.carry_local_errors = false;  // a fallback from kLocalErrors: nothing to carry
   fine.fixed_times.clear();
@@ -440,6 +445,14 @@ std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
     fine.fixed_times.push_back(0.5 * (grid.times[i] + grid.times[i + 1]));
   }
   fine.fixed_times.push_back(grid.times.back());
+  // The mode samples on grid points too: their shapes then come from the periodic eigenvectors
+  // at the grid points, not from a further integration within segments.
+  const double T = system.period();
+  for (int s = 1; s < mode_samples; ++s) fine.fixed_times.push_back(T * s / mode_samples);
+  std::sort(fine.fixed_times.begin(), fine.fixed_times.end());
+  fine.fixed_times.erase(std::unique(fine.fixed_times.begin(), fine.fixed_times.end(),
+                                     [T](double a, double b) { return b - a <= 1e-12 * T; }),
+                         fine.fixed_times.end());
   fine.integrator.rel_tol = std::max(options.integrator.rel_tol * 1e-2, 1e-15);
   fine.integrator.abs_tol = options.integrator.abs_tol * 1e-2;
   if (fine.integrator.steps_per_period > 0) fine.integrator.steps_per_period *= 2;
@@ -714,7 +727,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
         r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
             ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
             : RefineForErrorEstimate(system, options, RefinedRunOptions(grid_options, progress),
-                                     grid, eig, r);
+                                     options.compute_modes ? samples : 0, grid, eig, r);
   }
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;

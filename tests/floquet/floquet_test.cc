@@ -363,7 +363,10 @@ TEST(Options, InitialSegmentsStartTheRefinement) {
   o.initial_segments = 6;
   const FloquetResult started = AnalyzeFloquet(s, o);
   ASSERT_TRUE(automatic.ok && started.ok);
-  EXPECT_EQ(started.segments, 12);  // 6 well-conditioned ones, halved in the refined run
+  // 6 well-conditioned ones, halved in the refined run, which also cuts at the 32 mode
+  // samples (multiples of T/32; T/4, T/2, 3T/4 are on both grids): 12 + 31 − 3 = 40.
+  EXPECT_EQ(started.mode_samples.size(), 32u);
+  EXPECT_EQ(started.segments, 40);
   EXPECT_EQ(automatic.segments, 64);
   std::vector<std::complex<double>> a, b;
   for (const FloquetMode& m : automatic.modes) a.push_back(m.exponent);
