@@ -18,59 +18,73 @@ namespace ltp {
 
 namespace {
 
-// Each exponent's sampling error: the largest distance (modulo jΩp) of exponents[k] to its
-// match among each alternative's exponents (+inf when an analysis failed or found another
-// count), and what the analyses cost. `grid_segments` > 0 starts them from that grid.
-struct SamplingErrors {
-  std::vector<double> per_exponent;
-  long evaluations = 0;
-};
+// An alternative's analysis for the comparison: multipliers only (exponents modulo jΩp are all
+// it needs); for a cut-off analysis, the modes below twice it (one projection, no check), so
+// that each of ours finds its match although the other model's mean places the modes near the
+// cut-off a little differently. `grid_segments` > 0 starts it from the analysed model's grid.
+FloquetResult AnalyzeAlternative(const PeriodicSystem& alternative, const std::string& name,
+                                 const FloquetOptions& options, int grid_segments) {
+  FloquetOptions o = options;
+  o.compute_modes = false;
+  // Its own integration error is at the tolerance; the term it gives is the models'
+  // difference, orders larger wherever it matters.
+  o.estimate_error = false;
+  if (options.modes_below > 0) o.modes_below = kModesBelowCheck * options.modes_below;
+  if (alternative.form() == PeriodicSystem::Form::kPiecewiseConstant)
+    o.integrator.type = IntegratorType::kExpm;  // exact for held samples
+  // The same samples, so factors grow alike: start from the analysed model's grid.
+  if (options.segments == 0 && options.initial_segments == 0 && grid_segments > 0)
+    o.initial_segments = grid_segments;
+  o.on_progress = PrefixedProgress(options.on_progress, name + ": ");  // named as such
+  return AnalyzeFloquet(alternative, o);
+}
 
-SamplingErrors MeasureSamplingErrors(const std::vector<PeriodicSystem>& alternatives,
-                                     const std::vector<std::complex<double>>& exponents, int states,
-                                     double period, const FloquetOptions& options,
-                                     int grid_segments) {
+// Each exponent's sampling error: the largest distance (modulo jΩp) of exponents[k] to its
+// match among each alternative's exponents (+inf when an analysis failed or found too few).
+// A cut-off analysis's alternatives hold more modes than ours; a full one's the same count.
+std::vector<double> SamplingErrorsOf(const std::vector<FloquetResult>& analysed,
+                                     const std::vector<std::complex<double>>& exponents,
+                                     double period, bool cut_off) {
   const double inf = std::numeric_limits<double>::infinity();
   const double omega = 2 * std::acos(-1.0) / period;
-  SamplingErrors s;
-  s.per_exponent.assign(exponents.size(), 0.0);
-  for (const PeriodicSystem& alternative : alternatives) {
-    if (alternative.states() != states || std::abs(alternative.period() - period) > 1e-12 * period)
-      throw InputError("IncludeModelError: an alternative model has another size or period");
-    FloquetOptions o = options;
-    o.compute_modes = false;  // exponents modulo jΩp are all the comparison needs
-    // Its own integration error is at the tolerance; the term it gives is the models'
-    // difference, orders larger wherever it matters.
-    o.estimate_error = false;
-    // An analysis of the modes below a cut-off: the other model's modes below twice it (one
-    // projection, no check), so that each of ours finds its match although the other model's
-    // mean places the modes near the cut-off a little differently.
-    if (options.modes_below > 0) o.modes_below = kModesBelowCheck * options.modes_below;
-    if (alternative.form() == PeriodicSystem::Form::kPiecewiseConstant)
-      o.integrator.type = IntegratorType::kExpm;  // exact for held samples
-    // The same samples, so factors grow alike: start from the analysed model's grid.
-    if (options.segments == 0 && options.initial_segments == 0 && grid_segments > 0)
-      o.initial_segments = grid_segments;
-    o.on_progress = PrefixedProgress(  // the other models' phases, named as such
-        options.on_progress, "other model " +
-                                 std::to_string(&alternative - alternatives.data() + 1) + " of " +
-                                 std::to_string(alternatives.size()) + ": ");
-    const FloquetResult other = AnalyzeFloquet(alternative, o);
-    s.evaluations += other.rhs_evals;  // the work reported is the whole analysis's
-    if (options.modes_below > 0 ? other.modes.size() < exponents.size()
-                                : other.modes.size() != exponents.size()) {
-      std::fill(s.per_exponent.begin(), s.per_exponent.end(), inf);
+  std::vector<double> e(exponents.size(), 0.0);
+  for (const FloquetResult& other : analysed) {
+    if (cut_off ? other.modes.size() < exponents.size() : other.modes.size() != exponents.size()) {
+      std::fill(e.begin(), e.end(), inf);
       continue;
     }
     std::vector<std::complex<double>> b;
     for (const FloquetMode& m : other.modes) b.push_back(m.exponent);
     const std::vector<int> match = MatchExponentIndices(exponents, b, omega);
     for (size_t k = 0; k < exponents.size(); ++k)
-      s.per_exponent[k] =
-          std::max(s.per_exponent[k],
-                   match[k] < 0 ? inf : ExponentDistance(exponents[k], b[match[k]], omega));
+      e[k] = std::max(e[k], match[k] < 0 ? inf : ExponentDistance(exponents[k], b[match[k]], omega));
   }
-  return s;
+  return e;
+}
+
+void CheckAlternative(const PeriodicSystem& alternative, int states, double period) {
+  if (alternative.states() != states || std::abs(alternative.period() - period) > 1e-12 * period)
+    throw InputError("IncludeModelError: an alternative model has another size or period");
+}
+
+// Every alternative analysed (in order, named "other model i of m"), and what they cost.
+struct AnalysedAlternatives {
+  std::vector<FloquetResult> results;
+  long evaluations = 0;
+};
+
+AnalysedAlternatives AnalyzeAlternatives(const std::vector<PeriodicSystem>& alternatives,
+                                         int states, double period, const FloquetOptions& options,
+                                         int grid_segments) {
+  AnalysedAlternatives a;
+  for (size_t i = 0; i < alternatives.size(); ++i) {
+    CheckAlternative(alternatives[i], states, period);
+    const std::string name = "other model " + std::to_string(i + 1) + " of " +
+                             std::to_string(alternatives.size());
+    a.results.push_back(AnalyzeAlternative(alternatives[i], name, options, grid_segments));
+    a.evaluations += a.results.back().rhs_evals;  // the work reported is the whole analysis's
+  }
+  return a;
 }
 
 std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes) {
@@ -140,22 +154,32 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, FloquetResult& r) {
   if (alternatives.empty()) return;
   const auto start = std::chrono::steady_clock::now();
-  const SamplingErrors s = MeasureSamplingErrors(alternatives, Exponents(r.modes), r.states,
-                                                 r.period, options, r.grid_segments);
-  r.rhs_evals += s.evaluations;
-  ApplySamplingErrors(s.per_exponent, r.error_estimate.value_or(0), alternatives.size(), r);
+  const AnalysedAlternatives a =
+      AnalyzeAlternatives(alternatives, r.states, r.period, options, r.grid_segments);
+  r.rhs_evals += a.evaluations;
+  IncludeModelError(a.results, r);
   r.elapsed_s += SecondsSince(start);  // the reported time is the whole analysis
+}
+
+void IncludeModelError(const std::vector<FloquetResult>& analysed, FloquetResult& r) {
+  if (analysed.empty()) return;
+  for (const FloquetResult& other : analysed)
+    if (other.states != r.states || std::abs(other.period - r.period) > 1e-12 * r.period)
+      throw InputError("IncludeModelError: an alternative model has another size or period");
+  const std::vector<double> e =
+      SamplingErrorsOf(analysed, Exponents(r.modes), r.period, r.reduction.has_value());
+  ApplySamplingErrors(e, r.error_estimate.value_or(0), analysed.size(), r);
 }
 
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, HillResult& h) {
   if (alternatives.empty() || h.modes.empty()) return;
   const auto start = std::chrono::steady_clock::now();
-  const SamplingErrors s =
-      MeasureSamplingErrors(alternatives, Exponents(h.modes), h.states, h.period, options, 0);
+  const AnalysedAlternatives a = AnalyzeAlternatives(alternatives, h.states, h.period, options, 0);
+  const std::vector<double> e =
+      SamplingErrorsOf(a.results, Exponents(h.modes), h.period, options.modes_below > 0);
   // Hill's estimate is one number for every exponent (none: no bound).
-  ApplySamplingErrors(s.per_exponent,
-                      h.error_estimate.value_or(std::numeric_limits<double>::infinity()),
+  ApplySamplingErrors(e, h.error_estimate.value_or(std::numeric_limits<double>::infinity()),
                       alternatives.size(), h);
   h.elapsed_s += SecondsSince(start);
 }

@@ -51,13 +51,14 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives, const Pf
   const auto start = std::chrono::steady_clock::now();
   const double inf = std::numeric_limits<double>::infinity();
   double term = 0;
+  std::vector<FloquetResult> analysed;
   for (const PeriodicSystem& alternative : alternatives) {
     if ((r.floquet.states > 0 && alternative.states() != r.floquet.states) ||
         alternative.inputs() <= options.input || alternative.outputs() <= options.output ||
         std::abs(alternative.period() - r.period) > 1e-12 * r.period)
       throw InputError(
           "IncludeModelError: an alternative model has another size, channels or period");
-    const PfrfResult other = SweepOf(alternative, options);
+    PfrfResult other = SweepOf(alternative, options);
     for (size_t i = 0; i < r.values.size(); ++i)
       for (size_t z = 0; z < r.values[i].size(); ++z) {
         double d = inf;
@@ -66,12 +67,14 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives, const Pf
         r.error_estimate[i][z] += d;
         term = std::max(term, d);
       }
+    r.floquet.rhs_evals += other.floquet.rhs_evals;
+    analysed.push_back(std::move(other.floquet));  // its exponents, for the Floquet term
   }
   r.model_error = term;
   double peak = 0;
   for (double m : r.order_max) peak = std::max(peak, m);
   r.diagnostics.push_back(ModelErrorLine(term, peak, alternatives.size()));
-  IncludeModelError(alternatives, options.floquet, r.floquet);
+  IncludeModelError(analysed, r.floquet);
   r.elapsed_s += SecondsSince(start);  // the reported time is the whole sweep's
 }
 

@@ -27,6 +27,12 @@ namespace ltp {
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, FloquetResult& r);
 
+/// The same when the alternatives were analysed already (a caller that needed them anyway,
+/// e.g. the partial-FRF sweep of each other model): `analysed[i]` is AnalyzeFloquet of the i-th
+/// alternative (modes or multipliers only); their time and evaluations are the caller's to add.
+/// @throws InputError when an analysis has another size or period than `r`.
+void IncludeModelError(const std::vector<FloquetResult>& analysed, FloquetResult& r);
+
 /// The same for Hill's route: the alternatives are analysed by the monodromy route (multipliers
 /// only, `options`), each exponent's e_k is added to its band and the largest to
 /// h.error_estimate; h.model_error, the verdict, the time are set as above. A Hill estimate
