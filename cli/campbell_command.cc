@@ -42,17 +42,27 @@ LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   return o;
 }
 
-// One row per operating point: abscissa, rotor speed, wind speed, then per line its damped
-// frequency and damping ratio (empty where the line is not tracked).
-void WriteLinesCsv(const std::string& path, const LinCampbellResult& r, const std::string& axis) {
+// One row per operating point: the ordering quantity first (rotor speed in rpm or wind speed),
+// then the other, then per line its frequency (damped or natural, as the header says) and
+// damping ratio, each column named by the line's number and mode (empty cells where the line
+// is not tracked).
+void WriteLinesCsv(const std::string& path, const LinCampbellResult& r) {
+  const bool by_rpm = r.axis == OperatingPointAxis::kRotorSpeed;
+  const char* kind = r.diagram.frequency == CampbellFrequency::kNatural ? "natural" : "damped";
   std::ofstream out(path);
   out.precision(12);
-  out << axis << ",rotor_speed_rpm,wind_speed_m_s";
-  for (size_t k = 1; k <= r.diagram.lines.size(); ++k) out << ",freq_hz_" << k << ",damping_" << k;
+  out << (by_rpm ? "rotor_speed_rpm,wind_speed_m_s" : "wind_speed_m_s,rotor_speed_rpm");
+  for (size_t k = 0; k < r.diagram.lines.size(); ++k) {
+    const std::string name =
+        "mode " + std::to_string(k + 1) + " (" + r.diagram.lines[k].description + ")";
+    out << "," << CsvText(name + " " + kind + " frequency [Hz]") << ","
+        << CsvText(name + " damping ratio");
+  }
   out << "\n";
   for (size_t p = 0; p < r.points.size(); ++p) {
-    out << r.diagram.parameter[p] << "," << r.points[p].rotor_speed * 30 / std::numbers::pi << ",";
-    if (r.points[p].wind_speed) out << *r.points[p].wind_speed;
+    const std::string rpm = CsvNumber(r.points[p].rotor_speed * 30 / std::numbers::pi);
+    const std::string wind = CsvNumber(r.points[p].wind_speed);
+    out << (by_rpm ? rpm + "," + wind : wind + "," + rpm);
     for (const CampbellLine& line : r.diagram.lines) {
       if (std::isfinite(line.frequency_hz[p]))
         out << "," << line.frequency_hz[p] << "," << line.damping_ratio[p];
@@ -82,7 +92,7 @@ int RunCampbell(const CampbellArgs& args) {
   const LinCampbellResult r = ComputeLinCampbell(args.points, options);
   const std::string axis = r.axis == OperatingPointAxis::kRotorSpeed ? "rpm" : "wind_speed";
   if (!args.csv.empty()) {
-    WriteLinesCsv(args.csv, r, axis);
+    WriteLinesCsv(args.csv, r);
     WriteCrossingsCsv(CrossingsCsvPath(args.csv), r.diagram, axis);
   }
   std::string plot_note;

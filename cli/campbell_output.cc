@@ -1,7 +1,6 @@
 #include "campbell_output.h"
 
 #include <fstream>
-#include <map>
 #include <numbers>
 #include <ostream>
 
@@ -83,10 +82,7 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
   out << "mode,description,per_rev," << axis << "," << axis
       << "_error,rotor_speed_rad_s,frequency_hz,real_part,damping_ratio\n";
   for (const CampbellCrossing& c : d.crossings) {
-    std::string description = d.lines[c.line].description;
-    for (char& ch : description)
-      if (ch == '"') ch = '\'';
-    out << c.line + 1 << ",\"" << description << "\"," << c.per_rev << "," << c.parameter << ","
+    out << c.line + 1 << "," << CsvText(d.lines[c.line].description) << "," << c.per_rev << "," << c.parameter << ","
         << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz << "," << c.real_part
         << "," << c.damping_ratio << "\n";
   }
@@ -94,12 +90,19 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
 }
 
 void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
-  static const std::map<std::string, CampbellFrequency> kinds{
-      {"damped", CampbellFrequency::kDamped}, {"natural", CampbellFrequency::kNatural}};
+  // The library's names; CLI11 then sets the enum from its number.
+  const CLI::Validator kinds(
+      [](std::string& name) -> std::string {
+        const auto kind = ParseCampbellFrequency(name);
+        if (!kind) return "must be damped or natural, got '" + name + "'";
+        name = std::to_string(static_cast<int>(*kind));
+        return "";
+      },
+      "");
   cmd->add_option("--frequency", options.frequency,
                   "Campbell: damped (Im λ/2π) or natural (|λ|/2π, as ACDC draws) frequencies")
-      ->transform(CLI::CheckedTransformer(kinds))
-      ->default_str("damped");
+      ->transform(kinds)
+      ->option_text("damped|natural=damped");
   cmd->add_option("--max-damping", options.max_damping_ratio,
                   "Campbell: leave out lines damped above this ratio wherever tracked (e.g. 0.3 "
                   "hides inflow states; 1 = keep all)")

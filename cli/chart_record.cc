@@ -24,12 +24,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string CsvText(std::string s) {
-  for (char& c : s)
-    if (c == '"' || c == '\n') c = '\'';
-  return "\"" + s + "\"";
-}
-
 }  // namespace
 
 ChartRecord::ChartRecord(std::string path, const SweepGrid& grid, int states, const json& identity,

@@ -56,6 +56,12 @@ std::string CsvNumber(std::optional<double> x) {
   return s;
 }
 
+std::string CsvText(std::string s) {
+  for (char& c : s)
+    if (c == '"' || c == '\n' || c == '\r') c = '\'';
+  return "\"" + s + "\"";
+}
+
 double ExpClamped(double log_abs) {
   if (log_abs > 709.78) return std::numeric_limits<double>::infinity();
   return std::exp(log_abs);  // underflows to 0 (or a denormal) below e^-745

@@ -23,6 +23,9 @@ nlohmann::json JsonNumbers(const std::vector<double>& x);
 void AppendCsvNumber(std::string& out, double x);
 /// The same as a string; empty (an empty cell) when the quantity was not computed.
 std::string CsvNumber(std::optional<double> x);
+/// A CSV text cell: quoted, with '"' and line breaks replaced by "'" (so a cell never spans
+/// lines and readers that do not undo doubled quotes read it too).
+std::string CsvText(std::string s);
 /// exp(log_abs) as a number that under- or overflows to 0 or inf on purpose.
 double ExpClamped(double log_abs);
 

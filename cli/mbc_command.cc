@@ -114,13 +114,10 @@ void WriteCsv(const std::string& file, const Mbc3Result& r, const SampledFloquet
   csv << "\n" << std::setprecision(12);
   for (size_t k = 0; k < r.modes.size(); ++k) {
     const MbcMode& m = r.modes[k];
-    std::string d = m.description;
-    for (char& c : d)
-      if (c == '"') c = '\'';
     csv << k + 1 << "," << m.natural_frequency_hz << "," << m.damped_frequency_hz << ","
         << m.damping_ratio << "," << m.eigenvalue.real() << "," << m.eigenvalue.imag() << ","
-        << ToString(m.kind) << "," << (m.rigid_body ? 1 : 0) << "," << m.whirl << ",\"" << d
-        << "\"";
+        << ToString(m.kind) << "," << (m.rigid_body ? 1 : 0) << "," << m.whirl << ","
+        << CsvText(m.description);
     if (f) {
       const SampledFloquetMode* match = nullptr;
       for (const auto& fm : f->modes)

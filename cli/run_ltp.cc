@@ -32,6 +32,9 @@ int RunLtp(int argc, char** argv) {
       AddChartCommand(app),    AddMbcCommand(app),      AddCampbellCommand(app),
       AddSimulateCommand(app), AddIdentifyCommand(app),
   };
+  // Subcommands inherit the footer; it explains SCENE, so only those that take one keep it.
+  for (const auto& c : commands)
+    if (!c.app->get_option_no_throw("scene")) c.app->footer("");
 
   try {
     app.parse(argc, argv);

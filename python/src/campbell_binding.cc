@@ -87,10 +87,10 @@ void BindCampbell(py::module_& m) {
       [](const std::vector<std::string>& points, const std::string& by,
          const std::string& frequency, double max_damping, bool keep_going) {
         LinCampbellOptions o;
-        if (frequency != "damped" && frequency != "natural")
+        const auto kind = ParseCampbellFrequency(frequency);
+        if (!kind)
           throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
-        o.campbell.frequency =
-            frequency == "natural" ? CampbellFrequency::kNatural : CampbellFrequency::kDamped;
+        o.campbell.frequency = *kind;
         o.campbell.max_damping_ratio = max_damping;
         const auto axis = ParseOperatingPointAxis(by);
         if (!axis)

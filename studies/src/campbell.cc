@@ -13,6 +13,12 @@
 
 namespace ltp {
 
+std::optional<CampbellFrequency> ParseCampbellFrequency(std::string_view name) {
+  if (name == "damped") return CampbellFrequency::kDamped;
+  if (name == "natural") return CampbellFrequency::kNatural;
+  return std::nullopt;
+}
+
 namespace {
 
 using cd = std::complex<double>;

@@ -125,7 +125,11 @@ TEST(ChartCli, CampbellOfAnOperatingPointSet) {
             std::string::npos);
   EXPECT_FALSE(j["campbell"]["crossings"].empty());
   const std::string table = ReadFile(csv);
-  EXPECT_EQ(table.substr(0, table.find(',')), "rpm");
+  // Ordered by rotor speed: rpm first and only once; columns named by mode.
+  EXPECT_EQ(table.rfind("rotor_speed_rpm,wind_speed_m_s,\"mode 1 (", 0), 0u) << table;
+  EXPECT_NE(table.find("damped frequency [Hz]\""), std::string::npos);
+  const std::string header = table.substr(0, table.find('\n'));
+  EXPECT_EQ(header.find("rpm", header.find("rpm") + 1), std::string::npos) << header;
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 8);  // header + 7 points
   EXPECT_TRUE(std::filesystem::exists(Tmp("campbell_set-crossings.csv")));
   // Each line carries its values per point; the CSV's columns are the JSON's numbers.

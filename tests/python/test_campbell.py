@@ -30,16 +30,24 @@ def test_campbell_equals_cli(ltp_cli, tmp_path):
         assert same(y["parameter"], x["parameter"]) and same(y["frequency_hz"], x["frequency_hz"])
     for p, q in zip(j["points"], c.points):
         assert same(p["max_real_part"], q.max_real_part)
-    rows = list(csv.DictReader(out.open()))
+    # The CSV: rpm first (the ordering quantity), no second rpm column, then per line its
+    # frequency and damping ratio under the line's number and mode description.
+    header, *rows = list(csv.reader(out.open()))
+    assert header[:2] == ["rotor_speed_rpm", "wind_speed_m_s"]
+    assert len(header) == 2 + 2 * len(c.lines)
     assert len(rows) == len(c.parameter)
+    for k, line in enumerate(c.lines):
+        name = f"mode {k + 1} ({line['description']})"
+        assert header[2 + 2 * k] == f"{name} damped frequency [Hz]".replace('"', "'")
+        assert header[3 + 2 * k] == f"{name} damping ratio".replace('"', "'")
     for i, row in enumerate(rows):
-        assert float(row["rpm"]) == float(f"{c.parameter[i]:.12g}")
-        for k, line in enumerate(c.lines, start=1):
+        assert float(row[0]) == float(f"{c.parameter[i]:.12g}")
+        for k, line in enumerate(c.lines):
             if np.isfinite(line["frequency_hz"][i]):
-                assert float(row[f"freq_hz_{k}"]) == float(f"{line['frequency_hz'][i]:.12g}")
-                assert float(row[f"damping_{k}"]) == float(f"{line['damping_ratio'][i]:.12g}")
+                assert float(row[2 + 2 * k]) == float(f"{line['frequency_hz'][i]:.12g}")
+                assert float(row[3 + 2 * k]) == float(f"{line['damping_ratio'][i]:.12g}")
             else:
-                assert row[f"freq_hz_{k}"] == ""
+                assert row[2 + 2 * k] == ""
     # Each point's table is ltp.mbc of its files.
     one = ltp.mbc(POINTS[0])
     assert np.array_equal(one.eigenvalues, c.points[0].eigenvalues)

@@ -16,6 +16,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,9 @@ enum class CampbellFrequency {
   kDamped,   ///< Im λ/2π on the tracked branch
   kNatural,  ///< |λ|/2π (what ACDC and openfast_toolbox draw; above the damped one by ζ²/2)
 };
+
+/// "damped" or "natural" (the CLI's --frequency, Python's frequency=); nullopt otherwise.
+std::optional<CampbellFrequency> ParseCampbellFrequency(std::string_view name);
 
 struct CampbellOptions {
   CampbellFrequency frequency = CampbellFrequency::kDamped;
