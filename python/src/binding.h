@@ -89,7 +89,7 @@ auto WithoutGil(const System& system, Work&& work) {
 
 /// The OpenMP threads of an analysis: `requested`, except that 0 (all cores) means one for a
 /// system behind Python callables, whose calls take turns on the GIL anyway (more threads only
-/// wait for it: measured in README, "Use ltp from Python").
+/// wait for it: measured in docs/python.md, "Python callables, threads and errors").
 inline int AnalysisThreads(const System& system, int requested) {
   return system.callbacks && requested == 0 ? 1 : requested;
 }

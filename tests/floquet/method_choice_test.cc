@@ -48,7 +48,7 @@ PeriodicSystem StiffYaml() {
 }
 
 TEST(MethodChoice, PicksTheStudysWinnerPerKindOfSystem) {
-  // Rules from the study (README): smooth → bs; constant between jumps → expm (exact);
+  // Rules from the study (docs/benchmarks.md): smooth → bs; constant between jumps → expm (exact);
   // stiff (fast real decay or growth) → magnus6; a Fourier series of two states → taylor, of
   // four (the Jeffcott rotor) → bs again.
   EXPECT_EQ(ChooseIntegrator(test::Mathieu(1.5, 0.5, 0.05), 1e-10).type, IntegratorType::kTaylor);

@@ -1,7 +1,7 @@
 // The chart defaults the CLI and the Python module share (ChartOptions), and the Hill
 // truncation that `harmonics = auto` means (AnalyzeHillToTolerance): what each turns into.
 // Reference: the values `ltp chart` and `ltp floquet --method hill` used before they moved
-// into the library (README, stability-chart benchmark and work-precision study).
+// into the library (docs/benchmarks.md, stability-chart benchmark and work-precision study).
 #include "ltp/studies/chart_options.h"
 
 #include <gtest/gtest.h>

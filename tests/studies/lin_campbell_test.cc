@@ -126,7 +126,7 @@ TEST(LinCampbell, NaturalFrequenciesAndTheDampingFilter) {
   EXPECT_TRUE(said);
 }
 
-// tests/data/openfast/rotor-speeds holds the sets the README draws: they must be what the
+// tests/data/openfast/rotor-speeds holds the sets docs/charts.md draws: they must be what the
 // writer produces today (a regression pin on the data, not a reference for the numbers).
 TEST(LinCampbell, ShippedRotorSetsAreTheWritersOutput) {
   const std::string root = test::SourceDir() + "/tests/data/openfast/rotor-speeds";

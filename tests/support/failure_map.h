@@ -6,7 +6,7 @@
 //                   value, an error estimate that covers the true error, or a warning diagnostic;
 //   fails silently  anything else: a wrong number presented as a good one.
 // The true error is measured against a reference by a *different* method (closed form where
-// one exists). Used by benchmarks/work_precision_benchmark.cc (README table) and by
+// one exists). Used by benchmarks/work_precision_benchmark.cc (docs/benchmarks.md) and by
 // tests/htf/failure_map_test.cc (which asserts that no cell is silent).
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 #pragma once
 // Automatic integrator choice (`--integrator auto`): the rules the work–precision study found
-// (README, "Work–precision study"; scripts/work-precision), applied to traits of the system
-// that cost a few evaluations of A(t) to measure. Every choice carries the reason, which the
-// analyses put in their diagnostics.
+// (docs/benchmarks.md, "Work–precision study"; scripts/work-precision), applied to traits of
+// the system that cost a few evaluations of A(t) to measure. Every choice carries the reason,
+// which the analyses put in their diagnostics.
 #include <string>
 
 #include "ltp/core/periodic_system.h"

@@ -40,9 +40,10 @@ struct ChartOptions {
 
 /// The integrator of a chart: `options.integrator` if set; else, for maps, Taylor series where
 /// they pay (TaylorSeriesPay: a Fourier series of ≤ 2 states) and Bulirsch–Stoer otherwise — the
-/// cheapest routes to 1e-8 multipliers on smooth small systems (README, stability-chart benchmark)
-/// — and rkf78 for 1-D sweeps, which suits their short mode-shape segments. `base`: the scene's
-/// system at the chart's base point (a scene keeps its form over its parameters).
+/// cheapest routes to 1e-8 multipliers on smooth small systems (docs/benchmarks.md,
+/// stability-chart benchmark) — and rkf78 for 1-D sweeps, which suits their short mode-shape
+/// segments. `base`: the scene's system at the chart's base point (a scene keeps its form over
+/// its parameters).
 IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base);
 
 /// The per-point options of the sweep (`map`: two swept parameters; `base` as for

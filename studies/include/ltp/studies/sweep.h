@@ -57,8 +57,8 @@ struct SweepOptions {
   /// 0 = none). Unchecked points leave SweepPoint::error_estimate empty.
   int check_every = 1;
   /// |max log|ρ|| below this (per period) is "marginal" rather than stable/unstable: it must
-  /// exceed the multipliers' error, which the study in the README puts below 1e-8 at the
-  /// default tolerances.
+  /// exceed the multipliers' error, which the study in docs/benchmarks.md puts below 1e-8 at
+  /// the default tolerances.
   double marginal_log_multiplier = 1e-7;
   /// OpenMP threads over points; 0 = all cores.
   int threads = 0;
