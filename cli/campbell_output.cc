@@ -82,9 +82,9 @@ void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const 
   out << "mode,description,per_rev," << axis << "," << axis
       << "_error,rotor_speed_rad_s,frequency_hz,real_part,damping_ratio\n";
   for (const CampbellCrossing& c : d.crossings) {
-    out << c.line + 1 << "," << CsvText(d.lines[c.line].description) << "," << c.per_rev << "," << c.parameter << ","
-        << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz << "," << c.real_part
-        << "," << c.damping_ratio << "\n";
+    out << c.line + 1 << "," << CsvText(d.lines[c.line].description) << "," << c.per_rev << ","
+        << c.parameter << "," << c.parameter_error << "," << c.rotor_speed << "," << c.frequency_hz
+        << "," << c.real_part << "," << c.damping_ratio << "\n";
   }
   if (!out) throw InputError("cannot write '" + path + "'");
 }

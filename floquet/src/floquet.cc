@@ -433,9 +433,9 @@ internal::SegmentGridOptions RefinedRunOptions(internal::SegmentGridOptions o,
 // reference run failed).
 std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
                                            const FloquetOptions& options,
-                                           internal::SegmentGridOptions fine,
-                                           int mode_samples, internal::SegmentGrid& grid,
-                                           LogEigenvalues& eig, FloquetResult& r) {
+                                           internal::SegmentGridOptions fine, int mode_samples,
+                                           internal::SegmentGrid& grid, LogEigenvalues& eig,
+                                           FloquetResult& r) {
   fine.refine = false;
   fine.integrator.carry_local_errors = false;  // a fallback from kLocalErrors: nothing to carry
   fine.fixed_times.clear();

@@ -57,7 +57,8 @@ std::vector<double> SamplingErrorsOf(const std::vector<FloquetResult>& analysed,
     for (const FloquetMode& m : other.modes) b.push_back(m.exponent);
     const std::vector<int> match = MatchExponentIndices(exponents, b, omega);
     for (size_t k = 0; k < exponents.size(); ++k)
-      e[k] = std::max(e[k], match[k] < 0 ? inf : ExponentDistance(exponents[k], b[match[k]], omega));
+      e[k] =
+          std::max(e[k], match[k] < 0 ? inf : ExponentDistance(exponents[k], b[match[k]], omega));
   }
   return e;
 }
@@ -79,8 +80,8 @@ AnalysedAlternatives AnalyzeAlternatives(const std::vector<PeriodicSystem>& alte
   AnalysedAlternatives a;
   for (size_t i = 0; i < alternatives.size(); ++i) {
     CheckAlternative(alternatives[i], states, period);
-    const std::string name = "other model " + std::to_string(i + 1) + " of " +
-                             std::to_string(alternatives.size());
+    const std::string name =
+        "other model " + std::to_string(i + 1) + " of " + std::to_string(alternatives.size());
     a.results.push_back(AnalyzeAlternative(alternatives[i], name, options, grid_segments));
     a.evaluations += a.results.back().rhs_evals;  // the work reported is the whole analysis's
   }
