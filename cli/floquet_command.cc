@@ -347,11 +347,7 @@ int RunFloquet(FloquetArgs& args) {
   HillResult h;
   // A long analysis says so before it starts (the library's estimate), on stderr.
   args.options.on_long_work = [reduced = args.modes_below_hz > 0](const WorkEstimate& w) {
-    const double s = w.seconds();
-    const std::string about = s < 120    ? Num(s, 2) + " s"
-                              : s < 7200 ? Num(s / 60, 2) + " min"
-                                         : Num(s / 3600, 2) + " h";
-    std::cerr << "ltp floquet: about " << about << " of CPU work ahead (" << Num(w.evaluations, 2)
+    std::cerr << "ltp floquet: " << WorkAhead(w.seconds()) << " (" << Num(w.evaluations, 2)
               << " evaluations of A(t)·Φ, or their worth of linear algebra, at "
               << Num(w.seconds_per_evaluation * 1e6, 2) << " µs each)\n";
     if (!reduced)
@@ -370,8 +366,8 @@ int RunFloquet(FloquetArgs& args) {
     ho.solver = *ParseHillSolver(args.hill_solver);
     ho.max_work_seconds = args.options.max_work_seconds;
     ho.on_long_work = [](const WorkEstimate& w) {
-      std::cerr << "ltp floquet: Hill's method: about " << Num(w.seconds(), 2)
-                << " s of CPU work ahead (" << w.basis << ")\n";
+      std::cerr << "ltp floquet: Hill's method: " << WorkAhead(w.seconds()) << " (" << w.basis
+                << ")\n";
     };
     if (run_mono && r.ok) {  // shifts for the structured solver from the monodromy route
       for (const auto& m : r.modes) ho.expected.push_back(m.exponent);

@@ -62,6 +62,13 @@ std::string CsvText(std::string s) {
   return "\"" + s + "\"";
 }
 
+std::string WorkAhead(double s) {
+  const std::string about = s < 120    ? Num(s, 2) + " s"
+                            : s < 7200 ? Num(s / 60, 2) + " min"
+                                       : Num(s / 3600, 2) + " h";
+  return "about " + about + " of CPU work ahead";
+}
+
 double ExpClamped(double log_abs) {
   if (log_abs > 709.78) return std::numeric_limits<double>::infinity();
   return std::exp(log_abs);  // underflows to 0 (or a denormal) below e^-745

@@ -26,6 +26,9 @@ std::string CsvNumber(std::optional<double> x);
 /// A CSV text cell: quoted, with '"' and line breaks replaced by "'" (so a cell never spans
 /// lines and readers that do not undo doubled quotes read it too).
 std::string CsvText(std::string s);
+/// "about 47 s of CPU work ahead" (minutes or hours when longer): how a command announces a
+/// WorkEstimate before the work.
+std::string WorkAhead(double seconds);
 /// exp(log_abs) as a number that under- or overflows to 0 or inf on purpose.
 double ExpClamped(double log_abs);
 

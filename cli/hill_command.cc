@@ -30,6 +30,7 @@ struct HillArgs {
   int max_harmonics = kHillStudyMaxHarmonics;
   std::string solver{ToString(HillOptions{}.solver)};
   std::string selection{ToString(HillOptions{}.selection)};
+  double max_work = HillOptions{}.max_work_seconds;
   bool no_reference = false;
   bool json = false;
   std::string csv;
@@ -98,6 +99,11 @@ int RunHill(HillArgs& args) {
     throw InputError("--selection must be 'centroid', 'central-weight' or 'strip', got '" +
                      args.selection + "'");
   options.selection = *rule;
+  options.max_work_seconds = args.max_work;
+  // The whole study is weighed before its first solve; a long one says so on stderr.
+  options.on_long_work = [](const WorkEstimate& w) {
+    std::cerr << "ltp hill: " << WorkAhead(w.seconds()) << " (" << w.basis << ")\n";
+  };
   if (args.max_harmonics < 1) throw InputError("--max-harmonics must be >= 1");
   LoadedScene l = LoadSceneArgs(args.scene);
 
@@ -233,6 +239,11 @@ Command AddHillCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-reference", args.no_reference,
                 "skip the monodromy reference (no error column)");
+  cmd->add_option("--max-work", args.max_work,
+                  "refuse a study estimated to need more CPU seconds than this even at its "
+                  "fastest (0 = no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_option("--csv", args.csv, "write the study table to CSV");
   cmd->add_option("--plot", args.plot, "chart of error and estimates vs N (FILE.svg or FILE.png)");

@@ -610,20 +610,6 @@ void HillOptions::Validate() const {
 
 namespace {
 
-// One complex n×n product per n³ on this machine now (n = 128, the fastest of three).
-double ComplexProductSecondsPerCube() {
-  constexpr int k = 128;
-  const Eigen::MatrixXcd a = Eigen::MatrixXcd::Random(k, k);
-  Eigen::MatrixXcd c(k, k);
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < 3; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    c.noalias() = a * a;
-    best = std::min(best, SecondsSince(start));
-  }
-  return best / (static_cast<double>(k) * k * k);
-}
-
 // Rows of the Hill matrices at N and, for the estimate, at N + Δ (0 when Δ is off).
 std::pair<double, double> HillRows(int n, int N, const HillOptions& o) {
   const int delta = o.delta_harmonics < 0   ? -1
@@ -635,13 +621,13 @@ std::pair<double, double> HillRows(int n, int N, const HillOptions& o) {
 
 // Dense: the eigen-solves at N and N + Δ and the Koopman–Hill expm cost about 4 complex
 // products per size³ (calibrated on Mathieu, m = 402…1602: 1.3–78 s).
-WorkEstimate DenseHillWork(int n, int N, const HillOptions& o) {
+WorkEstimate DenseHillWork(int n, int N, const HillOptions& o, double seconds_per_cube) {
   const auto [m, m2] = HillRows(n, N, o);
   const bool koopman = o.koopman_check && m <= o.koopman_max_size;
   constexpr double kProductsPerCube = 4;
   WorkEstimate w;
   w.evaluations = m * m * m * (koopman ? 3 : 1) + m2 * m2 * m2;
-  w.seconds_per_evaluation = kProductsPerCube * ComplexProductSecondsPerCube();
+  w.seconds_per_evaluation = kProductsPerCube * seconds_per_cube;
   w.fewest_evaluations = w.evaluations / 3;
   std::ostringstream basis;
   basis << "dense Hill eigen-solves of size " << static_cast<long>(m) << (m2 > 0 ? " and " : "")
@@ -656,12 +642,12 @@ WorkEstimate DenseHillWork(int n, int N, const HillOptions& o) {
 // (Mathieu n = 2, N = 1e4 and 1e5; tower-rotor n = 22, N = 200 and 600: 2 s, 29 s, 64 s, 194 s)
 // against the timed product: 9e3 product-cubes per row·n² over both truncations. The rotor
 // (n = 12, N = 1000: 8.4 s) costs a sixth of that, so the fewest count is a tenth.
-WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o) {
+WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o, double seconds_per_cube) {
   const auto [m, m2] = HillRows(n, N, o);
   constexpr double kCubesPerRowAndState2 = 9e3;
   WorkEstimate w;
   w.evaluations = (m + m2) * n * n;
-  w.seconds_per_evaluation = kCubesPerRowAndState2 * ComplexProductSecondsPerCube();
+  w.seconds_per_evaluation = kCubesPerRowAndState2 * seconds_per_cube;
   w.fewest_evaluations = w.evaluations / 10;
   std::ostringstream basis;
   basis << "structured (banded shift-invert) Hill solves of " << static_cast<long>(m)
@@ -672,16 +658,50 @@ WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o) {
   return w;
 }
 
-// HillOptions::max_work_seconds: refused when even the fewest seconds exceed the limit,
-// announced above announce_work_seconds.
-void WeighHillWork(const WorkEstimate& w, int N, const HillOptions& o, const char* advice,
-                   std::vector<std::string>& notes) {
+void WeighTheWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
+  const std::string job = "Hill's method at N = " + std::to_string(N);
+  if (o.solver == HillSolver::kDense) {
+    hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
+    if (n * (2.0 * N + 1) < 300) return;                       // well under a second anywhere
+    hill_internal::WeighHillWork(
+        hill_internal::HillWork(n, N, o, hill_internal::ComplexProductSecondsPerCube()), job, o,
+        "use the structured solver or fewer harmonics", notes);
+  } else if (n * (2.0 * N + 1) >= 2000) {  // below: well under a second
+    hill_internal::WeighHillWork(
+        hill_internal::HillWork(n, N, o, hill_internal::ComplexProductSecondsPerCube()), job, o,
+        "fewer harmonics (--harmonics auto stops where the estimate is met)", notes);
+  }
+}
+
+}  // namespace
+
+namespace hill_internal {
+
+double ComplexProductSecondsPerCube() {
+  constexpr int k = 128;
+  const Eigen::MatrixXcd a = Eigen::MatrixXcd::Random(k, k);
+  Eigen::MatrixXcd c(k, k);
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < 3; ++r) {  // the fastest of three
+    const auto start = std::chrono::steady_clock::now();
+    c.noalias() = a * a;
+    best = std::min(best, SecondsSince(start));
+  }
+  return best / (static_cast<double>(k) * k * k);
+}
+
+WorkEstimate HillWork(int n, int N, const HillOptions& o, double seconds_per_cube) {
+  return o.solver == HillSolver::kDense ? DenseHillWork(n, N, o, seconds_per_cube)
+                                        : StructuredHillWork(n, N, o, seconds_per_cube);
+}
+
+void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOptions& o,
+                   const char* advice, std::vector<std::string>& notes) {
   if (o.max_work_seconds > 0 && w.fewest_seconds() > o.max_work_seconds) {
     std::ostringstream s;
     s.precision(3);
-    s << "Hill's method at N = " << N << " would take at least " << w.fewest_seconds()
-      << " CPU s (about " << w.seconds() << " s; " << w.basis
-      << "), beyond HillOptions::max_work_seconds = " << o.max_work_seconds
+    s << job << " would take at least " << w.fewest_seconds() << " CPU s (about " << w.seconds()
+      << " s; " << w.basis << "), beyond HillOptions::max_work_seconds = " << o.max_work_seconds
       << " (ltp: --max-work); " << advice;
     throw InputError(s.str());
   }
@@ -694,19 +714,7 @@ void WeighHillWork(const WorkEstimate& w, int N, const HillOptions& o, const cha
   }
 }
 
-void WeighTheWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
-  if (o.solver == HillSolver::kDense) {
-    hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
-    if (n * (2.0 * N + 1) < 300) return;                       // well under a second anywhere
-    WeighHillWork(DenseHillWork(n, N, o), N, o, "use the structured solver or fewer harmonics",
-                  notes);
-  } else if (n * (2.0 * N + 1) >= 2000) {  // below: well under a second
-    WeighHillWork(StructuredHillWork(n, N, o), N, o,
-                  "fewer harmonics (--harmonics auto stops where the estimate is met)", notes);
-  }
-}
-
-}  // namespace
+}  // namespace hill_internal
 
 HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requested) {
   requested.Validate();
@@ -753,8 +761,9 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
     // The fallback only where its dense solve costs no more than the limit allows (weighed
     // here, not on every structured call: the weighing times a product).
     const bool affordable = options.max_work_seconds <= 0 ||
-                            DenseHillWork(A.rows(), options.harmonics, dense).fewest_seconds() <=
-                                options.max_work_seconds;
+                            DenseHillWork(A.rows(), options.harmonics, dense,
+                                          hill_internal::ComplexProductSecondsPerCube())
+                                    .fewest_seconds() <= options.max_work_seconds;
     if (!affordable) {
       notes.push_back(
           "structured solver's exponents failed their checks; the dense solver would take longer "

@@ -7,6 +7,7 @@
 
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/floquet/hill.h"
+#include "ltp/floquet/work_estimate.h"
 
 namespace ltp::hill_internal {
 
@@ -30,6 +31,20 @@ double HillNormEstimate(const FourierMatrix& A, double omega, int harmonics);
 /// y = H_N x without forming H_N (block Toeplitz part plus the diagonal).
 Eigen::VectorXcd HillMultiply(const FourierMatrix& A, double omega, int harmonics,
                               const Eigen::VectorXcd& x);
+
+/// Seconds of one complex n×n product per n³ on this machine now (a 128³ product timed).
+double ComplexProductSecondsPerCube();
+
+/// What one Hill analysis of n states at N costs with `o.solver` (dense or structured, not
+/// auto): the solves at N and N + Δ, at `seconds_per_cube` per product-cube
+/// (docs/model-sizes.md, "Cost before the work").
+WorkEstimate HillWork(int n, int N, const HillOptions& o, double seconds_per_cube);
+
+/// The rule for a job `w` described by `job` ("Hill's method at N = 40"): InputError when even
+/// its fewest seconds exceed o.max_work_seconds (the message ends with `advice`); a line in
+/// `notes` and o.on_long_work when its estimate exceeds o.announce_work_seconds.
+void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOptions& o,
+                   const char* advice, std::vector<std::string>& notes);
 
 /// Throws ResourceError when the dense (2N+1)n matrix would exceed max_bytes.
 void CheckDenseMemory(int n, int harmonics, double max_bytes);

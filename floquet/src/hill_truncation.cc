@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -22,6 +24,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/floquet/integrator_choice.h"
 
 namespace ltp {
 namespace {
@@ -102,6 +105,52 @@ std::vector<int> StudyHarmonics(int max_harmonics) {
   return out;
 }
 
+// The whole study weighed before its first solve: the sum of its truncations' estimates, each
+// with the solver it will use, refused beyond max_work_seconds and announced beyond
+// announce_work_seconds (a note in `notes` and on_long_work). Returns each truncation's
+// estimated seconds (the progress's weights).
+std::vector<double> WeighTheStudy(const PeriodicSystem& system, const std::vector<int>& rows,
+                                  const HillOptions& options, std::vector<std::string>& notes) {
+  const int n = system.states();
+  std::vector<double> seconds;
+  if (n * (2.0 * rows.back() + 1) < 300) {  // well under a second: weights by size³ only
+    for (int N : rows) seconds.push_back(std::pow(n * (2.0 * N + 1), 3));
+    return seconds;
+  }
+  const double per_cube = hill_internal::ComplexProductSecondsPerCube();
+  std::optional<SystemTraits> traits;
+  WorkEstimate total;
+  total.seconds_per_evaluation = 1;  // the counts below are seconds
+  std::set<HillSolver> solvers;
+  std::string largest;
+  for (int N : rows) {
+    HillOptions o = options;
+    o.harmonics = N;
+    if (o.solver == HillSolver::kAuto) {
+      if (!traits) traits = MeasureSystemTraits(system);
+      const FourierMatrix* fa = system.fourier_A();
+      o.solver = ChooseHillSolver(*traits, N, fa ? fa->max_harmonic() : N).solver;
+    }
+    solvers.insert(o.solver);
+    const WorkEstimate w = hill_internal::HillWork(n, N, o, per_cube);
+    seconds.push_back(w.seconds());
+    largest = w.basis;
+    total.evaluations += w.seconds();
+    total.fewest_evaluations += w.fewest_seconds();
+  }
+  std::ostringstream basis;
+  basis << rows.size() << " truncations (N = " << rows.front() << "…" << rows.back() << " by the "
+        << (solvers.size() > 1                       ? "dense and structured solvers"
+            : *solvers.begin() == HillSolver::kDense ? "dense solver"
+                                                     : "structured solver")
+        << ", each with its check at N + Δ; the largest: " << largest << ")";
+  total.basis = basis.str();
+  hill_internal::WeighHillWork(total,
+                               "the convergence study up to N = " + std::to_string(rows.back()),
+                               options, "study fewer harmonics (--max-harmonics)", notes);
+  return seconds;
+}
+
 }  // namespace
 
 namespace {
@@ -178,6 +227,11 @@ double KoopmanHillBound(const HillDecay& decay, int harmonics, double period) {
   return e.log_bound > 700 ? std::numeric_limits<double>::infinity() : std::exp(e.log_bound);
 }
 
+namespace {
+HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
+                           const FloquetResult& reference, HillOptions options, HillResult* last);
+}  // namespace
+
 HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
                                HillOptions options) {
   return HillConvergenceStudy(system, max_harmonics, FloquetResult{}, std::move(options));
@@ -185,6 +239,15 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
 
 HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
                                const FloquetResult& reference, HillOptions options) {
+  return StudyTruncations(system, max_harmonics, reference, std::move(options), nullptr);
+}
+
+namespace {
+
+// HillConvergenceStudy; `last` (when given) receives the analysis at max_harmonics, the
+// study's last row, so a caller that wants its modes need not solve it again.
+HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
+                           const FloquetResult& reference, HillOptions options, HillResult* last) {
   const auto start = std::chrono::steady_clock::now();
   options.Validate();
   if (max_harmonics < 1) {
@@ -213,21 +276,26 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   // One full analysis per N: each row reports the estimate AnalyzeHill reports at that N (the
   // N vs N+Δ change with its tail factor, the edge and Liouville checks), not a bare change.
   const std::vector<int> rows = StudyHarmonics(max_harmonics);
-  const auto work = [n = system.states()](int N) { return std::pow(double((2 * N + 1) * n), 3); };
+  const std::vector<double> work = WeighTheStudy(system, rows, options, study.diagnostics);
   double total_work = 0, done_work = 0;
-  for (int N : rows) total_work += work(N);
+  for (double w : work) total_work += w;
+  // The study was weighed as a whole: its solves neither announce nor refuse one by one.
+  options.announce_work_seconds = std::numeric_limits<double>::infinity();
+  options.on_long_work = nullptr;
+  options.max_work_seconds = 0;
   auto exponents = [](const HillResult& r) {
     std::vector<cd> v;
     for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
     return v;
   };
 
-  for (int N : rows) {
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const int N = rows[i];
     HillOptions o = options;
     o.harmonics = N;
     o.progress = nullptr;
-    const HillResult r = AnalyzeHill(system, o);
-    done_work += work(N);
+    HillResult r = AnalyzeHill(system, o);
+    done_work += work[i];
     if (options.progress) options.progress(done_work, total_work);
     const double omega = 2 * std::numbers::pi / r.period;
     HillStudyRow row;
@@ -254,6 +322,7 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
       if (!r.fourier_fit.empty()) study.diagnostics.push_back(r.fourier_fit);
     }
     study.rows.push_back(row);
+    if (last && N == rows.back()) *last = std::move(r);
   }
 
   // Convergence law from the points clearly above round-off.
@@ -297,6 +366,8 @@ HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
   return study;
 }
 
+}  // namespace
+
 HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
                           const HillOptions& options, bool reference) {
   if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
@@ -307,10 +378,8 @@ HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
     monodromy = AnalyzeFloquet(system, fo);
     if (!monodromy.ok) monodromy = FloquetResult{};
   }
-  HillStudyRun run{HillConvergenceStudy(system, max_harmonics, monodromy, options), {}, {}};
-  HillOptions last = options;
-  last.harmonics = max_harmonics;
-  run.last = AnalyzeHill(system, last);
+  HillStudyRun run;
+  run.study = StudyTruncations(system, max_harmonics, monodromy, options, &run.last);
   run.diagnostics = run.last.diagnostics;
   for (const std::string& d : run.study.diagnostics)
     if (std::find(run.diagnostics.begin(), run.diagnostics.end(), d) == run.diagnostics.end())

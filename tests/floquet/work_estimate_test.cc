@@ -147,6 +147,46 @@ TEST(WorkEstimate, StructuredHillIsWeighedBeforeItStarts) {
   }
 }
 
+// A convergence study is weighed as a whole before its first solve (issue: N = 1…200 dense
+// showed an ETA but no estimate; 1…100 000 ran for minutes): announced once, not per
+// truncation, and refused with the study's numbers before any solve.
+TEST(WorkEstimate, HillStudyIsWeighedAsAWhole) {
+  const PeriodicSystem system = FastOscillator(3);
+  HillOptions o;
+  o.solver = HillSolver::kStructured;
+  o.koopman_check = false;
+  o.announce_work_seconds = 0;
+  int calls = 0;
+  WorkEstimate seen;
+  o.on_long_work = [&](const WorkEstimate& w) {
+    ++calls;
+    seen = w;
+  };
+  const HillStudy study = HillConvergenceStudy(system, 200, o);  // 2·401 rows at the largest
+  EXPECT_EQ(calls, 1);
+  EXPECT_FALSE(study.rows.empty());
+  EXPECT_NE(seen.basis.find("truncations (N = 1…200 by the structured solver"), std::string::npos)
+      << seen.basis;
+  EXPECT_GT(seen.fewest_seconds(), 0);
+  EXPECT_LE(seen.fewest_seconds(), seen.seconds());
+
+  HillOptions dense = o;
+  dense.solver = HillSolver::kDense;
+  dense.max_work_seconds = 1e-3;
+  calls = 0;
+  try {
+    HillConvergenceStudy(system, 1000, dense);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("the convergence study up to N = 1000 would take at least"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("dense solver"), std::string::npos) << m;
+  }
+  EXPECT_EQ(calls, 0);  // refused before anything was announced or solved
+}
+
 TEST(WorkEstimate, AnAnalysisBeyondTheLimitIsRefusedWithTheEstimate) {
   // 2e9 radians per period: even a fifth of the typical count at a nanosecond each is a minute.
   FloquetOptions o;
