@@ -179,8 +179,7 @@ TEST(WorkEstimate, HillStudyIsWeighedAsAWhole) {
     FAIL() << "not refused";
   } catch (const InputError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("the convergence study up to N = 1000 would take at least"),
-              std::string::npos)
+    EXPECT_NE(m.find("the convergence study up to N = 1000 would take at least"), std::string::npos)
         << m;
     EXPECT_NE(m.find("dense solver"), std::string::npos) << m;
   }
