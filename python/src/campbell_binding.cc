@@ -10,7 +10,9 @@
 
 namespace ltp::python {
 
-void BindCampbell(py::module_& m) {
+namespace {
+
+void BindCampbellResult(py::module_& m) {
   py::class_<LinCampbellResult> r(
       m, "CampbellResult",
       "A Campbell diagram of OpenFAST operating points (ltp campbell as an object): the MBC3 "
@@ -81,28 +83,29 @@ void BindCampbell(py::module_& m) {
         return "<ltp.CampbellResult: " + std::to_string(x.points.size()) + " points, " +
                std::to_string(x.diagram.lines.size()) + " lines over " + x.axis_label + ">";
       });
+}
 
-  m.def(
-      "campbell",
-      [](const std::vector<std::string>& points, const std::string& by,
-         const std::string& frequency, double max_damping, bool keep_going) {
-        LinCampbellOptions o;
-        const auto kind = ParseCampbellFrequency(frequency);
-        if (!kind)
-          throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
-        o.campbell.frequency = *kind;
-        o.campbell.max_damping_ratio = max_damping;
-        const auto axis = ParseOperatingPointAxis(by);
-        if (!axis)
-          throw InputError("by must be 'auto', 'rotor-speed' or 'wind-speed', got '" + by + "'");
-        o.axis = *axis;
-        o.keep_going = keep_going;
-        o.Validate();
-        py::gil_scoped_release release;
-        return ComputeLinCampbell(points, o);
-      },
-      py::arg("points"), py::kw_only(), py::arg("by") = "auto", py::arg("frequency") = "damped",
-      py::arg("max_damping") = 1.0, py::arg("keep_going") = false, R"doc(
+// ltp.campbell: the options checked in the CLI's words; the diagram computed without the GIL.
+LinCampbellResult LtpCampbell(const std::vector<std::string>& points, const std::string& by,
+                              const std::string& frequency, double max_damping, bool keep_going) {
+  LinCampbellOptions o;
+  const auto kind = ParseCampbellFrequency(frequency);
+  if (!kind) throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
+  o.campbell.frequency = *kind;
+  o.campbell.max_damping_ratio = max_damping;
+  const auto axis = ParseOperatingPointAxis(by);
+  if (!axis) throw InputError("by must be 'auto', 'rotor-speed' or 'wind-speed', got '" + by + "'");
+  o.axis = *axis;
+  o.keep_going = keep_going;
+  o.Validate();
+  py::gil_scoped_release release;
+  return ComputeLinCampbell(points, o);
+}
+
+void BindCampbellFunction(py::module_& m) {
+  m.def("campbell", &LtpCampbell, py::arg("points"), py::kw_only(), py::arg("by") = "auto",
+        py::arg("frequency") = "damped", py::arg("max_damping") = 1.0,
+        py::arg("keep_going") = false, R"doc(
 The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
 function. `points` are folders, .lin files or globs; OpenFAST's <root>.<k>.lin files are
 grouped by root, so one flat output folder of several simulations gives one point each. Each
@@ -117,6 +120,13 @@ shapes.
 
     c = ltp.campbell(sorted(glob.glob("runs/omega-*")))
     for line in c.lines: plt.plot(c.parameter, line["frequency_hz"], label=line["description"]))doc");
+}
+
+}  // namespace
+
+void BindCampbell(py::module_& m) {
+  BindCampbellResult(m);
+  BindCampbellFunction(m);
 }
 
 }  // namespace ltp::python

@@ -104,17 +104,11 @@ py::array_t<double> WeaklyDamped(const CampbellDiagram& d) {
   return RealTable(v, 2);
 }
 
-void BindChart(py::module_& m) {
-  py::class_<ChartResult>(m, "ChartResult", R"doc(
-The result of ltp.chart: one Floquet analysis per grid point (arrays over the points, in
-grid order, first axis fastest), mode tracking along a 1-D sweep (Campbell lines), and the
-unstable intervals (1-D) or boundary points (maps) refined beyond the grid.
+namespace {
 
-For a Campbell diagram plot each of `lines` (one per physical mode, named by its states)
-against values[0], with the per-rev lines n*rotor_speeds/2pi for n in per_rev; `crossings`
-lists where they meet. tracked_exponents/tracked_frequencies_hz keep every exponent (both
-members of each conjugate pair).)doc")
-      .def_readonly("scene", &ChartResult::scene, "the scene's name")
+// The grid, the method and the threads the chart ran with.
+void BindChartPlan(py::class_<ChartResult>& r) {
+  r.def_readonly("scene", &ChartResult::scene, "the scene's name")
       .def_readonly("parameters", &ChartResult::parameters,
                     "the scene's parameters besides the swept ones")
       .def_property_readonly(
@@ -148,15 +142,19 @@ members of each conjugate pair).)doc")
             for (const auto& v : c.chart.plan.grid.values) out.append(RealArray(v));
             return out;
           },
-          "the grid values of each axis")
-      .def_property_readonly(
-          "point_values",
-          [](const ChartResult& c) {
-            std::vector<std::vector<double>> v;
-            for (const SweepPoint& p : c.chart.points) v.push_back(p.values);
-            return RealTable(v, c.chart.plan.grid.axes.size());
-          },
-          "parameter values of every point, shape (points, axes)")
+          "the grid values of each axis");
+}
+
+// Per point: where it lies, its verdict and its largest exponent.
+void BindChartPoints(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "point_values",
+       [](const ChartResult& c) {
+         std::vector<std::vector<double>> v;
+         for (const SweepPoint& p : c.chart.points) v.push_back(p.values);
+         return RealTable(v, c.chart.plan.grid.axes.size());
+       },
+       "parameter values of every point, shape (points, axes)")
       .def_property_readonly(
           "ok",
           [](const ChartResult& c) {
@@ -184,18 +182,23 @@ members of each conjugate pair).)doc")
                              "per point: max log|ρ| = T max Re λ")
       .def_property_readonly(
           "error_estimate", PointArray([](const SweepPoint& p) { return OrNaN(p.error_estimate); }),
-          "per point (1/s); NaN where the point was not checked")
-      .def_property_readonly(
-          "exponents",
-          [](const ChartResult& c) {
-            std::vector<std::vector<Complex>> v;
-            for (const SweepPoint& p : c.chart.points) {
-              v.emplace_back();
-              for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
-            }
-            return ComplexTable(v, static_cast<size_t>(c.states));
-          },
-          "exponents of every point in its own display order, shape (points, n); NaN where failed")
+          "per point (1/s); NaN where the point was not checked");
+}
+
+// Per point: every exponent, as computed and by tracked mode; with compare=True the frozen and
+// averaged systems' eigenvalues.
+void BindChartExponents(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "exponents",
+       [](const ChartResult& c) {
+         std::vector<std::vector<Complex>> v;
+         for (const SweepPoint& p : c.chart.points) {
+           v.emplace_back();
+           for (const FloquetMode& mode : p.modes) v.back().push_back(mode.exponent);
+         }
+         return ComplexTable(v, static_cast<size_t>(c.states));
+       },
+       "exponents of every point in its own display order, shape (points, n); NaN where failed")
       .def_property_readonly(
           "tracked_exponents",
           [](const ChartResult& c) {
@@ -232,16 +235,20 @@ members of each conjugate pair).)doc")
             for (const SweepPoint& p : c.chart.points) v.push_back(p.averaged_eigenvalues);
             return ComplexTable(v, static_cast<size_t>(c.states));
           },
-          "compare=True: eigenvalues of the averaged A_0 per point")
-      .def_property_readonly(
-          "counts",
-          [](const ChartResult& c) {
-            std::map<std::string, size_t> counts;
-            for (const auto& [verdict, n] : c.chart.analysis.tally.counts)
-              counts[std::string(ToString(verdict))] = n;
-            return counts;
-          },
-          "points per verdict")
+          "compare=True: eigenvalues of the averaged A_0 per point");
+}
+
+// The points per verdict, how many were checked, and why the failed ones failed.
+void BindChartTally(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "counts",
+       [](const ChartResult& c) {
+         std::map<std::string, size_t> counts;
+         for (const auto& [verdict, n] : c.chart.analysis.tally.counts)
+           counts[std::string(ToString(verdict))] = n;
+         return counts;
+       },
+       "points per verdict")
       .def_property_readonly(
           "checked_points", [](const ChartResult& c) { return c.chart.analysis.tally.checked; },
           "points with an error estimate")
@@ -258,16 +265,19 @@ members of each conjugate pair).)doc")
                 out.append(py::dict(py::arg("values") = p.values, py::arg("reason") = p.failure));
             return out;
           },
-          "the failed points: values and reason")
-      .def_property_readonly(
-          "unstable_intervals",
-          [](const ChartResult& c) {
-            std::vector<std::vector<double>> v;
-            for (const auto& in : c.chart.analysis.intervals)
-              v.push_back({in.lo.value, in.hi.value});
-            return RealTable(v, 2);
-          },
-          "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
+          "the failed points: values and reason");
+}
+
+// The stability boundaries refined beyond the grid: intervals (1-D) or points (maps).
+void BindChartBoundaries(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "unstable_intervals",
+       [](const ChartResult& c) {
+         std::vector<std::vector<double>> v;
+         for (const auto& in : c.chart.analysis.intervals) v.push_back({in.lo.value, in.hi.value});
+         return RealTable(v, 2);
+       },
+       "1-D: (lo, hi) of every unstable interval, refined beyond the grid")
       .def_property_readonly(
           "unstable_interval_details",
           [](const ChartResult& c) {
@@ -300,14 +310,18 @@ members of each conjugate pair).)doc")
                                   py::arg("estimate") = BoundaryDict(b.estimate)));
             return out;
           },
-          "maps: every grid crossing, refined or not, with its estimate")
-      .def_property_readonly(
-          "mode_tracking",
-          [](const ChartResult& c) {
-            return py::dict(py::arg("min_mac") = c.chart.analysis.tracking.min_mac,
-                            py::arg("ambiguous_points") = c.chart.analysis.tracking.ambiguous);
-          },
-          "1-D: smallest accepted MAC and the points where a match was ambiguous")
+          "maps: every grid crossing, refined or not, with its estimate");
+}
+
+// 1-D: the modes tracked along the sweep, as a Campbell diagram.
+void BindChartCampbell(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "mode_tracking",
+       [](const ChartResult& c) {
+         return py::dict(py::arg("min_mac") = c.chart.analysis.tracking.min_mac,
+                         py::arg("ambiguous_points") = c.chart.analysis.tracking.ambiguous);
+       },
+       "1-D: smallest accepted MAC and the points where a match was ambiguous")
       .def_property_readonly(
           "lines", [](const ChartResult& c) { return CampbellLines(c.chart.analysis.campbell); },
           "1-D: one Campbell line per physical mode: description (states carrying it), per-point "
@@ -331,10 +345,28 @@ members of each conjugate pair).)doc")
       .def_property_readonly(
           "campbell_notes",
           [](const ChartResult& c) { return c.chart.analysis.campbell.diagnostics; },
-          "1-D: lost lines and ambiguous tracking")
-      .def_property_readonly(
-          "sweep_s", [](const ChartResult& c) { return c.chart.sweep_s; },
-          "wall time of the sweep (s)")
+          "1-D: lost lines and ambiguous tracking");
+}
+
+void BindChartResult(py::module_& m) {
+  py::class_<ChartResult> r(m, "ChartResult", R"doc(
+The result of ltp.chart: one Floquet analysis per grid point (arrays over the points, in
+grid order, first axis fastest), mode tracking along a 1-D sweep (Campbell lines), and the
+unstable intervals (1-D) or boundary points (maps) refined beyond the grid.
+
+For a Campbell diagram plot each of `lines` (one per physical mode, named by its states)
+against values[0], with the per-rev lines n*rotor_speeds/2pi for n in per_rev; `crossings`
+lists where they meet. tracked_exponents/tracked_frequencies_hz keep every exponent (both
+members of each conjugate pair).)doc");
+  BindChartPlan(r);
+  BindChartPoints(r);
+  BindChartExponents(r);
+  BindChartTally(r);
+  BindChartBoundaries(r);
+  BindChartCampbell(r);
+  r.def_property_readonly(
+       "sweep_s", [](const ChartResult& c) { return c.chart.sweep_s; },
+       "wall time of the sweep (s)")
       .def_property_readonly(
           "refine_s", [](const ChartResult& c) { return c.chart.analysis.refine_s; },
           "wall time of the boundary refinement (s)")
@@ -342,45 +374,48 @@ members of each conjugate pair).)doc")
         return "<ltp.ChartResult: " + c.scene + ", " + std::to_string(c.chart.points.size()) +
                " points>";
       });
+}
 
+// ltp.chart: a scene by name is made as ltp.scene makes it; the chart runs without the GIL.
+ChartResult LtpChart(const py::object& scene, const py::object& sweep, const py::object& sweep2,
+                     const std::string& method, std::optional<std::string> integrator, double tol,
+                     int threads, bool compare, std::optional<int> check_every, bool refine,
+                     double refine_tol, int refine_lines, int per_rev, double weak_damping) {
+  const System system = py::isinstance<py::str>(scene)
+                            ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
+                            : scene.cast<System>();
+  std::vector<SweepAxis> axes{AxisFrom(sweep)};
+  if (!sweep2.is_none()) axes.push_back(AxisFrom(sweep2));
+  ChartOptions o;
+  const auto m = ParseSweepMethod(method);
+  if (!m) throw InputError("method must be 'monodromy' or 'hill', got '" + method + "'");
+  o.method = *m;
+  if (integrator) o.integrator = IntegratorFrom(*integrator);
+  o.tol = tol;
+  o.threads = threads;
+  o.compare = compare;
+  o.check_every = check_every;
+  o.refine = refine;
+  o.refine_tol = refine_tol;
+  o.refine_lines = refine_lines;
+  o.campbell.max_per_rev = per_rev;
+  o.campbell.weak_damping_ratio = weak_damping;
+  o.Validate();
+  py::gil_scoped_release release;
+  return ChartOfScene(system, axes, o);
+}
+
+void BindChartFunction(py::module_& m) {
   const ChartOptions defaults;
-  m.def(
-      "chart",
-      [](const py::object& scene, const py::object& sweep, const py::object& sweep2,
-         const std::string& method, std::optional<std::string> integrator, double tol, int threads,
-         bool compare, std::optional<int> check_every, bool refine, double refine_tol,
-         int refine_lines, int per_rev, double weak_damping) {
-        const System system = py::isinstance<py::str>(scene)
-                                  ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
-                                  : scene.cast<System>();
-        std::vector<SweepAxis> axes{AxisFrom(sweep)};
-        if (!sweep2.is_none()) axes.push_back(AxisFrom(sweep2));
-        ChartOptions o;
-        const auto m = ParseSweepMethod(method);
-        if (!m) throw InputError("method must be 'monodromy' or 'hill', got '" + method + "'");
-        o.method = *m;
-        if (integrator) o.integrator = IntegratorFrom(*integrator);
-        o.tol = tol;
-        o.threads = threads;
-        o.compare = compare;
-        o.check_every = check_every;
-        o.refine = refine;
-        o.refine_tol = refine_tol;
-        o.refine_lines = refine_lines;
-        o.campbell.max_per_rev = per_rev;
-        o.campbell.weak_damping_ratio = weak_damping;
-        o.Validate();
-        py::gil_scoped_release release;
-        return ChartOfScene(system, axes, o);
-      },
-      py::arg("scene"), py::arg("sweep"), py::arg("sweep2") = py::none(), py::kw_only(),
-      py::arg("method") = std::string(ToString(defaults.method)),
-      py::arg("integrator") = py::none(), py::arg("tol") = defaults.tol,
-      py::arg("threads") = defaults.threads, py::arg("compare") = defaults.compare,
-      py::arg("check_every") = defaults.check_every, py::arg("refine") = defaults.refine,
-      py::arg("refine_tol") = defaults.refine_tol, py::arg("refine_lines") = defaults.refine_lines,
-      py::arg("per_rev") = defaults.campbell.max_per_rev,
-      py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
+  m.def("chart", &LtpChart, py::arg("scene"), py::arg("sweep"), py::arg("sweep2") = py::none(),
+        py::kw_only(), py::arg("method") = std::string(ToString(defaults.method)),
+        py::arg("integrator") = py::none(), py::arg("tol") = defaults.tol,
+        py::arg("threads") = defaults.threads, py::arg("compare") = defaults.compare,
+        py::arg("check_every") = defaults.check_every, py::arg("refine") = defaults.refine,
+        py::arg("refine_tol") = defaults.refine_tol,
+        py::arg("refine_lines") = defaults.refine_lines,
+        py::arg("per_rev") = defaults.campbell.max_per_rev,
+        py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
 Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
 parameters: `ltp chart SCENE --sweep ... --json` as a function, with the same options and
 defaults (the library's ChartOptions).
@@ -404,6 +439,13 @@ Returns a ChartResult. Runs without the GIL.
 
     c = ltp.chart(ltp.scene("rotor", blades=3), "Omega=0.2:2:0.05")
     for line in c.lines: plt.plot(c.values[0], line["frequency_hz"], label=line["description"]))doc");
+}
+
+}  // namespace
+
+void BindChart(py::module_& m) {
+  BindChartResult(m);
+  BindChartFunction(m);
 }
 
 }  // namespace ltp::python

@@ -42,16 +42,10 @@ IntegratorType IntegratorFrom(const std::string& name) {
   return *type;
 }
 
-void BindFloquet(py::module_& m) {
-  py::class_<FloquetResult> r(m, "FloquetResult", R"doc(
-The result of ltp.floquet: Floquet exponents λ_k (1/s) on the branch whose periodic mode
-shape is centred on harmonic 0, multipliers ρ_k = exp(λ_k T), the mode shapes, the
-stability verdict and an error estimate. Arrays are numpy arrays, one entry per mode in
-the order `ltp floquet` prints them (by |frequency|, then Re λ).
+namespace {
 
-ok is False when the integration failed or the result failed its own checks (Liouville's
-formula beyond the error estimate): the diagnostics say why.)doc");
-  BindModeArrays<FloquetResult>(r);
+// The run: whether it succeeded, and how the period was cut and integrated.
+void BindFloquetRun(py::class_<FloquetResult>& r) {
   r.def_readonly("ok", &FloquetResult::ok, "the analysis succeeded and passed its own checks")
       .def_readonly("failure", &FloquetResult::failure,
                     "why ok is False, one sentence; empty when ok")
@@ -67,9 +61,13 @@ formula beyond the error estimate): the diagnostics say why.)doc");
       .def_readonly("segments", &FloquetResult::segments, "K, the number of segments used")
       .def_property_readonly(
           "segment_times", [](const FloquetResult& f) { return RealArray(f.segment_times); },
-          "t_0 = 0 < ... < t_K = T")
-      .def_readonly("max_real_exponent", &FloquetResult::max_real_exponent,
-                    "max Re λ (1/s), rigid-body modes excluded")
+          "t_0 = 0 < ... < t_K = T");
+}
+
+// The verdict and the error estimate it rests on.
+void BindFloquetVerdict(py::class_<FloquetResult>& r) {
+  r.def_readonly("max_real_exponent", &FloquetResult::max_real_exponent,
+                 "max Re λ (1/s), rigid-body modes excluded")
       .def_readonly("max_log_abs_multiplier", &FloquetResult::max_log_abs_multiplier,
                     "max log|ρ| = T max Re λ")
       .def_readonly("stable", &FloquetResult::stable, "verdict == 'stable'")
@@ -100,10 +98,15 @@ formula beyond the error estimate): the diagnostics say why.)doc");
           "'local-errors' (Bulirsch–Stoer's local errors carried to the exponents, one run)")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
-                    "stopped before its multipliers")
-      .def_readonly("mode_condition", &FloquetResult::mode_condition,
-                    "cond Ξ(t), the best of up to 16 sample times; large = (near-)defective; None "
-                    "without mode shapes")
+                    "stopped before its multipliers");
+}
+
+// The monodromy matrix and the periodic mode shapes: sampled, as Fourier series, and what a
+// reduction left out.
+void BindFloquetModes(py::class_<FloquetResult>& r) {
+  r.def_readonly("mode_condition", &FloquetResult::mode_condition,
+                 "cond Ξ(t), the best of up to 16 sample times; large = (near-)defective; None "
+                 "without mode shapes")
       .def_readonly("monodromy", &FloquetResult::monodromy,
                     "Φ(T, 0), n×n (with modes_below: the part of the modes analysed, U Φ_r Wᵀ)")
       .def_property_readonly(
@@ -153,9 +156,24 @@ formula beyond the error estimate): the diagnostics say why.)doc");
               v.mutable_at(h + f.mode_harmonics) = h;
             return v;
           },
-          "the harmonics v = -H..H of mode_harmonics")
-      .def_readonly("rhs_evals", &FloquetResult::rhs_evals,
-                    "evaluations of A(t) (taylor: products A_j Phi_k of the series)")
+          "the harmonics v = -H..H of mode_harmonics");
+}
+
+void BindFloquetResult(py::module_& m) {
+  py::class_<FloquetResult> r(m, "FloquetResult", R"doc(
+The result of ltp.floquet: Floquet exponents λ_k (1/s) on the branch whose periodic mode
+shape is centred on harmonic 0, multipliers ρ_k = exp(λ_k T), the mode shapes, the
+stability verdict and an error estimate. Arrays are numpy arrays, one entry per mode in
+the order `ltp floquet` prints them (by |frequency|, then Re λ).
+
+ok is False when the integration failed or the result failed its own checks (Liouville's
+formula beyond the error estimate): the diagnostics say why.)doc");
+  BindModeArrays<FloquetResult>(r);
+  BindFloquetRun(r);
+  BindFloquetVerdict(r);
+  BindFloquetModes(r);
+  r.def_readonly("rhs_evals", &FloquetResult::rhs_evals,
+                 "evaluations of A(t) (taylor: products A_j Phi_k of the series)")
       .def_readonly("elapsed_s", &FloquetResult::elapsed_s, "wall time (s)")
       .def_readonly("diagnostics", &FloquetResult::diagnostics,
                     "what the analysis noticed, one line each")
@@ -174,63 +192,65 @@ formula beyond the error estimate): the diagnostics say why.)doc");
           py::arg("t"), "rows of Ξ(t)⁻¹")
       .def("__repr__",
            [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });
+}
 
+// ltp.floquet: the options checked as the CLI checks them; the analysis runs without the GIL,
+// a progress callable is called with it.
+FloquetResult LtpFloquet(const System& system, const std::string& integrator, double tol, int steps,
+                         const py::object& segments, const std::string& multipliers,
+                         const std::string& estimate, int mode_samples, int threads,
+                         double max_work, double modes_below, const py::object& progress) {
+  FloquetOptions o;
+  o.integrator.type = IntegratorFrom(integrator);
+  o.integrator.rel_tol = tol;
+  o.integrator.steps_per_period = steps;
+  o.segments = SegmentsFrom(segments);
+  o.multipliers = MultipliersFrom(multipliers);
+  const auto method = ParseErrorEstimateMethod(estimate);
+  if (!method)
+    throw InputError("estimate must be 'refined-run' or 'local-errors', got '" + estimate + "'");
+  o.error_estimate_method = *method;
+  o.mode_samples = mode_samples;
+  o.threads = AnalysisThreads(system, threads);
+  o.max_work_seconds = max_work;
+  o.modes_below = 2 * std::numbers::pi * modes_below;
+  o.Validate();
+  // A notebook's progress bar: called with the GIL, from whatever thread integrates (the
+  // library serialises the calls); what it raises is raised once the analysis is done.
+  std::exception_ptr raised;
+  if (!progress.is_none()) {
+    if (!PyCallable_Check(progress.ptr()))
+      throw InputError("progress must be a callable (phase, fraction) or None");
+    o.on_progress = [&progress, &raised](std::string_view phase, double fraction) {
+      if (raised) return;
+      py::gil_scoped_acquire gil;
+      try {
+        progress(std::string(phase), fraction);
+      } catch (...) {
+        raised = std::current_exception();
+      }
+    };
+  }
+  FloquetResult r = WithoutGil(system, [&] {
+    FloquetResult result = AnalyzeFloquet(system.system, o);
+    IncludeModelError(system.model_alternatives, o, result);  // sampled models, as the CLI
+    return result;
+  });
+  if (raised) std::rethrow_exception(raised);
+  return r;
+}
+
+void BindFloquetFunction(py::module_& m) {
   const FloquetOptions defaults;
-  m.def(
-      "floquet",
-      [](const System& system, const std::string& integrator, double tol, int steps,
-         const py::object& segments, const std::string& multipliers, const std::string& estimate,
-         int mode_samples, int threads, double max_work, double modes_below,
-         const py::object& progress) {
-        FloquetOptions o;
-        o.integrator.type = IntegratorFrom(integrator);
-        o.integrator.rel_tol = tol;
-        o.integrator.steps_per_period = steps;
-        o.segments = SegmentsFrom(segments);
-        o.multipliers = MultipliersFrom(multipliers);
-        const auto method = ParseErrorEstimateMethod(estimate);
-        if (!method)
-          throw InputError("estimate must be 'refined-run' or 'local-errors', got '" + estimate +
-                           "'");
-        o.error_estimate_method = *method;
-        o.mode_samples = mode_samples;
-        o.threads = AnalysisThreads(system, threads);
-        o.max_work_seconds = max_work;
-        o.modes_below = 2 * std::numbers::pi * modes_below;
-        o.Validate();
-        // A notebook's progress bar: called with the GIL, from whatever thread integrates (the
-        // library serialises the calls); what it raises is raised once the analysis is done.
-        std::exception_ptr raised;
-        if (!progress.is_none()) {
-          if (!PyCallable_Check(progress.ptr()))
-            throw InputError("progress must be a callable (phase, fraction) or None");
-          o.on_progress = [&progress, &raised](std::string_view phase, double fraction) {
-            if (raised) return;
-            py::gil_scoped_acquire gil;
-            try {
-              progress(std::string(phase), fraction);
-            } catch (...) {
-              raised = std::current_exception();
-            }
-          };
-        }
-        FloquetResult r = WithoutGil(system, [&] {
-          FloquetResult result = AnalyzeFloquet(system.system, o);
-          IncludeModelError(system.model_alternatives, o, result);  // sampled models, as the CLI
-          return result;
-        });
-        if (raised) std::rethrow_exception(raised);
-        return r;
-      },
-      py::arg("system"), py::kw_only(),
-      py::arg("integrator") = std::string(ToString(defaults.integrator.type)),
-      py::arg("tol") = defaults.integrator.rel_tol,
-      py::arg("steps") = defaults.integrator.steps_per_period, py::arg("segments") = "auto",
-      py::arg("multipliers") = "schur",
-      py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
-      py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
-      py::arg("max_work") = defaults.max_work_seconds, py::arg("modes_below") = 0.0,
-      py::arg("progress") = py::none(), R"doc(
+  m.def("floquet", &LtpFloquet, py::arg("system"), py::kw_only(),
+        py::arg("integrator") = std::string(ToString(defaults.integrator.type)),
+        py::arg("tol") = defaults.integrator.rel_tol,
+        py::arg("steps") = defaults.integrator.steps_per_period, py::arg("segments") = "auto",
+        py::arg("multipliers") = "schur",
+        py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
+        py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
+        py::arg("max_work") = defaults.max_work_seconds, py::arg("modes_below") = 0.0,
+        py::arg("progress") = py::none(), R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
@@ -260,18 +280,20 @@ bad options; a failed analysis is not an exception: see result.ok and diagnostic
 
     r = ltp.floquet(ltp.scene("mathieu", a=1.5, q=2))
     r.exponents, r.multipliers, r.verdict, r.error_estimate)doc");
+}
 
-  m.def(
-      "mbc_check",
-      [](const System& system, const FloquetResult& result) -> py::object {
-        if (!system.scene) return py::none();
-        const auto check = CheckRotorByMbc(*system.scene, system.parameters, result);
-        if (!check) return py::none();
-        return py::dict(py::arg("applicable") = check->applicable,
-                        py::arg("reason") = check->reason, py::arg("blades") = check->blades,
-                        py::arg("max_difference") = check->max_difference);
-      },
-      py::arg("system"), py::arg("result"), R"doc(
+// ltp.mbc_check: None for anything but the built-in rotor scene.
+py::object LtpMbcCheck(const System& system, const FloquetResult& result) {
+  if (!system.scene) return py::none();
+  const auto check = CheckRotorByMbc(*system.scene, system.parameters, result);
+  if (!check) return py::none();
+  return py::dict(py::arg("applicable") = check->applicable, py::arg("reason") = check->reason,
+                  py::arg("blades") = check->blades,
+                  py::arg("max_difference") = check->max_difference);
+}
+
+void BindMbcCheckFunction(py::module_& m) {
+  m.def("mbc_check", &LtpMbcCheck, py::arg("system"), py::arg("result"), R"doc(
 The multi-blade-coordinate cross-check `ltp floquet rotor` prints: for the built-in rotor
 scene with N >= 3 identical blades, the largest distance (1/s) between the Floquet exponents of
 `result` (ltp.floquet of `system`) and the eigenvalues of the constant multi-blade-coordinate
@@ -280,6 +302,14 @@ scenes or a failed result.
 
     s = ltp.scene("rotor")
     ltp.mbc_check(s, ltp.floquet(s))["max_difference"]   # ~1e-12)doc");
+}
+
+}  // namespace
+
+void BindFloquet(py::module_& m) {
+  BindFloquetResult(m);
+  BindFloquetFunction(m);
+  BindMbcCheckFunction(m);
 }
 
 }  // namespace ltp::python

@@ -32,21 +32,11 @@ py::dict RouteDict(const RouteRun& run) {
                   py::arg("diagnostics") = run.diagnostics);
 }
 
-}  // namespace
-
-void BindFrf(py::module_& m) {
-  py::class_<PfrfResult>(m, "PfrfResult", R"doc(
-The result of ltp.pfrf: the partial FRFs H_z(ω) of one input/output channel, indexed by the
-excitation frequency f (the response to u = e^{j2πft} has lines at f + z fp), with an error
-estimate for every value from the independent routes' disagreement.
-
-  H[i, z - zmin]  H_z at frequencies_hz[i] (complex); orders = zmin..zmax
-  error_estimate  same shape: absolute error estimate of every value)doc")
-      .def_readonly("ok", &PfrfResult::ok, "every route ran and the result passed its checks")
-      .def_readonly("failure", &PfrfResult::failure, "why ok is False, one sentence; empty when ok")
-      .def_property_readonly(
-          "frequencies_hz", [](const PfrfResult& r) { return RealArray(r.frequencies_hz); },
-          "excitation frequencies f (Hz)")
+// H over excitation frequency and order, with its error estimate.
+void BindPfrfValues(py::class_<PfrfResult>& r) {
+  r.def_property_readonly(
+       "frequencies_hz", [](const PfrfResult& r) { return RealArray(r.frequencies_hz); },
+       "excitation frequencies f (Hz)")
       .def_property_readonly(
           "orders",
           [](const PfrfResult& r) {
@@ -86,17 +76,17 @@ estimate for every value from the independent routes' disagreement.
               a.mutable_at(static_cast<py::ssize_t>(i)) = r.checked[i];
             return a;
           },
-          "the check routes ran at this frequency")
-      .def_readonly("input", &PfrfResult::input, "the input channel (index)")
-      .def_readonly("output", &PfrfResult::output, "the output channel (index)")
-      .def_readonly("period", &PfrfResult::period, "T (s)")
-      .def_readonly("fp_hz", &PfrfResult::fp_hz, "1/T (Hz)")
-      .def_property_readonly(
-          "primary_route",
-          [](const PfrfResult& r) {
-            return r.routes.empty() ? std::string() : std::string(ToString(r.routes.front().route));
-          },
-          "the route that gave H")
+          "the check routes ran at this frequency");
+}
+
+// Which routes ran, and how far they agree.
+void BindPfrfRoutes(py::class_<PfrfResult>& r) {
+  r.def_property_readonly(
+       "primary_route",
+       [](const PfrfResult& r) {
+         return r.routes.empty() ? std::string() : std::string(ToString(r.routes.front().route));
+       },
+       "the route that gave H")
       .def_readonly("route_choice", &PfrfResult::route_choice,
                     "why these routes (automatic choice), or 'as requested'")
       .def_property_readonly(
@@ -122,9 +112,13 @@ estimate for every value from the independent routes' disagreement.
                     "time route: settling time (s); None when it did not run")
       .def_readonly("model_error", &PfrfResult::model_error,
                     "systems from .lin files: max |H_z| difference to the other models of the "
-                    "same samples (in every estimate); None otherwise")
-      .def_readonly("floquet", &PfrfResult::floquet,
-                    "the Floquet decomposition behind the modal route")
+                    "same samples (in every estimate); None otherwise");
+}
+
+// The Floquet decomposition behind the modal route, and the resonances it attributes.
+void BindPfrfModal(py::class_<PfrfResult>& r) {
+  r.def_readonly("floquet", &PfrfResult::floquet,
+                 "the Floquet decomposition behind the modal route")
       .def_property_readonly(
           "modal_reliable",
           [](const PfrfResult& r) -> py::object {
@@ -156,8 +150,28 @@ estimate for every value from the independent routes' disagreement.
             return out;
           },
           "peaks of |H_z|, each attributed to Floquet mode `mode` (index into floquet.exponents, "
-          "-1 unknown) and harmonic v")
-      .def_readonly("elapsed_s", &PfrfResult::elapsed_s, "wall time (s)")
+          "-1 unknown) and harmonic v");
+}
+
+void BindPfrfResult(py::module_& m) {
+  py::class_<PfrfResult> r(m, "PfrfResult", R"doc(
+The result of ltp.pfrf: the partial FRFs H_z(ω) of one input/output channel, indexed by the
+excitation frequency f (the response to u = e^{j2πft} has lines at f + z fp), with an error
+estimate for every value from the independent routes' disagreement.
+
+  H[i, z - zmin]  H_z at frequencies_hz[i] (complex); orders = zmin..zmax
+  error_estimate  same shape: absolute error estimate of every value)doc");
+  r.def_readonly("ok", &PfrfResult::ok, "every route ran and the result passed its checks")
+      .def_readonly("failure", &PfrfResult::failure,
+                    "why ok is False, one sentence; empty when ok");
+  BindPfrfValues(r);
+  r.def_readonly("input", &PfrfResult::input, "the input channel (index)")
+      .def_readonly("output", &PfrfResult::output, "the output channel (index)")
+      .def_readonly("period", &PfrfResult::period, "T (s)")
+      .def_readonly("fp_hz", &PfrfResult::fp_hz, "1/T (Hz)");
+  BindPfrfRoutes(r);
+  BindPfrfModal(r);
+  r.def_readonly("elapsed_s", &PfrfResult::elapsed_s, "wall time (s)")
       .def_readonly("diagnostics", &PfrfResult::diagnostics,
                     "what the routes noticed, one line each")
       .def("__repr__", [](const PfrfResult& r) {
@@ -165,43 +179,44 @@ estimate for every value from the independent routes' disagreement.
                " frequencies, orders " + std::to_string(r.min_order) + ".." +
                std::to_string(r.max_order) + ", " + (r.ok ? "ok" : "FAILED") + ">";
       });
+}
 
+// ltp.pfrf: the options checked as the CLI checks them; the routes run without the GIL.
+PfrfResult LtpPfrf(const System& system, const py::object& freq, const py::object& input,
+                   const py::object& output, const py::object& orders, const std::string& route,
+                   int check_every, int htf_harmonics) {
+  NeedChannels(system);
+  PfrfOptions o;
+  o.frequencies_hz = FrequenciesFrom(freq);
+  std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
+  const SystemLabels& labels = system.system.labels();
+  o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
+  o.output = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
+  if (check_every < 1) throw InputError("check_every must be >= 1");
+  o.check_every = check_every;
+  if (htf_harmonics < 0) throw InputError("htf_harmonics must be >= 0 (0 = automatic)");
+  o.htf.harmonics = htf_harmonics;
+  if (!SelectPfrfRoutes(route, &o))
+    throw InputError("route must be auto, modal, htf, shooting, time or all, got '" + route + "'");
+  o.floquet.threads = AnalysisThreads(system, o.floquet.threads);
+  o.Validate();
+  return WithoutGil(system, [&] {
+    PfrfResult r = ComputePartialFrf(system.system, o);
+    IncludeModelError(system.model_alternatives, o, r);  // sampled models, as the CLI
+    return r;
+  });
+}
+
+void BindPfrfFunction(py::module_& m) {
   const PfrfOptions defaults;
-  m.def(
-      "pfrf",
-      [](const System& system, const py::object& freq, const py::object& input,
-         const py::object& output, const py::object& orders, const std::string& route,
-         int check_every, int htf_harmonics) {
-        NeedChannels(system);
-        PfrfOptions o;
-        o.frequencies_hz = FrequenciesFrom(freq);
-        std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
-        const SystemLabels& labels = system.system.labels();
-        o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
-        o.output = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
-        if (check_every < 1) throw InputError("check_every must be >= 1");
-        o.check_every = check_every;
-        if (htf_harmonics < 0) throw InputError("htf_harmonics must be >= 0 (0 = automatic)");
-        o.htf.harmonics = htf_harmonics;
-        if (!SelectPfrfRoutes(route, &o))
-          throw InputError("route must be auto, modal, htf, shooting, time or all, got '" + route +
-                           "'");
-        o.floquet.threads = AnalysisThreads(system, o.floquet.threads);
-        o.Validate();
-        return WithoutGil(system, [&] {
-          PfrfResult r = ComputePartialFrf(system.system, o);
-          IncludeModelError(system.model_alternatives, o, r);  // sampled models, as the CLI
-          return r;
-        });
-      },
-      py::arg("system"), py::arg("freq"), py::kw_only(), py::arg("input") = 0,
-      py::arg("output") = 0,
-      py::arg("orders") =
-          std::to_string(defaults.min_order) + ":" + std::to_string(defaults.max_order),
-      py::arg("route") = std::string(ToString(defaults.primary)),
-      py::arg("check_every") = defaults.check_every,
-      py::arg("htf_harmonics") = defaults.htf.harmonics,
-      R"doc(
+  m.def("pfrf", &LtpPfrf, py::arg("system"), py::arg("freq"), py::kw_only(), py::arg("input") = 0,
+        py::arg("output") = 0,
+        py::arg("orders") =
+            std::to_string(defaults.min_order) + ":" + std::to_string(defaults.max_order),
+        py::arg("route") = std::string(ToString(defaults.primary)),
+        py::arg("check_every") = defaults.check_every,
+        py::arg("htf_harmonics") = defaults.htf.harmonics,
+        R"doc(
 Partial frequency response functions H_z(ω): `ltp pfrf SCENE --freq ... --json` as a
 function, with the same options and defaults.
 
@@ -219,7 +234,9 @@ decomposition). Runs without the GIL.
 
     r = ltp.pfrf(ltp.scene("tower-rotor"), "0:450:0.6", input="Fz_tip", output="z_tip")
     abs(r.H[:, list(r.orders).index(0)]))doc");
+}
 
+void BindSnapshotResult(py::module_& m) {
   py::class_<SnapshotResult>(m, "SnapshotResult", R"doc(
 The result of ltp.snapshot: the FRF of the system frozen at one instant, and with
 compare=True the periodic system's response to an impulse, the summed partial FRFs
@@ -264,36 +281,40 @@ G(ω) = Σ_z H_z(ω − zΩp) (paper Fig. 6), with an error estimate.)doc")
         return "<ltp.SnapshotResult: frozen at t = " + std::to_string(r.time) + " s, " +
                std::to_string(r.frequencies_hz.size()) + " frequencies>";
       });
+}
 
+// ltp.snapshot: exactly one of angle and time; the FRFs computed without the GIL.
+SnapshotResult LtpSnapshot(const System& system, const py::object& freq,
+                           std::optional<double> angle, std::optional<double> time,
+                           const py::object& input, const py::object& output,
+                           const py::object& orders, bool compare) {
+  if (angle.has_value() == time.has_value())
+    throw InputError("give exactly one of angle= (degrees) and time= (s)");
+  NeedChannels(system);
+  if (angle && !system.system.rotor_speed())
+    throw InputError("the system has no rotor speed: give time= instead of angle=");
+  SnapshotOptions o;
+  o.frequencies_hz = FrequenciesFrom(freq);
+  o.time = time;
+  o.angle_deg = angle;
+  const SystemLabels& labels = system.system.labels();
+  o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
+  o.output = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
+  o.compare = compare;
+  std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
+  o.floquet.threads = AnalysisThreads(system, o.floquet.threads);
+  o.Validate();
+  return WithoutGil(system, [&] { return ComputeSnapshotFrf(system.system, o); });
+}
+
+void BindSnapshotFunction(py::module_& m) {
   const SnapshotOptions snapshot_defaults;
-  m.def(
-      "snapshot",
-      [](const System& system, const py::object& freq, std::optional<double> angle,
-         std::optional<double> time, const py::object& input, const py::object& output,
-         const py::object& orders, bool compare) {
-        if (angle.has_value() == time.has_value())
-          throw InputError("give exactly one of angle= (degrees) and time= (s)");
-        NeedChannels(system);
-        if (angle && !system.system.rotor_speed())
-          throw InputError("the system has no rotor speed: give time= instead of angle=");
-        SnapshotOptions o;
-        o.frequencies_hz = FrequenciesFrom(freq);
-        o.time = time;
-        o.angle_deg = angle;
-        const SystemLabels& labels = system.system.labels();
-        o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
-        o.output = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
-        o.compare = compare;
-        std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
-        o.floquet.threads = AnalysisThreads(system, o.floquet.threads);
-        o.Validate();
-        return WithoutGil(system, [&] { return ComputeSnapshotFrf(system.system, o); });
-      },
-      py::arg("system"), py::arg("freq"), py::kw_only(), py::arg("angle") = py::none(),
-      py::arg("time") = py::none(), py::arg("input") = 0, py::arg("output") = 0,
-      py::arg("orders") = std::to_string(snapshot_defaults.min_order) + ":" +
-                          std::to_string(snapshot_defaults.max_order),
-      py::arg("compare") = snapshot_defaults.compare, R"doc(
+  m.def("snapshot", &LtpSnapshot, py::arg("system"), py::arg("freq"), py::kw_only(),
+        py::arg("angle") = py::none(), py::arg("time") = py::none(), py::arg("input") = 0,
+        py::arg("output") = 0,
+        py::arg("orders") = std::to_string(snapshot_defaults.min_order) + ":" +
+                            std::to_string(snapshot_defaults.max_order),
+        py::arg("compare") = snapshot_defaults.compare, R"doc(
 The FRF of the system frozen at one rotor angle (degrees) or time (s): `ltp snapshot SCENE
 --freq ... --json` as a function. compare=True adds the periodic system's response to an
 impulse, Σ_z H_z(ω − zΩp) over `orders` (paper Fig. 6), checked against the HTF route.
@@ -301,6 +322,15 @@ impulse, Σ_z H_z(ω − zΩp) over `orders` (paper Fig. 6), checked against the
     s = ltp.snapshot(ltp.scene("tower-rotor"), "0:450:0.6", angle=90, compare=True,
                      input="Fz_tip", output="z_tip")
     abs(s.snapshot), abs(s.summed))doc");
+}
+
+}  // namespace
+
+void BindFrf(py::module_& m) {
+  BindPfrfResult(m);
+  BindPfrfFunction(m);
+  BindSnapshotResult(m);
+  BindSnapshotFunction(m);
 }
 
 }  // namespace ltp::python

@@ -38,15 +38,8 @@ auto StudyColumn(Member HillStudyRow::*member) {
   };
 }
 
-}  // namespace
-
-void BindHill(py::module_& m) {
-  py::class_<HillResult> r(m, "HillResult", R"doc(
-The result of ltp.hill: the n physical Floquet exponents among the eigenvalues of the
-truncated Hill matrix, in the same order and with the same per-mode arrays as a
-FloquetResult, with the selection's margins, the truncation error estimates and the
-Koopman–Hill cross-check.)doc");
-  BindModeArrays<HillResult>(r);
+// What was solved: the truncation, the matrix, the solver and the selection rule.
+void BindHillRun(py::class_<HillResult>& r) {
   r.def_readonly("ok", &HillResult::ok, "the exponents were found and passed the Liouville check")
       .def_readonly("failure", &HillResult::failure, "why ok is False, one sentence; empty when ok")
       .def_readonly("states", &HillResult::states, "n")
@@ -57,10 +50,14 @@ Koopman–Hill cross-check.)doc");
           "solver", [](const HillResult& h) { return h.SolverDescription(); },
           "'dense', 'structured' (auto resolved) or 'structured→dense' after a fallback")
       .def_readonly("selection_rule", &HillResult::selection_rule,
-                    "how the physical eigenvalues were picked")
-      .def_property_readonly("centroids",
-                             InfoColumn<double>([](const HillModeInfo& i) { return i.centroid; }),
-                             "energy centroid of each eigenvector over the harmonic blocks")
+                    "how the physical eigenvalues were picked");
+}
+
+// Per mode: how clearly its eigenvalue was picked among the Hill matrix's, and its shape.
+void BindHillSelection(py::class_<HillResult>& r) {
+  r.def_property_readonly("centroids",
+                          InfoColumn<double>([](const HillModeInfo& i) { return i.centroid; }),
+                          "energy centroid of each eigenvector over the harmonic blocks")
       .def_property_readonly("selection_margins", InfoColumn<double>([](const HillModeInfo& i) {
                                return i.selection_margin;
                              }),
@@ -83,9 +80,13 @@ Koopman–Hill cross-check.)doc");
                              "selection margin below the threshold (a tie between λ and λ ± jΩp)")
       .def_readonly("mode_shapes", &HillResult::mode_shapes,
                     "periodic mode shapes at t = 0 (n × n complex, one column per exponent): "
-                    "the eigenvector's harmonic blocks summed")
-      .def_readonly("max_real_exponent", &HillResult::max_real_exponent,
-                    "max Re λ over the modes that are not rigid-body (1/s)")
+                    "the eigenvector's harmonic blocks summed");
+}
+
+// The verdict and the error estimate with the parts it is made of.
+void BindHillVerdict(py::class_<HillResult>& r) {
+  r.def_readonly("max_real_exponent", &HillResult::max_real_exponent,
+                 "max Re λ over the modes that are not rigid-body (1/s)")
       .def_readonly("stable", &HillResult::stable, "verdict == 'stable'")
       .def_property_readonly(
           "verdict", [](const HillResult& h) { return std::string(ToString(h.verdict)); },
@@ -117,11 +118,23 @@ Koopman–Hill cross-check.)doc");
           "None when no exponents were found")
       .def_readonly("model_error", &HillResult::model_error,
                     "for OpenFAST samples: the part of error_estimate that is the sampling "
-                    "error (other interpolations of the same samples); None otherwise")
-      .def_property_readonly(
-          "koopman_log_multipliers",
-          [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); },
-          "log eig of the Koopman–Hill transition (sorting-free cross-check)")
+                    "error (other interpolations of the same samples); None otherwise");
+}
+
+void BindHillResult(py::module_& m) {
+  py::class_<HillResult> r(m, "HillResult", R"doc(
+The result of ltp.hill: the n physical Floquet exponents among the eigenvalues of the
+truncated Hill matrix, in the same order and with the same per-mode arrays as a
+FloquetResult, with the selection's margins, the truncation error estimates and the
+Koopman–Hill cross-check.)doc");
+  BindModeArrays<HillResult>(r);
+  BindHillRun(r);
+  BindHillSelection(r);
+  BindHillVerdict(r);
+  r.def_property_readonly(
+       "koopman_log_multipliers",
+       [](const HillResult& h) { return ComplexArray(h.koopman_log_multipliers); },
+       "log eig of the Koopman–Hill transition (sorting-free cross-check)")
       .def_readonly("koopman_discrepancy", &HillResult::koopman_discrepancy,
                     "max gap to the Koopman–Hill exponents (1/s); None when skipped")
       .def_property_readonly(
@@ -132,7 +145,9 @@ Koopman–Hill cross-check.)doc");
                     "what the analysis noticed, one line each")
       .def("__repr__",
            [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
+}
 
+void BindHillStudyResult(py::module_& m) {
   py::class_<HillStudyRun>(m, "HillStudy", R"doc(
 The result of ltp.hill_study: Hill's method at N = 1 .. max_harmonics (every N up to 10,
 then about ×1.25), each row with its error against the monodromy route (modulo jΩp), the
@@ -190,30 +205,38 @@ at N = max_harmonics (`last`).)doc")
                (r.study.rate_kind ? std::string(ToString(r.study.rate_kind)) : "rate not fitted") +
                ">";
       });
+}
 
-  m.def(
-      "hill_study",
-      [](const System& system, int max_harmonics, const std::string& solver,
-         const std::string& selection, bool reference) {
-        HillOptions o;
-        const auto s = ParseHillSolver(solver);
-        if (!s)
-          throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
-        o.solver = *s;
-        const auto rule = ParseHillSelectionRule(selection);
-        if (!rule)
-          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" +
-                           selection + "'");
-        o.selection = *rule;
-        if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
-        return WithoutGil(system,
-                          [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
-      },
-      py::arg("system"), py::kw_only(), py::arg("max_harmonics") = kHillStudyMaxHarmonics,
-      py::arg("solver") = std::string(ToString(HillOptions{}.solver)),
-      py::arg("selection") = std::string(ToString(HillOptions{}.selection)),
-      py::arg("reference") = true,
-      R"doc(
+// The solver and the selection rule by the CLI's names, in the CLI's words when unknown.
+HillOptions HillOptionsFrom(const std::string& solver, const std::string& selection) {
+  HillOptions o;
+  const auto s = ParseHillSolver(solver);
+  if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
+  o.solver = *s;
+  const auto rule = ParseHillSelectionRule(selection);
+  if (!rule)
+    throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" +
+                     selection + "'");
+  o.selection = *rule;
+  return o;
+}
+
+// ltp.hill_study: the options checked as the CLI checks them; the study runs without the GIL.
+HillStudyRun LtpHillStudy(const System& system, int max_harmonics, const std::string& solver,
+                          const std::string& selection, bool reference) {
+  HillOptions o = HillOptionsFrom(solver, selection);
+  if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
+  return WithoutGil(system,
+                    [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
+}
+
+void BindHillStudyFunction(py::module_& m) {
+  m.def("hill_study", &LtpHillStudy, py::arg("system"), py::kw_only(),
+        py::arg("max_harmonics") = kHillStudyMaxHarmonics,
+        py::arg("solver") = std::string(ToString(HillOptions{}.solver)),
+        py::arg("selection") = std::string(ToString(HillOptions{}.selection)),
+        py::arg("reference") = true,
+        R"doc(
 Convergence study of Hill's method over the truncation N: `ltp hill SCENE --json` as a
 function, with the same options and defaults.
 
@@ -224,47 +247,40 @@ function, with the same options and defaults.
                  False: the CLI's --no-reference
 
 Returns a HillStudy. Runs without the GIL.)doc");
+}
 
+// ltp.hill: harmonics 'auto' or a positive integer; the analysis runs without the GIL.
+HillResult LtpHill(const System& system, const py::object& harmonics, const std::string& solver,
+                   const std::string& selection, double tol) {
+  HillOptions o = HillOptionsFrom(solver, selection);
+  if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
+  if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
+    o.Validate();
+    return WithoutGil(system, [&] {
+      HillResult h = AnalyzeHillToTolerance(system.system, o, tol);
+      IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
+      return h;
+    });
+  }
+  if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
+      harmonics.cast<long>() < 1 || harmonics.cast<long>() > 100000)
+    throw InputError("harmonics must be a positive integer or 'auto', got " +
+                     py::repr(harmonics).cast<std::string>());
+  o.harmonics = harmonics.cast<int>();
+  o.Validate();
+  return WithoutGil(system, [&] {
+    HillResult h = AnalyzeHill(system.system, o);
+    IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
+    return h;
+  });
+}
+
+void BindHillFunction(py::module_& m) {
   const HillOptions defaults;
-  m.def(
-      "hill",
-      [](const System& system, const py::object& harmonics, const std::string& solver,
-         const std::string& selection, double tol) {
-        HillOptions o;
-        const auto s = ParseHillSolver(solver);
-        if (!s)
-          throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
-        o.solver = *s;
-        const auto rule = ParseHillSelectionRule(selection);
-        if (!rule)
-          throw InputError("selection must be 'centroid', 'central-weight' or 'strip', got '" +
-                           selection + "'");
-        o.selection = *rule;
-        if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
-        if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
-          o.Validate();
-          return WithoutGil(system, [&] {
-            HillResult h = AnalyzeHillToTolerance(system.system, o, tol);
-            IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
-            return h;
-          });
-        }
-        if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
-            harmonics.cast<long>() < 1 || harmonics.cast<long>() > 100000)
-          throw InputError("harmonics must be a positive integer or 'auto', got " +
-                           py::repr(harmonics).cast<std::string>());
-        o.harmonics = harmonics.cast<int>();
-        o.Validate();
-        return WithoutGil(system, [&] {
-          HillResult h = AnalyzeHill(system.system, o);
-          IncludeModelError(system.model_alternatives, FloquetOptions{}, h);  // as the CLI
-          return h;
-        });
-      },
-      py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
-      py::arg("solver") = std::string(ToString(defaults.solver)),
-      py::arg("selection") = std::string(ToString(defaults.selection)),
-      py::arg("tol") = IntegratorOptions{}.rel_tol, R"doc(
+  m.def("hill", &LtpHill, py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
+        py::arg("solver") = std::string(ToString(defaults.solver)),
+        py::arg("selection") = std::string(ToString(defaults.selection)),
+        py::arg("tol") = IntegratorOptions{}.rel_tol, R"doc(
 Floquet exponents by Hill's method: `ltp floquet SCENE --method hill --json` as a function,
 with the same options and defaults.
 
@@ -277,6 +293,15 @@ with the same options and defaults.
 Returns a HillResult. Runs without the GIL. Systems not in Fourier form are fitted by FFT
 first (the fit's error is part of the estimate). Raises ltp.InputError for bad options,
 ltp.ResourceError when the Hill matrix would not fit in memory.)doc");
+}
+
+}  // namespace
+
+void BindHill(py::module_& m) {
+  BindHillResult(m);
+  BindHillStudyResult(m);
+  BindHillStudyFunction(m);
+  BindHillFunction(m);
 }
 
 }  // namespace ltp::python

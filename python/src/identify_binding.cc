@@ -85,9 +85,7 @@ py::array_t<double> PerFrequency(const IdentifiedRecords& r, double IdentifiedFr
   return RealArray(v);
 }
 
-}  // namespace
-
-void BindIdentify(py::module_& m) {
+void BindSimulationResult(py::module_& m) {
   py::class_<SimulatedRecords>(m, "SimulationResult", R"doc(
 Time data of ltp.simulate: lists with one 1-D array per record (one per step-sine frequency, or
 per broadband realisation), ready for ltp.identify(r.time, r.input, r.output, period=r.period).)doc")
@@ -135,56 +133,58 @@ per broadband realisation), ready for ltp.identify(r.time, r.input, r.output, pe
       .def_property_readonly(
           "diagnostics", [](const SimulatedRecords& s) { return s.result.diagnostics; },
           "e.g. frequencies moved to the record's grid");
+}
 
+// ltp.simulate: the options checked as the CLI checks them; the records made without the GIL.
+SimulatedRecords LtpSimulate(const System& system, const py::object& freq, const py::object& input,
+                             const py::object& output, const std::string& excitation, int periods,
+                             int samples_per_period, double amplitude, std::optional<double> noise,
+                             std::optional<double> input_noise, double speed_offset,
+                             double speed_ramp, bool tacho, std::uint64_t seed, int records) {
+  if (system.callbacks)
+    throw InputError(
+        "simulate: a system behind Python callables is not supported (its "
+        "RKF78 steps would take the GIL per evaluation); build it from Fourier "
+        "coefficients or a scene");
+  SimulateOptions o;
+  const SystemLabels& labels = system.system.labels();
+  o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
+  const int out = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
+  o.frequencies_hz = FrequenciesFrom(freq);
+  o.periods = periods;
+  o.samples_per_period = samples_per_period;
+  o.amplitude = amplitude;
+  o.noise_snr_db = noise.value_or(std::numeric_limits<double>::infinity());
+  o.input_noise_snr_db = input_noise.value_or(std::numeric_limits<double>::infinity());
+  o.speed_offset = speed_offset / 100;
+  o.speed_ramp = speed_ramp / 100;
+  o.tacho = tacho;
+  o.seed = seed;
+  o.records = records;
+  if (excitation != "stepsine" && excitation != "multisine")
+    throw InputError("excitation must be stepsine or multisine, got '" + excitation + "'");
+  o.Validate();
+  SimulatedRecords r;
+  r.input = o.input;
+  r.output = out;
+  r.result = WithoutGil(system, [&] {
+    return excitation == "stepsine" ? SimulateStepSine(system.system, o)
+                                    : SimulateMultisine(system.system, o);
+  });
+  return r;
+}
+
+void BindSimulateFunction(py::module_& m) {
   const SimulateOptions defaults;
-  m.def(
-      "simulate",
-      [](const System& system, const py::object& freq, const py::object& input,
-         const py::object& output, const std::string& excitation, int periods,
-         int samples_per_period, double amplitude, std::optional<double> noise,
-         std::optional<double> input_noise, double speed_offset, double speed_ramp, bool tacho,
-         std::uint64_t seed, int records) {
-        if (system.callbacks)
-          throw InputError(
-              "simulate: a system behind Python callables is not supported (its "
-              "RKF78 steps would take the GIL per evaluation); build it from Fourier "
-              "coefficients or a scene");
-        SimulateOptions o;
-        const SystemLabels& labels = system.system.labels();
-        o.input = ChannelFrom(input, labels.inputs, system.system.inputs(), "input");
-        const int out = ChannelFrom(output, labels.outputs, system.system.outputs(), "output");
-        o.frequencies_hz = FrequenciesFrom(freq);
-        o.periods = periods;
-        o.samples_per_period = samples_per_period;
-        o.amplitude = amplitude;
-        o.noise_snr_db = noise.value_or(std::numeric_limits<double>::infinity());
-        o.input_noise_snr_db = input_noise.value_or(std::numeric_limits<double>::infinity());
-        o.speed_offset = speed_offset / 100;
-        o.speed_ramp = speed_ramp / 100;
-        o.tacho = tacho;
-        o.seed = seed;
-        o.records = records;
-        if (excitation != "stepsine" && excitation != "multisine")
-          throw InputError("excitation must be stepsine or multisine, got '" + excitation + "'");
-        o.Validate();
-        SimulatedRecords r;
-        r.input = o.input;
-        r.output = out;
-        r.result = WithoutGil(system, [&] {
-          return excitation == "stepsine" ? SimulateStepSine(system.system, o)
-                                          : SimulateMultisine(system.system, o);
-        });
-        return r;
-      },
-      py::arg("system"), py::arg("freq"), py::kw_only(), py::arg("input") = 0,
-      py::arg("output") = 0, py::arg("excitation") = "stepsine",
-      py::arg("periods") = defaults.periods,
-      py::arg("samples_per_period") = defaults.samples_per_period,
-      py::arg("amplitude") = defaults.amplitude, py::arg("noise") = py::none(),
-      py::arg("input_noise") = py::none(), py::arg("speed_offset") = 0.0,
-      py::arg("speed_ramp") = 0.0, py::arg("tacho") = false, py::arg("seed") = defaults.seed,
-      py::arg("records") = defaults.records,
-      R"doc(
+  m.def("simulate", &LtpSimulate, py::arg("system"), py::arg("freq"), py::kw_only(),
+        py::arg("input") = 0, py::arg("output") = 0, py::arg("excitation") = "stepsine",
+        py::arg("periods") = defaults.periods,
+        py::arg("samples_per_period") = defaults.samples_per_period,
+        py::arg("amplitude") = defaults.amplitude, py::arg("noise") = py::none(),
+        py::arg("input_noise") = py::none(), py::arg("speed_offset") = 0.0,
+        py::arg("speed_ramp") = 0.0, py::arg("tacho") = false, py::arg("seed") = defaults.seed,
+        py::arg("records") = defaults.records,
+        R"doc(
 Time data of a test: `ltp simulate` as a function, with its options and defaults.
 
   freq          frequencies (Hz): 'F0:F1:DF' or an array; each moved to whole cycles of the record
@@ -198,7 +198,9 @@ Returns a SimulationResult (lists of arrays per record).
     s = ltp.simulate(ltp.scene("mathieu", a=2, c=0.2, q=0.3), "0.05:0.6:0.05", noise=30,
                      speed_offset=1, tacho=True)
     r = ltp.identify(s.time, s.input, s.output, tacho=s.tacho))doc");
+}
 
+void BindIdentifyResult(py::module_& m) {
   py::class_<IdentifiedRecords>(m, "IdentifyResult", R"doc(
 Partial FRFs estimated from time data (ltp.identify): H over frequency and order, each with its
 95 % bound.)doc")
@@ -259,81 +261,93 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
       .def_property_readonly(
           "diagnostics", [](const IdentifiedRecords& r) { return r.result.diagnostics; },
           "what the data say about themselves (speed, gaps, clipping, …), one line each");
+}
 
-  m.def(
-      "identify",
-      [](const py::object& time, const py::object& input, const py::object& output,
-         std::optional<double> period, const py::object& excitation_hz, const py::object& tacho,
-         const py::object& angle, int pulses_per_period, double tacho_angle,
-         const py::object& orders, const std::string& method) {
-        const std::vector<Eigen::VectorXd> t = RecordArrays(time, "time");
-        const std::vector<Eigen::VectorXd> u = RecordArrays(input, "input");
-        const std::vector<Eigen::VectorXd> y = RecordArrays(output, "output");
-        if (u.size() != t.size() || y.size() != t.size())
-          throw InputError("time, input and output must hold the same number of records (" +
-                           std::to_string(t.size()) + ", " + std::to_string(u.size()) + ", " +
-                           std::to_string(y.size()) + ")");
-        if (!tacho.is_none() && !angle.is_none())
-          throw InputError("tacho and angle: give one source of the rotor's phase");
-        const py::object& phase = tacho.is_none() ? angle : tacho;
-        const std::vector<Eigen::VectorXd> aux =
-            phase.is_none() ? std::vector<Eigen::VectorXd>{}
-                            : RecordArrays(phase, tacho.is_none() ? "angle" : "tacho");
-        if (!aux.empty() && aux.size() != t.size())
-          throw InputError("the phase channel must hold one array per record");
-        std::vector<double> frequencies(t.size(), 0.0);
-        if (!excitation_hz.is_none()) {
-          frequencies = FrequenciesFrom(excitation_hz);
-          if (frequencies.size() != t.size())
-            throw InputError("excitation_hz: one frequency per record (" +
-                             std::to_string(t.size()) + ")");
-        }
-        if (period && !(*period > 0 && std::isfinite(*period)))
-          throw InputError("period must be finite and > 0");
-        if (!period && aux.empty())
-          throw InputError("give the period (s), or the rotor's phase (tacho= or angle=)");
-        TimeData data;
-        data.period = period.value_or(0);
-        data.input_names = {"input"};
-        data.output_names = {"output"};
-        for (size_t k = 0; k < t.size(); ++k) {
-          if (u[k].size() != t[k].size() || y[k].size() != t[k].size() ||
-              (!aux.empty() && aux[k].size() != t[k].size()))
-            throw InputError("record " + std::to_string(k) + ": the arrays differ in length");
-          TimeRecord r;
-          r.time.assign(t[k].data(), t[k].data() + t[k].size());
-          r.inputs = u[k];
-          r.outputs = y[k];
-          if (!aux.empty()) r.auxiliary = aux[k];
-          r.excitation_hz = frequencies[k];
-          data.records.push_back(std::move(r));
-        }
-        IdentifyOptions o;
-        std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
-        o.Validate();
-        IdentifiedRecords out;
-        if (!aux.empty()) {
-          AngleChannel source;
-          source.kind = tacho.is_none() ? AngleChannel::Kind::kEncoder : AngleChannel::Kind::kTacho;
-          source.tacho.pulses_per_period = pulses_per_period;
-          source.tacho.pulse_angle = tacho_angle;
-          out.speeds = SetMeasuredAngles(data, source);
-        }
-        out.method = method;
-        if (method != "stepsine" && method != "broadband")
-          throw InputError("method must be stepsine or broadband, got '" + method + "'");
-        out.period = data.period;
-        py::gil_scoped_release release;
-        out.result =
-            out.method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
-        return out;
-      },
-      py::arg("time"), py::arg("input"), py::arg("output"), py::kw_only(),
-      py::arg("period") = py::none(), py::arg("excitation_hz") = py::none(),
-      py::arg("tacho") = py::none(), py::arg("angle") = py::none(),
-      py::arg("pulses_per_period") = 1, py::arg("tacho_angle") = 0.0, py::arg("orders") = "-2:2",
-      py::arg("method") = "stepsine",
-      R"doc(
+// The records as the library's time data, one TimeRecord each. @throws InputError when a record's
+// arrays differ in length.
+TimeData RecordsData(const std::vector<Eigen::VectorXd>& t, const std::vector<Eigen::VectorXd>& u,
+                     const std::vector<Eigen::VectorXd>& y, const std::vector<Eigen::VectorXd>& aux,
+                     const std::vector<double>& frequencies, std::optional<double> period) {
+  TimeData data;
+  data.period = period.value_or(0);
+  data.input_names = {"input"};
+  data.output_names = {"output"};
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (u[k].size() != t[k].size() || y[k].size() != t[k].size() ||
+        (!aux.empty() && aux[k].size() != t[k].size()))
+      throw InputError("record " + std::to_string(k) + ": the arrays differ in length");
+    TimeRecord r;
+    r.time.assign(t[k].data(), t[k].data() + t[k].size());
+    r.inputs = u[k];
+    r.outputs = y[k];
+    if (!aux.empty()) r.auxiliary = aux[k];
+    r.excitation_hz = frequencies[k];
+    data.records.push_back(std::move(r));
+  }
+  return data;
+}
+
+// ltp.identify: the records checked against each other, the rotor's phase measured when given;
+// the estimation runs without the GIL.
+IdentifiedRecords LtpIdentify(const py::object& time, const py::object& input,
+                              const py::object& output, std::optional<double> period,
+                              const py::object& excitation_hz, const py::object& tacho,
+                              const py::object& angle, int pulses_per_period, double tacho_angle,
+                              const py::object& orders, const std::string& method) {
+  const std::vector<Eigen::VectorXd> t = RecordArrays(time, "time");
+  const std::vector<Eigen::VectorXd> u = RecordArrays(input, "input");
+  const std::vector<Eigen::VectorXd> y = RecordArrays(output, "output");
+  if (u.size() != t.size() || y.size() != t.size())
+    throw InputError("time, input and output must hold the same number of records (" +
+                     std::to_string(t.size()) + ", " + std::to_string(u.size()) + ", " +
+                     std::to_string(y.size()) + ")");
+  if (!tacho.is_none() && !angle.is_none())
+    throw InputError("tacho and angle: give one source of the rotor's phase");
+  const py::object& phase = tacho.is_none() ? angle : tacho;
+  const std::vector<Eigen::VectorXd> aux =
+      phase.is_none() ? std::vector<Eigen::VectorXd>{}
+                      : RecordArrays(phase, tacho.is_none() ? "angle" : "tacho");
+  if (!aux.empty() && aux.size() != t.size())
+    throw InputError("the phase channel must hold one array per record");
+  std::vector<double> frequencies(t.size(), 0.0);
+  if (!excitation_hz.is_none()) {
+    frequencies = FrequenciesFrom(excitation_hz);
+    if (frequencies.size() != t.size())
+      throw InputError("excitation_hz: one frequency per record (" + std::to_string(t.size()) +
+                       ")");
+  }
+  if (period && !(*period > 0 && std::isfinite(*period)))
+    throw InputError("period must be finite and > 0");
+  if (!period && aux.empty())
+    throw InputError("give the period (s), or the rotor's phase (tacho= or angle=)");
+  TimeData data = RecordsData(t, u, y, aux, frequencies, period);
+  IdentifyOptions o;
+  std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
+  o.Validate();
+  IdentifiedRecords out;
+  if (!aux.empty()) {
+    AngleChannel source;
+    source.kind = tacho.is_none() ? AngleChannel::Kind::kEncoder : AngleChannel::Kind::kTacho;
+    source.tacho.pulses_per_period = pulses_per_period;
+    source.tacho.pulse_angle = tacho_angle;
+    out.speeds = SetMeasuredAngles(data, source);
+  }
+  out.method = method;
+  if (method != "stepsine" && method != "broadband")
+    throw InputError("method must be stepsine or broadband, got '" + method + "'");
+  out.period = data.period;
+  py::gil_scoped_release release;
+  out.result = out.method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
+  return out;
+}
+
+void BindIdentifyFunction(py::module_& m) {
+  m.def("identify", &LtpIdentify, py::arg("time"), py::arg("input"), py::arg("output"),
+        py::kw_only(), py::arg("period") = py::none(), py::arg("excitation_hz") = py::none(),
+        py::arg("tacho") = py::none(), py::arg("angle") = py::none(),
+        py::arg("pulses_per_period") = 1, py::arg("tacho_angle") = 0.0, py::arg("orders") = "-2:2",
+        py::arg("method") = "stepsine",
+        R"doc(
 Partial FRFs from time data: `ltp identify` on numpy arrays.
 
   time, input, output   one 1-D array per record (a list), or one array for one record
@@ -347,6 +361,15 @@ Partial FRFs from time data: `ltp identify` on numpy arrays.
                         broadband (records of one multisine, excitation_hz all 0)
 
 Returns an IdentifyResult (H, bound, excitation_hz, speed, diagnostics).)doc");
+}
+
+}  // namespace
+
+void BindIdentify(py::module_& m) {
+  BindSimulationResult(m);
+  BindSimulateFunction(m);
+  BindIdentifyResult(m);
+  BindIdentifyFunction(m);
 }
 
 }  // namespace ltp::python

@@ -27,34 +27,24 @@ py::array_t<T> AsArray(const std::vector<T>& v) {
   return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-}  // namespace
+// The mode shapes as one matrix: a column per mode, a row per MBC state.
+Eigen::MatrixXcd MbcEigenvectors(const Mbc3Result& x) {
+  Eigen::MatrixXcd v(static_cast<Eigen::Index>(x.states.size()),
+                     static_cast<Eigen::Index>(x.modes.size()));
+  for (size_t k = 0; k < x.modes.size(); ++k)
+    v.col(static_cast<Eigen::Index>(k)) = x.modes[k].eigenvector;
+  return v;
+}
 
-void BindMbc(py::module_& m) {
-  py::class_<Mbc3Result> r(m, "MbcResult",
-                           "The MBC3 eigen-analysis of OpenFAST .lin files at one operating point "
-                           "(ltp mbc --no-floquet --json as an object). Modes are sorted by "
-                           "natural frequency; each complex pair is listed once.");
-  r.def_readonly("applicable", &Mbc3Result::applicable,
-                 "False for 1 or 2 blades (reason says why; no modes)")
-      .def_readonly("reason", &Mbc3Result::reason, "why MBC does not apply; empty when it does")
-      .def_readonly("blades", &Mbc3Result::blades, "number of rotor blades found in the states")
-      .def_readonly("rotor_speed", &Mbc3Result::rotor_speed, "mean Ω (rad/s)")
-      .def_readonly("azimuths", &Mbc3Result::azimuths, "ψ_k of the files (rad)")
-      .def_property_readonly(
-          "states",
-          [](const Mbc3Result& x) {
-            std::vector<std::string> s;
-            for (const LinChannel& c : x.states) s.push_back(c.description);
-            return s;
-          },
-          "the MBC state descriptions (collective, cosine, sine per blade family)")
-      .def_property_readonly(
-          "eigenvalues",
-          [](const Mbc3Result& x) {
-            return AsArray(
-                ModeColumn<std::complex<double>>(x, [](const MbcMode& m) { return m.eigenvalue; }));
-          },
-          "λ of the averaged MBC state matrix (1/s), Im λ >= 0")
+// One entry per mode, in the order of natural frequency.
+void BindMbcModes(py::class_<Mbc3Result>& r) {
+  r.def_property_readonly(
+       "eigenvalues",
+       [](const Mbc3Result& x) {
+         return AsArray(
+             ModeColumn<std::complex<double>>(x, [](const MbcMode& m) { return m.eigenvalue; }));
+       },
+       "λ of the averaged MBC state matrix (1/s), Im λ >= 0")
       .def_property_readonly(
           "natural_frequencies_hz",
           [](const Mbc3Result& x) {
@@ -107,17 +97,32 @@ void BindMbc(py::module_& m) {
           },
           "what carries each mode (shares per coordinate family)")
       .def_property_readonly(
-          "eigenvectors",
-          [](const Mbc3Result& x) {
-            Eigen::MatrixXcd v(static_cast<Eigen::Index>(x.states.size()),
-                               static_cast<Eigen::Index>(x.modes.size()));
-            for (size_t k = 0; k < x.modes.size(); ++k)
-              v.col(static_cast<Eigen::Index>(k)) = x.modes[k].eigenvector;
-            return v;
-          },
-          "complex mode shapes in MBC coordinates, one column per mode (what one animates)")
+          "eigenvectors", &MbcEigenvectors,
+          "complex mode shapes in MBC coordinates, one column per mode (what one animates)");
+}
+
+void BindMbcResult(py::module_& m) {
+  py::class_<Mbc3Result> r(m, "MbcResult",
+                           "The MBC3 eigen-analysis of OpenFAST .lin files at one operating point "
+                           "(ltp mbc --no-floquet --json as an object). Modes are sorted by "
+                           "natural frequency; each complex pair is listed once.");
+  r.def_readonly("applicable", &Mbc3Result::applicable,
+                 "False for 1 or 2 blades (reason says why; no modes)")
+      .def_readonly("reason", &Mbc3Result::reason, "why MBC does not apply; empty when it does")
+      .def_readonly("blades", &Mbc3Result::blades, "number of rotor blades found in the states")
+      .def_readonly("rotor_speed", &Mbc3Result::rotor_speed, "mean Ω (rad/s)")
+      .def_readonly("azimuths", &Mbc3Result::azimuths, "ψ_k of the files (rad)")
       .def_property_readonly(
-          "A", [](const Mbc3Result& x) { return x.average.A; }, "the averaged MBC state matrix")
+          "states",
+          [](const Mbc3Result& x) {
+            std::vector<std::string> s;
+            for (const LinChannel& c : x.states) s.push_back(c.description);
+            return s;
+          },
+          "the MBC state descriptions (collective, cosine, sine per blade family)");
+  BindMbcModes(r);
+  r.def_property_readonly(
+       "A", [](const Mbc3Result& x) { return x.average.A; }, "the averaged MBC state matrix")
       .def_readonly("max_real_part", &Mbc3Result::max_real_part,
                     "max Re λ over the modes that are not rigid-body (1/s)")
       .def_readonly("periodic_part", &Mbc3Result::periodic_part,
@@ -129,24 +134,26 @@ void BindMbc(py::module_& m) {
                std::to_string(x.blades) + " blades, max Re λ = " + std::to_string(x.max_real_part) +
                " 1/s>";
       });
+}
 
-  m.def(
-      "mbc",
-      [](const py::object& files) {
-        std::vector<std::string> names;
-        if (py::isinstance<py::str>(files)) {
-          names.push_back(files.cast<std::string>());
-        } else {
-          try {
-            names = files.cast<std::vector<std::string>>();
-          } catch (const py::cast_error&) {
-            throw InputError("files must be a path (a folder or one .lin file) or a list of paths");
-          }
-        }
-        py::gil_scoped_release release;
-        return Mbc3(ReadLinOperatingPoint(names));
-      },
-      py::arg("files"), R"doc(
+// ltp.mbc: one path or a list of them; the files read and analysed without the GIL.
+Mbc3Result LtpMbc(const py::object& files) {
+  std::vector<std::string> names;
+  if (py::isinstance<py::str>(files)) {
+    names.push_back(files.cast<std::string>());
+  } else {
+    try {
+      names = files.cast<std::vector<std::string>>();
+    } catch (const py::cast_error&) {
+      throw InputError("files must be a path (a folder or one .lin file) or a list of paths");
+    }
+  }
+  py::gil_scoped_release release;
+  return Mbc3(ReadLinOperatingPoint(names));
+}
+
+void BindMbcFunction(py::module_& m) {
+  m.def("mbc", &LtpMbc, py::arg("files"), R"doc(
 The MBC3 eigen-analysis of OpenFAST .lin files at one operating point: `ltp mbc FILES
 --no-floquet --json` as a function (Bir 2008: each azimuth's matrices in multi-blade
 coordinates, averaged, eigenvalues). Natural and damped frequencies, damping, whirl direction
@@ -157,6 +164,13 @@ an error estimate that includes the sampling error is ltp.floquet(ltp.scene(file
 
     m = ltp.mbc("tests/data/openfast/nrel5mw-rotating")
     m.natural_frequencies_hz, m.damping_ratios, m.whirl, m.descriptions)doc");
+}
+
+}  // namespace
+
+void BindMbc(py::module_& m) {
+  BindMbcResult(m);
+  BindMbcFunction(m);
 }
 
 }  // namespace ltp::python

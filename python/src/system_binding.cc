@@ -256,31 +256,74 @@ std::string FormName(PeriodicSystem::Form form) {
   return "?";
 }
 
-}  // namespace
-
-void BindSystem(py::module_& m) {
-  py::class_<System>(m, "System", R"doc(
-A linear T-periodic system  x' = A(t) x + B(t) u,  y = C(t) x + D(t) u.
-
-Make one with ltp.scene(...) (a built-in scene, a YAML scene file or OpenFAST .lin
-files) or with System.from_fourier, System.from_function or System.from_samples.
-Immutable; every analysis (ltp.floquet, ltp.hill, ltp.pfrf, ltp.snapshot) takes it.
-ltp.chart takes a system made by ltp.scene, whose parameters it sweeps.)doc")
-      .def_static(
-          "from_fourier",
-          [](double period, const py::object& a, const py::object& b, const py::object& c,
-             const py::object& d) {
-            return System{
-                PeriodicSystem::FromFourier(period, FourierFrom(a, "A"), FourierFrom(b, "B"),
+// System.from_fourier: every matrix as Fourier coefficients (or constant).
+System FromFourier(double period, const py::object& a, const py::object& b, const py::object& c,
+                   const py::object& d) {
+  return System{PeriodicSystem::FromFourier(period, FourierFrom(a, "A"), FourierFrom(b, "B"),
                                             FourierFrom(c, "C"), FourierFrom(d, "D")),
                 std::nullopt,
                 {},
                 {},
                 nullptr,
                 {}};
-          },
-          py::arg("period"), py::arg("A"), py::arg("B") = py::none(), py::arg("C") = py::none(),
-          py::arg("D") = py::none(), R"doc(
+}
+
+// System.from_second_order: M q'' + D q' + K q = F u, each as Fourier coefficients (or constant).
+System FromSecondOrder(double period, const py::object& mass, const py::object& stiffness,
+                       const py::object& damping, const py::object& f, const py::object& cd,
+                       const py::object& cv) {
+  return System{FromSecondOrderSeries(period, FourierFrom(mass, "M"), FourierFrom(damping, "D"),
+                                      FourierFrom(stiffness, "K"), FourierFrom(f, "F"),
+                                      FourierFrom(cd, "Cd"), FourierFrom(cv, "Cv")),
+                std::nullopt,
+                {},
+                {},
+                nullptr,
+                {}};
+}
+
+// System.with_labels: a copy whose names are replaced where given.
+System SystemWithLabels(const System& s, std::optional<std::vector<std::string>> states,
+                        std::optional<std::vector<std::string>> inputs,
+                        std::optional<std::vector<std::string>> outputs) {
+  SystemLabels labels = s.system.labels();
+  if (states) labels.states = *states;
+  if (inputs) labels.inputs = *inputs;
+  if (outputs) labels.outputs = *outputs;
+  System out = s;
+  out.system = s.system.WithLabels(labels);
+  return out;
+}
+
+std::string SystemRepr(const System& s) {
+  std::ostringstream r;
+  r << "<ltp.System";
+  if (s.scene) r << " " << s.scene->name;
+  r << ": " << s.system.states() << " states, " << s.system.inputs() << " inputs, "
+    << s.system.outputs() << " outputs, T = " << s.system.period() << " s, "
+    << FormName(s.system.form()) << ">";
+  return r.str();
+}
+
+// ltp.scenes: name, description and parameters of each built-in scene.
+py::list BuiltinSceneList() {
+  py::list out;
+  for (const Scene& s : BuiltinScenes()) {
+    py::list parameters;
+    for (const SceneParameter& p : s.parameters)
+      parameters.append(py::dict(py::arg("name") = p.name, py::arg("value") = p.value,
+                                 py::arg("description") = p.description));
+    out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+                        py::arg("parameters") = parameters));
+  }
+  return out;
+}
+
+// The ways to make a System besides ltp.scene.
+void BindSystemConstructors(py::class_<System>& c) {
+  c.def_static("from_fourier", &FromFourier, py::arg("period"), py::arg("A"),
+               py::arg("B") = py::none(), py::arg("C") = py::none(), py::arg("D") = py::none(),
+               R"doc(
 A system from the Fourier coefficients of its matrices (the fastest form: every analysis
 uses the exact coefficients).
 
@@ -296,24 +339,10 @@ Example (damped Mathieu, x'' + c x' + (a + 2 q cos 2t) x = 0, period pi):
 
 Raises ltp.InputError (a ValueError) on inconsistent sizes, a period <= 0, non-finite or
 non-real series.)doc")
-      .def_static(
-          "from_second_order",
-          [](double period, const py::object& mass, const py::object& stiffness,
-             const py::object& damping, const py::object& f, const py::object& cd,
-             const py::object& cv) {
-            return System{
-                FromSecondOrderSeries(period, FourierFrom(mass, "M"), FourierFrom(damping, "D"),
-                                      FourierFrom(stiffness, "K"), FourierFrom(f, "F"),
-                                      FourierFrom(cd, "Cd"), FourierFrom(cv, "Cv")),
-                std::nullopt,
-                {},
-                {},
-                nullptr,
-                {}};
-          },
-          py::arg("period"), py::arg("M"), py::arg("K"), py::arg("D") = py::none(),
-          py::arg("F") = py::none(), py::arg("Cd") = py::none(), py::arg("Cv") = py::none(),
-          R"doc(
+      .def_static("from_second_order", &FromSecondOrder, py::arg("period"), py::arg("M"),
+                  py::arg("K"), py::arg("D") = py::none(), py::arg("F") = py::none(),
+                  py::arg("Cd") = py::none(), py::arg("Cv") = py::none(),
+                  R"doc(
 A system from second-order matrices, as a finite-element model gives them:
     M(t) q'' + D(t) q' + K(t) q = F(t) u,   y = Cd(t) q + Cv(t) q',
 with the state x = [q; q']. Each matrix is a real 2-D array (constant) or a complex array
@@ -352,24 +381,15 @@ it.)doc")
 A piecewise-constant system: the matrices A[k] (arrays of shape (K, rows, cols), or one
 constant 2-D array) hold on [times[k], times[k+1]), times[K] = times[0] + period. `times`
 must be strictly increasing in [0, period). The state transition is then an exact product
-of matrix exponentials (e.g. a rotor measured at K azimuths).)doc")
-      .def(
-          "with_labels",
-          [](const System& s, std::optional<std::vector<std::string>> states,
-             std::optional<std::vector<std::string>> inputs,
-             std::optional<std::vector<std::string>> outputs) {
-            SystemLabels labels = s.system.labels();
-            if (states) labels.states = *states;
-            if (inputs) labels.inputs = *inputs;
-            if (outputs) labels.outputs = *outputs;
-            System out = s;
-            out.system = s.system.WithLabels(labels);
-            return out;
-          },
-          py::arg("states") = py::none(), py::arg("inputs") = py::none(),
-          py::arg("outputs") = py::none(),
-          "A copy with these names of states, inputs and outputs (None keeps the present ones); "
-          "pfrf and snapshot then take input= and output= by name.")
+of matrix exponentials (e.g. a rotor measured at K azimuths).)doc");
+}
+
+// Copies with names or a rotor speed added.
+void BindSystemCopies(py::class_<System>& c) {
+  c.def("with_labels", &SystemWithLabels, py::arg("states") = py::none(),
+        py::arg("inputs") = py::none(), py::arg("outputs") = py::none(),
+        "A copy with these names of states, inputs and outputs (None keeps the present ones); "
+        "pfrf and snapshot then take input= and output= by name.")
       .def(
           "with_rotor_speed",
           [](const System& s, double speed) {
@@ -377,9 +397,13 @@ of matrix exponentials (e.g. a rotor measured at K azimuths).)doc")
             out.system = s.system.WithRotorSpeed(speed);
             return out;
           },
-          py::arg("rad_per_s"), "A copy whose rotor angle is rad_per_s · t (snapshot(angle=...)).")
-      .def_property_readonly(
-          "period", [](const System& s) { return s.system.period(); }, "T (s)")
+          py::arg("rad_per_s"), "A copy whose rotor angle is rad_per_s · t (snapshot(angle=...)).");
+}
+
+// What the system is: its sizes, form, names and where it came from.
+void BindSystemProperties(py::class_<System>& c) {
+  c.def_property_readonly(
+       "period", [](const System& s) { return s.system.period(); }, "T (s)")
       .def_property_readonly(
           "omega", [](const System& s) { return s.system.omega(); }, "Ωp = 2π/T (rad/s)")
       .def_property_readonly(
@@ -422,25 +446,32 @@ of matrix exponentials (e.g. a rotor measured at K azimuths).)doc")
       .def_property_readonly(
           "fourier_A", [](const System& s) { return MaybeFourier(s.system.fourier_A()); },
           "A's coefficients (2H+1, n, n) for w = -H..H when the system is in "
-          "Fourier form, else None")
-      .def(
-          "A", [](const System& s, double t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
+          "Fourier form, else None");
+}
+
+void BindSystemClass(py::module_& m) {
+  py::class_<System> c(m, "System", R"doc(
+A linear T-periodic system  x' = A(t) x + B(t) u,  y = C(t) x + D(t) u.
+
+Make one with ltp.scene(...) (a built-in scene, a YAML scene file or OpenFAST .lin
+files) or with System.from_fourier, System.from_function or System.from_samples.
+Immutable; every analysis (ltp.floquet, ltp.hill, ltp.pfrf, ltp.snapshot) takes it.
+ltp.chart takes a system made by ltp.scene, whose parameters it sweeps.)doc");
+  BindSystemConstructors(c);
+  BindSystemCopies(c);
+  BindSystemProperties(c);
+  c.def(
+       "A", [](const System& s, double t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
       .def(
           "B", [](const System& s, double t) { return Evaluate(s, 'B', t); }, py::arg("t"), "B(t)")
       .def(
           "C", [](const System& s, double t) { return Evaluate(s, 'C', t); }, py::arg("t"), "C(t)")
       .def(
           "D", [](const System& s, double t) { return Evaluate(s, 'D', t); }, py::arg("t"), "D(t)")
-      .def("__repr__", [](const System& s) {
-        std::ostringstream r;
-        r << "<ltp.System";
-        if (s.scene) r << " " << s.scene->name;
-        r << ": " << s.system.states() << " states, " << s.system.inputs() << " inputs, "
-          << s.system.outputs() << " outputs, T = " << s.system.period() << " s, "
-          << FormName(s.system.form()) << ">";
-        return r.str();
-      });
+      .def("__repr__", &SystemRepr);
+}
 
+void BindSceneFunctions(py::module_& m) {
   m.def("scene", &SceneSystem, py::arg("scene"), R"doc(
 scene(name_or_path, **parameters) -> System
 
@@ -455,22 +486,16 @@ directory, a glob, or a list of paths), with parameters overridden as the CLI's
 Raises ltp.InputError (unknown scene or parameter, bad value) or ltp.SceneError (a file
 that cannot be read, naming file, line and entry).)doc");
 
-  m.def(
-      "scenes",
-      [] {
-        py::list out;
-        for (const Scene& s : BuiltinScenes()) {
-          py::list parameters;
-          for (const SceneParameter& p : s.parameters)
-            parameters.append(py::dict(py::arg("name") = p.name, py::arg("value") = p.value,
-                                       py::arg("description") = p.description));
-          out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
-                              py::arg("parameters") = parameters));
-        }
-        return out;
-      },
-      "The built-in scenes (what `ltp scenes` lists): name, description, parameters with "
-      "defaults.");
+  m.def("scenes", &BuiltinSceneList,
+        "The built-in scenes (what `ltp scenes` lists): name, description, parameters with "
+        "defaults.");
+}
+
+}  // namespace
+
+void BindSystem(py::module_& m) {
+  BindSystemClass(m);
+  BindSceneFunctions(m);
 }
 
 }  // namespace ltp::python
