@@ -169,9 +169,9 @@ void BindChartPoints(py::class_<ChartResult>& r) {
           [](const ChartResult& c) {
             std::vector<std::string> v;
             for (const SweepPoint& p : c.chart.points) v.emplace_back(ToString(p.verdict));
-            return v;
+            return py::array(py::cast(v));  // a numpy array of str, like every other column
           },
-          "'stable', 'marginal', 'unstable' or 'failed' per point")
+          "'stable', 'marginal', 'unstable' or 'failed' per point (numpy array of str)")
       .def_property_readonly("periods", PointArray([](const SweepPoint& p) { return p.period; }),
                              "per point: the period T (s)")
       .def_property_readonly("max_real_exponent",

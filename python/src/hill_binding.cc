@@ -27,14 +27,21 @@ auto InfoColumn(Field field) {
 template <class Member>
 auto StudyColumn(Member HillStudyRow::*member) {
   return [member](const HillStudyRun& r) {
-    std::vector<double> v;
-    for (const HillStudyRow& row : r.study.rows) {
-      if constexpr (std::is_same_v<Member, std::optional<double>>)
-        v.push_back(OrNaN(row.*member));
-      else
-        v.push_back(static_cast<double>(row.*member));
+    if constexpr (std::is_integral_v<Member>) {  // counts stay integers (N, sizes)
+      py::array_t<Member> a(static_cast<py::ssize_t>(r.study.rows.size()));
+      for (size_t i = 0; i < r.study.rows.size(); ++i)
+        a.mutable_at(static_cast<py::ssize_t>(i)) = r.study.rows[i].*member;
+      return py::object(a);
+    } else {
+      std::vector<double> v;
+      for (const HillStudyRow& row : r.study.rows) {
+        if constexpr (std::is_same_v<Member, std::optional<double>>)
+          v.push_back(OrNaN(row.*member));
+        else
+          v.push_back(row.*member);
+      }
+      return py::object(RealArray(v));
     }
-    return RealArray(v);
   };
 }
 

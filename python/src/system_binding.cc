@@ -332,9 +332,10 @@ Each of A, B, C, D is either a real 2-D array (constant) or a complex array of s
 M(t) = sum_w M_w exp(j w 2 pi t / period) and M_{-w} = conj(M_w) (real functions).
 A is n×n, B n×m, C p×n, D p×m; B, C, D may be None (no inputs, no outputs, D = 0).
 
-Example (damped Mathieu, x'' + c x' + (a + 2 q cos 2t) x = 0, period pi):
+Example (damped Mathieu as the scene "mathieu" has it, x'' + c x' + (a - 2 q cos 2t) x = 0,
+period pi; -2q cos 2t = -q e^{2jt} - q e^{-2jt} in the stiffness, so +q in A):
     A = np.zeros((3, 2, 2), complex)
-    A[1] = [[0, 1], [-a, -c]]; A[0][1, 0] = A[2][1, 0] = -q
+    A[1] = [[0, 1], [-a, -c]]; A[0][1, 0] = A[2][1, 0] = q
     system = ltp.System.from_fourier(np.pi, A)
 
 Raises ltp.InputError (a ValueError) on inconsistent sizes, a period <= 0, non-finite or

@@ -171,3 +171,24 @@ def test_scenes_and_scene_files(tmp_path):
     s = ltp.scene(str(yaml), k=9)
     assert s.scene == "spring" and s.parameters == {"k": 9.0}
     assert np.allclose(s.A(0.0), [[0, 1], [-9.9, -0.1]])
+
+
+def test_from_fourier_docstring_example_is_the_scene():
+    # The docstring's example, run as written: the same A(t) as the built-in scene (closed form
+    # A(t) of mathieu_A above), so its sign convention is the scene's.
+    doc = ltp.System.from_fourier.__doc__
+    example = doc[doc.index("A = np.zeros"):doc.index("system = ltp")].replace("\n    ", "\n")
+    scope = {"np": np, "a": A_, "q": Q_, "c": C_}
+    exec(example, scope)
+    system = ltp.System.from_fourier(np.pi, scope["A"])
+    for t in (0.0, 0.4, 1.3):
+        assert np.abs(system.A(t) - mathieu_A(t)).max() < 1e-15
+
+
+def test_study_and_chart_columns_have_numpy_dtypes():
+    s = ltp.hill_study(ltp.scene("mathieu"), max_harmonics=4)
+    assert s.harmonics.dtype.kind == "i" and list(s.harmonics) == [1, 2, 3, 4]
+    assert s.matrix_size.dtype.kind == "i" and list(s.matrix_size) == [6, 10, 14, 18]
+    c = ltp.chart(ltp.scene("mathieu"), "a=0:1:0.5")
+    assert isinstance(c.verdicts, np.ndarray) and c.verdicts.dtype.kind == "U"
+    assert set(c.verdicts) <= {"stable", "marginal", "unstable", "failed"}
