@@ -634,54 +634,162 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
 
 }  // namespace
 
+namespace {
+
+// What the analysis runs on: the states balanced (docs/model-sizes.md), the integrator resolved.
+struct Setup {
+  Eigen::VectorXd scale;  ///< x = S z; empty when the given states are used
+  PeriodicSystem system;  ///< in the balanced states
+  FloquetOptions options;
+  std::optional<SystemTraits> traits;  ///< measured when the integrator was auto
+  double period_scale = 1;
+};
+
+// States in units far apart (a finite-element rotor's metres and radians, stiffness entries of
+// 1e9 N/m) are rescaled by powers of two before anything is measured or integrated; shapes and
+// monodromy are scaled back at the end. Says so, and which integrator auto chose, in r.
+Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, FloquetResult& r) {
+  const Eigen::VectorXd scale = internal::StateBalancing(given);
+  Setup s{scale, scale.size() ? given.WithStateScaling(scale) : given, requested, {}, 1};
+  s.period_scale = CheckPeriodScale(s.system, requested.max_period_scale);
+  if (scale.size()) {
+    std::ostringstream d;
+    d << "states rescaled by powers of two from 2^" << std::lround(std::log2(scale.minCoeff()))
+      << " to 2^" << std::lround(std::log2(scale.maxCoeff()))
+      << " (diagonal balancing of A, exact) for the integration; results are in the given states";
+    r.diagnostics.push_back(d.str());
+  }
+  std::string choice;
+  if (requested.integrator.type == IntegratorType::kAuto) s.traits = MeasureSystemTraits(s.system);
+  s.options.integrator =
+      ResolveIntegrator(s.system, requested.integrator, &choice, s.traits ? &*s.traits : nullptr);
+  if (!choice.empty())
+    r.diagnostics.push_back("integrator auto → " +
+                            std::string(ToString(s.options.integrator.type)) + ": " + choice);
+  r.states = s.system.states();
+  r.period = s.system.period();
+  r.integrator = s.options.integrator.type;
+  r.multiplier_method = s.options.multipliers;
+  return s;
+}
+
+// Step 3: each exponent's integration error, in eig's order — the carried local errors, or a
+// refined run whose grid and multipliers then replace `grid` and `eig` (zeros without an
+// estimate).
+std::vector<double> IntegrationErrors(const Setup& s,
+                                      const internal::SegmentGridOptions& grid_options,
+                                      const internal::AnalysisProgress& progress, int samples,
+                                      internal::SegmentGrid& grid, LogEigenvalues& eig,
+                                      FloquetResult& r) {
+  const int n = r.states;
+  const FloquetOptions& options = s.options;
+  r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
+                                                             : ErrorEstimateMethod::kLocalErrors;
+  if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
+    r.diagnostics.push_back(
+        options.integrator.type == IntegratorType::kBulirschStoer
+            ? "error estimate: the carried local errors were not finite (a singular step "
+              "matrix); the refined run instead"
+            : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
+                  std::string(ToString(options.integrator.type)) + " gets the refined run instead");
+  if (!options.estimate_error || n == 0) return std::vector<double>(n, 0.0);
+  return r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
+             ? LocalErrorEstimate(grid, eig, options.multipliers, r.period, r)
+             : RefineForErrorEstimate(s.system, options, RefinedRunOptions(grid_options, progress),
+                                      options.compute_modes ? samples : 0, grid, eig, r);
+}
+
+// Step 4: the modes with their periodic shapes (sampled on the uniform mode grid) or, without
+// shapes, on the principal branch; returns each multiplier's condition number (1 without).
+std::vector<double> ComputeModes(const Setup& s, const internal::SegmentGrid& grid,
+                                 const LogEigenvalues& eig, int samples,
+                                 const internal::AnalysisProgress& progress,
+                                 std::vector<FloquetMode>& modes, FloquetResult& r) {
+  const int n = r.states;
+  modes.resize(n);
+  for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(eig.log_values[k], 0, r.period);
+  if (!s.options.compute_modes || n == 0) {
+    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
+    return std::vector<double>(n, 1.0);
+  }
+  IntegratorOptions shape_integrator = s.options.integrator;
+  shape_integrator.on_advance = progress.Phase("mode shapes");
+  internal::ModeShapes shapes = internal::ComputeModeShapes(
+      s.system, grid, eig.log_values, samples, shape_integrator, ThreadsFor(s.options.threads));
+  r.rhs_evals += shapes.rhs_evals;
+  for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
+  modes = std::move(shapes.modes);
+  r.sample_times = std::move(shapes.sample_times);
+  r.mode_samples = std::move(shapes.samples);
+  r.mode_fourier = std::move(shapes.fourier);
+  r.mode_harmonics = shapes.harmonics;
+  r.mode_condition = shapes.condition;
+  return std::move(shapes.kappa);
+}
+
+// Steps 5–6: the monodromy and shapes back in the given states, each exponent's own estimate
+// (integration + round-off floor, + the lost accuracy of a single-shot fallback), the modes
+// ordered and rigid-body ones flagged, the summary numbers and checks.
+void Finish(const Setup& s, const internal::SegmentGrid& grid, const LogEigenvalues& eig,
+            const std::vector<double>& kappa, bool single_shot_fallback,
+            std::vector<double> integration, std::vector<FloquetMode> modes, FloquetResult& r) {
+  const int n = r.states;
+  const double T = r.period;
+  if (s.scale.size()) {  // back to the given states: x = S z
+    r.monodromy = s.scale.asDiagonal() * r.monodromy * s.scale.cwiseInverse().asDiagonal();
+    for (Eigen::MatrixXcd& m : r.mode_samples) m = s.scale.asDiagonal() * m;
+    for (Eigen::MatrixXcd& m : r.mode_fourier) m = s.scale.asDiagonal() * m;
+  }
+  // A fallback to single shot (the user did not ask for it) carries its lost accuracy.
+  if (single_shot_fallback) {
+    const std::vector<double> lost = SingleShotErrors(eig.log_values, kappa, T);
+    for (int k = 0; k < n; ++k) integration[k] += lost[k];
+  }
+  const std::vector<double> floors =
+      RoundOffFloors(eig.log_values, kappa, r.segments, grid.fixed_steps, T);
+  // Own estimates only from periodic Schur: single-shot multipliers below eps·max|ρ| are lost
+  // to the formed product in both runs alike, so their difference says nothing of them (a
+  // −2000 1/s exponent off by 213 with a difference of 146); the verdict then uses the
+  // common estimate.
+  if (s.options.estimate_error && s.options.multipliers == MultiplierMethod::kPeriodicSchur)
+    for (int k = 0; k < n; ++k) modes[k].error_estimate = integration[k] + floors[k];
+  StoreOrderedModes(s.system, modes, s.options.compute_modes, r);
+  // The rigid rotation of a free angle (rigid_body.h), from the mode shapes at t = 0.
+  for (std::string& line : internal::FlagRigidBodyModes(
+           s.system.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
+           r.modes))
+    r.diagnostics.push_back(std::move(line));
+  const double largest_integration =
+      n > 0 ? *std::max_element(integration.begin(), integration.end()) : 0.0;
+  const double largest_floor = n > 0 ? *std::max_element(floors.begin(), floors.end()) : 0.0;
+  SummariseAndCheck(s.system, eig.log_values, largest_integration, largest_floor, s.options, r);
+}
+
+}  // namespace
+
 FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& requested) {
   requested.Validate();
   if (requested.modes_below > 0) return internal::AnalyzeModesBelow(given, requested);
   const auto start = std::chrono::steady_clock::now();
-  // States in units far apart (a finite-element rotor's metres and radians, stiffness entries
-  // of 1e9 N/m) are rescaled by powers of two before anything is measured or integrated;
-  // shapes and monodromy are scaled back at the end (docs/model-sizes.md).
-  const Eigen::VectorXd scale = internal::StateBalancing(given);
-  const PeriodicSystem system = scale.size() ? given.WithStateScaling(scale) : given;
-  const double period_scale = CheckPeriodScale(system, requested.max_period_scale);
   FloquetResult r;
-  if (scale.size()) {
-    std::ostringstream s;
-    s << "states rescaled by powers of two from 2^" << std::lround(std::log2(scale.minCoeff()))
-      << " to 2^" << std::lround(std::log2(scale.maxCoeff()))
-      << " (diagonal balancing of A, exact) for the integration; results are in the given states";
-    r.diagnostics.push_back(s.str());
-  }
-  std::string choice;
-  FloquetOptions options = requested;
-  std::optional<SystemTraits> traits;
-  if (requested.integrator.type == IntegratorType::kAuto) traits = MeasureSystemTraits(system);
-  options.integrator =
-      ResolveIntegrator(system, requested.integrator, &choice, traits ? &*traits : nullptr);
-  if (!choice.empty())
-    r.diagnostics.push_back("integrator auto → " + std::string(ToString(options.integrator.type)) +
-                            ": " + choice);
-  const int n = system.states();
-  const double T = system.period();
-  r.states = n;
-  r.period = T;
-  r.integrator = options.integrator.type;
-  r.multiplier_method = options.multipliers;
+  Setup s = Prepare(given, requested, r);
+  FloquetOptions& options = s.options;
+  const int n = r.states;
 
   // 1. Segment factors on a grid refined where factors grow or decay too fast.
   const int mode_samples =
-      options.mode_samples > 0 ? options.mode_samples : AutoModeSamples(system);
+      options.mode_samples > 0 ? options.mode_samples : AutoModeSamples(s.system);
   const int samples = options.compute_modes ? mode_samples : 1;
   // Without modes a small system starts from one segment. A large one starts from the grid it
   // would have with modes: one period of it is nearly always beyond the condition limit, and
   // refining from one segment costs extra rounds and ends on more segments (60-state OpenFAST
   // set: K = 48 from 1, 27 from 8).
   const int grid_samples = n > kSmallSystemStates ? mode_samples : samples;
-  WeighTheWork(system, traits, options, period_scale, grid_samples, r);
-  const internal::AnalysisProgress progress(options.on_progress, T);
+  WeighTheWork(s.system, s.traits, options, s.period_scale, grid_samples, r);
+  const internal::AnalysisProgress progress(options.on_progress, r.period);
   internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n);
   grid_options.integrator.on_advance = progress.Phase("run");
-  internal::SegmentGrid grid = internal::ComputeSegmentGrid(system, grid_options);
+  internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
   r.rhs_evals += grid.rhs_evals;
   // One line per failing segment would flood the reader (a NaN from t > 1 on: 19 945 lines).
   for (auto& d : CollapseRepeatedLines(grid.diagnostics)) r.diagnostics.push_back(std::move(d));
@@ -712,79 +820,18 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   }
   r.grid_segments = static_cast<int>(grid.factors.size());
   // 3. Error estimate (after a refined run the numbers come from it).
-  std::vector<double> integration(n, 0.0);  // per exponent, in eig's order
-  r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
-                                                             : ErrorEstimateMethod::kLocalErrors;
-  if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
-    r.diagnostics.push_back(
-        options.integrator.type == IntegratorType::kBulirschStoer
-            ? "error estimate: the carried local errors were not finite (a singular step "
-              "matrix); the refined run instead"
-            : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
-                  std::string(ToString(options.integrator.type)) + " gets the refined run instead");
-  if (options.estimate_error && n > 0) {
-    integration =
-        r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-            ? LocalErrorEstimate(grid, eig, options.multipliers, T, r)
-            : RefineForErrorEstimate(system, options, RefinedRunOptions(grid_options, progress),
-                                     options.compute_modes ? samples : 0, grid, eig, r);
-  }
+  std::vector<double> integration =
+      IntegrationErrors(s, grid_options, progress, samples, grid, eig, r);
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;
   r.monodromy = Eigen::MatrixXd::Identity(n, n);
   for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
-
   // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
-  std::vector<FloquetMode> modes(n);
-  for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(eig.log_values[k], 0, T);
-  std::vector<double> kappa(n, 1.0);  // eigenvalue condition numbers
-  const bool with_shapes = options.compute_modes && n > 0;
-  if (with_shapes) {
-    IntegratorOptions shape_integrator = options.integrator;
-    shape_integrator.on_advance = progress.Phase("mode shapes");
-    internal::ModeShapes shapes = internal::ComputeModeShapes(
-        system, grid, eig.log_values, samples, shape_integrator, ThreadsFor(options.threads));
-    r.rhs_evals += shapes.rhs_evals;
-    for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
-    modes = std::move(shapes.modes);
-    kappa = std::move(shapes.kappa);
-    r.sample_times = std::move(shapes.sample_times);
-    r.mode_samples = std::move(shapes.samples);
-    r.mode_fourier = std::move(shapes.fourier);
-    r.mode_harmonics = shapes.harmonics;
-    r.mode_condition = shapes.condition;
-  } else {
-    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
-  }
-  if (scale.size()) {  // back to the given states: x = S z
-    r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
-    for (Eigen::MatrixXcd& m : r.mode_samples) m = scale.asDiagonal() * m;
-    for (Eigen::MatrixXcd& m : r.mode_fourier) m = scale.asDiagonal() * m;
-  }
-  // A fallback to single shot (the user did not ask for it) carries its lost accuracy.
-  if (single_shot && !fallback.empty()) {
-    const std::vector<double> lost = SingleShotErrors(eig.log_values, kappa, T);
-    for (int k = 0; k < n; ++k) integration[k] += lost[k];
-  }
-  const std::vector<double> floors =
-      RoundOffFloors(eig.log_values, kappa, r.segments, grid.fixed_steps, T);
-  // Own estimates only from periodic Schur: single-shot multipliers below eps·max|ρ| are lost
-  // to the formed product in both runs alike, so their difference says nothing of them (a
-  // −2000 1/s exponent off by 213 with a difference of 146); the verdict then uses the
-  // common estimate.
-  if (options.estimate_error && options.multipliers == MultiplierMethod::kPeriodicSchur)
-    for (int k = 0; k < n; ++k) modes[k].error_estimate = integration[k] + floors[k];
-  // 5. Order the modes; 6. rigid-body modes, summary numbers and checks.
-  StoreOrderedModes(system, modes, options.compute_modes, r);
-  // 6a: the rigid rotation of a free angle (rigid_body.h), from the mode shapes at t = 0.
-  for (std::string& line : internal::FlagRigidBodyModes(
-           system.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
-           r.modes))
-    r.diagnostics.push_back(std::move(line));
-  const double largest_integration =
-      n > 0 ? *std::max_element(integration.begin(), integration.end()) : 0.0;
-  const double largest_floor = n > 0 ? *std::max_element(floors.begin(), floors.end()) : 0.0;
-  SummariseAndCheck(system, eig.log_values, largest_integration, largest_floor, options, r);
+  std::vector<FloquetMode> modes;
+  const std::vector<double> kappa = ComputeModes(s, grid, eig, samples, progress, modes, r);
+  // 5–6. Estimates per exponent, order, rigid-body modes, summary and checks.
+  Finish(s, grid, eig, kappa, single_shot && !fallback.empty(), std::move(integration),
+         std::move(modes), r);
   r.elapsed_s = SecondsSince(start);
   return r;
 }
