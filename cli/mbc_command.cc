@@ -35,7 +35,7 @@ constexpr const char* kFormulation =
 struct MbcArgs {
   std::vector<std::string> files;
   bool json = false;
-  std::string csv;
+  std::string csv, shapes_csv;
   bool floquet = true;
   std::string speed = "operating-point";
   double tol = 1e-10;
@@ -63,7 +63,39 @@ json ModeJson(const MbcMode& m, const Mbc3Result& r) {
           {"rigid_body", m.rigid_body},
           {"whirl", m.whirl.empty() ? json(nullptr) : json(m.whirl)},
           {"description", m.description},
-          {"dominant_states", dominant}};
+          {"dominant_states", dominant},
+          {"shape",
+           {{"re", JsonNumbers(std::vector<double>(m.eigenvector.real().begin(),
+                                                   m.eigenvector.real().end()))},
+            {"im", JsonNumbers(std::vector<double>(m.eigenvector.imag().begin(),
+                                                   m.eigenvector.imag().end()))}}}};
+}
+
+// One row per MBC state, per mode its shape's magnitude and phase (degrees, the leading state
+// at 0): what one animates in ParaView or plots as a mode's bar chart.
+void WriteShapesCsv(const std::string& file, const Mbc3Result& r) {
+  std::ofstream csv(file);
+  if (!csv) throw InputError("cannot write '" + file + "'");
+  csv << "state";
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const std::string name = "mode " + std::to_string(k + 1) + " (" + r.modes[k].description + ")";
+    csv << "," << CsvText(name + " magnitude") << "," << CsvText(name + " phase [deg]");
+  }
+  csv << "\n" << std::setprecision(12);
+  for (size_t i = 0; i < r.states.size(); ++i) {
+    csv << CsvText(r.states[i].description);
+    for (const MbcMode& m : r.modes) {
+      const std::complex<double> v = m.eigenvector[static_cast<Eigen::Index>(i)];
+      csv << "," << std::abs(v) << "," << std::arg(v) * 180 / kPi;
+    }
+    csv << "\n";
+  }
+}
+
+json StateNames(const Mbc3Result& r) {
+  json names = json::array();
+  for (const auto& s : r.states) names.push_back(s.description);
+  return names;
 }
 
 json ExponentJson(std::complex<double> l) {
@@ -270,6 +302,7 @@ int RunMbc(const MbcArgs& args) {
         "and no Floquet analysis";
   }
   if (!args.csv.empty()) WriteCsv(args.csv, r, f ? &*f : nullptr);
+  if (!args.shapes_csv.empty()) WriteShapesCsv(args.shapes_csv, r);
   const bool ok = (r.applicable || f) && (!f || f->ok);
 
   if (args.json) {
@@ -280,6 +313,7 @@ int RunMbc(const MbcArgs& args) {
               {"azimuths_rad", op.azimuths},
               {"blades", r.blades},
               {"states", op.states.size()},
+              {"state_names", StateNames(r)},
               {"mbc_applicable", r.applicable},
               {"formulation", kFormulation},
               {"periodic_part", JsonNumber(r.periodic_part)},
@@ -315,6 +349,8 @@ Command AddMbcCommand(CLI::App& app) {
       ->required();
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_option("--csv", args.csv, "write the Campbell table to CSV");
+  cmd->add_option("--shapes-csv", args.shapes_csv,
+                  "write each mode's shape to CSV: one row per MBC state, magnitude and phase");
   cmd->add_flag("!--no-floquet", args.floquet, "skip the Floquet analysis of the samples");
   cmd->add_option("--speed", args.speed,
                   "rotor speed in the transform: operating-point (OpenFAST's MBC3: Ω and dΩ/dt "

@@ -389,7 +389,10 @@ bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& optio
     m.damped_frequency_hz = lambda.imag() / (2 * pi);
     m.damping_ratio = magnitude > 0 ? -lambda.real() / magnitude : 0;
     m.kind = lambda.imag() > 0 ? MbcMode::Kind::kOscillatory : MbcMode::Kind::kReal;
-    m.eigenvector = vectors.col(k);
+    // Scaled so its largest entry is 1: phases then read against the state that leads.
+    Eigen::Index lead = 0;
+    vectors.col(k).cwiseAbs().maxCoeff(&lead);
+    m.eigenvector = vectors.col(k) / vectors(lead, k);
     double total = 0;
     for (int i = 0; i < n; ++i)
       if (rate_of[i] < 0) total += std::norm(m.eigenvector[i]);

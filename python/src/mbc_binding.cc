@@ -96,9 +96,10 @@ void BindMbcModes(py::class_<Mbc3Result>& r) {
             return ModeColumn<std::string>(x, [](const MbcMode& m) { return m.description; });
           },
           "what carries each mode (shares per coordinate family)")
-      .def_property_readonly(
-          "eigenvectors", &MbcEigenvectors,
-          "complex mode shapes in MBC coordinates, one column per mode (what one animates)");
+      .def_property_readonly("eigenvectors", &MbcEigenvectors,
+                             "complex mode shapes in MBC coordinates (rows: states), one column "
+                             "per mode, each scaled so "
+                             "its largest entry is 1 (what one animates; ltp mbc --shapes-csv)");
 }
 
 void BindMbcResult(py::module_& m) {

@@ -36,6 +36,30 @@ def test_mbc_equals_cli(ltp_cli):
     residual = np.linalg.norm(m.A @ v - v * m.eigenvalues, axis=0) / np.linalg.norm(v, axis=0)
     assert residual.max() < 1e-9 * np.linalg.norm(m.A)
     assert "backward" in m.whirl and "forward" in m.whirl
+    # The same shapes in the JSON (state_names, shape re/im), each scaled so its largest
+    # entry is 1 (phases relative to the leading state).
+    assert j["state_names"] == list(m.states)
+    for k, mode in enumerate(j["modes"]):
+        shape = np.array(mode["shape"]["re"]) + 1j * np.array(mode["shape"]["im"])
+        assert np.abs(shape - v[:, k]).max() <= 1e-12
+        assert abs(np.abs(v[:, k]).max() - 1) < 1e-15 and 1 in v[:, k]
+
+
+def test_mbc_shapes_csv(ltp_cli, tmp_path):
+    import csv
+    out = tmp_path / "shapes.csv"
+    ltp_cli("mbc", FIVE_MW, "--no-floquet", "--shapes-csv", str(out))
+    m = ltp.mbc(FIVE_MW)
+    header, *rows = list(csv.reader(out.open()))
+    assert header[0] == "state" and len(header) == 1 + 2 * len(m.eigenvalues)
+    assert header[1] == f"mode 1 ({m.descriptions[0]}) magnitude"
+    assert [r[0] for r in rows] == list(m.states)
+    for i, row in enumerate(rows):
+        for k in range(len(m.eigenvalues)):
+            assert abs(float(row[1 + 2 * k]) - abs(m.eigenvectors[i, k])) <= 1e-11
+            if abs(m.eigenvectors[i, k]) > 1e-9:
+                phase = np.degrees(np.angle(m.eigenvectors[i, k]))
+                assert abs((float(row[2 + 2 * k]) - phase + 180) % 360 - 180) <= 1e-7
 
 
 def test_mbc_refuses_what_is_not_lin_files(tmp_path):

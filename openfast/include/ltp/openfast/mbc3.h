@@ -121,7 +121,9 @@ struct MbcMode {
   /// "forward" or "backward" when the leading family is a cyclic pair whose cosine and sine
   /// are about ±90° apart (the pattern travels with or against the rotor), else empty.
   std::string whirl;
-  Eigen::VectorXcd eigenvector;  ///< in MBC coordinates (all states)
+  /// The mode shape in MBC coordinates (all states, Mbc3Result::states' order), scaled so its
+  /// largest entry is 1: the other entries' phases are relative to the leading state.
+  Eigen::VectorXcd eigenvector;
 };
 
 /// "oscillatory", "real", "rigid-body" (the words of the CLI's output).
