@@ -56,6 +56,53 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
   return prior;
 }
 
+// A constant A (one piece, exact exponentials) whose grid points lie on the sample grid: the
+// transition from a grid point to the m-th sample after it is E^m, E = exp(A T/S), so one
+// exponential and a product per sample replace one exponential per sample (a 400-state A: 64
+// exponentials in Eigen's products took 20 s). False (nothing done) otherwise.
+bool ConstantSamples(const PeriodicSystem& system, const SegmentGrid& grid,
+                     const std::vector<PeriodicEigenvector>& vecs, const std::vector<cd>& log_rho,
+                     int samples, const IntegratorOptions& integrator, ModeShapes& out,
+                     std::vector<Eigen::MatrixXcd>& xi) {
+  if (integrator.type != IntegratorType::kExpm || !system.breakpoints().empty()) return false;
+  const int n = system.states();
+  const double T = system.period(), h = T / samples;
+  std::vector<int> segment(samples), steps(samples);
+  for (int s = 0; s < samples; ++s) {
+    const double ts = T * s / samples;
+    auto it = std::upper_bound(grid.times.begin(), grid.times.end(), ts + 1e-12 * T);
+    segment[s] = static_cast<int>(it - grid.times.begin()) - 1;
+    const double m = (ts - grid.times[segment[s]]) / h;
+    steps[s] = static_cast<int>(std::lround(m));
+    if (std::abs(m - steps[s]) > 1e-9 || steps[s] < 0) return false;
+  }
+  const TransitionResult e = StateTransition(system, 0.0, h, integrator);
+  if (!e.ok) return false;
+  out.rhs_evals += e.rhs_evals;
+  Eigen::MatrixXd power = Eigen::MatrixXd::Identity(n, n), next(n, n), re(n, n), im(n, n);
+  int at = 0;
+  for (int s = 0; s < samples; ++s) {
+    if (steps[s] < at) {
+      power.setIdentity();
+      at = 0;
+    }
+    for (; at < steps[s]; ++at) {
+      MultiplyInto(e.phi, power, next);
+      power.swap(next);
+    }
+    const int i = segment[s];
+    out.sample_times[s] = T * s / samples;
+    Eigen::MatrixXcd at_grid(n, n);
+    for (int k = 0; k < n; ++k)
+      at_grid.col(k) = vecs[k].v[i] * std::exp(-log_rho[k] / T * (steps[s] * h));
+    MultiplyInto(power, at_grid.real(), re);
+    MultiplyInto(power, at_grid.imag(), im);
+    xi[s].real() = re;
+    xi[s].imag() = im;
+  }
+  return true;
+}
+
 // ξ_k(t_s) at the uniform sample times. The grid refines the uniform one when the segments
 // were chosen automatically, so the samples are grid points; otherwise (a user-chosen K, or
 // fewer segments for a large system) they are propagated from the last grid point before each
@@ -88,6 +135,7 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
   out.diagnostics.push_back(
       "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
       " segments for " + std::to_string(samples) + " samples)");
+  if (ConstantSamples(system, grid, vecs, log_rho, samples, integrator, out, xi)) return xi;
   long rhs_evals = 0;
 #pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1)) reduction(+ : rhs_evals)
   for (int s = 0; s < samples; ++s) {

@@ -375,5 +375,36 @@ TEST(Options, InitialSegmentsStartTheRefinement) {
             automatic.error_estimate.value() + started.error_estimate.value());
 }
 
+// A constant A (auto picks exact exponentials; the mode samples are powers of one exponential
+// over T/S): the exponents are eig(A) and each periodic mode shape is A's eigenvector, the same
+// at every sample (closed form: x = v e^{λt} is a Floquet solution with a constant shape).
+TEST(ConstantSystem, ExponentsAreEigenvaluesAndShapesAreConstant) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g;
+  const int n = 6;
+  Eigen::MatrixXd a(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) a(i, j) = 0.3 * g(rng) - (i == j ? 0.5 : 0.0);
+  PeriodicSystem::Functions f;
+  f.A = [a](double, Eigen::Ref<Eigen::MatrixXd> out) { out = a; };
+  const PeriodicSystem system = PeriodicSystem::FromFunctions(2.0, n, 0, 0, f);
+  const FloquetResult r = AnalyzeFloquet(system);
+  ASSERT_TRUE(r.ok) << r.failure;
+  EXPECT_EQ(r.integrator, IntegratorType::kExpm);
+  EXPECT_EQ(r.grid_segments, 1);  // one segment: its factor is well conditioned
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(a.cast<std::complex<double>>());
+  std::vector<std::complex<double>> exact(eig.eigenvalues().begin(), eig.eigenvalues().end()), got;
+  for (const FloquetMode& m : r.modes) got.push_back(m.exponent);
+  EXPECT_LT(MaxExponentMismatch(exact, got, 2 * test::kPi / 2.0), 1e-10);
+  ASSERT_GE(r.mode_samples.size(), 8u);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::VectorXcd v0 = r.mode_samples[0].col(k);
+    for (const Eigen::MatrixXcd& xi : r.mode_samples)  // constant in t (the chosen branch)
+      EXPECT_LT((xi.col(k) - v0).norm(), 1e-9 * v0.norm()) << "mode " << k;
+    const std::complex<double> l = r.modes[k].exponent;  // and A v = λ v
+    EXPECT_LT((a.cast<std::complex<double>>() * v0 - l * v0).norm(), 1e-9 * v0.norm());
+  }
+}
+
 }  // namespace
 }  // namespace ltp
