@@ -19,12 +19,26 @@
 
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/integrator.h"
+#include "ltp/floquet/work_estimate.h"
 #include "ltp/models/scene.h"
 #include "ltp/studies/campbell.h"
 
 namespace ltp::python {
 
 namespace py = pybind11;
+
+/// on_long_work for an analysis started from Python: a UserWarning with the library's estimate
+/// before the work, where the command prints it on stderr. Under warnings.simplefilter("error")
+/// the warning is raised and the work does not start.
+inline std::function<void(const WorkEstimate&)> WarnLongWork(std::string function) {
+  return [function = std::move(function)](const WorkEstimate& w) {
+    py::gil_scoped_acquire gil;  // called before the work, from the analysing thread
+    const std::string message = "ltp." + function + ": about " +
+                                py::str("{:.2g}").attr("format")(w.seconds()).cast<std::string>() +
+                                " CPU s of work ahead (" + w.basis + ")";
+    if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+  };
+}
 using Complex = std::complex<double>;
 
 /// The Python callables behind a system built by System.from_function. The library calls them

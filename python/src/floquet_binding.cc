@@ -214,6 +214,7 @@ FloquetResult LtpFloquet(const System& system, const std::string& integrator, do
   o.threads = AnalysisThreads(system, threads);
   o.max_work_seconds = max_work;
   o.modes_below = 2 * std::numbers::pi * modes_below;
+  o.on_long_work = WarnLongWork("floquet");
   o.Validate();
   // A notebook's progress bar: called with the GIL, from whatever thread integrates (the
   // library serialises the calls); what it raises is raised once the analysis is done.
@@ -267,7 +268,7 @@ the same options and defaults.
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU
                 seconds than this even at its fastest (0 = no limit); an analysis estimated
-                beyond 10 s says so in its diagnostics
+                beyond 10 s says so in its diagnostics and, before it starts, as a UserWarning
   modes_below   analyse only the modes whose eigenvalue of the mean A(t) is below this many Hz
                 (|λ|/2π), checked against twice the cut-off (its change is in each estimate;
                 result.reduction says what was left out); 0 = every mode

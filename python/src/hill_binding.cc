@@ -214,9 +214,12 @@ at N = max_harmonics (`last`).)doc")
       });
 }
 
-// The solver and the selection rule by the CLI's names, in the CLI's words when unknown.
-HillOptions HillOptionsFrom(const std::string& solver, const std::string& selection) {
+// The solver and the selection rule by the CLI's names, in the CLI's words when unknown; a long
+// analysis of `function` warns before it starts.
+HillOptions HillOptionsFrom(const std::string& function, const std::string& solver,
+                            const std::string& selection) {
   HillOptions o;
+  o.on_long_work = WarnLongWork(function);
   const auto s = ParseHillSolver(solver);
   if (!s) throw InputError("solver must be 'auto', 'dense' or 'structured', got '" + solver + "'");
   o.solver = *s;
@@ -231,7 +234,7 @@ HillOptions HillOptionsFrom(const std::string& solver, const std::string& select
 // ltp.hill_study: the options checked as the CLI checks them; the study runs without the GIL.
 HillStudyRun LtpHillStudy(const System& system, int max_harmonics, const std::string& solver,
                           const std::string& selection, bool reference) {
-  HillOptions o = HillOptionsFrom(solver, selection);
+  HillOptions o = HillOptionsFrom("hill_study", solver, selection);
   if (max_harmonics < 1) throw InputError("max_harmonics must be >= 1");
   return WithoutGil(system,
                     [&] { return RunHillStudy(system.system, max_harmonics, o, reference); });
@@ -253,13 +256,16 @@ function, with the same options and defaults.
   reference      measure each row's error against the monodromy route (rel tol 1e-12);
                  False: the CLI's --no-reference
 
+The whole study is weighed before its first solve: refused (ltp.InputError) beyond an hour of
+CPU even at its fastest, announced as a UserWarning beyond 10 s.
+
 Returns a HillStudy. Runs without the GIL.)doc");
 }
 
 // ltp.hill: harmonics 'auto' or a positive integer; the analysis runs without the GIL.
 HillResult LtpHill(const System& system, const py::object& harmonics, const std::string& solver,
                    const std::string& selection, double tol) {
-  HillOptions o = HillOptionsFrom(solver, selection);
+  HillOptions o = HillOptionsFrom("hill", solver, selection);
   if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
   if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {
     o.Validate();

@@ -153,3 +153,23 @@ def test_the_repr_says_the_verdict():
     assert r.verdict == "marginal" and "(marginal)" in repr(r)
     h = ltp.hill(ltp.scene("mathieu", c=0, a=1.5, q=0.3), harmonics=16)
     assert h.verdict in repr(h)
+
+
+def test_long_work_is_announced_before_it_starts():
+    # What `ltp floquet` / `ltp hill` print on stderr before a long job, Python says as a
+    # UserWarning; filtered to an error, it stops the job before any work (hence fast here).
+    import warnings
+    A = np.zeros((3, 2, 2), complex)
+    A[1] = [[0, 1], [-1, -0.01]]
+    A[0][1, 0] = A[2][1, 0] = -0.05
+    slow = ltp.System.from_fourier(1e6, A)  # 1e6 radians of a 1 rad/s oscillator per period
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match=r"ltp.floquet: about .* CPU s of work ahead"):
+            ltp.floquet(slow)
+        with pytest.raises(UserWarning, match=r"ltp.hill_study: about .* truncations \(N = 1…200"):
+            ltp.hill_study(ltp.scene("mathieu"), max_harmonics=200, solver="dense")
+    # A quick analysis says nothing.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert ltp.floquet(ltp.scene("mathieu")).ok
