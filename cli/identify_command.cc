@@ -242,19 +242,10 @@ void PlotConvergence(const std::string& file, const TimeData& data, const Identi
   RunGnuplot(file, g.str());
 }
 
-int RunIdentify(const IdentifyArgs& args) {
-  if (!args.period.empty() && !args.rotor_speed.empty())
-    throw InputError("--period and --rotor-speed: give one of them");
-  const double rotor_speed = PositiveOption(args.rotor_speed, "--rotor-speed");
-  const double period = !args.period.empty()
-                            ? PositiveOption(args.period, "--period")
-                            : (rotor_speed > 0 ? 2 * std::numbers::pi / rotor_speed : 0);
-  const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
-  bool ltp_format = false;
-  TimeData data = ReadTimeData(args, period, !measured_angle, &ltp_format);
-  std::string name = args.files.front();
-  for (size_t f = 1; f < args.files.size(); ++f) name += (f == 1 ? ", " : ", ") + args.files[f];
-  const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
+// The estimate's options from the arguments: channels, orders (at most 201) and the orders to
+// plot (within them).
+IdentifyOptions IdentifyOptionsFrom(const IdentifyArgs& args, const TimeData& data,
+                                    std::pair<int, int>* plotted) {
   IdentifyOptions o;
   o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()),
                            "--input", "input");
@@ -263,99 +254,102 @@ int RunIdentify(const IdentifyArgs& args) {
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   if (static_cast<long>(o.max_order) - o.min_order > 200)
     throw InputError("--orders " + args.orders + ": at most 201 orders (e.g. -100:100)");
-  const std::pair<int, int> plotted = args.plot_orders.empty()
-                                          ? std::make_pair(o.min_order, o.max_order)
-                                          : ParseOrderRange(args.plot_orders, "--plot-orders");
-  if (plotted.first < o.min_order || plotted.second > o.max_order)
+  *plotted = args.plot_orders.empty() ? std::make_pair(o.min_order, o.max_order)
+                                      : ParseOrderRange(args.plot_orders, "--plot-orders");
+  if (plotted->first < o.min_order || plotted->second > o.max_order)
     throw InputError("--plot-orders " + args.plot_orders + " lies outside the estimated orders " +
                      std::to_string(o.min_order) + ":" + std::to_string(o.max_order));
-  // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
-  // DAQ files write no frequency: step-sine records whose input says it.
-  bool broadband = ltp_format;
-  for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
-  const std::string method =
-      args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;
-  const IdentifyResult r =
-      method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
+  return o;
+}
+
+// --compare: the scene's partial FRFs at the identified frequencies (empty without).
+std::vector<std::vector<cd>> ModelValues(const IdentifyArgs& args, const TimeData& data,
+                                         bool measured_speed, const IdentifyOptions& o,
+                                         const IdentifyResult& r) {
+  if (args.compare.empty()) return {};
+  const LoadedScene l = LoadSceneInput({args.compare}, args.set);
+  if (!measured_speed && std::abs(l.system.period() - data.period) > 1e-9 * data.period)
+    throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) +
+                     " s is not the data's " + Num(data.period, 10) + " s");
+  PfrfOptions po;
+  for (const auto& f : r.frequencies) po.frequencies_hz.push_back(f.excitation_hz);
+  po.min_order = o.min_order;
+  po.max_order = o.max_order;
+  po.input = o.input;
+  po.output = o.output;
+  return ComputePartialFrf(l.system, po).values;
+}
+
+void WriteIdentifiedCsv(const std::string& path, const IdentifyResult& r, const IdentifyOptions& o,
+                        const std::vector<std::vector<cd>>& model) {
   const int Z = o.max_order - o.min_order + 1;
-  std::vector<std::vector<cd>> model;
-  if (!args.compare.empty()) {
-    const LoadedScene l = LoadSceneInput({args.compare}, args.set);
-    if (!speeds && std::abs(l.system.period() - data.period) > 1e-9 * data.period)
-      throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) +
-                       " s is not the data's " + Num(data.period, 10) + " s");
-    PfrfOptions po;
-    for (const auto& f : r.frequencies) po.frequencies_hz.push_back(f.excitation_hz);
-    po.min_order = o.min_order;
-    po.max_order = o.max_order;
-    po.input = o.input;
-    po.output = o.output;
-    model = ComputePartialFrf(l.system, po).values;
-  }
-  if (!args.csv.empty()) {
-    std::ofstream out(args.csv);
-    out.precision(12);
-    out << "f_exc_hz,z,re,im,abs,phase_deg,bound_95" << (model.empty() ? "" : ",model_re,model_im")
-        << "\n";
-    for (size_t f = 0; f < r.frequencies.size(); ++f)
-      for (int z = 0; z < Z; ++z) {
-        const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
-        out << r.frequencies[f].excitation_hz << "," << z + o.min_order << "," << h.real() << ","
-            << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << ","
-            << r.frequencies[f].bound[static_cast<size_t>(z)];
-        if (!model.empty())
-          out << "," << model[f][static_cast<size_t>(z)].real() << ","
-              << model[f][static_cast<size_t>(z)].imag();
-        out << "\n";
-      }
-    if (!out) throw InputError("cannot write '" + args.csv + "'");
-  }
-  if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method, plotted);
-  if (!args.convergence.empty()) {
-    if (method != "broadband")
-      throw InputError("--convergence: needs broadband records (it adds them one by one)");
-    PlotConvergence(args.convergence, data, o, model);
-  }
-  if (args.json) {
-    json freqs = json::array();
-    for (size_t f = 0; f < r.frequencies.size(); ++f) {
-      json h = json::array();
-      for (int z = 0; z < Z; ++z) {
-        const cd v = r.frequencies[f].h[static_cast<size_t>(z)];
-        json e = {{"z", z + o.min_order},
-                  {"re", JsonNumber(v.real())},
-                  {"im", JsonNumber(v.imag())},
-                  {"bound_95", JsonNumber(r.frequencies[f].bound[static_cast<size_t>(z)])}};
-        if (!model.empty())
-          e["model"] = {JsonNumber(model[f][static_cast<size_t>(z)].real()),
-                        JsonNumber(model[f][static_cast<size_t>(z)].imag())};
-        if (!r.frequencies[f].condition.empty()) {
-          e["condition"] = JsonNumber(r.frequencies[f].condition[static_cast<size_t>(z)]);
-          e["quality"] = JsonNumber(r.frequencies[f].quality[static_cast<size_t>(z)]);
-        }
-        h.push_back(e);
-      }
-      freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz},
-                       {"speed_rad_s", JsonNumber(r.frequencies[f].speed)},
-                       {"separable", r.frequencies[f].separable},
-                       {"noise_rms", JsonNumber(r.frequencies[f].noise)},
-                       {"H", h}});
+  std::ofstream out(path);
+  out.precision(12);
+  out << "f_exc_hz,z,re,im,abs,phase_deg,bound_95" << (model.empty() ? "" : ",model_re,model_im")
+      << "\n";
+  for (size_t f = 0; f < r.frequencies.size(); ++f)
+    for (int z = 0; z < Z; ++z) {
+      const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
+      out << r.frequencies[f].excitation_hz << "," << z + o.min_order << "," << h.real() << ","
+          << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << ","
+          << r.frequencies[f].bound[static_cast<size_t>(z)];
+      if (!model.empty())
+        out << "," << model[f][static_cast<size_t>(z)].real() << ","
+            << model[f][static_cast<size_t>(z)].imag();
+      out << "\n";
     }
-    json out = {{"data", name},
-                {"method", method},
-                {"period_s", data.period},
-                {"input", o.input},
-                {"output", o.output},
-                {"records", data.records.size()},
-                {"frequencies", freqs},
-                {"diagnostics", r.diagnostics}};
-    if (speeds)
-      out["measured_speed_rad_s"] = {
-          {"min", speeds->min_speed}, {"max", speeds->max_speed}, {"mean", speeds->mean_speed}};
-    std::cout << out.dump(2) << "\n";
-    return 0;
+  if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+json IdentifiedJson(const std::string& name, const std::string& method, const TimeData& data,
+                    const IdentifyOptions& o, const IdentifyResult& r,
+                    const std::vector<std::vector<cd>>& model,
+                    const std::optional<MeasuredSpeeds>& speeds) {
+  const int Z = o.max_order - o.min_order + 1;
+  json freqs = json::array();
+  for (size_t f = 0; f < r.frequencies.size(); ++f) {
+    json h = json::array();
+    for (int z = 0; z < Z; ++z) {
+      const cd v = r.frequencies[f].h[static_cast<size_t>(z)];
+      json e = {{"z", z + o.min_order},
+                {"re", JsonNumber(v.real())},
+                {"im", JsonNumber(v.imag())},
+                {"bound_95", JsonNumber(r.frequencies[f].bound[static_cast<size_t>(z)])}};
+      if (!model.empty())
+        e["model"] = {JsonNumber(model[f][static_cast<size_t>(z)].real()),
+                      JsonNumber(model[f][static_cast<size_t>(z)].imag())};
+      if (!r.frequencies[f].condition.empty()) {
+        e["condition"] = JsonNumber(r.frequencies[f].condition[static_cast<size_t>(z)]);
+        e["quality"] = JsonNumber(r.frequencies[f].quality[static_cast<size_t>(z)]);
+      }
+      h.push_back(e);
+    }
+    freqs.push_back({{"excitation_hz", r.frequencies[f].excitation_hz},
+                     {"speed_rad_s", JsonNumber(r.frequencies[f].speed)},
+                     {"separable", r.frequencies[f].separable},
+                     {"noise_rms", JsonNumber(r.frequencies[f].noise)},
+                     {"H", h}});
   }
+  json out = {{"data", name},
+              {"method", method},
+              {"period_s", data.period},
+              {"input", o.input},
+              {"output", o.output},
+              {"records", data.records.size()},
+              {"frequencies", freqs},
+              {"diagnostics", r.diagnostics}};
+  if (speeds)
+    out["measured_speed_rad_s"] = {
+        {"min", speeds->min_speed}, {"max", speeds->max_speed}, {"mean", speeds->mean_speed}};
+  return out;
+}
+
+// The table: one line per frequency and order (or why the line has no value), then the notes.
+void PrintIdentified(const std::string& name, const std::string& method, bool broadband,
+                     const IdentifyArgs& args, const TimeData& data, const IdentifyOptions& o,
+                     const IdentifyResult& r, const std::vector<std::vector<cd>>& model,
+                     const std::optional<MeasuredSpeeds>& speeds) {
+  const int Z = o.max_order - o.min_order + 1;
   std::cout << "Partial FRFs identified from " << name
             << (broadband && method == "broadband"
                     ? " (broadband: least squares across " + std::to_string(data.records.size()) +
@@ -393,6 +387,45 @@ int RunIdentify(const IdentifyArgs& args) {
       std::cout << "\n";
     }
   for (const std::string& d : r.diagnostics) std::cout << "  note: " << d << "\n";
+}
+
+int RunIdentify(const IdentifyArgs& args) {
+  if (!args.period.empty() && !args.rotor_speed.empty())
+    throw InputError("--period and --rotor-speed: give one of them");
+  const double rotor_speed = PositiveOption(args.rotor_speed, "--rotor-speed");
+  const double period = !args.period.empty()
+                            ? PositiveOption(args.period, "--period")
+                            : (rotor_speed > 0 ? 2 * std::numbers::pi / rotor_speed : 0);
+  const bool measured_angle = !args.tacho.empty() || !args.angle.empty();
+  bool ltp_format = false;
+  TimeData data = ReadTimeData(args, period, !measured_angle, &ltp_format);
+  std::string name = args.files.front();
+  for (size_t f = 1; f < args.files.size(); ++f) name += (f == 1 ? ", " : ", ") + args.files[f];
+  const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
+  std::pair<int, int> plotted;
+  const IdentifyOptions o = IdentifyOptionsFrom(args, data, &plotted);
+  // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
+  // DAQ files write no frequency: step-sine records whose input says it.
+  bool broadband = ltp_format;
+  for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
+  const std::string method =
+      args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;
+  const IdentifyResult r =
+      method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
+  const std::vector<std::vector<cd>> model = ModelValues(args, data, speeds.has_value(), o, r);
+  if (!args.csv.empty()) WriteIdentifiedCsv(args.csv, r, o, model);
+  if (!args.plot.empty())
+    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method, plotted);
+  if (!args.convergence.empty()) {
+    if (method != "broadband")
+      throw InputError("--convergence: needs broadband records (it adds them one by one)");
+    PlotConvergence(args.convergence, data, o, model);
+  }
+  if (args.json) {
+    std::cout << IdentifiedJson(name, method, data, o, r, model, speeds).dump(2) << "\n";
+    return 0;
+  }
+  PrintIdentified(name, method, broadband, args, data, o, r, model, speeds);
   if (!args.csv.empty()) std::cout << "  wrote " << args.csv << "\n";
   if (!args.plot.empty()) std::cout << "  wrote " << args.plot << "\n";
   if (!args.convergence.empty()) std::cout << "  wrote " << args.convergence << "\n";
