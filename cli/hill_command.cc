@@ -120,11 +120,14 @@ int RunHill(HillArgs& args) {
   if (args.json) {
     json rows = json::array();
     for (const HillStudyRow& r : s.rows) {
-      json errs = json::array();
+      json errs = json::array(), at_n = json::array();
       for (double e : r.errors) errs.push_back(JsonNumber(e));
+      for (const std::complex<double>& l : r.exponents)
+        at_n.push_back({JsonNumber(l.real()), JsonNumber(l.imag())});
       rows.push_back({{"harmonics", r.harmonics},
                       {"matrix_size", r.matrix_size},
                       {"errors", errs},
+                      {"exponents", at_n},
                       {"max_error", JsonNumber(r.max_error)},
                       {"apriori_bound", JsonNumber(r.apriori_bound)},
                       {"truncation_estimate", JsonNumber(r.truncation_estimate)},

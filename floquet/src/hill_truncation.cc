@@ -311,8 +311,15 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     }
     row.truncation_estimate = r.truncation_estimate;
     row.error_estimate = r.error_estimate;
+    row.exponents = exponents(r);
     if (have_ref) {
-      row.errors = MatchExponents(study.reference, exponents(r), omega);
+      const std::vector<int> match = MatchExponentIndices(study.reference, row.exponents, omega);
+      std::vector<cd> matched;
+      for (int i : match)
+        matched.push_back(i < 0 ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                                : row.exponents[static_cast<size_t>(i)]);
+      row.errors = MatchExponents(study.reference, row.exponents, omega);
+      row.exponents = std::move(matched);
       double worst = 0;
       for (double e : row.errors) worst = std::max(worst, e);
       row.max_error = worst;

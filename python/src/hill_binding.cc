@@ -171,6 +171,24 @@ at N = max_harmonics (`last`).)doc")
             return RealTable(v, r.study.reference.size());
           },
           "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
+      .def_property_readonly(
+          "exponents",
+          [](const HillStudyRun& r) {
+            size_t width = 0;
+            for (const HillStudyRow& row : r.study.rows)
+              width = std::max(width, row.exponents.size());
+            const std::complex<double> nan(std::numeric_limits<double>::quiet_NaN(), 0.0);
+            py::array_t<std::complex<double>> a(
+                {static_cast<py::ssize_t>(r.study.rows.size()), static_cast<py::ssize_t>(width)});
+            for (size_t i = 0; i < r.study.rows.size(); ++i)
+              for (size_t k = 0; k < width; ++k)
+                a.mutable_at(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(k)) =
+                    k < r.study.rows[i].exponents.size() ? r.study.rows[i].exponents[k] : nan;
+            return a;
+          },
+          "Hill's exponents per row (1/s): with a reference, its match of each reference exponent "
+          "in the reference's order (NaN where none matched); without, the analysis's order; "
+          "NaN-padded to the widest row")
       .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error),
                              "per row; NaN without a reference")
       .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound),

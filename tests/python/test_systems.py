@@ -192,3 +192,18 @@ def test_study_and_chart_columns_have_numpy_dtypes():
     c = ltp.chart(ltp.scene("mathieu"), "a=0:1:0.5")
     assert isinstance(c.verdicts, np.ndarray) and c.verdicts.dtype.kind == "U"
     assert set(c.verdicts) <= {"stable", "marginal", "unstable", "failed"}
+
+
+def test_hill_study_gives_the_exponents_of_every_truncation():
+    # Per-N exponents (a convergence table for a paper): each row's exponents, in the
+    # reference's order, are at the row's error from the monodromy route's (modulo jΩp).
+    scene = ltp.scene("mathieu", a=A_, q=Q_, c=C_)
+    s = ltp.hill_study(scene, max_harmonics=12)
+    ref = ltp.floquet(scene, integrator="dopri5", tol=1e-12).exponents  # the study's reference
+    omega = 2.0  # Ωp of the period π
+    assert s.exponents.shape == s.errors.shape == (len(s.harmonics), 2)
+    for row, errors in zip(s.exponents, s.errors):
+        for lam, r, err in zip(row, ref, errors):
+            d = np.hypot(lam.real - r.real, np.remainder(lam.imag - r.imag + omega / 2, omega) - omega / 2)
+            assert abs(d - err) <= 1e-12 + 1e-9 * err
+    assert s.max_error[-1] < 1e-9  # and they converge to it

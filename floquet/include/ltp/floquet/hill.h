@@ -218,7 +218,11 @@ struct HillStudyRow {
   /// Per physical exponent (in the order of the reference): |λ_Hill − λ_ref| modulo jΩp of
   /// the analysed period; empty without a reference.
   std::vector<double> errors;
-  std::optional<double> max_error;            ///< max of errors; empty without a reference
+  std::optional<double> max_error;  ///< max of errors; empty without a reference
+  /// The exponents at this N (1/s): with a reference, Hill's match of each reference exponent
+  /// in the reference's order (NaN where none matched; the branch Hill selected, so the
+  /// errors above are these modulo jΩp); without, the analysis's modes in their order.
+  std::vector<std::complex<double>> exponents;
   double apriori_bound = 0;                   ///< HillResult::apriori_bound
   std::optional<double> truncation_estimate;  ///< N vs N+Δ (HillResult::truncation_estimate)
   /// HillResult::error_estimate at this N: what the analysis reports as its error bound.
