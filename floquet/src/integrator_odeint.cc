@@ -181,7 +181,7 @@ class MatrixRhs {
     Eigen::Map<const Eigen::Matrix<double, N, N>> phi(x.data(), n_, n_);
     Eigen::Map<Eigen::Matrix<double, N, N>> dphi(dxdt.data(), n_, n_);
     if constexpr (N == Eigen::Dynamic) {
-      if (ScaledSecondOrderForm()) {
+      if (SecondOrderForm(false)) {
         const int h = n_ / 2;
         dphi.topRows(h) = a_.topRightCorner(h, h).diagonal().asDiagonal() * phi.bottomRows(h);
         MultiplyInto(a_.bottomRows(h), phi, dphi.bottomRows(h));
@@ -202,29 +202,17 @@ class MatrixRhs {
   // The first-order form of a second-order system, A = [0 I; A₂₁ A₂₂] (every second-order
   // scene): the upper half of AΦ is the lower half of Φ, and only the lower half needs a
   // product, half the flops. Checked at every evaluation (n²/2 comparisons against n³
-  // multiply-adds), so a system that has that form only at some times is still right.
-  bool SecondOrderForm() const {
+  // multiply-adds), so a system that has that form only at some times is still right. With
+  // `unit` false the upper right block may be any diagonal D: balanced states
+  // (docs/model-sizes.md) turn I into powers of two, and the upper half of AΦ is then D times
+  // the lower half of Φ (the finite-element rotor in SI units, always balanced: products halved).
+  bool SecondOrderForm(bool unit = true) const {
     if (n_ % 2 != 0) return false;
     const int h = n_ / 2;
     for (int j = 0; j < n_; ++j) {
       const double* column = a_.data() + static_cast<size_t>(j) * n_;
       for (int i = 0; i < h; ++i)
-        if (column[i] != (j == i + h ? 1.0 : 0.0)) return false;
-    }
-    return true;
-  }
-
-  // The same form in balanced states (docs/model-sizes.md): S⁻¹AS with S a diagonal of powers
-  // of two turns the upper identity into a diagonal, A = [0 D; A₂₁ A₂₂]; the upper half of AΦ
-  // is then D times the lower half of Φ. (Measured on the finite-element rotor in SI units,
-  // whose states are always balanced: the integration's products halved.)
-  bool ScaledSecondOrderForm() const {
-    if (n_ % 2 != 0) return false;
-    const int h = n_ / 2;
-    for (int j = 0; j < n_; ++j) {
-      const double* column = a_.data() + static_cast<size_t>(j) * n_;
-      for (int i = 0; i < h; ++i)
-        if (column[i] != 0.0 && j != i + h) return false;
+        if (j == i + h ? unit && column[i] != 1.0 : column[i] != 0.0) return false;
     }
     return true;
   }
