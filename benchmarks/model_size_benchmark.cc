@@ -125,7 +125,13 @@ nlohmann::json RunPeer(int elements, const char* which, std::string* error) {
     *error = std::string(which) + " peer unavailable: " + out;
     return {};
   }
-  return nlohmann::json::parse(out);
+  // The peer's one JSON object is its last line (stderr is merged for the messages above).
+  while (!out.empty() && out.back() == '\n') out.pop_back();
+  const size_t line = out.rfind('\n');
+  nlohmann::json j =
+      nlohmann::json::parse(line == std::string::npos ? out : out.substr(line + 1), nullptr, false);
+  if (j.is_discarded()) *error = std::string(which) + " peer wrote no JSON: " + out;
+  return j;
 }
 
 void FeRotorVersusScipy(benchmark::State& state) {

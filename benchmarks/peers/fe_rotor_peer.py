@@ -39,7 +39,10 @@ def main():
         except ImportError as e:
             print(f"peer skipped: {e} (PYTHONPATH=build/python)", file=sys.stderr)
             sys.exit(3)
-        r = ltp.floquet(ltp.System.from_second_order(period, M=M, K=K, D=D), tol=1e-10)
+        import warnings
+        with warnings.catch_warnings():  # the long-work announcement is not the output
+            warnings.simplefilter("ignore", UserWarning)
+            r = ltp.floquet(ltp.System.from_second_order(period, M=M, K=K, D=D), tol=1e-10)
         n, max_real, estimate = r.states, r.max_real_exponent, r.error_estimate
     else:
         from scipy.integrate import solve_ivp
