@@ -319,7 +319,7 @@ internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int s
   // points, so the run itself starts from one segment per sample (80-state FE rotor: the
   // shapes' propagation within 8 segments cost more than the run).
   const bool one_run = grid.integrator.carry_local_errors;
-  // A constant A (one piece, exact exponentials): one segment unless its factor's condition
+  // A constant A: one segment unless its factor's condition
   // asks for more; the samples then cost an exponential each, where more segments would each
   // add their share of the periodic eigenvectors (a 400-state A = 0: 23 s → under a second).
   grid.uniform_segments = options.segments > 0           ? options.segments
@@ -711,7 +711,7 @@ std::vector<double> IntegrationErrors(const Setup& s,
 // Step 4: the modes with their periodic shapes (sampled on the uniform mode grid) or, without
 // shapes, on the principal branch; returns each multiplier's condition number (1 without).
 std::vector<double> ComputeModes(const Setup& s, const internal::SegmentGrid& grid,
-                                 const LogEigenvalues& eig, int samples,
+                                 const LogEigenvalues& eig, int samples, bool constant,
                                  const internal::AnalysisProgress& progress,
                                  std::vector<FloquetMode>& modes, FloquetResult& r) {
   const int n = r.states;
@@ -723,8 +723,9 @@ std::vector<double> ComputeModes(const Setup& s, const internal::SegmentGrid& gr
   }
   IntegratorOptions shape_integrator = s.options.integrator;
   shape_integrator.on_advance = progress.Phase("mode shapes");
-  internal::ModeShapes shapes = internal::ComputeModeShapes(
-      s.system, grid, eig.log_values, samples, shape_integrator, ThreadsFor(s.options.threads));
+  internal::ModeShapes shapes =
+      internal::ComputeModeShapes(s.system, grid, eig.log_values, samples, shape_integrator,
+                                  ThreadsFor(s.options.threads), constant);
   r.rhs_evals += shapes.rhs_evals;
   for (auto& d : shapes.diagnostics) r.diagnostics.push_back(std::move(d));
   modes = std::move(shapes.modes);
@@ -796,8 +797,10 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   const int grid_samples = n > kSmallSystemStates ? mode_samples : samples;
   WeighTheWork(s.system, s.traits, options, s.period_scale, grid_samples, r);
   const internal::AnalysisProgress progress(options.on_progress, r.period);
-  const bool constant =
-      options.integrator.type == IntegratorType::kExpm && s.system.breakpoints().empty();
+  // A(t) the same at every t, as the integrator choice measured it (its traits: constant
+  // between breakpoints and none inside the period); unknown, so false, when the user chose
+  // the integrator.
+  const bool constant = s.traits && s.traits->constant_pieces && !s.traits->has_jumps;
   internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n, constant);
   grid_options.integrator.on_advance = progress.Phase("run");
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
@@ -839,7 +842,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
   // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
   std::vector<FloquetMode> modes;
-  const std::vector<double> kappa = ComputeModes(s, grid, eig, samples, progress, modes, r);
+  const std::vector<double> kappa =
+      ComputeModes(s, grid, eig, samples, constant, progress, modes, r);
   // 5–6. Estimates per exponent, order, rigid-body modes, summary and checks.
   Finish(s, grid, eig, kappa, single_shot && !fallback.empty(), std::move(integration),
          std::move(modes), r);

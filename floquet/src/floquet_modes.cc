@@ -56,15 +56,14 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
   return prior;
 }
 
-// A constant A (one piece, exact exponentials) whose grid points lie on the sample grid: the
-// transition from a grid point to the m-th sample after it is E^m, E = exp(A T/S), so one
-// exponential and a product per sample replace one exponential per sample (a 400-state A: 64
-// exponentials in Eigen's products took 20 s). False (nothing done) otherwise.
+// A constant A whose grid points lie on the sample grid: the transition from a grid point to
+// the m-th sample after it is E^m, E = Φ(T/S, 0) (time-invariant), so one transition and a
+// product per sample replace one transition per sample (a 400-state A: 64 exponentials in
+// Eigen's products took 20 s). False (nothing done) otherwise.
 bool ConstantSamples(const PeriodicSystem& system, const SegmentGrid& grid,
                      const std::vector<PeriodicEigenvector>& vecs, const std::vector<cd>& log_rho,
                      int samples, const IntegratorOptions& integrator, ModeShapes& out,
                      std::vector<Eigen::MatrixXcd>& xi) {
-  if (integrator.type != IntegratorType::kExpm || !system.breakpoints().empty()) return false;
   const int n = system.states();
   const double T = system.period(), h = T / samples;
   std::vector<int> segment(samples), steps(samples);
@@ -111,7 +110,7 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
                                            const std::vector<PeriodicEigenvector>& vecs,
                                            const std::vector<cd>& log_rho, int samples,
                                            const IntegratorOptions& integrator, int threads,
-                                           ModeShapes& out) {
+                                           bool constant, ModeShapes& out) {
   const int n = system.states();
   const double T = system.period();
   out.sample_times.resize(samples);
@@ -135,7 +134,8 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
   out.diagnostics.push_back(
       "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
       " segments for " + std::to_string(samples) + " samples)");
-  if (ConstantSamples(system, grid, vecs, log_rho, samples, integrator, out, xi)) return xi;
+  if (constant && ConstantSamples(system, grid, vecs, log_rho, samples, integrator, out, xi))
+    return xi;
   long rhs_evals = 0;
 #pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1)) reduction(+ : rhs_evals)
   for (int s = 0; s < samples; ++s) {
@@ -256,7 +256,7 @@ void ModeMatrixCondition(const std::vector<int>& good, ModeShapes& out) {
 
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<cd>& log_rho, int samples,
-                             const IntegratorOptions& integrator, int threads) {
+                             const IntegratorOptions& integrator, int threads, bool constant) {
   const int n = system.states();
   const double T = system.period();
   const double omega = system.omega();
@@ -267,7 +267,8 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
   for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
   const std::vector<PeriodicEigenvector> vecs =
       ComputePeriodicEigenvectors(grid.factors, dt, log_rho, threads);
-  out.samples = SampleShapes(system, grid, vecs, log_rho, samples, integrator, threads, out);
+  out.samples =
+      SampleShapes(system, grid, vecs, log_rho, samples, integrator, threads, constant, out);
   // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.
   const std::vector<int> prior = PriorBranches(system, log_rho, out.samples[0]);
   for (int s = 0; s < samples; ++s)

@@ -27,9 +27,10 @@ struct ModeShapes {
 
 /// The mode shapes of the multipliers exp(log_rho) of the factors on `grid`, at `samples`
 /// uniform times (grid points where the grid has them, else propagated from the last grid
-/// point with `integrator`). The periodic eigenvectors use `threads` threads.
+/// point with `integrator`; for an A(t) that is `constant`, as powers of one transition). The
+/// periodic eigenvectors use `threads` threads.
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<std::complex<double>>& log_rho, int samples,
-                             const IntegratorOptions& integrator, int threads);
+                             const IntegratorOptions& integrator, int threads, bool constant);
 
 }  // namespace ltp::internal

@@ -406,5 +406,32 @@ TEST(ConstantSystem, ExponentsAreEigenvaluesAndShapesAreConstant) {
   }
 }
 
+// The constant-A shortcut (samples as powers of one transition) is taken only for an A(t)
+// measured constant, not for every exact-exponential run: exponentials forced on Mathieu over
+// 2 segments propagate their samples by the midpoint rule, as a smooth A needs, and give the
+// shapes Bulirsch–Stoer gives (another integrator, the same 2 segments).
+TEST(ConstantSystem, ForcedExponentialsOnASmoothSystemAreNotTakenAsConstant) {
+  const PeriodicSystem s = test::Mathieu(1.0, 0.2, 0.02);
+  FloquetOptions o;
+  o.segments = 2;
+  o.integrator.type = IntegratorType::kExpm;
+  const FloquetResult e = AnalyzeFloquet(s, o);
+  o.integrator.type = IntegratorType::kBulirschStoer;
+  const FloquetResult b = AnalyzeFloquet(s, o);
+  ASSERT_TRUE(e.ok && b.ok);
+  ASSERT_EQ(e.mode_samples.size(), b.mode_samples.size());
+  const size_t S = b.mode_samples.size();
+  for (int k = 0; k < s.states(); ++k) {  // each shape over the period, up to its scale
+    ASSERT_LT(std::abs(e.modes[k].exponent - b.modes[k].exponent), 1e-6);
+    Eigen::VectorXcd x(2 * S), y(2 * S);
+    for (size_t t = 0; t < S; ++t) {
+      x.segment<2>(2 * t) = e.mode_samples[t].col(k);
+      y.segment<2>(2 * t) = b.mode_samples[t].col(k);
+    }
+    const std::complex<double> scale = x.dot(y) / x.squaredNorm();  // best α in α x ≈ y
+    EXPECT_LT((scale * x - y).norm(), 1e-6 * y.norm()) << "mode " << k;
+  }
+}
+
 }  // namespace
 }  // namespace ltp
