@@ -659,18 +659,19 @@ WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o, double secon
 }
 
 void WeighTheWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
-  const std::string job = "Hill's method at N = " + std::to_string(N);
-  if (o.solver == HillSolver::kDense) {
-    hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first: a ResourceError
-    if (n * (2.0 * N + 1) < 300) return;                       // well under a second anywhere
-    hill_internal::WeighHillWork(
-        hill_internal::HillWork(n, N, o, hill_internal::ComplexProductSecondsPerCube()), job, o,
-        "use the structured solver or fewer harmonics", notes);
-  } else if (n * (2.0 * N + 1) >= 2000) {  // below: well under a second
-    hill_internal::WeighHillWork(
-        hill_internal::HillWork(n, N, o, hill_internal::ComplexProductSecondsPerCube()), job, o,
-        "fewer harmonics (--harmonics auto stops where the estimate is met)", notes);
-  }
+  const bool dense = o.solver == HillSolver::kDense;
+  if (dense) hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first
+  // Well under a second anywhere below these sizes; nothing to weigh when neither limit is on
+  // (a convergence study weighs itself as a whole and runs its solves so: no timed product
+  // per truncation).
+  if (n * (2.0 * N + 1) < (dense ? 300 : 2000)) return;
+  if (o.max_work_seconds <= 0 && !(o.announce_work_seconds < HUGE_VAL)) return;
+  hill_internal::WeighHillWork(
+      hill_internal::HillWork(n, N, o, hill_internal::ComplexProductSecondsPerCube()),
+      "Hill's method at N = " + std::to_string(N), o,
+      dense ? "use the structured solver or fewer harmonics"
+            : "fewer harmonics (--harmonics auto stops where the estimate is met)",
+      notes);
 }
 
 }  // namespace

@@ -228,21 +228,6 @@ double KoopmanHillBound(const HillDecay& decay, int harmonics, double period) {
 }
 
 namespace {
-HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
-                           const FloquetResult& reference, HillOptions options, HillResult* last);
-}  // namespace
-
-HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
-                               HillOptions options) {
-  return HillConvergenceStudy(system, max_harmonics, FloquetResult{}, std::move(options));
-}
-
-HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
-                               const FloquetResult& reference, HillOptions options) {
-  return StudyTruncations(system, max_harmonics, reference, std::move(options), nullptr);
-}
-
-namespace {
 
 // HillConvergenceStudy; `last` (when given) receives the analysis at max_harmonics, the
 // study's last row, so a caller that wants its modes need not solve it again.
@@ -313,12 +298,16 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     row.error_estimate = r.error_estimate;
     row.exponents = exponents(r);
     if (have_ref) {
+      // One matching gives both: Hill's exponent for each reference one and its distance.
       const std::vector<int> match = MatchExponentIndices(study.reference, row.exponents, omega);
       std::vector<cd> matched;
-      for (int i : match)
-        matched.push_back(i < 0 ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
-                                : row.exponents[static_cast<size_t>(i)]);
-      row.errors = MatchExponents(study.reference, row.exponents, omega);
+      for (size_t k = 0; k < match.size(); ++k) {
+        const bool none = match[k] < 0;
+        matched.push_back(none ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                               : row.exponents[static_cast<size_t>(match[k])]);
+        row.errors.push_back(none ? std::numeric_limits<double>::infinity()
+                                  : ExponentDistance(study.reference[k], matched.back(), omega));
+      }
       row.exponents = std::move(matched);
       double worst = 0;
       for (double e : row.errors) worst = std::max(worst, e);
@@ -374,6 +363,16 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
 }
 
 }  // namespace
+
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               HillOptions options) {
+  return HillConvergenceStudy(system, max_harmonics, FloquetResult{}, std::move(options));
+}
+
+HillStudy HillConvergenceStudy(const PeriodicSystem& system, int max_harmonics,
+                               const FloquetResult& reference, HillOptions options) {
+  return StudyTruncations(system, max_harmonics, reference, std::move(options), nullptr);
+}
 
 HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
                           const HillOptions& options, bool reference) {
