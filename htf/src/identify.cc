@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
+#include "angle_interpolation.h"
 #include "line_fit.h"
 #include "ltp/core/error.h"
 
@@ -207,6 +208,23 @@ double SpeedChange(const std::vector<double>& time, const std::vector<double>& t
   return std::abs(2 * c(2) / c(1));
 }
 
+// A channel sampled `delay` late holds at t what the system did at t − delay: its lines'
+// times and the system's phase there (exact for θ = 2πt/T; a measured θ interpolated).
+struct DelayedClock {
+  std::vector<double> time, theta;
+};
+DelayedClock Delayed(const std::vector<double>& time, const std::vector<double>& theta,
+                     bool measured, double T, double delay) {
+  if (delay == 0) return {time, theta};
+  DelayedClock c;
+  for (double t : time) {
+    c.time.push_back(t - delay);
+    c.theta.push_back(measured ? internal::InterpolateAngle(time, theta, t - delay)
+                               : kTwoPi * (t - delay) / T);
+  }
+  return c;
+}
+
 IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
                                    size_t index, std::vector<std::string>& diagnostics,
                                    ExtraLines& extra) {
@@ -241,7 +259,7 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
                        " lies above the Nyquist frequency: sample faster or ask for fewer orders");
   Eigen::MatrixXd excitation(static_cast<Eigen::Index>(rec.time.size()), 1);
   for (size_t n = 0; n < rec.time.size(); ++n)
-    excitation(static_cast<Eigen::Index>(n), 0) = omega * rec.time[n];
+    excitation(static_cast<Eigen::Index>(n), 0) = omega * (rec.time[n] - o.input_delay);
   const internal::LineFit in = internal::FitLines(u, excitation);
   const cd U = in.amplitude[0];
   if (!(std::abs(U) > 1e-12 * u.cwiseAbs().maxCoeff()))
@@ -256,8 +274,15 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
                      " % of its power lies off its strongest line): step-sine identification "
                      "needs one frequency per record (broadband records: --method broadband)");
   const std::vector<Line> lines = LinesToFit(omega, speed, nyquist, bin, o);
+  if (!rec.angle.empty())
+    for (const double delay : {o.input_delay, o.output_delay})
+      if (std::abs(delay) > 0.05 * L)
+        throw InputError(where + ": a delay of " + MessageNumber(delay, 3) +
+                         " s is over 5 % of the record: the measured angle is not extrapolated "
+                         "that far; trim the records to the span both channels cover");
+  const DelayedClock out_clock = Delayed(rec.time, theta, !rec.angle.empty(), T, o.output_delay);
   const internal::LineFit out_fit =
-      internal::FitLines(y, LinePhases(lines, rec.time, theta, omega));
+      internal::FitLines(y, LinePhases(lines, out_clock.time, out_clock.theta, omega));
   IdentifiedFrequency out;
   out.excitation_hz = omega / kTwoPi;
   out.speed = speed;
@@ -268,10 +293,12 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
     const cd h = out_fit.amplitude[l] / U;
     out.separable = out.separable && out_fit.determined[l];
     out.h.push_back(h);
-    // Output noise through Y_z, input noise through U (first order; independent).
+    // Output noise through Y_z, input noise through U (first order; independent); without a
+    // measured angle, the written times' error moves zθ by up to |z|·Ωp·time_error.
     const double variance = (out_fit.variance[l] + std::norm(h) * input_variance) / std::norm(U);
+    const double clock = rec.angle.empty() ? std::abs(z * speed) * rec.time_error * std::abs(h) : 0;
     out.bound.push_back(out_fit.dof > 0 && std::isfinite(variance)
-                            ? kBoundFactor * std::sqrt(variance)
+                            ? kBoundFactor * std::sqrt(variance) + clock
                             : std::numeric_limits<double>::infinity());
   }
   if (out_fit.dof == 0)
@@ -338,6 +365,11 @@ void IdentifyOptions::Validate() const {
   if (output < 0)
     throw InputError("IdentifyOptions::output = " + std::to_string(output) +
                      ". Violated constraint: >= 0");
+  for (const auto& [delay, name] :
+       {std::pair{input_delay, "input_delay"}, {output_delay, "output_delay"}})
+    if (!std::isfinite(delay))
+      throw InputError(std::string("IdentifyOptions::") + name + " = " + MessageNumber(delay, 3) +
+                       ". Violated constraint: finite");
   if (min_order > max_order || max_order - min_order > 200)
     throw InputError("IdentifyOptions::orders " + std::to_string(min_order) + ".." +
                      std::to_string(max_order) +
@@ -399,6 +431,46 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
   return r;
 }
 
+// The bins a set of broadband records excites, told from the noise a measured input carries:
+// the input's power per bin averaged over the records, sorted, cut at its largest drop (a
+// multisine's or a band's lines stand above the noise floor by the SNR). Power below 1e-20 of
+// the strongest bin is round-off (noise-free records: only the lines are above it). A largest
+// drop under 20 dB separates nothing: then every bin above round-off counts.
+std::set<long> ExcitedBins(const std::vector<std::vector<cd>>& u, long N) {
+  const long R = static_cast<long>(u.size());
+  std::vector<std::pair<double, long>> power;  // (mean |U_k|², k)
+  for (long k = 1; 2 * k < N; ++k) {
+    double p = 0;
+    for (long r = 0; r < R; ++r) p += std::norm(u[r][k]) / static_cast<double>(R);
+    power.emplace_back(p, k);
+  }
+  std::sort(power.begin(), power.end(), std::greater<>());
+  if (power.empty() || !(power.front().first > 0))
+    throw InputError("record 1: the input is not excited");
+  // Below 1e-20 of the strongest line's power is round-off, not noise: it ends the search.
+  const double silent = 1e-20 * power.front().first;
+  size_t cut = 0, audible = 0;
+  while (audible < power.size() && power[audible].first > silent) ++audible;
+  double drop = 1;
+  for (size_t i = 0; i + 1 < audible; ++i)
+    if (power[i].first / power[i + 1].first > drop)
+      drop = power[i].first / power[i + 1].first, cut = i + 1;
+  if (drop < 100) cut = audible;  // no floor below the lines: every audible bin is excited
+  std::set<long> excited;
+  for (size_t i = 0; i < cut; ++i) excited.insert(power[i].second);
+  // A record of another design: a line no other record has. (A record may excite a line
+  // weakly — noise excitation has Rayleigh amplitudes — and only contributes less there.)
+  const double weakest = power[cut - 1].first;
+  for (long r = 0; r < R; ++r)
+    for (long k = 1; 2 * k < N; ++k)
+      if (!excited.count(k) && std::norm(u[r][k]) > 0.1 * weakest)
+        throw InputError("record " + std::to_string(r + 1) + " excites " +
+                         MessageNumber(static_cast<double>(k) / static_cast<double>(N), 6) +
+                         " of the sampling rate, which the others do not: broadband "
+                         "identification needs one set of frequencies");
+  return excited;
+}
+
 IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options) {
   CheckData(data, options);
   for (size_t r = 0; r < data.records.size(); ++r) {
@@ -421,6 +493,7 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
   const long R = static_cast<long>(data.records.size());
   std::vector<std::vector<cd>> u(R), y(R);
   std::vector<double> t0(R);
+  double time_error = 0;
   for (long r = 0; r < R; ++r) {
     const TimeRecord& rec = data.records[r];
     const std::string where = "record " + std::to_string(r + 1);
@@ -435,22 +508,13 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
     u[r] = Spectrum(rec.inputs.col(options.input));
     y[r] = Spectrum(rec.outputs.col(options.output));
     t0[r] = rec.time.front();
+    time_error = std::max(time_error, rec.time_error);
   }
-  // The excited bins: where record 1's input has energy; every record must excite the same.
-  std::set<long> excited;
-  for (long r = 0; r < R; ++r) {
-    double top = 0;
-    for (long k = 1; 2 * k < N; ++k) top = std::max(top, std::abs(u[r][k]));
-    std::set<long> here;
-    for (long k = 1; 2 * k < N; ++k)
-      if (std::abs(u[r][k]) > 1e-6 * top) here.insert(k);
-    if (r == 0) excited = here;
-    if (here.empty() || here != excited)
-      throw InputError("record " + std::to_string(r + 1) +
-                       (here.empty() ? ": the input is not excited"
-                                     : " excites other frequencies than record 1: broadband "
-                                       "identification needs one set of frequencies"));
-  }
+  // A channel sampled `delay` late: its bin k carries e^{−j2πk·delay/L}; undone here.
+  const auto undelayed = [&](const std::vector<cd>& c, long k, double t, double delay) {
+    return AbsoluteBin(c, k, t, L) * std::polar(1.0, kTwoPi * static_cast<double>(k) * delay / L);
+  };
+  const std::set<long> excited = ExcitedBins(u, N);
   for (long k : excited)
     for (int z : {options.min_order, options.max_order})
       if (2 * std::abs(k + z * P) >= N)
@@ -474,10 +538,10 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
     Eigen::MatrixXcd M(R, q);
     Eigen::VectorXcd Y(R);
     for (long r = 0; r < R; ++r) {
-      Y(r) = AbsoluteBin(y[r], b, t0[r], L);
+      Y(r) = undelayed(y[r], b, t0[r], options.output_delay);
       for (long j = 0; j < q; ++j) {
         const long k = unknowns[j].second;
-        const cd uk = AbsoluteBin(u[r], std::abs(k), t0[r], L);
+        const cd uk = undelayed(u[r], std::abs(k), t0[r], options.input_delay);
         M(r, j) = k > 0 ? uk : std::conj(uk);
       }
     }
@@ -534,8 +598,9 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
       const LineEstimate e = it != found.end() ? it->second : LineEstimate{};
       f.h.push_back(e.h);
       const double variance = biased.count({k, z}) ? e.line_variance : sigma2;
+      const double clock = std::abs(z * kTwoPi / data.period) * time_error * std::abs(e.h);
       f.bound.push_back(dof > 0 && std::isfinite(e.variance_factor)
-                            ? kBoundFactor * std::sqrt(variance * e.variance_factor)
+                            ? kBoundFactor * std::sqrt(variance * e.variance_factor) + clock
                             : std::numeric_limits<double>::infinity());
       f.condition.push_back(e.condition);
       f.quality.push_back(e.quality);

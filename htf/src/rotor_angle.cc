@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "angle_interpolation.h"
 #include "ltp/core/error.h"
 
 namespace ltp {
@@ -25,17 +26,6 @@ double Polynomial(const std::vector<double>& x, const Values& y, long first, lon
     value += basis * y(i);
   }
   return value;
-}
-
-// θ at t from the cubic through the (up to) four pulses around it.
-double InterpolateAngle(const std::vector<double>& tau, const std::vector<double>& theta,
-                        double t) {
-  const long n = static_cast<long>(tau.size());
-  const long right = std::upper_bound(tau.begin(), tau.end(), t) - tau.begin();
-  const long points = std::min<long>(4, n);
-  const long first = std::clamp<long>(right - 2, 0, n - points);
-  return Polynomial(
-      tau, [&](long k) { return theta[k]; }, first, first + points - 1, t);
 }
 
 // The time in [t_{i−1}, t_i] where the cubic through the samples i−2 … i+1 (fewer at the
@@ -68,6 +58,20 @@ void SetSpeeds(const std::vector<double>& time, RotorAngle& r) {
 }
 
 }  // namespace
+
+namespace internal {
+
+double InterpolateAngle(const std::vector<double>& tau, const std::vector<double>& theta,
+                        double t) {
+  const long n = static_cast<long>(tau.size());
+  const long right = std::upper_bound(tau.begin(), tau.end(), t) - tau.begin();
+  const long points = std::min<long>(4, n);
+  const long first = std::clamp<long>(right - 2, 0, n - points);
+  return Polynomial(
+      tau, [&](long k) { return theta[k]; }, first, first + points - 1, t);
+}
+
+}  // namespace internal
 
 void TachoOptions::Validate() const {
   if (pulses_per_period < 1 || pulses_per_period > 10000)
@@ -112,7 +116,7 @@ RotorAngle AngleFromTacho(const std::vector<double>& time, const Eigen::VectorXd
   std::vector<double> theta(pulses);
   for (size_t k = 0; k < pulses; ++k)
     theta[k] = options.pulse_angle + step * static_cast<double>(k);
-  for (double t : time) r.angle.push_back(InterpolateAngle(tau, theta, t));
+  for (double t : time) r.angle.push_back(internal::InterpolateAngle(tau, theta, t));
   SetSpeeds(time, r);
   for (size_t k = 1; k < pulses; ++k) {
     const double speed = step / (tau[k] - tau[k - 1]);

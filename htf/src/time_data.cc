@@ -36,6 +36,9 @@ void TimeData::Validate() const {
         throw InputError(where + ": a value of magnitude " +
                          MessageNumber(m->cwiseAbs().maxCoeff(), 3) +
                          " — sums of squares would overflow; rescale the channel (units)");
+    if (!(rec.time_error >= 0) || !std::isfinite(rec.time_error))
+      throw InputError(where + ": time_error " + MessageNumber(rec.time_error, 3) +
+                       " s (must be finite and >= 0)");
     for (double a : rec.angle)
       if (!std::isfinite(a)) throw InputError(where + ": an angle is not finite");
     for (Eigen::Index i = 1; i < n; ++i) {

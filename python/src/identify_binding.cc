@@ -293,7 +293,8 @@ IdentifiedRecords LtpIdentify(const py::object& time, const py::object& input,
                               const py::object& output, std::optional<double> period,
                               const py::object& excitation_hz, const py::object& tacho,
                               const py::object& angle, int pulses_per_period, double tacho_angle,
-                              const py::object& orders, const std::string& method) {
+                              const py::object& orders, const std::string& method,
+                              double input_delay, double output_delay) {
   const std::vector<Eigen::VectorXd> t = RecordArrays(time, "time");
   const std::vector<Eigen::VectorXd> u = RecordArrays(input, "input");
   const std::vector<Eigen::VectorXd> y = RecordArrays(output, "output");
@@ -323,6 +324,8 @@ IdentifiedRecords LtpIdentify(const py::object& time, const py::object& input,
   TimeData data = RecordsData(t, u, y, aux, frequencies, period);
   IdentifyOptions o;
   std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
+  o.input_delay = input_delay;
+  o.output_delay = output_delay;
   o.Validate();
   IdentifiedRecords out;
   if (!aux.empty()) {
@@ -346,7 +349,7 @@ void BindIdentifyFunction(py::module_& m) {
         py::kw_only(), py::arg("period") = py::none(), py::arg("excitation_hz") = py::none(),
         py::arg("tacho") = py::none(), py::arg("angle") = py::none(),
         py::arg("pulses_per_period") = 1, py::arg("tacho_angle") = 0.0, py::arg("orders") = "-2:2",
-        py::arg("method") = "stepsine",
+        py::arg("method") = "stepsine", py::arg("input_delay") = 0.0, py::arg("output_delay") = 0.0,
         R"doc(
 Partial FRFs from time data: `ltp identify` on numpy arrays.
 
@@ -359,6 +362,8 @@ Partial FRFs from time data: `ltp identify` on numpy arrays.
   orders                'ZMIN:ZMAX', an int or a pair
   method                stepsine (least squares on the lines ωt + zθ(t); docs/rig-data.md) or
                         broadband (records of one multisine, excitation_hz all 0)
+  input_delay, output_delay   how late (s) each channel is sampled against the rotor's phase
+                        (an anti-alias filter's group delay, a DAQ's skew): undone in the fit
 
 Returns an IdentifyResult (H, bound, excitation_hz, speed, diagnostics).)doc");
 }

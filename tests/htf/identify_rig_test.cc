@@ -173,5 +173,25 @@ TEST(IdentifyRig, ClippingAndSlippedSamplesAreNamed) {
   EXPECT_TRUE(Mentions(IdentifyStepSine(slipped, Orders()), "the input's phase moves by"));
 }
 
+// An output sampled late (here 2.6 samples: an anti-alias filter's group delay) turns the
+// phase of every H_z by its lines' frequencies; given the delay, the fit takes the output's
+// lines at t − delay and the estimate is the undelayed system's — with a tacho (θ interpolated
+// at t − delay) and at the model's speed (θ = 2πt/T exact). Truth: the closed form.
+TEST(IdentifyRig, AChannelDelayIsUndone) {
+  for (const bool tacho : {true, false}) {
+    testing::Rig rig;
+    rig.speed_factor = tacho ? 1.01 : 1.0;  // without a tacho: the model's speed and phase
+    rig.theta0 = tacho ? rig.theta0 : 0;
+    rig.output_delay_steps = 104;  // 2.6 samples
+    const TimeData d = RigData(rig, tacho);
+    const IdentifyResult blind = IdentifyStepSine(d, Orders());
+    EXPECT_GT(WorstError(rig, blind, rig.Speed()), 0.05) << "tacho " << tacho;
+    IdentifyOptions o = Orders();
+    o.output_delay = rig.OutputDelay();
+    const IdentifyResult id = IdentifyStepSine(d, o);
+    EXPECT_LT(WorstError(rig, id, rig.Speed()), 1e-6) << "tacho " << tacho;
+  }
+}
+
 }  // namespace
 }  // namespace ltp

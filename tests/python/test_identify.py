@@ -28,14 +28,16 @@ def closed_form(f_hz, speed):
                      BETA / 2 * G(w + speed) + GAMMA / 2 * G(w), bg * G(w + speed)])
 
 
-def rig_record(f_hz, speed, theta0=0.4, samples=1300, dt=2 / 64):
-    """Time, input, output and tacho of the rig's steady state: u = cos ωt, lines at ωt + zθ."""
+def rig_record(f_hz, speed, theta0=0.4, samples=1300, dt=2 / 64, output_delay=0.0):
+    """Time, input, output and tacho of the rig's steady state: u = cos ωt, lines at ωt + zθ;
+    the output sampled output_delay (s) late."""
     t = np.arange(samples) * dt
     theta = theta0 + speed * t
     H = closed_form(f_hz, speed)
     w = 2 * np.pi * f_hz
     # u = (e^{jωt} + c.c.)/2, so U = 1/2 and y = Σ_z (U H_z e^{j(ωt + zθ)} + c.c.).
-    y = sum(np.real(H[k] * np.exp(1j * (w * t + (k - 2) * theta))) for k in range(5))
+    late, theta_late = t - output_delay, theta - speed * output_delay
+    y = sum(np.real(H[k] * np.exp(1j * (w * late + (k - 2) * theta_late))) for k in range(5))
     edge = 0.5  # smoothstep edges of the tacho, rising through mid-level at θ = 0 (mod 2π)
     x = np.mod(theta + np.pi, 2 * np.pi) - np.pi
     step = lambda s: np.clip(s, 0, 1) ** 2 * (3 - 2 * np.clip(s, 0, 1))  # noqa: E731
@@ -62,6 +64,22 @@ def test_identify_on_a_tacho_meets_the_closed_form():
                          period=2.0)
     assert np.abs(blind.H[0] - closed_form(freqs[0], speed)).max() > 1e-2
     assert any("lines sit at a speed up to 1 % off" in d for d in blind.diagnostics)
+
+
+def test_an_output_delay_is_undone():
+    speed = 1.01 * np.pi
+    freqs = [0.1373, 0.6121]
+    records = [rig_record(f, speed, output_delay=0.07) for f in freqs]  # 2.2 samples late
+    args = ([x[0] for x in records], [x[1] for x in records], [x[2] for x in records])
+    tacho = [x[3] for x in records]
+    late = ltp.identify(*args, tacho=tacho)
+    fixed = ltp.identify(*args, tacho=tacho, output_delay=0.07)
+    for k, f in enumerate(freqs):
+        truth = closed_form(f, speed)
+        assert np.abs(late.H[k] - truth).max() > 1e-2 * np.abs(truth).max()
+        assert np.abs(fixed.H[k] - truth).max() < 1e-8 * np.abs(truth).max()
+    with pytest.raises(ValueError, match="output_delay"):
+        ltp.identify(*args, tacho=tacho, output_delay=float("nan"))
 
 
 def test_python_equals_the_command():

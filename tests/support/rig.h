@@ -28,6 +28,10 @@ struct Rig {
   double edge = 0.5;    ///< width of the tacho pulse's edges (rad); it is high for 2 rad
   int samples_per_period = 64;
   double periods = 20.3;  ///< record length in model periods (need not be whole)
+  /// The output is sampled this many integration steps (dt/40) late: an anti-alias filter's
+  /// group delay, a DAQ's skew.
+  int output_delay_steps = 0;
+  double OutputDelay() const { return output_delay_steps * model_period / samples_per_period / 40; }
 
   double Speed() const { return speed_factor * 2 * std::numbers::pi / model_period; }
   double Length() const { return periods * model_period; }
@@ -70,15 +74,23 @@ struct Rig {
     r.outputs.resize(n, 1);
     r.auxiliary.resize(n, 1);
     long k = std::lround(t / dt);
+    std::vector<double> history;  // x at every integration step from the start
+    const auto output = [&](long s) {
+      const long back = output_delay_steps;
+      const double td = static_cast<double>(s) * dt - back * h;
+      return (1 + gamma * std::cos(Theta(td))) * history[history.size() - 1 - back];
+    };
     for (long s = k; s < n; ++s) {
+      history.push_back(x);
       if (s >= 0) {
         const double ts = static_cast<double>(s) * dt;
         r.time.push_back(ts);
         r.inputs(s, 0) = u(ts);
-        r.outputs(s, 0) = (1 + gamma * std::cos(Theta(ts))) * x;
+        r.outputs(s, 0) = output(s);
         r.auxiliary(s, 0) = Tacho(Theta(ts));
       }
       for (int i = 0; i < sub; ++i) {
+        if (i > 0) history.push_back(x);
         const double ti = static_cast<double>(s) * dt + i * h;
         const double k1 = rhs(ti, x), k2 = rhs(ti + h / 2, x + h / 2 * k1);
         const double k3 = rhs(ti + h / 2, x + h / 2 * k2), k4 = rhs(ti + h, x + h * k3);

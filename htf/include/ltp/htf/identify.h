@@ -23,6 +23,10 @@ namespace ltp {
 struct IdentifyOptions {
   int input = 0, output = 0;
   int min_order = -2, max_order = 2;
+  /// How much later than the rotor's phase each channel's samples are taken (s): an
+  /// anti-alias filter's group delay, a DAQ's channel skew. The fit takes a delayed channel's
+  /// lines at t − delay (θ interpolated there), so H_z is the undelayed system's.
+  double input_delay = 0, output_delay = 0;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };

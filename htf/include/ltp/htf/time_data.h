@@ -22,6 +22,10 @@ struct TimeRecord {
   /// The system's phase θ at each sample (rad; A(t) of the model is the rig's at θ/Ωp), as
   /// measured (AngleFromTacho); empty: θ = 2πt/T, the rotor exactly at the model's speed.
   std::vector<double> angle;
+  /// Bound on the error of the written sample times against the clock the model's phase runs
+  /// on (s; 0: exact) — a format's digits (UFF keeps 7 of a start and a step). Without a
+  /// measured angle it moves θ = 2πt/T, and the bounds of H_z (z ≠ 0) carry it.
+  double time_error = 0;
 };
 
 struct TimeData {
