@@ -155,28 +155,36 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
 }
 
 TimeData TimeDataFromTables(const std::vector<ChannelTable>& tables, const std::string& input,
-                            const std::string& output, double period) {
+                            const std::vector<std::string>& outputs, double period) {
   TimeData data;
   data.period = period;
   for (const ChannelTable& t : tables) {
     const int count = static_cast<int>(t.names.size());
     const int in = ResolveChannel(input, t.names, count, "--input", "channel of " + t.path);
-    const int out = ResolveChannel(output, t.names, count, "--output", "channel of " + t.path);
-    if (in == out)
-      throw InputError("--input and --output name the same channel '" +
-                       t.names[static_cast<size_t>(in)] + "' of " + t.path +
-                       ": name the excitation and the response (--input NAME --output NAME)");
+    std::vector<std::string> output_names;
+    Eigen::MatrixXd response(t.values.rows(), static_cast<Eigen::Index>(outputs.size()));
+    for (size_t k = 0; k < outputs.size(); ++k) {
+      const int out =
+          ResolveChannel(outputs[k], t.names, count, "--output", "channel of " + t.path);
+      if (in == out)
+        throw InputError("--input and --output name the same channel '" +
+                         t.names[static_cast<size_t>(in)] + "' of " + t.path +
+                         ": name the excitation and the response (--input NAME --output NAME)");
+      output_names.push_back(t.names[static_cast<size_t>(out)]);
+      response.col(static_cast<Eigen::Index>(k)) = t.values.col(out);
+    }
     if (data.records.empty()) {
       data.input_names = {t.names[static_cast<size_t>(in)]};
-      data.output_names = {t.names[static_cast<size_t>(out)]};
+      data.output_names = output_names;
       data.auxiliary_names = t.names;
     } else if (t.names != data.auxiliary_names) {
       throw InputError(t.path + ": other channels than " + tables.front().path);
     }
     TimeRecord r;
     r.time = t.time;
+    r.time_error = t.time_error;
     r.inputs = t.values.col(in);
-    r.outputs = t.values.col(out);
+    r.outputs = response;
     r.auxiliary = t.values;
     data.records.push_back(std::move(r));
   }

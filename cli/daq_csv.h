@@ -22,6 +22,7 @@ struct ChannelTable {
   std::vector<std::string> names;  ///< as in the header, units stripped ("Force")
   std::vector<double> time;        ///< s
   Eigen::MatrixXd values;          ///< samples × channels (the time column left out)
+  double time_error = 0;           ///< bound on the error of the written times (s)
 };
 
 /// True when the file's first line that is not a comment is ltp's own header (record,…).
@@ -31,10 +32,10 @@ bool IsLtpTimeData(const std::string& path);
 /// of another length, no time column and no `sample_rate` (Hz, > 0).
 ChannelTable ReadDaqCsv(const std::string& path, double sample_rate);
 
-/// Step-sine records from DAQ files: the input and output channels named (index or name), every
-/// channel also kept as an auxiliary one (a tacho may be any of them), excitation_hz 0 (found
-/// from the input). @throws InputError for channels missing from a file.
+/// Step-sine records from DAQ files: the input and the output channels named (index or name),
+/// every channel also kept as an auxiliary one (a tacho may be any of them), excitation_hz 0
+/// (found from the input). @throws InputError for channels missing from a file.
 TimeData TimeDataFromTables(const std::vector<ChannelTable>& tables, const std::string& input,
-                            const std::string& output, double period);
+                            const std::vector<std::string>& outputs, double period);
 
 }  // namespace ltp::cli

@@ -1,10 +1,13 @@
 // `ltp identify DATA.csv`: partial FRFs H_z from step-sine time data (paper eq. 47) or from
 // broadband records (least squares across records per response line, §4.2), each with a 95 %
 // bound; `--compare SCENE` sets the model's values beside them.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -23,6 +26,7 @@
 #include "ltp/models/scene_input.h"
 #include "plot.h"
 #include "time_data_csv.h"
+#include "uff58.h"
 
 namespace ltp::cli {
 
@@ -36,10 +40,13 @@ struct IdentifyArgs {
   std::string method = "auto";
   // Empty: not given (a given 0 or nan is an error, not "absent").
   std::string period, rotor_speed, sample_rate;
-  std::string input = "0", output = "0", orders = "-2:2", plot_orders;
-  std::string compare, csv, plot, convergence;
-  std::vector<std::string> set;  ///< parameters of the --compare scene
-  std::string tacho, angle;      ///< aux channels giving the rotor's phase
+  std::string input = "0", orders = "-2:2", plot_orders;
+  std::vector<std::string> outputs{"0"};
+  std::string compare, csv, plot, convergence, uff;
+  bool binary = false;              ///< --uff as 58b
+  std::vector<std::string> set;     ///< parameters of the --compare scene
+  std::string tacho, angle;         ///< aux channels giving the rotor's phase
+  std::vector<std::string> delays;  ///< CHANNEL=SECONDS
   int pulses_per_period = 1;
   double tacho_angle_deg = 0;
   bool json = false;
@@ -54,8 +61,9 @@ double PositiveOption(const std::string& text, const std::string& name) {
   return *x;
 }
 
-// ltp's CSV (one file), or DAQ files (one record each, the channels named by --input and
-// --output; every column also an aux: channel for --tacho / --angle).
+// ltp's CSV (one file), or DAQ CSV files (one record each) and UFF 58 files (a record per
+// repetition of its channels), the channels named by --input and --output; every channel also
+// an aux: channel for --tacho / --angle.
 TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_period,
                       bool* ltp_format) {
   *ltp_format = args.files.size() == 1 && IsLtpTimeData(args.files.front());
@@ -68,11 +76,17 @@ TimeData ReadTimeData(const IdentifyArgs& args, double period, bool require_peri
   for (const std::string& f : args.files) {
     if (IsLtpTimeData(f))
       throw InputError(f + ": ltp's time-data CSV is read alone, not with DAQ files");
-    tables.push_back(ReadDaqCsv(f, PositiveOption(args.sample_rate, "--sample-rate")));
+    if (IsUffFile(f)) {
+      const std::vector<ChannelTable> records = ReadUffTimeRecords(f);
+      tables.insert(tables.end(), records.begin(), records.end());
+    } else {
+      tables.push_back(ReadDaqCsv(f, PositiveOption(args.sample_rate, "--sample-rate")));
+    }
   }
-  TimeData data = TimeDataFromTables(tables, args.input, args.output, period);
+  TimeData data = TimeDataFromTables(tables, args.input, args.outputs, period);
   if (period <= 0 && require_period)
-    throw InputError("DAQ files carry no period: give --period T, --rotor-speed W or --tacho");
+    throw InputError(
+        "DAQ and UFF files carry no period: give --period T, --rotor-speed W or --tacho");
   return data;
 }
 
@@ -242,15 +256,65 @@ void PlotConvergence(const std::string& file, const TimeData& data, const Identi
   RunGnuplot(file, g.str());
 }
 
-// The estimate's options from the arguments: channels, orders (at most 201) and the orders to
-// plot (within them).
+// --delay CHANNEL=SECONDS: how late each named channel is sampled. Only what is relative to the
+// rotor's phase counts, so a delayed tacho or encoder shifts the input and outputs the other way.
+struct ChannelDelays {
+  double input = 0, angle = 0;
+  std::map<std::string, double> outputs;
+};
+ChannelDelays ParseDelays(const IdentifyArgs& args, const TimeData& data,
+                          const IdentifyOptions& o) {
+  ChannelDelays d;
+  const std::string angle_spec = args.tacho.empty() ? args.angle : args.tacho;
+  std::string angle_name;
+  if (!angle_spec.empty())
+    angle_name = data.auxiliary_names[static_cast<size_t>(
+        ResolveChannel(angle_spec, data.auxiliary_names,
+                       static_cast<int>(data.auxiliary_names.size()), "--tacho", "aux: channel"))];
+  for (const std::string& spec : args.delays) {
+    const size_t eq = spec.rfind('=');
+    const std::optional<double> seconds =
+        eq == std::string::npos ? std::nullopt : NumberIn(spec.substr(eq + 1));
+    if (!seconds || !std::isfinite(*seconds))
+      throw InputError("--delay " + spec + ": give CHANNEL=SECONDS (e.g. --delay Accel=2.4e-4)");
+    const std::string name = spec.substr(0, eq);
+    const auto& outputs = data.output_names;
+    if (name == data.input_names[static_cast<size_t>(o.input)])
+      d.input = *seconds;
+    else if (std::find(outputs.begin(), outputs.end(), name) != outputs.end())
+      d.outputs[name] = *seconds;
+    else if (!angle_name.empty() && name == angle_name)
+      d.angle = *seconds;
+    else
+      throw InputError("--delay " + spec + ": '" + name +
+                       "' is neither the input, an output nor the --tacho/--angle channel");
+  }
+  return d;
+}
+
+// The outputs to estimate, as indices of the data's outputs: ltp's CSV names them among its
+// out: columns; DAQ and UFF data hold just the channels --output chose, in its order.
+std::vector<int> OutputIndices(const IdentifyArgs& args, const TimeData& data, bool ltp_format) {
+  std::vector<int> outputs;
+  for (size_t k = 0; k < args.outputs.size(); ++k) {
+    const int index = ltp_format ? ResolveChannel(args.outputs[k], data.output_names,
+                                                  static_cast<int>(data.output_names.size()),
+                                                  "--output", "output")
+                                 : static_cast<int>(k);
+    if (std::count(outputs.begin(), outputs.end(), index) > 0)
+      throw InputError("--output names '" + args.outputs[k] + "' twice");
+    outputs.push_back(index);
+  }
+  return outputs;
+}
+
+// The estimate's options from the arguments: input, orders (at most 201) and the orders to
+// plot (within them); the output is set per estimate.
 IdentifyOptions IdentifyOptionsFrom(const IdentifyArgs& args, const TimeData& data,
                                     std::pair<int, int>* plotted) {
   IdentifyOptions o;
   o.input = ResolveChannel(args.input, data.input_names, static_cast<int>(data.input_names.size()),
                            "--input", "input");
-  o.output = ResolveChannel(args.output, data.output_names,
-                            static_cast<int>(data.output_names.size()), "--output", "output");
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
   if (static_cast<long>(o.max_order) - o.min_order > 200)
     throw InputError("--orders " + args.orders + ": at most 201 orders (e.g. -100:100)");
@@ -280,25 +344,86 @@ std::vector<std::vector<cd>> ModelValues(const IdentifyArgs& args, const TimeDat
   return ComputePartialFrf(l.system, po).values;
 }
 
-void WriteIdentifiedCsv(const std::string& path, const IdentifyResult& r, const IdentifyOptions& o,
-                        const std::vector<std::vector<cd>>& model) {
-  const int Z = o.max_order - o.min_order + 1;
+// One output's estimate, with its name and the model's values (--compare; empty without).
+struct OutputEstimate {
+  std::string name;
+  IdentifyOptions options;
+  IdentifyResult result;
+  std::vector<std::vector<cd>> model;
+};
+
+void WriteIdentifiedCsv(const std::string& path, const std::vector<OutputEstimate>& estimates) {
   std::ofstream out(path);
   out.precision(12);
-  out << "f_exc_hz,z,re,im,abs,phase_deg,bound_95" << (model.empty() ? "" : ",model_re,model_im")
-      << "\n";
-  for (size_t f = 0; f < r.frequencies.size(); ++f)
-    for (int z = 0; z < Z; ++z) {
-      const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
-      out << r.frequencies[f].excitation_hz << "," << z + o.min_order << "," << h.real() << ","
-          << h.imag() << "," << std::abs(h) << "," << PhaseDeg(h.real(), h.imag()) << ","
-          << r.frequencies[f].bound[static_cast<size_t>(z)];
-      if (!model.empty())
-        out << "," << model[f][static_cast<size_t>(z)].real() << ","
-            << model[f][static_cast<size_t>(z)].imag();
-      out << "\n";
-    }
+  out << "output,f_exc_hz,z,re,im,abs,phase_deg,bound_95"
+      << (estimates.front().model.empty() ? "" : ",model_re,model_im") << "\n";
+  for (const auto& [name, o, r, model] : estimates)
+    for (size_t f = 0; f < r.frequencies.size(); ++f)
+      for (int z = 0; z <= o.max_order - o.min_order; ++z) {
+        const cd h = r.frequencies[f].h[static_cast<size_t>(z)];
+        out << name << "," << r.frequencies[f].excitation_hz << "," << z + o.min_order << ","
+            << h.real() << "," << h.imag() << "," << std::abs(h) << ","
+            << PhaseDeg(h.real(), h.imag()) << ","
+            << r.frequencies[f].bound[static_cast<size_t>(z)];
+        if (!model.empty())
+          out << "," << model[f][static_cast<size_t>(z)].real() << ","
+              << model[f][static_cast<size_t>(z)].imag();
+        out << "\n";
+      }
   if (!out) throw InputError("cannot write '" + path + "'");
+}
+
+// "+2", "0", "-1": an order as UFF ID lines name it.
+std::string SignedOrder(int z) { return (z > 0 ? "+" : "") + std::to_string(z); }
+
+// Per output and order, H_z as a complex FRF (function type 4) against the excitation frequency
+// and its 95 % bound as a real function (type 0); the order in record 6's sequence field.
+// Estimates that are NaN (not separable, under-determined) are left out of their function.
+void WriteIdentifiedUff(const std::string& path, const TimeData& data,
+                        const std::vector<OutputEstimate>& estimates, bool binary) {
+  std::vector<Uff58Function> functions;
+  for (const auto& [name, o, r, model] : estimates)
+    for (int z = o.min_order; z <= o.max_order; ++z) {
+      Uff58Function h, bound;
+      h.function_type = 4;
+      h.description =
+          "H_" + SignedOrder(z) + " " + name + "/" + data.input_names[static_cast<size_t>(o.input)];
+      h.id2 = "partial FRF of order z = " + SignedOrder(z) + " from time data (ltp identify)";
+      h.sequence = z;
+      h.response_name = name;
+      h.response_node = o.output + 1;
+      h.reference_name = data.input_names[static_cast<size_t>(o.input)];
+      h.reference_node = o.input + 1;
+      h.abscissa_type = 18;
+      h.abscissa_label = "frequency";
+      h.abscissa_unit = "Hz";
+      bound = h;
+      bound.function_type = 0;
+      bound.description = "bound95 " + h.description;
+      bound.id2 = "95 % bound on |error| of " + h.description;
+      bound.x.clear();
+      for (const IdentifiedFrequency& f : r.frequencies) {
+        const cd v = f.h[static_cast<size_t>(z - o.min_order)];
+        const double b = f.bound[static_cast<size_t>(z - o.min_order)];
+        if (!std::isfinite(std::abs(v))) continue;
+        h.x.push_back(f.excitation_hz);
+        h.complex.push_back(v);
+        if (!std::isfinite(b)) continue;
+        bound.x.push_back(f.excitation_hz);
+        bound.real.push_back(b);
+      }
+      if (!h.x.empty()) functions.push_back(h);
+      if (!bound.x.empty()) functions.push_back(bound);
+    }
+  if (functions.empty()) throw InputError("--uff: no estimate has a value to write");
+  WriteUff58(path, functions, binary);
+}
+
+// FILE.svg for one output; FILE-NAME.svg per output when there are several.
+std::string PerOutputFile(const std::string& file, const std::string& output, bool several) {
+  if (!several) return file;
+  const std::filesystem::path p(file);
+  return (p.parent_path() / (p.stem().string() + "-" + output + p.extension().string())).string();
 }
 
 json IdentifiedJson(const std::string& name, const std::string& method, const TimeData& data,
@@ -335,6 +460,7 @@ json IdentifiedJson(const std::string& name, const std::string& method, const Ti
               {"period_s", data.period},
               {"input", o.input},
               {"output", o.output},
+              {"output_name", data.output_names[static_cast<size_t>(o.output)]},
               {"records", data.records.size()},
               {"frequencies", freqs},
               {"diagnostics", r.diagnostics}};
@@ -356,8 +482,9 @@ void PrintIdentified(const std::string& name, const std::string& method, bool br
                           " records per response line, §4.2): " +
                           std::to_string(r.frequencies.size()) + " excited frequencies"
                     : " (step-sine, eq. 47): " + std::to_string(r.frequencies.size()) + " records")
-            << ", T = " << Num(data.period, 10) << " s, output " << o.output << " / input "
-            << o.input << "\n"
+            << ", T = " << Num(data.period, 10) << " s, output "
+            << data.output_names[static_cast<size_t>(o.output)] << " / input "
+            << data.input_names[static_cast<size_t>(o.input)] << "\n"
             << (speeds ? "  rotor phase from --" +
                              std::string(args.tacho.empty() ? "angle" : "tacho") + ": speed " +
                              Num(speeds->min_speed, 6) + " … " + Num(speeds->max_speed, 6) +
@@ -403,32 +530,56 @@ int RunIdentify(const IdentifyArgs& args) {
   for (size_t f = 1; f < args.files.size(); ++f) name += (f == 1 ? ", " : ", ") + args.files[f];
   const std::optional<MeasuredSpeeds> speeds = MeasureAngles(args, data);
   std::pair<int, int> plotted;
-  const IdentifyOptions o = IdentifyOptionsFrom(args, data, &plotted);
+  const IdentifyOptions options = IdentifyOptionsFrom(args, data, &plotted);
   // auto: broadband when every record is (excitation_hz = 0, as ltp simulate writes them).
   // DAQ files write no frequency: step-sine records whose input says it.
   bool broadband = ltp_format;
   for (const TimeRecord& rec : data.records) broadband = broadband && rec.excitation_hz == 0;
   const std::string method =
       args.method == "auto" ? (broadband ? "broadband" : "stepsine") : args.method;
-  const IdentifyResult r =
-      method == "broadband" ? IdentifyBroadband(data, o) : IdentifyStepSine(data, o);
-  const std::vector<std::vector<cd>> model = ModelValues(args, data, speeds.has_value(), o, r);
-  if (!args.csv.empty()) WriteIdentifiedCsv(args.csv, r, o, model);
-  if (!args.plot.empty())
-    PlotIdentified(args.plot, r, model, "Partial FRFs from time data: " + name, method, plotted);
-  if (!args.convergence.empty()) {
-    if (method != "broadband")
-      throw InputError("--convergence: needs broadband records (it adds them one by one)");
-    PlotConvergence(args.convergence, data, o, model);
+  if (!args.convergence.empty() && method != "broadband")
+    throw InputError("--convergence: needs broadband records (it adds them one by one)");
+  const ChannelDelays delays = ParseDelays(args, data, options);
+  std::vector<OutputEstimate> estimates;
+  for (const int output : OutputIndices(args, data, ltp_format)) {
+    OutputEstimate e{data.output_names[static_cast<size_t>(output)], options, {}, {}};
+    e.options.output = output;
+    e.options.input_delay = delays.input - delays.angle;
+    e.options.output_delay =
+        (delays.outputs.count(e.name) ? delays.outputs.at(e.name) : 0.0) - delays.angle;
+    e.result = method == "broadband" ? IdentifyBroadband(data, e.options)
+                                     : IdentifyStepSine(data, e.options);
+    e.model = ModelValues(args, data, speeds.has_value(), e.options, e.result);
+    estimates.push_back(std::move(e));
+  }
+  const bool several = estimates.size() > 1;
+  std::vector<std::string> written;
+  if (!args.csv.empty()) WriteIdentifiedCsv(args.csv, estimates);
+  if (!args.csv.empty()) written.push_back(args.csv);
+  if (!args.uff.empty()) WriteIdentifiedUff(args.uff, data, estimates, args.binary);
+  if (!args.uff.empty()) written.push_back(args.uff);
+  for (const OutputEstimate& e : estimates) {
+    if (!args.plot.empty()) {
+      written.push_back(PerOutputFile(args.plot, e.name, several));
+      PlotIdentified(written.back(), e.result, e.model,
+                     "Partial FRFs from time data: " + name + (several ? ", " + e.name : ""),
+                     method, plotted);
+    }
+    if (!args.convergence.empty()) {
+      written.push_back(PerOutputFile(args.convergence, e.name, several));
+      PlotConvergence(written.back(), data, e.options, e.model);
+    }
   }
   if (args.json) {
-    std::cout << IdentifiedJson(name, method, data, o, r, model, speeds).dump(2) << "\n";
+    json out = json::array();
+    for (const OutputEstimate& e : estimates)
+      out.push_back(IdentifiedJson(name, method, data, e.options, e.result, e.model, speeds));
+    std::cout << (several ? out : out[0]).dump(2) << "\n";
     return 0;
   }
-  PrintIdentified(name, method, broadband, args, data, o, r, model, speeds);
-  if (!args.csv.empty()) std::cout << "  wrote " << args.csv << "\n";
-  if (!args.plot.empty()) std::cout << "  wrote " << args.plot << "\n";
-  if (!args.convergence.empty()) std::cout << "  wrote " << args.convergence << "\n";
+  for (const OutputEstimate& e : estimates)
+    PrintIdentified(name, method, broadband, args, data, e.options, e.result, e.model, speeds);
+  for (const std::string& file : written) std::cout << "  wrote " << file << "\n";
   return 0;
 }
 
@@ -464,12 +615,22 @@ Command AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--angle", args.angle,
                   "aux: channel of an encoder giving the phase in rad (wrapped or not)");
   cmd->add_option("--input", args.input, "input (index or name)")->capture_default_str();
-  cmd->add_option("--output", args.output, "output (index or name)")->capture_default_str();
+  cmd->add_option("--delay", args.delays,
+                  "CHANNEL=SECONDS: the channel is sampled this much late (an anti-alias filter's "
+                  "group delay, a DAQ's skew); repeat per channel");
+  cmd->add_option("--output", args.outputs,
+                  "output(s) (index or name; several: --output a,b or repeated), each estimated "
+                  "from the same records")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--orders", args.orders, "ZMIN:ZMAX")->capture_default_str();
   cmd->add_option("--compare", args.compare,
                   "a scene whose model values to set beside the estimates");
   cmd->add_option("--set", args.set, "NAME=VALUE for the --compare scene (as the data were made)");
-  cmd->add_option("--csv", args.csv, "one row per frequency and order");
+  cmd->add_option("--csv", args.csv, "one row per output, frequency and order");
+  cmd->add_option("--uff", args.uff,
+                  "H_z and its 95 % bound per output and order as UFF 58 functions (FILE.uff)");
+  cmd->add_flag("--binary", args.binary, "--uff as binary dataset 58b");
   cmd->add_option("--plot", args.plot,
                   "|H_z| with 95 % bounds (and the model) against frequency (FILE.svg|.png)");
   cmd->add_option("--plot-orders", args.plot_orders,

@@ -13,6 +13,7 @@
 #include "ltp/htf/simulate.h"
 #include "scene_args.h"
 #include "time_data_csv.h"
+#include "uff58.h"
 
 namespace ltp::cli {
 
@@ -34,6 +35,7 @@ struct SimulateArgs {
   std::uint64_t seed = SimulateOptions{}.seed;
   int records = SimulateOptions{}.records;
   std::string out;
+  bool binary = false;  ///< UFF output as 58b
   bool json = false;
 };
 
@@ -107,7 +109,19 @@ int RunSimulate(const SimulateArgs& args) {
                  Num(100 * o.speed_ramp) + " % per record"
            : "") +
       (o.tacho ? ", tacho pulse rising through mid-level at phase 0" : "");
-  WriteTimeDataCsv(args.out, r.data, comment);
+  std::vector<std::string> notes = r.diagnostics;
+  if (IsUffName(args.out)) {
+    // UFF keeps 7 digits of the time axis: a rig's tacho makes identification independent of it.
+    const double rounding = WriteTimeDataUff(args.out, r.data, comment, args.binary);
+    if (rounding > 1e-12 * std::abs(r.data.records.back().time.back()) && !o.tacho)
+      notes.push_back("the UFF time axis keeps 7 digits: sample times moved by up to " +
+                      Num(rounding, 2) +
+                      " s, which shifts the phase of H_z (z ≠ 0) against "
+                      "2πt/T; record a tacho (--tacho) and identify with it, as on a rig");
+  } else {
+    if (args.binary) throw InputError("--binary: only UFF files (.uff, .unv) have a binary form");
+    WriteTimeDataCsv(args.out, r.data, comment);
+  }
   size_t samples = 0;
   for (const TimeRecord& rec : r.data.records) samples += rec.time.size();
   if (args.json) {
@@ -123,7 +137,7 @@ int RunSimulate(const SimulateArgs& args) {
                       {"settle_time_s", r.settle_time},
                       {"max_real_exponent", JsonNumber(r.max_real_exponent)},
                       {"out", args.out},
-                      {"diagnostics", r.diagnostics}}
+                      {"diagnostics", notes}}
                      .dump(2)
               << "\n";
     return 0;
@@ -134,7 +148,7 @@ int RunSimulate(const SimulateArgs& args) {
             << " samples per period, T = " << Num(r.data.period, 10) << " s), each after "
             << Num(r.settle_time, 6) << " s of transient (slowest exponent "
             << Num(r.max_real_exponent, 4) << " 1/s)\n";
-  for (const std::string& d : r.diagnostics) std::cout << "  note: " << d << "\n";
+  for (const std::string& d : notes) std::cout << "  note: " << d << "\n";
   std::cout << "  wrote " << args.out << " (" << samples << " rows)\n";
   return 0;
 }
@@ -174,7 +188,10 @@ Command AddSimulateCommand(CLI::App& app) {
                 "step-sine: write a once-per-period tacho column aux:tacho (for identify --tacho)");
   cmd->add_option("--seed", args.seed, "noise (and multisine phase) generator seed")
       ->capture_default_str();
-  cmd->add_option("--out", args.out, "the CSV file to write")->required();
+  cmd->add_option("--out", args.out,
+                  "the file to write: ltp's time-data CSV, or UFF 58 time records (.uff, .unv)")
+      ->required();
+  cmd->add_flag("--binary", args.binary, "UFF as binary dataset 58b (full precision, smaller)");
   cmd->add_flag("--json", args.json, "one JSON summary on stdout");
   return {cmd, [] { return RunSimulate(args); }};
 }

@@ -15,6 +15,7 @@
 #include "ltp/htf/identify.h"
 #include "ltp/htf/rotor_angle.h"
 #include "time_data_csv.h"
+#include "uff58.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::string path = "/tmp/ltp-fuzz-time-data-" + std::to_string(getpid()) + ".csv";
@@ -27,10 +28,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const bool ltp_format = ltp::cli::IsLtpTimeData(path);
     if (ltp_format) {
       d = ltp::cli::ReadTimeDataCsv(path, 0, false);
+    } else if (ltp::cli::IsUffFile(path)) {
+      const std::vector<ltp::cli::ChannelTable> t = ltp::cli::ReadUffTimeRecords(path);
+      if (t.front().names.size() < 2) return;
+      d = ltp::cli::TimeDataFromTables(t, "0", {"1"}, 0);
     } else {
       const ltp::cli::ChannelTable t = ltp::cli::ReadDaqCsv(path, 100);
       if (t.names.size() < 2) return;
-      d = ltp::cli::TimeDataFromTables({t}, "0", "1", 0);
+      d = ltp::cli::TimeDataFromTables({t}, "0", {"1"}, 0);
     }
     if (!d.records.empty() && d.records[0].auxiliary.cols() > 0 && d.period == 0)
       ltp::SetMeasuredAngles(d, ltp::AngleChannel{});

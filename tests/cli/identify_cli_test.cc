@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <complex>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
@@ -16,6 +19,7 @@
 
 #include "support/ltp_cli.h"
 #include "support/rig.h"
+#include "uff58.h"
 
 namespace {
 
@@ -304,6 +308,247 @@ TEST(IdentifyCli, DaqFilesAreRecordsAndTheirFrequenciesComeFromTheInput) {
   const auto no_period = RunLtp("identify " + files[0] + " --input Force --output Accel");
   EXPECT_EQ(no_period.code, 2);
   EXPECT_NE(no_period.err.find("--period"), std::string::npos) << no_period.err;
+}
+
+// UFF 58 as the format's description lays it out (written here field by field, not by ltp's
+// writer): records 1–11 of each function, then record 12's values; the rig's two step-sine
+// records, three channels each, in one file (a channel name met again starts the next record).
+// `binary`: dataset 58b with big-endian single-precision floats; else ASCII 4E20.12 (case 5)
+// with Windows line ends and a dataset 151 (a header ltp skips) in front.
+std::string RigUff(const ltp::testing::Rig& rig, const double (&truth_hz)[2], bool binary) {
+  const std::string path = Tmp(binary ? "rig-b.uff" : "rig-a.uff");
+  std::ofstream out(path, std::ios::binary);
+  const std::string eol = binary ? "\n" : "\r\n";
+  char line[128];
+  if (!binary)
+    out << "    -1" << eol << "   151" << eol << "rig test" << eol << "NONE" << eol << "ltp" << eol
+        << "27-Nov-26 10:00:00" << eol << "    -1" << eol;
+  const double dt = rig.model_period / rig.samples_per_period;  // 3.125E-02: exact in E13.5
+  for (const double f : truth_hz) {
+    const ltp::TimeRecord r = rig.Record(f, 0);
+    const Eigen::Index n = r.inputs.rows();
+    const std::vector<std::pair<std::string, Eigen::VectorXd>> channels = {
+        {"Force", r.inputs.col(0)}, {"Accel", r.outputs.col(0)}, {"Tacho", r.auxiliary.col(0)}};
+    for (const auto& [name, v] : channels) {
+      out << "    -1" << eol;
+      if (binary)
+        std::snprintf(line, sizeof line, "%6d%c%6d%6d%12d%12ld%6d%6d%12d%12d", 58, 'b', 2, 2, 11,
+                      4 * static_cast<long>(n), 0, 0, 0, 0);
+      else
+        std::snprintf(line, sizeof line, "%6d", 58);
+      out << line << eol << name << eol << "NONE" << eol << "NONE" << eol << "NONE" << eol << "NONE"
+          << eol;
+      std::snprintf(line, sizeof line, "%5d%10d%5d%10d %-10s%10d%4d %-10s%10d%4d", 1, 0, 0, 0,
+                    name.c_str(), 1, 3, "NONE", 0, 0);
+      out << line << eol;
+      std::snprintf(line, sizeof line, "%10d%10ld%10d%13.5E%13.5E%13.5E", binary ? 2 : 4,
+                    static_cast<long>(n), 1, 0.0, dt, 0.0);
+      out << line << eol;
+      for (const char* axis : {"17", "12", "0", "0"}) {
+        std::snprintf(line, sizeof line, "%10s%5d%5d%5d %-20s %-20s", axis, 0, 0, 0, "NONE",
+                      "NONE");
+        out << line << eol;
+      }
+      if (binary) {
+        for (Eigen::Index k = 0; k < n; ++k) {
+          const float x = static_cast<float>(v(k));
+          unsigned char b[4];
+          std::memcpy(b, &x, 4);
+          std::reverse(b, b + 4);  // this machine is little-endian (x86, ARM as Debian runs it)
+          out.write(reinterpret_cast<const char*>(b), 4);
+        }
+      } else {
+        for (Eigen::Index k = 0; k < n; ++k) {
+          std::snprintf(line, sizeof line, "%20.12E", v(k));
+          out << line << ((k % 4 == 3 || k + 1 == n) ? eol : "");
+        }
+      }
+      out << "    -1" << eol;
+    }
+  }
+  return path;
+}
+
+// The rig's records from UFF files written by the format's description: ASCII doubles give the
+// closed form as a CSV does (1e-6 of |H_0|); big-endian floats carry 7 digits, and the
+// estimates stay within twice their 95 % bounds and 1e-5 of |H_0|.
+TEST(IdentifyCli, UffFilesAsTheFormatDescribesThemAreRead) {
+  const ltp::testing::Rig rig;
+  const double truth_hz[] = {0.1373, 0.6121};
+  const double pulse_deg = rig.PulseAngle() * 180 / std::numbers::pi;
+  const std::string options = " --input Force --output Accel --tacho Tacho --tacho-angle " +
+                              std::to_string(pulse_deg) + " --json";
+  const auto ascii = RunLtp("identify " + RigUff(rig, truth_hz, false) + options);
+  ASSERT_EQ(ascii.code, 0) << ascii.err;
+  ExpectTheRigsPartialFrfs(rig, json::parse(ascii.out), truth_hz);
+  const auto floats = RunLtp("identify " + RigUff(rig, truth_hz, true) + options);
+  ASSERT_EQ(floats.code, 0) << floats.err;
+  const json j = json::parse(floats.out);
+  ASSERT_EQ(j["frequencies"].size(), 2u);
+  for (size_t f = 0; f < 2; ++f) {
+    const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
+    for (size_t z = 0; z < 5; ++z) {
+      const json& e = j["frequencies"][f]["H"][z];
+      const double error =
+          std::abs(std::complex<double>(e["re"].get<double>(), e["im"].get<double>()) - truth[z]);
+      // The rounding is noise to the fit: its 95 % bounds are of the error's size.
+      EXPECT_LT(error, 2 * e["bound_95"].get<double>()) << f << " z=" << int(z) - 2;
+      EXPECT_LT(error, 1e-5 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
+    }
+  }
+}
+
+// ltp's own UFF: simulate writes time records (ASCII and 58b) with a tacho, identify reads
+// them (as a rig's) and writes H_z and its bounds as UFF; read back, the file holds the JSON's
+// numbers (frequencies to the 7 digits of the abscissa field, values to 13). Reference for
+// the estimates: the model's partial FRFs (--compare, routes of ltp pfrf).
+TEST(IdentifyCli, UffRoundTripsThroughSimulateAndIdentify) {
+  for (const bool binary : {false, true}) {
+    const std::string records = Tmp(binary ? "sim-b.uff" : "sim-a.uff");
+    const auto sim = RunLtp("simulate " + kScene +
+                            " --excitation stepsine:0.05:0.45:0.1 --periods 16 --tacho --out " +
+                            records + (binary ? " --binary" : ""));
+    ASSERT_EQ(sim.code, 0) << sim.err;
+    const std::string h_file = Tmp(binary ? "h-b.uff" : "h-a.uff");
+    const auto id = RunLtp("identify " + records +
+                           " --input u --output y --tacho tacho --period 3.141592653589793 "
+                           "--orders -1:1 --compare " +
+                           kScene + " --json --uff " + h_file + (binary ? " --binary" : ""));
+    ASSERT_EQ(id.code, 0) << id.err;
+    const json j = json::parse(id.out);
+    ASSERT_EQ(j["frequencies"].size(), 5u);
+    std::map<std::pair<int, long>, std::complex<double>> estimates;  // (z, frequency in 1e-7 Hz)
+    for (const json& f : j["frequencies"])
+      for (const json& h : f["H"]) {
+        const std::complex<double> v(h["re"].get<double>(), h["im"].get<double>());
+        const std::complex<double> m(h["model"][0].get<double>(), h["model"][1].get<double>());
+        // The 7-digit time step moves the frequencies by ~1e-7: H_z with them.
+        EXPECT_LT(std::abs(v - m), 2e-6) << f["excitation_hz"] << " z=" << h["z"];
+        estimates[{h["z"].get<int>(), std::lround(f["excitation_hz"].get<double>() * 1e7)}] = v;
+      }
+    const std::vector<ltp::cli::Uff58Function> read = ltp::cli::ReadUff58(h_file);
+    ASSERT_EQ(read.size(), 6u);  // H_z and its bound, z = −1, 0, 1
+    for (const ltp::cli::Uff58Function& fn : read) {
+      if (fn.function_type != 4) continue;
+      EXPECT_EQ(fn.response_name, "y");
+      EXPECT_EQ(fn.reference_name, "u");
+      ASSERT_EQ(fn.complex.size(), 5u);
+      for (size_t k = 0; k < 5; ++k) {
+        const auto it = estimates.find({fn.sequence, std::lround(fn.x[k] * 1e7)});
+        ASSERT_NE(it, estimates.end()) << fn.description << " " << fn.x[k];
+        EXPECT_LT(std::abs(fn.complex[k] - it->second), 1e-11 * std::abs(it->second));
+      }
+    }
+  }
+}
+
+// Several outputs in one run (the Jeffcott rotor's x and y) give what one run per output gives;
+// a delayed output is put back by --delay (multisine records repeat over their length, so a
+// circular shift is the exact delayed record; reference: the model's partial FRFs).
+TEST(IdentifyCli, SeveralOutputsAndAChannelDelay) {
+  const std::string jeff = "jeffcott --set c=0.1 --set Omega=0.5";
+  const std::string csv = Tmp("identify_xy.csv");
+  ASSERT_EQ(RunLtp("simulate " + jeff +
+                   " --excitation multisine:0.05:0.45:0.1 --records 8 --periods 8 --out " + csv)
+                .code,
+            0);
+  const auto both = RunLtp("identify " + csv + " --output 1,0 --orders -2:2 --json");
+  ASSERT_EQ(both.code, 0) << both.err;
+  const json j = json::parse(both.out);
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 2u);
+  for (int k : {0, 1}) {
+    const auto one =
+        RunLtp("identify " + csv + " --output " + std::to_string(1 - k) + " --orders -2:2 --json");
+    ASSERT_EQ(one.code, 0) << one.err;
+    EXPECT_EQ(json::parse(one.out), j[static_cast<size_t>(k)]);
+  }
+  // Output 1 sampled 3 steps late.
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(csv);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  const size_t header =
+      std::find_if(lines.begin(), lines.end(), [](const auto& l) { return l[0] == 'r'; }) -
+      lines.begin();
+  std::vector<std::vector<std::string>> rows;
+  for (size_t i = header + 1; i < lines.size(); ++i) {
+    std::vector<std::string> cells;
+    std::stringstream ss(lines[i]);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  const size_t per_record = rows.size() / 8, column = rows[0].size() - 1;  // the last out:
+  std::ofstream out(csv);
+  for (size_t i = 0; i <= header; ++i) out << lines[i] << "\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const size_t start = i / per_record * per_record;
+    std::vector<std::string> row = rows[i];
+    row[column] = rows[start + (i - start + per_record - 3) % per_record][column];
+    for (size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << row[c];
+    out << "\n";
+  }
+  out.close();
+  const double dt = std::stod(rows[1][2]) - std::stod(rows[0][2]);
+  const std::string name = json::parse(both.out)[0]["output_name"];
+  const auto error = [&](const std::string& extra) {
+    const auto r = RunLtp("identify " + csv + " --output " + name + " --orders -2:2 --compare " +
+                          jeff + " --json" + extra);
+    EXPECT_EQ(r.code, 0) << r.err;
+    double worst = 0;
+    const json parsed = json::parse(r.out);
+    for (const json& f : parsed["frequencies"])
+      for (const json& h : f["H"])
+        worst = std::max(worst, std::hypot(h["re"].get<double>() - h["model"][0].get<double>(),
+                                           h["im"].get<double>() - h["model"][1].get<double>()));
+    return worst;
+  };
+  EXPECT_GT(error(""), 1e-2);
+  std::ostringstream delay;
+  delay.precision(17);
+  delay << " --delay " << name << "=" << 3 * dt;
+  EXPECT_LT(error(delay.str()), 1e-6);
+  const auto unknown = RunLtp("identify " + csv + " --delay nope=1e-3");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(unknown.err.find("neither the input, an output"), std::string::npos) << unknown.err;
+}
+
+// Broken UFF files get one line naming what is wrong, never a crash or a hang.
+TEST(IdentifyCli, BrokenUffFilesGetOneClearLine) {
+  const ltp::testing::Rig rig;
+  const double truth_hz[] = {0.1373, 0.6121};
+  std::string text;
+  {
+    std::ifstream in(RigUff(rig, truth_hz, false), std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::string binary;
+  {
+    std::ifstream in(RigUff(rig, truth_hz, true), std::ios::binary);
+    binary.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const auto run = [&](const std::string& content) {
+    const std::string path = Tmp("broken.uff");
+    std::ofstream(path, std::ios::binary) << content;
+    return RunLtp("identify " + path + " --input Force --output Accel --tacho Tacho");
+  };
+  const auto expect = [](const test::LtpRun& r, const std::string& words) {
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+  };
+  expect(run(text.substr(0, text.size() / 3)), "the file ends inside");
+  expect(run(binary.substr(0, binary.size() / 3 + 500)), "bytes, the file holds");
+  std::string wrong_type = text;
+  wrong_type.replace(wrong_type.find("         4      "), 10, "         9");
+  expect(run(wrong_type), "ordinate data type 9");
+  std::string frf = text;
+  frf.replace(frf.find("    1         0    0"), 5, "    4");
+  expect(run(frf), "is not a time record");
+  expect(run("    -1\r\n   151\r\nonly a header\r\n    -1\r\n"), "no dataset 58");
+  std::string letters = text;
+  letters.replace(letters.find("E-0", letters.find("    17 ") + 500), 3, "XYZ");
+  expect(run(letters), "is not a number");
 }
 
 }  // namespace
