@@ -174,7 +174,7 @@ void PlotIdentified(const std::string& file, const IdentifyResult& r,
   const double pad = high > low ? 0.02 * (high - low) : 0.05 * std::max(high, 1e-9);
   g << "set multiplot layout 2,1 title \"" << GnuplotEscape(title) << "\" font ',12'\n"
     << "set xrange [" << low - pad << ":" << high + pad << "]\n"
-    << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 34\n"
+    << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 42\n"
     << "set ylabel '|H_z|'\nset logscale y\nset format y '10^{%L}'\nset format x ''\n"
     << "set bmargin 1\n";
   g << "plot $U using 1:2 with points pt 7 ps 0.25 lc rgb '#c0c0c0' title 'within the 95 % bound "
