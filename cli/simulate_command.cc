@@ -31,6 +31,7 @@ struct SimulateArgs {
   double noise_db = SimulateOptions{}.noise_snr_db;
   double input_noise_db = SimulateOptions{}.input_noise_snr_db;
   double speed_offset_pct = 0, speed_ramp_pct = 0;
+  double cubic = 0;
   bool tacho = false;
   std::uint64_t seed = SimulateOptions{}.seed;
   int records = SimulateOptions{}.records;
@@ -91,6 +92,7 @@ int RunSimulate(const SimulateArgs& args) {
   o.speed_offset = args.speed_offset_pct / 100;
   o.speed_ramp = args.speed_ramp_pct / 100;
   o.tacho = args.tacho;
+  o.cubic_stiffness = args.cubic;
   o.seed = args.seed;
   const SimulationResult r =
       kind == "step-sine" ? SimulateStepSine(l.system, o) : SimulateMultisine(l.system, o);
@@ -108,7 +110,9 @@ int RunSimulate(const SimulateArgs& args) {
            ? ", rotor " + Num(100 * o.speed_offset) + " % off the model's speed, ramp " +
                  Num(100 * o.speed_ramp) + " % per record"
            : "") +
-      (o.tacho ? ", tacho pulse rising through mid-level at phase 0" : "");
+      (o.tacho ? ", tacho pulse rising through mid-level at phase 0" : "") +
+      (o.cubic_stiffness > 0 ? ", cubic spring " + Num(o.cubic_stiffness) + " y^3 on the input"
+                             : "");
   std::vector<std::string> notes = r.diagnostics;
   if (IsUffName(args.out)) {
     // UFF keeps 7 digits of the time axis: a rig's tacho makes identification independent of it.
@@ -186,6 +190,8 @@ Command AddSimulateCommand(CLI::App& app) {
                   "step-sine: and its speed rises by this many % over each record");
   cmd->add_flag("--tacho", args.tacho,
                 "step-sine: write a once-per-period tacho column aux:tacho (for identify --tacho)");
+  cmd->add_option("--cubic", args.cubic,
+                  "K3: a hardening cubic spring between output 0 and the input (force u − K3·y³)");
   cmd->add_option("--seed", args.seed, "noise (and multisine phase) generator seed")
       ->capture_default_str();
   cmd->add_option("--out", args.out,

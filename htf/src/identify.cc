@@ -77,9 +77,9 @@ struct Line {
 };
 
 // The lines a record is fitted with: the requested orders first, then what else a rig's
-// response holds — further orders, the synchronous orders m·Ωp (unbalance), 2ω and 3ω
-// (nonlinearity) — each only below 0.9 × Nyquist and 1.5 bins from every line already taken,
-// so the extra lines keep energy out of the noise estimate without making a requested line
+// response holds — further orders, the synchronous orders m·Ωp (unbalance), 2ω and 3ω and
+// their orders (nonlinearity) — each only below 0.9 × Nyquist and 1.5 bins from every line already
+// taken, so the extra lines keep energy out of the noise estimate without making a requested line
 // undetermined.
 std::vector<Line> LinesToFit(double omega, double speed, double nyquist, double bin,
                              const IdentifyOptions& o) {
@@ -98,7 +98,10 @@ std::vector<Line> LinesToFit(double omega, double speed, double nyquist, double 
     consider(1, o.max_order + extra);
     consider(1, o.min_order - extra);
   }
-  for (double k : {2.0, 3.0}) consider(k, 0);
+  // A nonlinearity's harmonics are modulated by the system too: kω + zθ.
+  for (double k : {2.0, 3.0})
+    for (int z = 0; std::abs(z) <= std::max(-o.min_order, o.max_order); z = z > 0 ? -z : 1 - z)
+      consider(k, z);
   return lines;
 }
 
@@ -398,7 +401,8 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
                             std::to_string(data.records.size()) +
                             " records respond at 2 or 3 times the excitation frequency above the "
                             "noise: the system is not linear at this amplitude (or the output "
-                            "clips); H_z is its linear part at best — excite less");
+                            "clips); H_z is its linear part at best and the bounds do not cover "
+                            "what the nonlinearity changes — excite less");
   if (extra.off_speed > 0)
     r.diagnostics.push_back(
         "in " + std::to_string(extra.off_speed) + " of " + std::to_string(data.records.size()) +

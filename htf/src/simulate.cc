@@ -91,14 +91,21 @@ struct ForcedRealRhs {
   int input;
   const Excitation& u;
   RigPhase phase;
-  mutable Eigen::MatrixXd a, b;
+  double cubic_stiffness;
+  mutable Eigen::MatrixXd a, b, c;
   void operator()(const State& x, State& dxdt, double t) const {
     system.EvalA(phase(t), a);
     system.EvalB(phase(t), b);
     Eigen::Map<const Eigen::VectorXd> xv(x.data(), static_cast<Eigen::Index>(x.size()));
     Eigen::Map<Eigen::VectorXd> dv(dxdt.data(), static_cast<Eigen::Index>(x.size()));
     dv.noalias() = a * xv;
-    dv += b.col(input) * u(t);
+    double force = u(t);
+    if (cubic_stiffness != 0) {
+      system.EvalC(phase(t), c);
+      const double y0 = c.row(0).dot(xv);
+      force -= cubic_stiffness * y0 * y0 * y0;
+    }
+    dv += b.col(input) * force;
   }
 };
 
@@ -200,7 +207,14 @@ TimeRecord SimulateRecord(const PeriodicSystem& system, const SimulateOptions& o
   const RigPhase phase{1 + options.speed_offset,
                        (1 + options.speed_offset) * options.speed_ramp / plan.length,
                        plan.settle_time};
-  ForcedRealRhs rhs{system, options.input, u, phase, Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, m)};
+  ForcedRealRhs rhs{system,
+                    options.input,
+                    u,
+                    phase,
+                    options.cubic_stiffness,
+                    Eigen::MatrixXd(n, n),
+                    Eigen::MatrixXd(n, m),
+                    Eigen::MatrixXd(p, n)};
   const double dt0 = T / options.samples_per_period;
   // The absolute tolerance follows the size of the states, which depends on the system's
   // units (tower-rotor: displacements of 1e-6 m per newton): a pilot over the first period
@@ -296,6 +310,8 @@ void SimulateOptions::Validate() const {
     fail("speed_ramp", MessageNumber(speed_ramp, 10), "within ±0.5 (relative, over a record)");
   if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", MessageNumber(rel_tol, 10), "in (0, 0.01)");
   if (records < 1 || records > 10000) fail("records", std::to_string(records), "in 1..10000");
+  if (!(cubic_stiffness >= 0) || !std::isfinite(cubic_stiffness))  // a softening spring escapes
+    fail("cubic_stiffness", MessageNumber(cubic_stiffness, 10), "finite and >= 0 (hardening)");
 }
 
 SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options) {

@@ -263,6 +263,30 @@ TEST(SimulateRig, ASpeedOffsetWithATachoIdentifiesTheFasterSystem) {
 
 // Seeds K and K + 1 give independent noise (each record's stream hashes seed and record; with
 // seed + record, K + 1's records were K's shifted by one).
+// A hardening cubic spring on the excited DOF (force u − k3·y³): at an amplitude where k3·y³ is
+// a tenth of the linear restoring force the response holds 3ω, which identify names; the
+// linear system's records do not trigger the note.
+TEST(SimulateRig, ACubicSpringIsNamedAsNonlinearity) {
+  const PeriodicSystem system = Mathieu();
+  SimulateOptions s;
+  s.frequencies_hz = {0.13, 0.22};
+  s.periods = 16;
+  IdentifyOptions o;
+  o.min_order = -1;
+  o.max_order = 1;
+  const auto harmonic = [](const IdentifyResult& id) {
+    for (const std::string& d : id.diagnostics)
+      if (d.find("respond at 2 or 3 times the excitation frequency") != std::string::npos)
+        return true;
+    return false;
+  };
+  EXPECT_FALSE(harmonic(IdentifyStepSine(SimulateStepSine(system, s).data, o)));
+  s.cubic_stiffness = 0.2;  // y ≈ 0.5–1: k3·y³ up to 10 % of a·y
+  EXPECT_TRUE(harmonic(IdentifyStepSine(SimulateStepSine(system, s).data, o)));
+  s.cubic_stiffness = -1;
+  EXPECT_THROW(SimulateStepSine(system, s), InputError);
+}
+
 TEST(SimulateRig, NeighbouringSeedsShareNoNoise) {
   SimulateOptions s;
   s.frequencies_hz = {0.05, 0.1, 0.15};

@@ -41,6 +41,12 @@ struct SimulateOptions {
   /// edge rises through mid-level at phase 0 (`ltp identify --tacho tacho`).
   double speed_offset = 0, speed_ramp = 0;
   bool tacho = false;
+  /// A cubic spring between output 0 and the excited input: the input's force is
+  /// u(t) − cubic_stiffness · y0³, y0 = (C x)_0 — collocated when output 0 is the displacement
+  /// where the force acts. 0: the linear system. For planning how large an excitation stays
+  /// linear (`ltp identify` names a response at 2ω or 3ω). Hardening only (≥ 0): a softening
+  /// spring lets the response escape.
+  double cubic_stiffness = 0;
   /// RKF78 tolerance; absolute: rel_tol · 1e-3 · the largest state in a pilot over the first
   /// period (the states' own scale, whatever their units).
   double rel_tol = 1e-10;
