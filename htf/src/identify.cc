@@ -10,6 +10,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "angle_interpolation.h"
+#include "broadband_on_angle.h"
 #include "line_fit.h"
 #include "ltp/core/error.h"
 
@@ -211,23 +212,6 @@ double SpeedChange(const std::vector<double>& time, const std::vector<double>& t
   return std::abs(2 * c(2) / c(1));
 }
 
-// A channel sampled `delay` late holds at t what the system did at t − delay: its lines'
-// times and the system's phase there (exact for θ = 2πt/T; a measured θ interpolated).
-struct DelayedClock {
-  std::vector<double> time, theta;
-};
-DelayedClock Delayed(const std::vector<double>& time, const std::vector<double>& theta,
-                     bool measured, double T, double delay) {
-  if (delay == 0) return {time, theta};
-  DelayedClock c;
-  for (double t : time) {
-    c.time.push_back(t - delay);
-    c.theta.push_back(measured ? internal::InterpolateAngle(time, theta, t - delay)
-                               : kTwoPi * (t - delay) / T);
-  }
-  return c;
-}
-
 IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
                                    size_t index, std::vector<std::string>& diagnostics,
                                    ExtraLines& extra) {
@@ -283,7 +267,8 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
         throw InputError(where + ": a delay of " + MessageNumber(delay, 3) +
                          " s is over 5 % of the record: the measured angle is not extrapolated "
                          "that far; trim the records to the span both channels cover");
-  const DelayedClock out_clock = Delayed(rec.time, theta, !rec.angle.empty(), T, o.output_delay);
+  const internal::DelayedClock out_clock =
+      internal::Delayed(rec.time, theta, !rec.angle.empty(), T, o.output_delay);
   const internal::LineFit out_fit =
       internal::FitLines(y, LinePhases(lines, out_clock.time, out_clock.theta, omega));
   IdentifiedFrequency out;
@@ -475,15 +460,70 @@ std::set<long> ExcitedBins(const std::vector<std::vector<cd>>& u, long N) {
   return excited;
 }
 
+// Broadband records on a measured angle: the excited lines' frequencies and the input's
+// amplitudes there (absolute time, its delay undone), then one fit over all records.
+IdentifyResult OnMeasuredAngle(const TimeData& data, const IdentifyOptions& o,
+                               const std::set<long>& excited, const std::vector<std::vector<cd>>& u,
+                               const std::vector<double>& t0, double L) {
+  const TimeRecord& first = data.records.front();
+  const double nyquist = std::numbers::pi * static_cast<double>(first.time.size() - 1) /
+                         (first.time.back() - first.time.front());
+  double fastest = 0;  // the largest dθ/dt between samples of any record
+  for (const TimeRecord& rec : data.records)
+    for (size_t i = 1; i < rec.time.size(); ++i)
+      fastest = std::max(
+          fastest, std::abs(rec.angle[i] - rec.angle[i - 1]) / (rec.time[i] - rec.time[i - 1]));
+  std::vector<double> omegas;
+  Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(u.size()),
+                              static_cast<Eigen::Index>(excited.size()));
+  for (const long k : excited) {
+    const double omega = kTwoPi * static_cast<double>(k) / L;
+    for (const int z : {o.min_order, o.max_order})
+      if (std::abs(omega + z * fastest) >= nyquist)
+        throw InputError("the line of order " + std::to_string(z) + " of " +
+                         MessageNumber(omega / kTwoPi, 8) +
+                         " Hz reaches the Nyquist frequency at the records' fastest speed: "
+                         "sample faster or ask for fewer orders");
+    for (size_t r = 0; r < u.size(); ++r)
+      amplitudes(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(omegas.size())) =
+          AbsoluteBin(u[r], k, t0[r], L) * std::polar(1.0, omega * o.input_delay);
+    omegas.push_back(omega);
+  }
+  // The input's noise per bin, from the bins it does not excite (DC left out).
+  double noise = 0;
+  long bins = 0;
+  for (const std::vector<cd>& c : u)
+    for (size_t k = 1; 2 * k < c.size(); ++k)
+      if (!excited.count(static_cast<long>(k))) noise += std::norm(c[k]), ++bins;
+  IdentifyResult r = internal::IdentifyBroadbandOnAngle(data, o, omegas, amplitudes,
+                                                        bins > 0 ? noise / bins : 0.0);
+  double offset = 0;
+  for (const IdentifiedFrequency& f : r.frequencies)
+    offset = std::max(offset, std::abs(f.speed * data.period / kTwoPi - 1));
+  if (offset > 1e-6)
+    r.diagnostics.push_back("the measured speed differs from the model's 2π/T by " +
+                            MessageNumber(100 * offset, 3) +
+                            " %: H_z is the rig's at its own speed; compare with the model at "
+                            "that speed");
+  double change = 0;
+  for (const TimeRecord& rec : data.records)
+    change = std::max(change, SpeedChange(rec.time, rec.angle));
+  if (change > 1e-3)
+    r.diagnostics.push_back("the speed changes by up to " + MessageNumber(100 * change, 2) +
+                            " % within a record: H_z moves with it, and each estimate is the "
+                            "average over the records' speeds");
+  return r;
+}
+
 IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options) {
   CheckData(data, options);
+  const bool measured = !data.records.front().angle.empty();
   for (size_t r = 0; r < data.records.size(); ++r) {
     const std::string where = "record " + std::to_string(r + 1);
     RequireUniformSampling(data.records[r], where);  // the DFT needs the grid
-    if (!data.records[r].angle.empty())
-      throw InputError(where +
-                       ": broadband identification assumes the model's constant speed; "
-                       "with a measured angle use step-sine records");
+    if (data.records[r].angle.empty() == measured)
+      throw InputError(where + (measured ? " has no measured angle, record 1 has one"
+                                         : " has a measured angle, record 1 has none"));
   }
   const TimeRecord& first = data.records.front();
   const long N = static_cast<long>(first.time.size());
@@ -491,9 +531,12 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
   const double L = N * dt;
   bool whole = false;
   const long P = WholeNumber(L / data.period, &whole);
-  if (!whole || P < 1)
+  // At the model's speed the response lines sit on bins when the records are whole periods;
+  // on a measured angle they do not anyway (broadband_on_angle.h).
+  if (!measured && (!whole || P < 1))
     throw InputError("the records are " + MessageNumber(L / data.period, 8) +
-                     " periods long; identification needs whole periods");
+                     " periods long; identification needs whole periods (or a measured "
+                     "angle: --tacho/--angle)");
   const long R = static_cast<long>(data.records.size());
   std::vector<std::vector<cd>> u(R), y(R);
   std::vector<double> t0(R);
@@ -519,6 +562,7 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
     return AbsoluteBin(c, k, t, L) * std::polar(1.0, kTwoPi * static_cast<double>(k) * delay / L);
   };
   const std::set<long> excited = ExcitedBins(u, N);
+  if (measured) return OnMeasuredAngle(data, options, excited, u, t0, L);
   for (long k : excited)
     for (int z : {options.min_order, options.max_order})
       if (2 * std::abs(k + z * P) >= N)

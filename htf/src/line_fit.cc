@@ -8,12 +8,21 @@
 namespace ltp::internal {
 
 LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases) {
+  return FitLines(y, phases, Eigen::MatrixXcd());
+}
+
+LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases,
+                 const Eigen::MatrixXcd& gains, const std::vector<RowPerturbation>& perturbations) {
   const Eigen::Index n = y.size(), lines = phases.cols(), p = 1 + 2 * lines;
   Eigen::MatrixXd X(n, p);
   X.col(0).setOnes();
   for (Eigen::Index l = 0; l < lines; ++l) {
-    X.col(1 + 2 * l) = phases.col(l).array().cos();
-    X.col(2 + 2 * l) = phases.col(l).array().sin();
+    // α Re w + β Im w = 2 Re(A w) with w = g e^{jφ} and A = (α − jβ)/2.
+    Eigen::ArrayXcd w =
+        phases.col(l).array().unaryExpr([](double phi) { return std::polar(1.0, phi); });
+    if (gains.size() > 0) w *= gains.col(l).array();
+    X.col(1 + 2 * l) = w.real();
+    X.col(2 + 2 * l) = w.imag();
   }
   // Columns scaled to unit norm, so the rank decision compares directions, not sizes.
   const Eigen::VectorXd scale = X.colwise().norm().transpose().cwiseMax(1e-300);
@@ -28,6 +37,19 @@ LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases) {
   const Eigen::VectorXd coefficients =
       V.leftCols(rank) *
       (s.head(rank).cwiseInverse().asDiagonal() * (svd.matrixU().leftCols(rank).transpose() * y));
+  LineFit fit;
+  for (const RowPerturbation& d : perturbations) {
+    const Eigen::VectorXd change =
+        V.leftCols(rank) *
+        (s.head(rank).cwiseInverse().asDiagonal() *
+         (svd.matrixU().block(d.first, 0, d.values.size(), rank).transpose() * d.values));
+    std::vector<std::complex<double>> response;
+    for (Eigen::Index l = 0; l < lines; ++l)
+      response.emplace_back(change(1 + 2 * l) / scale(1 + 2 * l),
+                            -change(2 + 2 * l) / scale(2 + 2 * l));
+    for (auto& r : response) r /= 2.0;
+    fit.perturbation_response.push_back(std::move(response));
+  }
   Eigen::VectorXd factor(p), undetermined(p);
   for (Eigen::Index i = 0; i < p; ++i) {
     factor(i) =
@@ -35,7 +57,6 @@ LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases) {
         (scale(i) * scale(i));
     undetermined(i) = V.row(i).tail(p - rank).squaredNorm();
   }
-  LineFit fit;
   fit.dof = static_cast<long>(n - rank);
   const double residual = (y - X * coefficients).squaredNorm();
   fit.noise_variance = fit.dof > 0 ? residual / static_cast<double>(fit.dof)

@@ -18,10 +18,27 @@ struct LineFit {
   std::vector<bool> determined;
   double noise_variance = 0;  ///< σ² = |residual|² / (samples − rank)
   long dof = 0;               ///< samples − rank
+  /// δA_l for each perturbation asked for (the fit is linear in y): [perturbation][line].
+  std::vector<std::vector<std::complex<double>>> perturbation_response;
+};
+
+/// A change of y confined to rows first … first + values.size() − 1.
+struct RowPerturbation {
+  Eigen::Index first = 0;
+  Eigen::VectorXd values;
 };
 
 /// `phases` is samples × lines (φ_l(t_n), rad). A constant c is always fitted.
 LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases);
+
+/// The same with a known complex gain per sample and line: y ≈ c + Σ_l (A_l g_l(t_n) e^{jφ_l}
+/// + c.c.) — records stacked whose lines are driven by different measured inputs (g = U_r),
+/// one A_l = H for all. `gains` has the shape of `phases`.
+/// `perturbations`: changes of y whose effect on the A_l is wanted (errors of the gains, say),
+/// answered in LineFit::perturbation_response at the cost of one product each.
+LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases,
+                 const Eigen::MatrixXcd& gains,
+                 const std::vector<RowPerturbation>& perturbations = {});
 
 /// A rate r in lines of phases φ_l(t) = base_l(t) + m_l · r · t, fitted with their amplitudes
 /// by Gauss–Newton from r0 (the column ∂y/∂r = Σ_l m_l t (−a_l sin φ_l + b_l cos φ_l)).

@@ -71,6 +71,18 @@ double InterpolateAngle(const std::vector<double>& tau, const std::vector<double
       tau, [&](long k) { return theta[k]; }, first, first + points - 1, t);
 }
 
+DelayedClock Delayed(const std::vector<double>& time, const std::vector<double>& theta,
+                     bool measured, double T, double delay) {
+  if (delay == 0) return {time, theta};
+  DelayedClock c;
+  for (double t : time) {
+    c.time.push_back(t - delay);
+    c.theta.push_back(measured ? InterpolateAngle(time, theta, t - delay)
+                               : kTwoPi * (t - delay) / T);
+  }
+  return c;
+}
+
 }  // namespace internal
 
 void TachoOptions::Validate() const {

@@ -129,6 +129,7 @@ RecordPlan PlanRecords(const PeriodicSystem& system, const SimulateOptions& opti
   r.data.rotor_speed = system.rotor_speed();
   r.data.input_names = system.labels().inputs;
   r.data.output_names = system.labels().outputs;
+  if (options.tacho) r.data.auxiliary_names = {"tacho"};
   FloquetOptions fo;
   fo.estimate_error = false;
   const FloquetResult floquet = AnalyzeFloquet(system, fo);
@@ -320,7 +321,6 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
   const RecordPlan plan =
       PlanRecords(system, options, static_cast<double>(options.frequencies_hz.size()), r);
   const std::vector<double> grid = GridFrequencies(options, system.period(), r);
-  if (options.tacho) r.data.auxiliary_names = {"tacho"};
   for (size_t k = 0; k < grid.size(); ++k) {
     Excitation u(kTwoPi / plan.length);
     u.Add(std::lround(grid[k] * plan.length), options.amplitude, 0.0);
@@ -337,10 +337,6 @@ SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOp
 
 SimulationResult SimulateMultisine(const PeriodicSystem& system, const SimulateOptions& options) {
   options.Validate();
-  if (options.speed_offset != 0 || options.speed_ramp != 0 || options.tacho)
-    throw InputError(
-        "a rig's speed offset, ramp or tacho is simulated for step-sine tests "
-        "(broadband identification assumes the model's speed)");
   SimulationResult r;
   const RecordPlan plan = PlanRecords(system, options, options.records, r);
   const std::vector<double> grid = GridFrequencies(options, system.period(), r);

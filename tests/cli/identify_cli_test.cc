@@ -551,4 +551,36 @@ TEST(IdentifyCli, BrokenUffFilesGetOneClearLine) {
   expect(run(letters), "is not a number");
 }
 
+// Multisine records with a tacho channel: `--tacho` sends broadband identification to the fit on
+// the measured angle; at the model's speed it meets the model's partial FRFs (routes of ltp
+// pfrf) as the constant-speed route does.
+TEST(IdentifyCli, BroadbandRecordsOnATacho) {
+  const std::string csv = Tmp("identify_ms_tacho.csv");
+  ASSERT_EQ(RunLtp("simulate " + kScene +
+                   " --excitation multisine:0.05:0.45:0.08 --records 12 --periods 16 --tacho "
+                   "--out " +
+                   csv)
+                .code,
+            0);
+  const auto id =
+      RunLtp("identify " + csv + " --tacho tacho --orders -3:3 --compare " + kScene + " --json");
+  ASSERT_EQ(id.code, 0) << id.err;
+  const json j = json::parse(id.out);
+  EXPECT_EQ(j["method"], "broadband");
+  bool said = false;
+  for (const json& d : j["diagnostics"])
+    said =
+        said || d.get<std::string>().find("broadband on the measured angle") != std::string::npos;
+  EXPECT_TRUE(said) << j["diagnostics"];
+  double worst = 0, largest = 0;
+  for (const json& f : j["frequencies"])
+    for (const json& h : f["H"]) {
+      const std::complex<double> v(h["re"].get<double>(), h["im"].get<double>());
+      const std::complex<double> m(h["model"][0].get<double>(), h["model"][1].get<double>());
+      worst = std::max(worst, std::abs(v - m));
+      largest = std::max(largest, std::abs(m));
+    }
+  EXPECT_LT(worst, 1e-6 * largest);
+}
+
 }  // namespace

@@ -58,9 +58,37 @@ struct Rig {
   TimeRecord Record(double f_hz, double written_hz, double input_noise = 0, double output_noise = 0,
                     unsigned seed = 1) const {
     const double w = 2 * std::numbers::pi * f_hz, phi = 0.3;
+    return Response([&](double t) { return std::cos(w * t + phi); }, written_hz, input_noise,
+                    output_noise, seed);
+  }
+
+  /// The record's length as sampled (s): a multisine of frequencies k / RecordLength() repeats
+  /// over it.
+  double RecordLength() const {
+    const double dt = model_period / samples_per_period;
+    return static_cast<double>(std::lround(Length() / dt)) * dt;
+  }
+
+  /// One broadband record: u = Σ_k cos(2π f_k t + φ_k) (excitation_hz 0), noise as Record's.
+  TimeRecord MultisineRecord(const std::vector<double>& f_hz, const std::vector<double>& phases,
+                             double input_noise = 0, double output_noise = 0,
+                             unsigned seed = 1) const {
+    return Response(
+        [&](double t) {
+          double u = 0;
+          for (size_t k = 0; k < f_hz.size(); ++k)
+            u += std::cos(2 * std::numbers::pi * f_hz[k] * t + phases[k]);
+          return u;
+        },
+        0, input_noise, output_noise, seed);
+  }
+
+  /// The response to u(t) (a linear combination of sines: the closed form holds per line).
+  template <class Input>
+  TimeRecord Response(const Input& u, double written_hz, double input_noise, double output_noise,
+                      unsigned seed) const {
     const double dt = model_period / samples_per_period;
     const long n = std::lround(Length() / dt);
-    const auto u = [&](double t) { return std::cos(w * t + phi); };
     const auto rhs = [&](double t, double x) {
       return -a * x + (1 + beta * std::cos(Theta(t))) * u(t);
     };

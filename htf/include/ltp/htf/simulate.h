@@ -34,7 +34,7 @@ struct SimulateOptions {
   /// Noise on the recorded input (the measurement's, not the force's), as noise_snr_db.
   double input_noise_snr_db = std::numeric_limits<double>::infinity();
   std::uint64_t seed = 1;
-  /// A rig's rotor (step-sine): the system's phase runs at (1 + speed_offset) × its own speed,
+  /// A rig's rotor: the system's phase runs at (1 + speed_offset) × its own speed,
   /// and rises by a further speed_ramp over each record (relative); A(t), B, C, D are taken at
   /// that phase — the coefficients' own dependence on the speed (gyroscopic terms) is not
   /// changed. tacho: an auxiliary channel "tacho" with one flat-top pulse per period whose

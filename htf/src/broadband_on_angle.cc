@@ -1,0 +1,113 @@
+#include "broadband_on_angle.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "angle_interpolation.h"
+#include "line_fit.h"
+#include "ltp/core/error.h"
+
+namespace ltp::internal {
+
+IdentifyResult IdentifyBroadbandOnAngle(const TimeData& data, const IdentifyOptions& o,
+                                        const std::vector<double>& omegas,
+                                        const Eigen::MatrixXcd& input_amplitudes,
+                                        double input_bin_variance) {
+  const long K = static_cast<long>(omegas.size()), Z = o.max_order - o.min_order + 1;
+  long rows = 0;
+  for (const TimeRecord& rec : data.records) rows += static_cast<long>(rec.time.size());
+  // The design matrix and its SVD factors: three copies of rows × (1 + 2KZ) doubles.
+  const double cells = static_cast<double>(rows) * static_cast<double>(1 + 2 * K * Z);
+  if (cells > 2.5e7)
+    throw InputError(
+        "broadband identification on a measured angle fits every line and order "
+        "of all records at once: " +
+        std::to_string(K) + " lines × " + std::to_string(Z) + " orders × " + std::to_string(rows) +
+        " samples is " + MessageNumber(cells, 3) +
+        " matrix entries, over 2.5e7 — fewer lines, orders or samples, or "
+        "step-sine records");
+  Eigen::VectorXd y(rows);
+  Eigen::MatrixXd phases(rows, K * Z);
+  Eigen::MatrixXcd gains(rows, K * Z);
+  double turned = 0, elapsed = 0;
+  long row = 0;
+  for (size_t r = 0; r < data.records.size(); ++r) {
+    const TimeRecord& rec = data.records[r];
+    const DelayedClock clock = Delayed(rec.time, rec.angle, true, data.period, o.output_delay);
+    turned += rec.angle.back() - rec.angle.front();
+    elapsed += rec.time.back() - rec.time.front();
+    for (size_t n = 0; n < rec.time.size(); ++n, ++row) {
+      y(row) = rec.outputs(static_cast<Eigen::Index>(n), o.output);
+      for (long k = 0; k < K; ++k)
+        for (long z = 0; z < Z; ++z) {
+          phases(row, k * Z + z) = omegas[static_cast<size_t>(k)] * clock.time[n] +
+                                   static_cast<double>(z + o.min_order) * clock.theta[n];
+          gains(row, k * Z + z) = input_amplitudes(static_cast<Eigen::Index>(r), k);
+        }
+    }
+  }
+  LineFit fit = FitLines(y, phases, gains);
+  // The input's noise, through the same fit: per record and line, the change of the model
+  // that a unit error of U_rk (real, then imaginary) makes, with the estimates in it.
+  std::vector<RowPerturbation> changes;
+  row = 0;
+  for (size_t r = 0; r < data.records.size(); ++r) {
+    const Eigen::Index n = static_cast<Eigen::Index>(data.records[r].time.size());
+    for (long k = 0; k < K; ++k) {
+      Eigen::VectorXcd g = Eigen::VectorXcd::Zero(n);
+      for (long z = 0; z < Z; ++z) {
+        const std::complex<double> h = fit.amplitude[static_cast<size_t>(k * Z + z)];
+        if (!std::isfinite(std::abs(h))) continue;
+        for (Eigen::Index i = 0; i < n; ++i)
+          g(i) += h * std::polar(1.0, phases(row + i, k * Z + z));
+      }
+      changes.push_back({row, 2 * g.real()});
+      changes.push_back({row, -2 * g.imag()});
+    }
+    row += n;
+  }
+  if (input_bin_variance > 0)
+    fit.perturbation_response = FitLines(y, phases, gains, changes).perturbation_response;
+  else
+    fit.perturbation_response.clear();
+  const double bound_factor = std::sqrt(std::log(20.0));  // as identify.cc: 95 % of |error|
+  IdentifyResult result;
+  result.min_order = o.min_order;
+  result.max_order = o.max_order;
+  long undetermined = 0;
+  for (long k = 0; k < K; ++k) {
+    IdentifiedFrequency f;
+    f.excitation_hz = omegas[static_cast<size_t>(k)] / (2 * std::numbers::pi);
+    f.speed = turned / elapsed;
+    f.noise = std::sqrt(fit.noise_variance);
+    for (long z = 0; z < Z; ++z) {
+      const size_t l = static_cast<size_t>(k * Z + z);
+      f.h.push_back(fit.amplitude[l]);
+      f.separable = f.separable && fit.determined[l];
+      undetermined += !fit.determined[l];
+      double variance = fit.variance[l];  // output noise; then the input's, each δU's share
+      for (const auto& response : fit.perturbation_response)
+        variance += input_bin_variance / 2 * std::norm(response[l]);
+      f.bound.push_back(fit.determined[l] && fit.dof > 0 ? bound_factor * std::sqrt(variance)
+                                                         : std::numeric_limits<double>::infinity());
+    }
+    result.frequencies.push_back(std::move(f));
+  }
+  result.diagnostics.push_back(
+      "broadband on the measured angle: one least-squares fit of " + std::to_string(K * Z) +
+      " H_z over the " + std::to_string(data.records.size()) + " records (mean speed " +
+      MessageNumber(turned / elapsed, 7) +
+      " rad/s; 2π/T = " + MessageNumber(2 * std::numbers::pi / data.period, 7) + ")");
+  if (undetermined > 0)
+    result.diagnostics.push_back(std::to_string(undetermined) +
+                                 " H_z are not determined by these records (their lines "
+                                 "coincide in every record): record more records with new "
+                                 "phases; they are left out (NaN)");
+  if (fit.dof == 0)
+    result.diagnostics.push_back("as many unknowns as samples: the bounds are unknown (∞)");
+  return result;
+}
+
+}  // namespace ltp::internal
