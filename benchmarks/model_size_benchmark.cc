@@ -24,7 +24,7 @@
 
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/model_error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 #include "ltp/models/scene_input.h"
 #include "support/isotropic_rotor_lin.h"
 

@@ -4,7 +4,7 @@
 // rel_tol 1e-14; the counters report the error actually reached.
 //
 // BulirschStoer/{ltp,boost}: the Bulirsch–Stoer stepper alone, ltp's allocation-free copy
-// (floquet/src/bulirsch_stoer.h) against the Boost.Odeint stepper it copies, side by side on the
+// (integrate/src/bulirsch_stoer.h) against the Boost.Odeint stepper it copies, side by side on the
 // same 2×2 Mathieu monodromy at rel_tol 1e-10 (identical steps and values: the counters say so).
 //
 //   build/benchmarks/monodromy_benchmark --benchmark_repetitions=5

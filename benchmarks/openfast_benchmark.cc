@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
 #include "ltp/studies/sampled_floquet.h"

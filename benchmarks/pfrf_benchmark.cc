@@ -10,8 +10,8 @@
 
 #include <numbers>
 
-#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/integrate/threads.h"
 
 namespace {
 

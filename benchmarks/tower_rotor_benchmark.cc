@@ -27,9 +27,9 @@
 
 #include "ltp/core/channel.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
 #include "ltp/htf/snapshot.h"
+#include "ltp/integrate/threads.h"
 #include "ltp/models/scene.h"
 
 namespace {

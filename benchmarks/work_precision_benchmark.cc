@@ -283,7 +283,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
     IntegratorType type;
     bool fixed;
   };
-  // `auto` last: the automatic choice (ltp/floquet/integrator_choice.h) drawn over the lines it
+  // `auto` last: the automatic choice (ltp/integrate/integrator_choice.h) drawn over the lines it
   // chooses from, so the chart shows whether it follows their lower envelope.
   const std::vector<Line> lines = {
       {IntegratorType::kDopri5, false},        {IntegratorType::kRkf78, false},

@@ -29,7 +29,7 @@
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/formed_monodromy.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 #include "ltp/studies/chart.h"
 #include "ltp/studies/chart_options.h"
 #include "ltp/studies/mode_tracking.h"

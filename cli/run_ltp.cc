@@ -11,7 +11,7 @@
 
 #include "command.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 
 namespace ltp::cli {
 

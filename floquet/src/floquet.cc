@@ -15,14 +15,14 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
 #include "ltp/core/text.h"
-#include "ltp/floquet/integrator_choice.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/detail/segment_grid.h"
+#include "ltp/integrate/detail/state_balancing.h"
+#include "ltp/integrate/integrator_choice.h"
+#include "ltp/integrate/threads.h"
 #include "modes_below.h"
 #include "rigid_body.h"
-#include "segment_grid.h"
-#include "state_balancing.h"
 
 namespace ltp {
 

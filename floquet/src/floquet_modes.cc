@@ -6,9 +6,9 @@
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
-#include "condition_number.h"
 #include "ltp/floquet/periodic_eigen.h"
-#include "matrix_product.h"
+#include "ltp/integrate/detail/condition_number.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
 

@@ -9,7 +9,7 @@
 
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
-#include "segment_grid.h"
+#include "ltp/integrate/detail/segment_grid.h"
 
 namespace ltp::internal {
 

@@ -8,12 +8,12 @@
 #include <numbers>
 #include <sstream>
 
-#include "condition_number.h"
 #include "hill_internal.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/integrate/detail/condition_number.h"
 #include "rigid_body.h"
 
 namespace ltp {

@@ -24,7 +24,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/floquet/hill_solver_choice.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 namespace {

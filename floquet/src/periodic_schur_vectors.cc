@@ -20,7 +20,7 @@
 #include <numbers>
 #include <optional>
 
-#include "matrix_product.h"
+#include "ltp/integrate/detail/matrix_product.h"
 #include "slicot.h"
 
 namespace ltp::internal {

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 
 namespace ltp::internal {
 

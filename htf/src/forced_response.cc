@@ -17,8 +17,8 @@
 
 #include "fft_util.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/integrator_choice.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 

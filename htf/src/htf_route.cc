@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/integrate/threads.h"
 #include "shifted_hessenberg.h"
 
 namespace ltp {

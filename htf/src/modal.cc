@@ -13,9 +13,9 @@
 #include "fft_util.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/integrator_choice.h"
-#include "ltp/floquet/threads.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/integrate/integrator_choice.h"
+#include "ltp/integrate/threads.h"
 
 namespace ltp {
 

@@ -15,7 +15,7 @@
 #include "fft_util.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 #include "pfrf_route.h"
 
 namespace ltp {

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/integrator.h"
 #include "ltp/floquet/work_estimate.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/models/scene.h"
 #include "ltp/studies/campbell.h"
 

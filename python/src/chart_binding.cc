@@ -6,7 +6,7 @@
 
 #include "binding.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/chart.h"
 #include "ltp/studies/chart_options.h"

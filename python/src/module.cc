@@ -1,7 +1,7 @@
 // The extension module ltp._ltp; the package ltp (python/ltp/__init__.py) re-exports it.
 #include "binding.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 
 namespace {
 
@@ -22,7 +22,7 @@ PYBIND11_MODULE(_ltp, m) {
   m.doc() = "ltp: analysis of linear time-periodic systems (see help(ltp))";
   m.attr("__version__") = LTP_VERSION;
   // As the ltp command: ltp runs its own threads, and OpenBLAS's under them oversubscribe the
-  // cores (ltp/floquet/threads.h); it also keeps the results equal to the command's to the bit.
+  // cores (ltp/integrate/threads.h); it also keeps the results equal to the command's to the bit.
   ltp::UseSingleThreadedBlas();
 
   // The library's typed errors as Python exceptions carrying its one-line message. Bad input is

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 

@@ -9,7 +9,7 @@
 #include <map>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 
 namespace ltp {
 

@@ -15,7 +15,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/text.h"
 #include "ltp/floquet/formed_monodromy.h"
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 
 namespace ltp {
 

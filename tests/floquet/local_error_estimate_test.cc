@@ -10,7 +10,7 @@
 
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/models/scene.h"
 
 namespace ltp {

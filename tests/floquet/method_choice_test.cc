@@ -14,7 +14,7 @@
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/floquet/hill_solver_choice.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/scene.h"
 #include "ltp/models/scene_input.h"

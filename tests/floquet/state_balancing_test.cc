@@ -1,8 +1,8 @@
 // Systems written in badly scaled states (units far apart) are analysed in balanced states and
-// reported in the given ones (floquet/src/state_balancing.h, docs/model-sizes.md). References:
-// the same system in well-scaled states (exponents are invariant under x = S z) and, for the
-// constant system, its closed-form eigenvalues.
-#include "state_balancing.h"
+// reported in the given ones (integrate/include/ltp/integrate/detail/state_balancing.h,
+// docs/model-sizes.md). References: the same system in well-scaled states (exponents are invariant
+// under x = S z) and, for the constant system, its closed-form eigenvalues.
+#include "ltp/integrate/detail/state_balancing.h"
 
 #include <gtest/gtest.h>
 

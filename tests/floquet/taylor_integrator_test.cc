@@ -14,7 +14,7 @@
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/models/scene.h"
 #include "support/systems.h"
 

@@ -12,7 +12,7 @@
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/hill.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 namespace {

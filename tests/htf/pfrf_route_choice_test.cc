@@ -9,8 +9,8 @@
 #include <limits>
 #include <string>
 
-#include "ltp/floquet/integrator.h"
 #include "ltp/htf/pfrf.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/models/scene.h"
 #include "support/systems.h"
 

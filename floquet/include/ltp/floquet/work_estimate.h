@@ -7,8 +7,8 @@
 #include <string>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/integrator.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 

@@ -24,7 +24,7 @@
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 
 namespace ltp {
 

@@ -6,7 +6,7 @@
 // every 97th point: a map has thousands of points and the estimate doubles the cost of each).
 #include <optional>
 
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/stability_boundary.h"
 #include "ltp/studies/sweep.h"

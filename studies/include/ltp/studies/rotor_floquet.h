@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 #include "ltp/models/rotor.h"
 
 namespace ltp {

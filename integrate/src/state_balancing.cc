@@ -1,5 +1,5 @@
 // Diagonal balancing of a periodic system's states (state_balancing.h).
-#include "state_balancing.h"
+#include "ltp/integrate/detail/state_balancing.h"
 
 #include <lapacke.h>
 

@@ -1,7 +1,7 @@
-// MultiplyInto (floquet/src/matrix_product.h) against Eigen's own product, below and above the
-// size from which it calls BLAS, and on row blocks (the lower half of A(t) in second-order form),
-// whose leading dimension is not their row count.
-#include "matrix_product.h"
+// MultiplyInto (ltp/integrate/detail/matrix_product.h) against Eigen's own
+// product, below and above the size from which it calls BLAS, and on row blocks (the lower half of
+// A(t) in second-order form), whose leading dimension is not their row count.
+#include "ltp/integrate/detail/matrix_product.h"
 
 #include <gtest/gtest.h>
 

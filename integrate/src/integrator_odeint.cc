@@ -18,7 +18,7 @@
 
 #include "bulirsch_stoer.h"
 #include "integrator_internal.h"
-#include "matrix_product.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
 

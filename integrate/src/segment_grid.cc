@@ -1,4 +1,4 @@
-#include "segment_grid.h"
+#include "ltp/integrate/detail/segment_grid.h"
 
 #include <lapacke.h>
 
@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
-#include "condition_number.h"
 #include "integrator_internal.h"
+#include "ltp/integrate/detail/condition_number.h"
 
 namespace ltp::internal {
 

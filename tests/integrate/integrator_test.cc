@@ -1,7 +1,7 @@
-// Tests of StateTransition (ltp/floquet/integrator.h). Every reference value states its
+// Tests of StateTransition (ltp/integrate/integrator.h). Every reference value states its
 // source: closed forms, Eigen's MatrixFunctions expm (independent of the code under test),
 // Liouville's formula, or rkf78 at a much tighter tolerance where no closed form exists.
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 
 #include <gtest/gtest.h>
 

@@ -29,7 +29,7 @@ enum class IntegratorType {
   /// (docs/taylor-integrator.md): a few long steps per period, the cheapest for small smooth
   /// Fourier systems at tight tolerances (stability maps). Fourier-form systems only.
   kTaylor,
-  /// The study's cheapest for the system at hand (ltp/floquet/integrator_choice.h); analyses
+  /// The study's cheapest for the system at hand (ltp/integrate/integrator_choice.h); analyses
   /// report the integrator actually used and why.
   kAuto,
 };

@@ -1,4 +1,4 @@
-#include "matrix_product.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 #include <complex>
 

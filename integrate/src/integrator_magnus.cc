@@ -11,7 +11,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "integrator_internal.h"
-#include "matrix_product.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
 

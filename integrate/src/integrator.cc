@@ -1,6 +1,6 @@
 // StateTransition: input checks, the restart grid, dispatch to the integrator families, the
 // automatic resolution loop of the fixed-step methods, and the names of the integrators.
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,7 @@
 
 #include "integrator_internal.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {
 

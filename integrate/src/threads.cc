@@ -1,4 +1,4 @@
-#include "ltp/floquet/threads.h"
+#include "ltp/integrate/threads.h"
 
 #include <dlfcn.h>
 #include <omp.h>

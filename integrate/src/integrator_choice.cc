@@ -1,6 +1,6 @@
 // Automatic integrator choice from the work–precision study (see integrator_choice.h). The
 // thresholds are the study's crossovers; the reasons quote what it measured.
-#include "ltp/floquet/integrator_choice.h"
+#include "ltp/integrate/integrator_choice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
-#include "state_balancing.h"
+#include "ltp/integrate/detail/state_balancing.h"
 
 namespace ltp {
 namespace {

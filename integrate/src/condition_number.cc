@@ -1,4 +1,4 @@
-#include "condition_number.h"
+#include "ltp/integrate/detail/condition_number.h"
 
 #include <Eigen/SVD>
 #include <limits>

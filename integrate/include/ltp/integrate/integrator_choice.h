@@ -6,7 +6,7 @@
 #include <string>
 
 #include "ltp/core/periodic_system.h"
-#include "ltp/floquet/integrator.h"
+#include "ltp/integrate/integrator.h"
 
 namespace ltp {
 
