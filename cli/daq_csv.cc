@@ -59,7 +59,7 @@ bool IsLtpTimeData(const std::string& path) {
   RequireRegularFile(path);
   std::ifstream in(path);
   std::string line;
-  while (std::getline(in, line))
+  while (ReadTextLine(in, line, path))
     if (!IsComment(line)) return line.rfind("record,", 0) == 0;
   return false;
 }
@@ -82,7 +82,7 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
   // write a preamble above it).
   std::vector<std::pair<size_t, std::string>> lines;
   std::string line;
-  for (size_t number = 1; std::getline(in, line); ++number) {
+  for (size_t number = 1; ReadTextLine(in, line, path + ":" + std::to_string(number)); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (!IsComment(line)) lines.emplace_back(number, line);
   }

@@ -84,6 +84,26 @@ void RequireRegularFile(const std::string& path) {
     throw InputError("'" + path + "' is not a regular file (a device, a pipe or a directory)");
 }
 
+bool ReadTextLine(std::istream& in, std::string& line, const std::string& where) {
+  constexpr std::streamsize kLongest = 1 << 20;
+  static thread_local std::vector<char> buffer(static_cast<size_t>(kLongest) + 1);
+  line.clear();
+  in.getline(buffer.data(), kLongest + 1);
+  const std::streamsize read = in.gcount();
+  if (in.fail() && !in.eof()) {
+    if (read >= kLongest)
+      throw InputError(where +
+                       ": a line longer than 1 MiB — not a text table (a binary file, "
+                       "or one without line ends)");
+    return false;
+  }
+  if (read == 0 && in.eof()) return false;
+  // The newline was extracted (and counted) unless the file ended first.
+  line.assign(buffer.data(), static_cast<size_t>(in.eof() ? read : read - 1));
+  if (in.eof()) in.clear(std::ios::eofbit);
+  return true;
+}
+
 TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_period) {
   RequireRegularFile(path);
   std::ifstream in(path);
@@ -122,7 +142,7 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
     data.records.push_back(std::move(rec));
     rows.clear();
   };
-  while (std::getline(in, line)) {
+  while (ReadTextLine(in, line, path + ":" + std::to_string(number + 1))) {
     ++number;
     const std::string where = path + ":" + std::to_string(number);
     if (!line.empty() && line.back() == '\r') line.pop_back();

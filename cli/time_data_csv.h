@@ -22,6 +22,10 @@ std::optional<double> NumberIn(const std::string& text);
 /// @throws InputError for a path that exists but is not a regular file (/dev/zero, a FIFO).
 void RequireRegularFile(const std::string& path);
 
+/// std::getline for text tables, with a bound: a "line" over 1 MiB (a binary file, one without
+/// line ends) is refused with `where`, not read into memory to its end. False at the end.
+bool ReadTextLine(std::istream& in, std::string& line, const std::string& where);
+
 /// @throws InputError when the file cannot be written.
 void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment);
 

@@ -275,6 +275,12 @@ Uff58Function ReadFunction(Reader& in, const std::vector<int>& binary_fields) {
 
 std::string ReadBytes(const std::string& path) {
   RequireRegularFile(path);
+  // The file is held in memory while it is parsed: beyond 2 GiB, split it into records.
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  if (!error && size > (std::uintmax_t{1} << 31))
+    throw InputError(path + ": " + std::to_string(size >> 20) +
+                     " MiB; UFF files are read whole, up to 2 GiB (write one file per record)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read '" + path + "'");
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -377,7 +383,7 @@ bool IsUffFile(const std::string& path) {
   RequireRegularFile(path);
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  for (int k = 0; k < 100 && std::getline(in, line); ++k)
+  for (int k = 0; k < 100 && ReadTextLine(in, line, path); ++k)
     if (!Trim(line).empty()) return IsSeparator(line);
   return false;
 }

@@ -132,6 +132,13 @@ void FloquetOptions::Validate() const {
   if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
   if (!(modes_below >= 0) || !std::isfinite(modes_below))
     fail("modes_below", modes_below, "a finite modes_below >= 0 (rad/s; 0 = every mode)");
+  // The refined run doubles a fixed step count; past the integrators' cap it would fail after
+  // the first run's work instead of before any.
+  if (estimate_error && error_estimate_method == ErrorEstimateMethod::kRefinedRun &&
+      integrator.steps_per_period > 50000000)
+    fail("integrator.steps_per_period", integrator.steps_per_period,
+         "<= 5e7 with the refined-run error estimate, which doubles the steps (at most 1e8 per "
+         "period); or the local-error estimate, or none");
   if (error_estimate_method != ErrorEstimateMethod::kRefinedRun &&
       error_estimate_method != ErrorEstimateMethod::kLocalErrors)
     fail("error_estimate_method", static_cast<int>(error_estimate_method),

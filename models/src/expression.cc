@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -127,7 +128,21 @@ bool IsIdentifier(const std::string& name) {
   });
 }
 
+std::optional<double> PlainNumber(const std::string& text) {
+  const size_t first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+  if (first == std::string::npos) return std::nullopt;
+  const std::string core = text.substr(first, last - first + 1);
+  if (core.find_first_not_of("0123456789.eE+-") != std::string::npos ||
+      core.find_first_of("0123456789") == std::string::npos)
+    return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(core.c_str(), &end);
+  if (end != core.c_str() + core.size()) return std::nullopt;
+  return value;
+}
+
 double EvaluateConstant(const std::string& text, const Constants& constants) {
+  if (const std::optional<double> value = PlainNumber(text)) return *value;
   try {
     auto parser = MakeParser(text, constants, nullptr);
     Check(*parser, text, false);

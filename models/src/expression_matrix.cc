@@ -32,6 +32,11 @@ int ExpressionMatrices::Add(const ExpressionMatrixText& text) {
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const ExpressionEntry& entry = text[r][c];
+      if (const std::optional<double> value = PlainNumber(entry.text)) {
+        compiled.constant(r, c) = *value;
+        CheckFinite(entry, *value, 0, false);
+        continue;
+      }
       std::optional<TimeExpression> expression;
       try {
         expression.emplace(entry.text, constants_);

@@ -546,6 +546,11 @@ TEST(IdentifyCli, BrokenUffFilesGetOneClearLine) {
   frf.replace(frf.find("    1         0    0"), 5, "    4");
   expect(run(frf), "is not a time record");
   expect(run("    -1\r\n   151\r\nonly a header\r\n    -1\r\n"), "no dataset 58");
+  // A file without line ends (a binary dump) is refused at its first MiB, not read to its end.
+  const std::string endless = Tmp("endless.csv");
+  std::ofstream(endless, std::ios::binary) << std::string(3 << 20, '1');
+  expect(RunLtp("identify " + endless + " --input 0 --output 1 --period 1"),
+         "a line longer than 1 MiB");
   std::string letters = text;
   letters.replace(letters.find("E-0", letters.find("    17 ") + 500), 3, "XYZ");
   expect(run(letters), "is not a number");

@@ -35,6 +35,19 @@ TEST(PeriodicCoefficients, FunctionsWithTheGivenPeriodPass) {
       NonPeriodicCoefficients(HillWith(1e6, [](double t) { return std::sin(2 * kPi * t / 1e6); })));
 }
 
+// A period of 1e7 or 1e8 of the coefficients' own (π) is off from the true multiple by its
+// rounding, and t + T by another ulp: cos(2(t + T)) − cos 2t ≈ 1e-9 of ‖A‖ at 1e7·π, 3e-8 at
+// 1e8·π — round-off of T, not a wrong period (was refused); a period off by 1e-12 of itself
+// (many ulps) still is.
+TEST(PeriodicCoefficients, AHugeMultipleOfTheOwnPeriodPasses) {
+  for (const double multiple : {1e7, 1e8})
+    EXPECT_FALSE(NonPeriodicCoefficients(
+        HillWith(multiple * kPi, [](double t) { return std::cos(2 * t); })))
+        << multiple;
+  EXPECT_TRUE(NonPeriodicCoefficients(
+      HillWith(1e7 * kPi * (1 + 1e-12), [](double t) { return std::cos(2 * t); })));
+}
+
 TEST(PeriodicCoefficients, AMismatchedPeriodOrARampIsRefusedWithWhereAndHowMuch) {
   // cos t with T = 6.2832 (2π rounded): |cos(t + T) − cos t| ≈ 7.3e-6 |sin t|.
   const auto rounded =

@@ -147,6 +147,29 @@ struct BadCase {
   const char* expected;  // part of the message
 };
 
+// Entries that are plain numbers skip the expression parser (a 1000-state scene has a million
+// of them): they must give what muParser gives, and what is not a plain number still goes to
+// it. Reference: the numbers written.
+TEST(SceneFile, PlainNumbersAreReadAsTheParserWould) {
+  const Scene scene = ParseSceneYaml(R"yaml(
+period: 1
+state_space:
+  A: [[0, " 1.5 ", "-2e3"], ["+4", "1e-3", ".5"], ["3.", "2*3", "-(1)"]]
+)yaml",
+                                     "plain.yaml");
+  Eigen::MatrixXd expected(3, 3);
+  expected << 0, 1.5, -2000, 4, 1e-3, 0.5, 3, 6, -1;
+  EXPECT_EQ(scene.Build().A(0.3), expected);
+  EXPECT_NE(ThrownMessage<SceneError>([] {
+              ParseSceneYaml("period: 1\nstate_space:\n  A: [[\"1e999\"]]\n", "big.yaml");
+            }).find("evaluates to inf"),
+            std::string::npos);
+  EXPECT_NE(ThrownMessage<SceneError>([] {
+              ParseSceneYaml("period: 1\nstate_space:\n  A: [[\"5e\"]]\n", "e.yaml");
+            }).find("in expression '5e'"),
+            std::string::npos);
+}
+
 TEST(SceneFile, MalformedFilesGiveSceneErrorsNamingFileLineAndEntry) {
   const BadCase cases[] = {
       {"period: [1, 2\n", "bad.yaml:2: YAML syntax error"},
