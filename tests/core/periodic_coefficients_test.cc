@@ -41,9 +41,9 @@ TEST(PeriodicCoefficients, FunctionsWithTheGivenPeriodPass) {
 // (many ulps) still is.
 TEST(PeriodicCoefficients, AHugeMultipleOfTheOwnPeriodPasses) {
   for (const double multiple : {1e7, 1e8})
-    EXPECT_FALSE(NonPeriodicCoefficients(
-        HillWith(multiple * kPi, [](double t) { return std::cos(2 * t); })))
-        << multiple;
+    EXPECT_FALSE(NonPeriodicCoefficients(HillWith(multiple * kPi, [](double t) {
+      return std::cos(2 * t);
+    }))) << multiple;
   EXPECT_TRUE(NonPeriodicCoefficients(
       HillWith(1e7 * kPi * (1 + 1e-12), [](double t) { return std::cos(2 * t); })));
 }
