@@ -87,8 +87,8 @@ void Plot(const HillStudy& s, const std::string& title, const std::string& file)
   RunGnuplot(file, g.str());
 }
 
-int RunHill(HillArgs& args) {
-  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
+// Turns the string options into the library's enums; checks the truncation. @throws InputError.
+HillOptions ResolveOptions(const HillArgs& args) {
   HillOptions options;
   const auto solver = ParseHillSolver(args.solver);
   if (!solver)
@@ -105,81 +105,86 @@ int RunHill(HillArgs& args) {
     std::cerr << "ltp hill: " << WorkAhead(w.seconds()) << " (" << w.basis << ")\n";
   };
   if (args.max_harmonics < 1) throw InputError("--max-harmonics must be >= 1");
-  LoadedScene l = LoadSceneArgs(args.scene);
+  return options;
+}
 
-  ProgressBar progress("hill: convergence study");  // the largest truncations take the time
-  options.progress = [&progress](double done, double total) { progress.Update(done, total); };
-  const HillStudyRun run = RunHillStudy(l.system, args.max_harmonics, options, !args.no_reference);
+// One entry per truncation N: the table of the text output, plus the exponents at that N.
+json RowsJson(const HillStudy& s) {
+  json rows = json::array();
+  for (const HillStudyRow& r : s.rows) {
+    json errs = json::array(), at_n = json::array();
+    for (double e : r.errors) errs.push_back(JsonNumber(e));
+    for (const std::complex<double>& l : r.exponents)
+      at_n.push_back({JsonNumber(l.real()), JsonNumber(l.imag())});
+    rows.push_back({{"harmonics", r.harmonics},
+                    {"matrix_size", r.matrix_size},
+                    {"errors", errs},
+                    {"exponents", at_n},
+                    {"max_error", JsonNumber(r.max_error)},
+                    {"apriori_bound", JsonNumber(r.apriori_bound)},
+                    {"truncation_estimate", JsonNumber(r.truncation_estimate)},
+                    {"error_estimate", JsonNumber(r.error_estimate)},
+                    {"selection_margin", JsonNumber(r.selection_margin)},
+                    {"tail_weight", JsonNumber(r.tail_weight)},
+                    {"ambiguous", r.ambiguous},
+                    {"elapsed_s", r.elapsed_s}});
+  }
+  return rows;
+}
+
+// The exponents at the largest truncation, with how surely each was selected.
+json ExponentsJson(const HillResult& last) {
+  json exps = json::array();
+  for (size_t k = 0; k < last.modes.size(); ++k) {
+    const FloquetMode& m = last.modes[k];
+    exps.push_back({{"re", JsonNumber(m.exponent.real())},
+                    {"im", JsonNumber(m.exponent.imag())},
+                    {"frequency_hz", JsonNumber(m.frequency_hz)},
+                    {"damping_ratio", JsonNumber(m.damping_ratio)},
+                    {"selection_margin", JsonNumber(last.info[k].selection_margin)},
+                    {"tail_weight", JsonNumber(last.info[k].tail_weight)},
+                    {"centroid", JsonNumber(last.info[k].centroid)},
+                    {"ambiguous", last.info[k].ambiguous}});
+  }
+  return exps;
+}
+
+json StudyJson(const LoadedScene& l, const HillOptions& options, const HillStudyRun& run) {
   const HillStudy& s = run.study;
   const HillResult& last = run.last;
-  const bool have_ref = !s.reference.empty();
+  json ref = json::array();
+  for (const auto& e : s.reference)
+    ref.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())}});
+  json j = {
+      {"scene", l.scene.name},
+      {"parameters", ParametersJson(l.parameters)},
+      {"states", l.system.states()},
+      {"period", l.system.period()},
+      {"method", "hill"},
+      {"solver", std::string(ToString(options.solver))},
+      {"selection_rule", std::string(ToString(options.selection))},
+      {"coefficient_decay",
+       {{"kind", std::string(ToString(s.decay.kind))},
+        {"rate", JsonNumber(s.decay.rate)},
+        {"harmonics", s.decay.harmonics},
+        {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
+      {"convergence", {{"kind", std::string(ToString(s.rate_kind))}, {"rate", JsonNumber(s.rate)}}},
+      {"reference", ref},
+      {"rows", RowsJson(s)},
+      {"exponents", ExponentsJson(last)},
+      {"koopman_discrepancy", JsonNumber(last.koopman_discrepancy)},
+      {"ok", last.ok},
+      {"elapsed_s", s.elapsed_s},
+      {"diagnostics", last.diagnostics}};
+  // The study's own diagnostics after the last solve's, each once.
+  for (const std::string& d : s.diagnostics)
+    if (std::find(last.diagnostics.begin(), last.diagnostics.end(), d) == last.diagnostics.end())
+      j["diagnostics"].push_back(d);
+  return j;
+}
 
-  if (!args.csv.empty()) WriteCsv(s, args.csv);
-  if (!args.plot.empty()) Plot(s, l.scene.name, args.plot);
-
-  if (args.json) {
-    json rows = json::array();
-    for (const HillStudyRow& r : s.rows) {
-      json errs = json::array(), at_n = json::array();
-      for (double e : r.errors) errs.push_back(JsonNumber(e));
-      for (const std::complex<double>& l : r.exponents)
-        at_n.push_back({JsonNumber(l.real()), JsonNumber(l.imag())});
-      rows.push_back({{"harmonics", r.harmonics},
-                      {"matrix_size", r.matrix_size},
-                      {"errors", errs},
-                      {"exponents", at_n},
-                      {"max_error", JsonNumber(r.max_error)},
-                      {"apriori_bound", JsonNumber(r.apriori_bound)},
-                      {"truncation_estimate", JsonNumber(r.truncation_estimate)},
-                      {"error_estimate", JsonNumber(r.error_estimate)},
-                      {"selection_margin", JsonNumber(r.selection_margin)},
-                      {"tail_weight", JsonNumber(r.tail_weight)},
-                      {"ambiguous", r.ambiguous},
-                      {"elapsed_s", r.elapsed_s}});
-    }
-    json exps = json::array();
-    for (size_t k = 0; k < last.modes.size(); ++k) {
-      const FloquetMode& m = last.modes[k];
-      exps.push_back({{"re", JsonNumber(m.exponent.real())},
-                      {"im", JsonNumber(m.exponent.imag())},
-                      {"frequency_hz", JsonNumber(m.frequency_hz)},
-                      {"damping_ratio", JsonNumber(m.damping_ratio)},
-                      {"selection_margin", JsonNumber(last.info[k].selection_margin)},
-                      {"tail_weight", JsonNumber(last.info[k].tail_weight)},
-                      {"centroid", JsonNumber(last.info[k].centroid)},
-                      {"ambiguous", last.info[k].ambiguous}});
-    }
-    json ref = json::array();
-    for (const auto& e : s.reference)
-      ref.push_back({{"re", JsonNumber(e.real())}, {"im", JsonNumber(e.imag())}});
-    json j = {{"scene", l.scene.name},
-              {"parameters", ParametersJson(l.parameters)},
-              {"states", l.system.states()},
-              {"period", l.system.period()},
-              {"method", "hill"},
-              {"solver", std::string(ToString(options.solver))},
-              {"selection_rule", std::string(ToString(options.selection))},
-              {"coefficient_decay",
-               {{"kind", std::string(ToString(s.decay.kind))},
-                {"rate", JsonNumber(s.decay.rate)},
-                {"harmonics", s.decay.harmonics},
-                {"fourier_tail", JsonNumber(s.decay.fourier_tail)}}},
-              {"convergence",
-               {{"kind", std::string(ToString(s.rate_kind))}, {"rate", JsonNumber(s.rate)}}},
-              {"reference", ref},
-              {"rows", rows},
-              {"exponents", exps},
-              {"koopman_discrepancy", JsonNumber(last.koopman_discrepancy)},
-              {"ok", last.ok},
-              {"elapsed_s", s.elapsed_s},
-              {"diagnostics", last.diagnostics}};
-    for (const std::string& d : s.diagnostics)
-      if (std::find(last.diagnostics.begin(), last.diagnostics.end(), d) == last.diagnostics.end())
-        j["diagnostics"].push_back(d);
-    std::cout << j.dump(2) << "\n";
-    return last.ok ? 0 : 1;
-  }
-
+// The scene, the solver and what the Fourier coefficients of A promise, above the table.
+void PrintHeader(const LoadedScene& l, const HillOptions& options, const HillStudy& s) {
   const double T = l.system.period();
   std::cout << "Hill convergence study of " << l.scene.name;
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
@@ -194,8 +199,12 @@ int RunHill(HillArgs& args) {
   std::cout << ", " << s.decay.harmonics << " harmonics";
   if (s.decay.fourier_tail > 0) std::cout << ", fit tail " << Num(s.decay.fourier_tail, 2);
   std::cout << "\n  reference: "
-            << (have_ref ? "monodromy route (dopri5, rel tol 1e-12), error modulo jΩp" : "none")
-            << "\n\n       N   size   error vs ref  a-priori bound   estimate   margin      tail   "
+            << (!s.reference.empty() ? "monodromy route (dopri5, rel tol 1e-12), error modulo jΩp"
+                                     : "none");
+}
+
+void PrintRows(const HillStudy& s) {
+  std::cout << "\n\n       N   size   error vs ref  a-priori bound   estimate   margin      tail   "
                "time [ms]\n";
   for (const HillStudyRow& r : s.rows) {
     std::cout << std::setw(8) << r.harmonics << std::setw(7) << r.matrix_size
@@ -204,8 +213,10 @@ int RunHill(HillArgs& args) {
               << Num(r.tail_weight, 2, 10) << Num(r.elapsed_s * 1e3, 3, 12)
               << (r.ambiguous ? "  tie λ/λ±jΩp" : "") << "\n";
   }
-  std::cout << "\n  convergence: " << RateText(s) << "\n\n  exponents at N = " << args.max_harmonics
-            << ":\n"
+}
+
+void PrintExponents(const HillResult& last, int max_harmonics) {
+  std::cout << "\n  exponents at N = " << max_harmonics << ":\n"
             << "  mode       Re λ [1/s]     Im λ [rad/s]     freq [Hz]   margin   tail weight\n";
   for (size_t k = 0; k < last.modes.size(); ++k) {
     const FloquetMode& m = last.modes[k];
@@ -216,12 +227,37 @@ int RunHill(HillArgs& args) {
   }
   std::cout << "  Koopman–Hill multipliers differ by " << Num(last.koopman_discrepancy, 2)
             << " 1/s (sorting-free cross-check)\n";
+}
+
+void PrintStudy(const LoadedScene& l, const HillOptions& options, const HillStudyRun& run,
+                int max_harmonics) {
+  PrintHeader(l, options, run.study);
+  PrintRows(run.study);
+  std::cout << "\n  convergence: " << RateText(run.study) << "\n";
+  PrintExponents(run.last, max_harmonics);
   const std::vector<std::string>& diags = run.diagnostics;
   if (!diags.empty()) {
     std::cout << "  diagnostics:\n";
     for (const auto& d : diags) std::cout << "    - " << d << "\n";
   }
-  return last.ok ? 0 : 1;
+}
+
+int RunHill(HillArgs& args) {
+  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
+  HillOptions options = ResolveOptions(args);
+  LoadedScene l = LoadSceneArgs(args.scene);
+
+  ProgressBar progress("hill: convergence study");  // the largest truncations take the time
+  options.progress = [&progress](double done, double total) { progress.Update(done, total); };
+  const HillStudyRun run = RunHillStudy(l.system, args.max_harmonics, options, !args.no_reference);
+
+  if (!args.csv.empty()) WriteCsv(run.study, args.csv);
+  if (!args.plot.empty()) Plot(run.study, l.scene.name, args.plot);
+  if (args.json)
+    std::cout << StudyJson(l, options, run).dump(2) << "\n";
+  else
+    PrintStudy(l, options, run, args.max_harmonics);
+  return run.last.ok ? 0 : 1;
 }
 
 }  // namespace
