@@ -338,6 +338,92 @@ void PrintMbcCheck(const std::optional<RotorMbcCheck>& check) {
             << Num(check->max_difference, 2) << " 1/s\n";
 }
 
+// Hill's route beside (or instead of) the monodromy route; a successful monodromy run gives the
+// structured solver its shifts. `r` is null when the monodromy route did not run.
+HillResult RunHillRoute(const LoadedScene& l, const FloquetArgs& args, const FloquetResult* r) {
+  HillOptions ho;
+  ho.solver = *ParseHillSolver(args.hill_solver);
+  ho.max_work_seconds = args.options.max_work_seconds;
+  ho.on_long_work = [](const WorkEstimate& w) {
+    std::cerr << "ltp floquet: Hill's method: " << WorkAhead(w.seconds()) << " (" << w.basis
+              << ")\n";
+  };
+  if (r && r->ok) {  // shifts for the structured solver from the monodromy route
+    for (const auto& m : r->modes) ho.expected.push_back(m.exponent);
+  }
+  HillResult h;
+  if (args.harmonics == "auto") {
+    h = AnalyzeHillToTolerance(l.system, ho, args.options.integrator.rel_tol);
+  } else {
+    ho.harmonics = std::stoi(args.harmonics);
+    h = AnalyzeHill(l.system, ho);
+  }
+  IncludeModelError(l.model_alternatives, args.options, h);  // as for the monodromy route
+  return h;
+}
+
+// --modes-csv: the periodic mode shapes ξ_k(t) at the sample times, one row per time.
+void WriteModesCsv(const FloquetResult& r, const std::string& file) {
+  std::ofstream csv(file);
+  if (!csv) throw InputError("cannot write '" + file + "'");
+  csv << "t";
+  const int modes = static_cast<int>(r.modes.size());  // fewer than states with --modes-below
+  for (int k = 0; k < modes; ++k)
+    for (int i = 0; i < r.states; ++i)
+      csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
+  csv << "\n" << std::setprecision(12);
+  for (size_t s = 0; s < r.mode_samples.size(); ++s) {
+    csv << r.sample_times[s];
+    for (int k = 0; k < modes; ++k)
+      for (int i = 0; i < r.states; ++i)
+        csv << "," << r.mode_samples[s](i, k).real() << "," << r.mode_samples[s](i, k).imag();
+    csv << "\n";
+  }
+}
+
+// One route's JSON as it is, or both side by side with their disagreement.
+json FloquetJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r,
+                 const HillResult& h) {
+  if (args.method == "monodromy") {
+    json j = MonodromyJson(l, args, r);
+    if (const json mbc =
+            r.reduction ? json(nullptr) : MbcCheckJson(CheckRotorByMbc(l.scene, l.parameters, r));
+        !mbc.is_null())
+      j["mbc_check"] = mbc;
+    return j;
+  }
+  if (args.method == "hill") return HillJson(l, h);
+  return {
+      {"scene", l.scene.name},
+      {"parameters", ParametersJson(l.parameters)},
+      {"method", "both"},
+      {"monodromy", MonodromyJson(l, args, r)},
+      {"hill", HillJson(l, h)},
+      {"disagreement", JsonNumber(Disagreement(r.modes, h.modes, 2 * kPi / h.period))},
+      {"combined_error_estimate", r.error_estimate && h.error_estimate
+                                      ? JsonNumber(std::max(*r.error_estimate, *h.error_estimate))
+                                      : nullptr}};
+}
+
+void PrintFloquet(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r,
+                  const HillResult& h, bool run_mono, bool run_hill) {
+  const double T = l.system.period();
+  std::cout << "Floquet analysis of " << l.scene.name;
+  if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
+  std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
+            << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
+  if (run_mono) PrintMonodromy(args, r);
+  // The cross-check compares every exponent; an analysis of the slow modes has only some.
+  if (run_mono && !r.reduction) PrintMbcCheck(CheckRotorByMbc(l.scene, l.parameters, r));
+  if (run_mono && run_hill) std::cout << "\n";
+  if (run_hill) PrintHill(h);
+  if (run_mono && run_hill)
+    std::cout << "\n  the two routes disagree by "
+              << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
+              << " 1/s (largest difference of matched exponents; estimates "
+              << Num(r.error_estimate, 2) << " and " << Num(h.error_estimate, 2) << ")\n";
+}
+
 int RunFloquet(FloquetArgs& args) {
   if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);  // reject a bad extension up front
   ResolveOptions(args);
@@ -361,44 +447,10 @@ int RunFloquet(FloquetArgs& args) {
   if (run_mono) r = AnalyzeFloquet(l.system, args.options);
   // A sampled model (.lin files): the estimate and the verdict include the sampling error.
   if (run_mono) IncludeModelError(l.model_alternatives, args.options, r);
-  if (run_hill) {
-    HillOptions ho;
-    ho.solver = *ParseHillSolver(args.hill_solver);
-    ho.max_work_seconds = args.options.max_work_seconds;
-    ho.on_long_work = [](const WorkEstimate& w) {
-      std::cerr << "ltp floquet: Hill's method: " << WorkAhead(w.seconds()) << " (" << w.basis
-                << ")\n";
-    };
-    if (run_mono && r.ok) {  // shifts for the structured solver from the monodromy route
-      for (const auto& m : r.modes) ho.expected.push_back(m.exponent);
-    }
-    if (args.harmonics == "auto") {
-      h = AnalyzeHillToTolerance(l.system, ho, args.options.integrator.rel_tol);
-    } else {
-      ho.harmonics = std::stoi(args.harmonics);
-      h = AnalyzeHill(l.system, ho);
-    }
-    IncludeModelError(l.model_alternatives, args.options, h);  // as for the monodromy route
-  }
+  if (run_hill) h = RunHillRoute(l, args, run_mono ? &r : nullptr);
 
   progress.Clear();
-  if (run_mono && !args.modes_csv.empty()) {
-    std::ofstream csv(args.modes_csv);
-    if (!csv) throw InputError("cannot write '" + args.modes_csv + "'");
-    csv << "t";
-    const int modes = static_cast<int>(r.modes.size());  // fewer than states with --modes-below
-    for (int k = 0; k < modes; ++k)
-      for (int i = 0; i < r.states; ++i)
-        csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
-    csv << "\n" << std::setprecision(12);
-    for (size_t s = 0; s < r.mode_samples.size(); ++s) {
-      csv << r.sample_times[s];
-      for (int k = 0; k < modes; ++k)
-        for (int i = 0; i < r.states; ++i)
-          csv << "," << r.mode_samples[s](i, k).real() << "," << r.mode_samples[s](i, k).imag();
-      csv << "\n";
-    }
-  }
+  if (run_mono && !args.modes_csv.empty()) WriteModesCsv(r, args.modes_csv);
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
   if (run_mono && !r.ok)
@@ -406,47 +458,10 @@ int RunFloquet(FloquetArgs& args) {
   else if (run_hill && !h.ok)
     SetFailureFrom("Hill's method", h.failure);
 
-  if (args.json) {
-    json j;
-    if (args.method == "monodromy") {
-      j = MonodromyJson(l, args, r);
-      if (const json mbc =
-              r.reduction ? json(nullptr) : MbcCheckJson(CheckRotorByMbc(l.scene, l.parameters, r));
-          !mbc.is_null())
-        j["mbc_check"] = mbc;
-    } else if (args.method == "hill") {
-      j = HillJson(l, h);
-    } else {
-      j = {{"scene", l.scene.name},
-           {"parameters", ParametersJson(l.parameters)},
-           {"method", "both"},
-           {"monodromy", MonodromyJson(l, args, r)},
-           {"hill", HillJson(l, h)},
-           {"disagreement", JsonNumber(Disagreement(r.modes, h.modes, 2 * kPi / h.period))},
-           {"combined_error_estimate",
-            r.error_estimate && h.error_estimate
-                ? JsonNumber(std::max(*r.error_estimate, *h.error_estimate))
-                : nullptr}};
-    }
-    std::cout << j.dump(2) << "\n";
-    return ok || args.keep_going ? 0 : 1;
-  }
-
-  const double T = l.system.period();
-  std::cout << "Floquet analysis of " << l.scene.name;
-  if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
-  std::cout << "\n  " << l.system.states() << " states, period T = " << Num(T, 10)
-            << " s (Ωp = " << Num(2 * kPi / T, 8) << " rad/s)\n";
-  if (run_mono) PrintMonodromy(args, r);
-  // The cross-check compares every exponent; an analysis of the slow modes has only some.
-  if (run_mono && !r.reduction) PrintMbcCheck(CheckRotorByMbc(l.scene, l.parameters, r));
-  if (run_mono && run_hill) std::cout << "\n";
-  if (run_hill) PrintHill(h);
-  if (run_mono && run_hill)
-    std::cout << "\n  the two routes disagree by "
-              << Num(Disagreement(r.modes, h.modes, 2 * kPi / h.period), 3)
-              << " 1/s (largest difference of matched exponents; estimates "
-              << Num(r.error_estimate, 2) << " and " << Num(h.error_estimate, 2) << ")\n";
+  if (args.json)
+    std::cout << FloquetJson(l, args, r, h).dump(2) << "\n";
+  else
+    PrintFloquet(l, args, r, h, run_mono, run_hill);
   return ok || args.keep_going ? 0 : 1;
 }
 
