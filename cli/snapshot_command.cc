@@ -1,6 +1,7 @@
 // `ltp snapshot`: the FRF of the system frozen at one time or rotor angle, optionally overlaid
 // with the response of the periodic system to an impulse (the summed partial FRFs, paper Fig. 6).
 #include <cmath>
+#include <complex>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -78,12 +79,8 @@ void Plot(const SnapshotResult& r, bool compare, const std::string& title,
   RunGnuplot(file, s.str());
 }
 
-int RunSnapshot(SnapshotArgs& args) {
-  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);
-  if (args.angle.has_value() == args.time.has_value())
-    throw InputError("give exactly one of --angle DEG and --time T");
-  if (args.freq.empty()) throw InputError("--freq F0:F1:DF is required");
-  LoadedScene l = LoadSceneArgs(args.scene);
+// The library's options from the flags, checked against the scene's channels. @throws InputError.
+SnapshotOptions ResolveOptions(const SnapshotArgs& args, const LoadedScene& l) {
   const PeriodicSystem& sys = l.system;
   if (sys.inputs() < 1 || sys.outputs() < 1)
     throw InputError("scene '" + l.scene.name + "' has no inputs or no outputs: no FRF to compute");
@@ -98,52 +95,77 @@ int RunSnapshot(SnapshotArgs& args) {
   o.output = ResolveChannel(args.output, sys.labels().outputs, sys.outputs(), "--output", "output");
   o.compare = args.compare;
   std::tie(o.min_order, o.max_order) = ParseOrderRange(args.orders, "--orders");
-  const SnapshotResult r = ComputeSnapshotFrf(sys, o);
-  const std::string at =
-      r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
-                  : "t = " + Num(r.time, 8) + " s";
-  if (!args.csv.empty()) WriteCsv(r, o.compare, args.csv);
-  if (!args.plot.empty())
-    Plot(r, o.compare, GnuplotEscape(l.scene.name + ": frozen at " + at), args.plot);
+  return o;
+}
 
-  if (args.json) {
-    json eig = json::array(), vals = json::array(), fl = json::array();
-    for (const auto& e : r.eigenvalues)
-      eig.push_back({{"re", JsonNumber(e.real())},
-                     {"im", JsonNumber(e.imag())},
-                     {"frequency_hz", JsonNumber(e.imag() / (2 * kPi))}});
-    for (const auto& e : r.floquet_exponents)
-      fl.push_back({{"re", JsonNumber(e.real())},
+// Snapshot eigenvalues or Floquet exponents, each with its frequency.
+json ExponentsJson(const std::vector<std::complex<double>>& exponents) {
+  json list = json::array();
+  for (const auto& e : exponents)
+    list.push_back({{"re", JsonNumber(e.real())},
                     {"im", JsonNumber(e.imag())},
                     {"frequency_hz", JsonNumber(e.imag() / (2 * kPi))}});
-    for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
-      json v = {{"f_hz", r.frequencies_hz[i]},
-                {"re", JsonNumber(r.snapshot[i].real())},
-                {"im", JsonNumber(r.snapshot[i].imag())}};
-      if (o.compare) {
-        v["summed_re"] = JsonNumber(r.summed[i].real());
-        v["summed_im"] = JsonNumber(r.summed[i].imag());
-        v["summed_error_estimate"] = JsonNumber(r.summed_error[i]);
-      }
-      vals.push_back(v);
+  return list;
+}
+
+json SnapshotJson(const LoadedScene& l, const SnapshotOptions& o, const SnapshotResult& r) {
+  json vals = json::array();
+  for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
+    json v = {{"f_hz", r.frequencies_hz[i]},
+              {"re", JsonNumber(r.snapshot[i].real())},
+              {"im", JsonNumber(r.snapshot[i].imag())}};
+    if (o.compare) {
+      v["summed_re"] = JsonNumber(r.summed[i].real());
+      v["summed_im"] = JsonNumber(r.summed[i].imag());
+      v["summed_error_estimate"] = JsonNumber(r.summed_error[i]);
     }
-    json j = {{"scene", l.scene.name},
-              {"parameters", ParametersJson(l.parameters)},
-              {"time", r.time},
-              {"angle_deg", r.angle_deg ? json(*r.angle_deg) : json(nullptr)},
-              {"input", o.input},
-              {"output", o.output},
-              {"snapshot_eigenvalues", eig},
-              {"compare", o.compare},
-              {"floquet_exponents", fl},
-              {"max_summed_disagreement", JsonNumber(r.max_summed_disagreement)},
-              {"modal_reliable", r.modal_reliable},
-              {"values", vals},
-              {"elapsed_s", r.elapsed_s},
-              {"diagnostics", r.diagnostics}};
-    std::cout << j.dump(2) << "\n";
-    return 0;
+    vals.push_back(v);
   }
+  return {{"scene", l.scene.name},
+          {"parameters", ParametersJson(l.parameters)},
+          {"time", r.time},
+          {"angle_deg", r.angle_deg ? json(*r.angle_deg) : json(nullptr)},
+          {"input", o.input},
+          {"output", o.output},
+          {"snapshot_eigenvalues", ExponentsJson(r.eigenvalues)},
+          {"compare", o.compare},
+          {"floquet_exponents", ExponentsJson(r.floquet_exponents)},
+          {"max_summed_disagreement", JsonNumber(r.max_summed_disagreement)},
+          {"modal_reliable", r.modal_reliable},
+          {"values", vals},
+          {"elapsed_s", r.elapsed_s},
+          {"diagnostics", r.diagnostics}};
+}
+
+// One line per conjugate pair: only the exponents with Im >= 0.
+void PrintExponents(const std::vector<std::complex<double>>& exponents) {
+  for (const auto& e : exponents)
+    if (e.imag() >= 0)
+      std::cout << std::string(34, ' ') << Num(e.real(), 6, 12) << Num(e.imag() / (2 * kPi), 6, 14)
+                << "\n";
+}
+
+// The FRF values themselves when they fit on a screen; else where to find them.
+void PrintValues(const SnapshotResult& r, bool compare, bool csv_written) {
+  if (r.frequencies_hz.size() <= 20) {
+    std::cout << "\n      f [Hz]        |H_snap|   phase [°]"
+              << (compare ? "        |G_sum|   phase [°]" : "") << "\n";
+    for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
+      std::cout << Num(r.frequencies_hz[i], 6, 12) << Num(std::abs(r.snapshot[i]), 6, 16)
+                << Num(PhaseDeg(r.snapshot[i].real(), r.snapshot[i].imag()), 5, 12);
+      if (compare)
+        std::cout << Num(std::abs(r.summed[i]), 6, 15)
+                  << Num(PhaseDeg(r.summed[i].real(), r.summed[i].imag()), 5, 12);
+      std::cout << "\n";
+    }
+  } else if (!csv_written) {
+    std::cout << "\n  (" << r.frequencies_hz.size()
+              << " values: write them with --csv FILE, or --json)\n";
+  }
+}
+
+void PrintSnapshot(const LoadedScene& l, const SnapshotOptions& o, const SnapshotResult& r,
+                   const std::string& at, bool csv_written) {
   std::cout << "Snapshot FRF of " << l.scene.name;
   if (!l.parameters.empty()) std::cout << " (" << ParameterList(l.parameters) << ")";
   std::cout << "\n  frozen at " << at << ": H(ω) = C (jωI − A)⁻¹ B + D, output " << o.output
@@ -151,42 +173,42 @@ int RunSnapshot(SnapshotArgs& args) {
             << Num(r.frequencies_hz.front(), 6) << " … " << Num(r.frequencies_hz.back(), 6)
             << " Hz\n"
             << "\n  snapshot eigenvalues (frozen A)      Re [1/s]     freq [Hz]\n";
-  for (const auto& e : r.eigenvalues)
-    if (e.imag() >= 0)
-      std::cout << std::string(34, ' ') << Num(e.real(), 6, 12) << Num(e.imag() / (2 * kPi), 6, 14)
-                << "\n";
+  PrintExponents(r.eigenvalues);
   if (o.compare) {
     std::cout << "\n  Floquet exponents (periodic system)  Re [1/s]     freq [Hz]\n";
-    for (const auto& e : r.floquet_exponents)
-      if (e.imag() >= 0)
-        std::cout << std::string(34, ' ') << Num(e.real(), 6, 12)
-                  << Num(e.imag() / (2 * kPi), 6, 14) << "\n";
+    PrintExponents(r.floquet_exponents);
     std::cout << "\n  summed partials Σ_z H_z(ω − zΩp), z = " << o.min_order << " … " << o.max_order
               << " (response of the periodic system to an impulse), modal route "
               << (r.modal_reliable ? "(reliable)" : "(UNRELIABLE)")
               << ", htf check: max disagreement " << Num(r.max_summed_disagreement, 3)
               << " of the largest |H_z| at " << o.check_points << " excitation frequencies\n";
   }
-  if (r.frequencies_hz.size() <= 20) {
-    std::cout << "\n      f [Hz]        |H_snap|   phase [°]"
-              << (o.compare ? "        |G_sum|   phase [°]" : "") << "\n";
-    for (size_t i = 0; i < r.frequencies_hz.size(); ++i) {
-      std::cout << Num(r.frequencies_hz[i], 6, 12) << Num(std::abs(r.snapshot[i]), 6, 16)
-                << Num(PhaseDeg(r.snapshot[i].real(), r.snapshot[i].imag()), 5, 12);
-      if (o.compare)
-        std::cout << Num(std::abs(r.summed[i]), 6, 15)
-                  << Num(PhaseDeg(r.summed[i].real(), r.summed[i].imag()), 5, 12);
-      std::cout << "\n";
-    }
-  } else if (args.csv.empty()) {
-    std::cout << "\n  (" << r.frequencies_hz.size()
-              << " values: write them with --csv FILE, or --json)\n";
-  }
+  PrintValues(r, o.compare, csv_written);
   if (!r.diagnostics.empty()) {
     std::cout << "\n  notes:\n";
     for (const auto& d : r.diagnostics) std::cout << "    - " << d << "\n";
   }
   std::cout << "\n  total " << Num(r.elapsed_s * 1e3, 4) << " ms\n";
+}
+
+int RunSnapshot(SnapshotArgs& args) {
+  if (!args.plot.empty()) GnuplotTerminal(args.plot, 1, 1);
+  if (args.angle.has_value() == args.time.has_value())
+    throw InputError("give exactly one of --angle DEG and --time T");
+  if (args.freq.empty()) throw InputError("--freq F0:F1:DF is required");
+  LoadedScene l = LoadSceneArgs(args.scene);
+  const SnapshotOptions o = ResolveOptions(args, l);
+  const SnapshotResult r = ComputeSnapshotFrf(l.system, o);
+  const std::string at =
+      r.angle_deg ? "rotor angle " + Num(*r.angle_deg, 6) + "° (t = " + Num(r.time, 6) + " s)"
+                  : "t = " + Num(r.time, 8) + " s";
+  if (!args.csv.empty()) WriteCsv(r, o.compare, args.csv);
+  if (!args.plot.empty())
+    Plot(r, o.compare, GnuplotEscape(l.scene.name + ": frozen at " + at), args.plot);
+  if (args.json)
+    std::cout << SnapshotJson(l, o, r).dump(2) << "\n";
+  else
+    PrintSnapshot(l, o, r, at, !args.csv.empty());
   return 0;
 }
 
