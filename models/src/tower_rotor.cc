@@ -241,11 +241,18 @@ Eigen::Matrix<double, 3, 5> TipRotationMap() {
   return t;
 }
 
-// `cutoff_hz` = ∞ keeps every mode (the unreduced FE model).
-Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
-  Structure st;
-  st.params = p;
-  // --- Cantilever FE.
+// Global DOF of `offset` at `node` of a beam clamped at node 0 (−1: clamped, not a DOF).
+int BeamDof(int node_dofs, int node, int offset) {
+  return node == 0 ? -1 : node_dofs * (node - 1) + offset;
+}
+
+// Full FE stiffness and mass of a body; kg: the blade's geometric stiffness per Ω².
+struct BeamFe {
+  MatrixXd k, m, kg;
+};
+
+// Cantilever FE: bending in both planes (v, w) and torsion (φ), clamped at x = 0.
+BeamFe CantileverFe(const TowerRotorParams& p) {
   const int nce = p.cantilever_elements;
   const int nc_full = kCantileverNodeDofs * nce;
   const double lc = p.cantilever_length / nce;
@@ -256,26 +263,27 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
   const double gj = p.cantilever_G * RectangleTorsionConstant(b, h);
   const double rho_a = p.cantilever_rho * area;
   const double rho_ip = p.cantilever_rho * area * (b * b + h * h) / 12;
-  MatrixXd kc = MatrixXd::Zero(nc_full, nc_full), mc = MatrixXd::Zero(nc_full, nc_full);
-  auto node_dof = [](int node, int offset) {
-    return node == 0 ? -1 : kCantileverNodeDofs * (node - 1) + offset;
-  };
+  BeamFe fe{MatrixXd::Zero(nc_full, nc_full), MatrixXd::Zero(nc_full, nc_full), MatrixXd()};
+  auto node_dof = [](int node, int offset) { return BeamDof(kCantileverNodeDofs, node, offset); };
   for (int e = 0; e < nce; ++e) {
     for (int plane = 0; plane < 2; ++plane) {  // 0: v (offsets 0, 1); 1: w (offsets 2, 3)
       const int o = 2 * plane;
       const std::array<int, 4> dofs = {node_dof(e, o), node_dof(e, o + 1), node_dof(e + 1, o),
                                        node_dof(e + 1, o + 1)};
-      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_v : ei_w, lc), dofs, kc);
-      internal::Scatter<4>(internal::BendingMass(rho_a, lc), dofs, mc);
+      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_v : ei_w, lc), dofs, fe.k);
+      internal::Scatter<4>(internal::BendingMass(rho_a, lc), dofs, fe.m);
     }
     const std::array<int, 2> tdofs = {node_dof(e, 4), node_dof(e + 1, 4)};
-    internal::Scatter<2>(internal::TorsionStiffness(gj, lc), tdofs, kc);
-    internal::Scatter<2>(internal::TorsionMass(rho_ip, lc), tdofs, mc);
+    internal::Scatter<2>(internal::TorsionStiffness(gj, lc), tdofs, fe.k);
+    internal::Scatter<2>(internal::TorsionMass(rho_ip, lc), tdofs, fe.m);
   }
-  const int tip0 = nc_full - kCantileverNodeDofs;
-  const Eigen::Matrix<double, 3, 5> tu = TipTranslationMap(), tt = TipRotationMap();
+  return fe;
+}
 
-  // Rigid rotor at the tip, inertia averaged over ψ: Σ m AᵀA with A = T_u − ρ̃' T_θ.
+// The rigid rotor (hub and undeformed blades) as a mass on the tip DOFs (v, v', w, w', φ), its
+// inertia averaged over ψ: Σ m AᵀA with A = T_u − ρ̃' T_θ.
+Eigen::Matrix<double, 5, 5> RigidRotorTipMass(const TowerRotorParams& p) {
+  const Eigen::Matrix<double, 3, 5> tu = TipTranslationMap(), tt = TipRotationMap();
   const std::vector<RotorPoint> rigid_points = MakeRotorPoints(p, nullptr);
   Eigen::Matrix<double, 5, 5> rigid = Eigen::Matrix<double, 5, 5>::Zero();
   for (int a = 0; a < kAngleSamples; ++a) {
@@ -286,16 +294,12 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
       rigid += point.mass / kAngleSamples * map.transpose() * map;
     }
   }
-  MatrixXd loaded = mc;
-  loaded.block(tip0, tip0, 5, 5) += rigid;
-  st.cantilever_k = kc;
-  st.cantilever = Modes(kc, loaded, cutoff_hz);
-  st.cantilever_mass_modal = st.cantilever.shapes.transpose() * mc * st.cantilever.shapes;
-  const MatrixXd tip_rows = st.cantilever.shapes.middleRows(tip0, 5);
-  st.tip_u = tu * tip_rows;
-  st.tip_theta = tt * tip_rows;
+  return rigid;
+}
 
-  // --- Blade FE (clamped at the hub radius).
+// Blade FE (clamped at the hub radius): flap and lag bending, and the geometric stiffness of
+// the centrifugal axial force.
+BeamFe BladeFe(const TowerRotorParams& p) {
   const int nbe = p.blade_elements;
   const int nb_full = kBladeNodeDofs * nbe;
   const double lb = p.blade_length / nbe;
@@ -304,10 +308,11 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
   const double ei_lag = p.blade_E * tb * cb * cb * cb / 12;
   const double rho_ab = p.blade_rho * tb * cb;
   const double tip_radius = p.hub_radius + p.blade_length;
-  MatrixXd kb = MatrixXd::Zero(nb_full, nb_full), mb = kb, kg = kb;
-  auto bnode_dof = [](int node, int offset) {
-    return node == 0 ? -1 : kBladeNodeDofs * (node - 1) + offset;
-  };
+  BeamFe fe;
+  fe.k = MatrixXd::Zero(nb_full, nb_full);
+  fe.m = fe.k;
+  fe.kg = fe.k;
+  auto node_dof = [](int node, int offset) { return BeamDof(kBladeNodeDofs, node, offset); };
   for (int e = 0; e < nbe; ++e) {
     const double s0 = p.hub_radius + e * lb;
     // N(s)/Ω² = ρA (R² − s²)/2.
@@ -315,19 +320,23 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
         rho_ab * tip_radius * tip_radius / 2, rho_ab / 2, s0, lb);
     for (int plane = 0; plane < 2; ++plane) {  // 0: flap f; 1: lag g
       const int o = 2 * plane;
-      const std::array<int, 4> dofs = {bnode_dof(e, o), bnode_dof(e, o + 1), bnode_dof(e + 1, o),
-                                       bnode_dof(e + 1, o + 1)};
-      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_flap : ei_lag, lb), dofs, kb);
-      internal::Scatter<4>(internal::BendingMass(rho_ab, lb), dofs, mb);
-      internal::Scatter<4>(geometric, dofs, kg);
+      const std::array<int, 4> dofs = {node_dof(e, o), node_dof(e, o + 1), node_dof(e + 1, o),
+                                       node_dof(e + 1, o + 1)};
+      internal::Scatter<4>(internal::BendingStiffness(plane == 0 ? ei_flap : ei_lag, lb), dofs,
+                           fe.k);
+      internal::Scatter<4>(internal::BendingMass(rho_ab, lb), dofs, fe.m);
+      internal::Scatter<4>(geometric, dofs, fe.kg);
     }
   }
-  st.blade = Modes(kb, mb, cutoff_hz);
-  st.blade_geometric = st.blade.shapes.transpose() * kg * st.blade.shapes;
+  return fe;
+}
+
+// Names the kept blade modes flap1, flap2, … or lag1, … by where their kinetic energy is.
+void ClassifyBladeModes(const MatrixXd& mb, Structure& st) {
   int flaps = 0, lags = 0;
   for (int j = 0; j < st.blade.shapes.cols(); ++j) {
     double flap_energy = 0, total = 0;
-    for (int i = 0; i < nb_full; ++i) {
+    for (int i = 0; i < mb.rows(); ++i) {
       const double w = st.blade.shapes(i, j) * mb.row(i).dot(st.blade.shapes.col(j));
       total += w;
       if (i % kBladeNodeDofs < 2) flap_energy += w;
@@ -337,6 +346,30 @@ Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
     st.blade_kinds.push_back(is_flap ? "flap" + std::to_string(++flaps)
                                      : "lag" + std::to_string(++lags));
   }
+}
+
+// `cutoff_hz` = ∞ keeps every mode (the unreduced FE model).
+Structure MakeStructure(const TowerRotorParams& p, double cutoff_hz) {
+  Structure st;
+  st.params = p;
+  // Cantilever: modes of the cantilever loaded by the rigid rotor at its tip (a Ritz basis
+  // for the tip-mass-dominated modes; the coupled equations use the exact rotor inertia).
+  const BeamFe cantilever = CantileverFe(p);
+  const int tip0 = static_cast<int>(cantilever.k.rows()) - kCantileverNodeDofs;
+  MatrixXd loaded = cantilever.m;
+  loaded.block(tip0, tip0, 5, 5) += RigidRotorTipMass(p);
+  st.cantilever_k = cantilever.k;
+  st.cantilever = Modes(cantilever.k, loaded, cutoff_hz);
+  st.cantilever_mass_modal = st.cantilever.shapes.transpose() * cantilever.m * st.cantilever.shapes;
+  const MatrixXd tip_rows = st.cantilever.shapes.middleRows(tip0, 5);
+  st.tip_u = TipTranslationMap() * tip_rows;
+  st.tip_theta = TipRotationMap() * tip_rows;
+
+  // Blades: clamped-free, non-rotating modes.
+  const BeamFe blade = BladeFe(p);
+  st.blade = Modes(blade.k, blade.m, cutoff_hz);
+  st.blade_geometric = st.blade.shapes.transpose() * blade.kg * st.blade.shapes;
+  ClassifyBladeModes(blade.m, st);
   st.points = MakeRotorPoints(p, &st.blade.shapes);
   st.nc = static_cast<int>(st.cantilever.shapes.cols());
   st.nb = static_cast<int>(st.blade.shapes.cols());
