@@ -212,103 +212,75 @@ double SpeedChange(const std::vector<double>& time, const std::vector<double>& t
   return std::abs(2 * c(2) / c(1));
 }
 
-IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
-                                   size_t index, std::vector<std::string>& diagnostics,
-                                   ExtraLines& extra) {
-  const std::string where = "record " + std::to_string(index + 1);
-  const double dt = SamplingStep(rec);
-  const double L = rec.time.back() - rec.time.front();
-  const double nyquist = std::numbers::pi / dt, bin = kTwoPi / L;
-  std::vector<double> theta = rec.angle;  // the system's phase: measured, or the model's
-  if (theta.empty())
-    for (double t : rec.time) theta.push_back(kTwoPi * t / T);
-  const double speed = (theta.back() - theta.front()) / L;
-  if (!(speed * L >= kTwoPi * (1 - 1e-9)))
-    throw InputError(where + ": " + MessageNumber(speed * L / kTwoPi, 6) +
-                     " periods long; the orders need at least one period to be told apart");
-  const Eigen::VectorXd u = rec.inputs.col(o.input), y = rec.outputs.col(o.output);
-  // No written frequency (a DAQ's file): the input's strongest line.
+// The record's excitation: its frequency measured from the input (from the written one, or
+// the input's strongest line), and the input's amplitude there, by least squares on
+// ω(t − input_delay). @throws InputError when the input is not one sine at that frequency.
+struct RecordExcitation {
+  internal::FittedRate rate;  // ω (rad/s) and its standard error
+  cd U;                       // the input's complex amplitude of e^{jωt}
+  double variance = 0;        // of U, from the input's residual (0: none)
+};
+
+RecordExcitation ExcitationOf(const TimeRecord& rec, const Eigen::VectorXd& u,
+                              const IdentifyOptions& o, const std::string& where) {
+  RecordExcitation e;
   const bool written = rec.excitation_hz > 0;
-  const internal::FittedRate excitation_rate = internal::FitSineFrequency(
+  e.rate = internal::FitSineFrequency(
       rec.time, u, written ? kTwoPi * rec.excitation_hz : internal::StrongestLine(rec.time, u));
-  const double omega = excitation_rate.rate;
-  // The lines' phases are taken on absolute time: beyond ~1e12 rad a double keeps no digit of
-  // them (times written as epoch seconds at kHz would do that).
-  const double latest = std::max(std::abs(rec.time.front()), std::abs(rec.time.back()));
-  if (!(std::max(omega, std::abs(speed)) * latest < 1e12))
-    throw InputError(where + ": times up to " + MessageNumber(latest, 6) + " s at " +
-                     MessageNumber(omega / kTwoPi, 6) +
-                     " Hz leave the phase ωt no correct digit; give times from the start of "
-                     "the test (the model's phase must then be referenced to that start)");
-  for (int z : {o.min_order, o.max_order})
-    if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
-      throw InputError(where + ": the line of order " + std::to_string(z) +
-                       " lies above the Nyquist frequency: sample faster or ask for fewer orders");
   Eigen::MatrixXd excitation(static_cast<Eigen::Index>(rec.time.size()), 1);
   for (size_t n = 0; n < rec.time.size(); ++n)
-    excitation(static_cast<Eigen::Index>(n), 0) = omega * (rec.time[n] - o.input_delay);
+    excitation(static_cast<Eigen::Index>(n), 0) = e.rate.rate * (rec.time[n] - o.input_delay);
   const internal::LineFit in = internal::FitLines(u, excitation);
-  const cd U = in.amplitude[0];
-  if (!(std::abs(U) > 1e-12 * u.cwiseAbs().maxCoeff()))
+  e.U = in.amplitude[0];
+  e.variance = std::isfinite(in.variance[0]) ? in.variance[0] : 0;
+  if (!(std::abs(e.U) > 1e-12 * u.cwiseAbs().maxCoeff()))
     throw InputError(where + ": input " + std::to_string(o.input) + " is not excited at " +
                      MessageNumber(rec.excitation_hz, 8) + " Hz");
   // One sine per record: a multisine or noise input has most of its power elsewhere.
   const double centred = (u.array() - u.mean()).matrix().squaredNorm();
-  const double sine_power = 2 * std::norm(U) * static_cast<double>(u.size());
+  const double sine_power = 2 * std::norm(e.U) * static_cast<double>(u.size());
   if (sine_power < 0.5 * centred)
     throw InputError(where + ": the input is not one sine (" +
                      MessageNumber(100 * (1 - sine_power / centred), 3) +
                      " % of its power lies off its strongest line): step-sine identification "
                      "needs one frequency per record (broadband records: --method broadband)");
-  const std::vector<Line> lines = LinesToFit(omega, speed, nyquist, bin, o);
-  if (!rec.angle.empty())
-    for (const double delay : {o.input_delay, o.output_delay})
-      if (std::abs(delay) > 0.05 * L)
-        throw InputError(where + ": a delay of " + MessageNumber(delay, 3) +
-                         " s is over 5 % of the record: the measured angle is not extrapolated "
-                         "that far; trim the records to the span both channels cover");
-  const internal::DelayedClock out_clock =
-      internal::Delayed(rec.time, theta, !rec.angle.empty(), T, o.output_delay);
-  const internal::LineFit out_fit =
-      internal::FitLines(y, LinePhases(lines, out_clock.time, out_clock.theta, omega));
-  IdentifiedFrequency out;
-  out.excitation_hz = omega / kTwoPi;
-  out.speed = speed;
-  out.noise = std::sqrt(out_fit.noise_variance);
-  const double input_variance = std::isfinite(in.variance[0]) ? in.variance[0] : 0;
+  return e;
+}
+
+// H_z = Y_z / U from the output's fit, each with its 95 % bound: output noise through Y_z,
+// input noise through U (first order; independent); without a measured angle, the written
+// times' error moves zθ by up to |z|·Ωp·time_error.
+void FillEstimates(const internal::LineFit& fit, const RecordExcitation& e, const TimeRecord& rec,
+                   const IdentifyOptions& o, double speed, IdentifiedFrequency& out) {
   for (int z = o.min_order; z <= o.max_order; ++z) {
     const size_t l = static_cast<size_t>(z - o.min_order);
-    const cd h = out_fit.amplitude[l] / U;
-    out.separable = out.separable && out_fit.determined[l];
+    const cd h = fit.amplitude[l] / e.U;
+    out.separable = out.separable && fit.determined[l];
     out.h.push_back(h);
-    // Output noise through Y_z, input noise through U (first order; independent); without a
-    // measured angle, the written times' error moves zθ by up to |z|·Ωp·time_error.
-    const double variance = (out_fit.variance[l] + std::norm(h) * input_variance) / std::norm(U);
+    const double variance = (fit.variance[l] + std::norm(h) * e.variance) / std::norm(e.U);
     const double clock = rec.angle.empty() ? std::abs(z * speed) * rec.time_error * std::abs(h) : 0;
-    out.bound.push_back(out_fit.dof > 0 && std::isfinite(variance)
+    out.bound.push_back(fit.dof > 0 && std::isfinite(variance)
                             ? kBoundFactor * std::sqrt(variance) + clock
                             : std::numeric_limits<double>::infinity());
   }
-  if (out_fit.dof == 0)
-    diagnostics.push_back(where +
-                          ": as many lines as samples: the noise (and the bounds) cannot "
-                          "be estimated; record longer");
-  if (!out.separable) {
-    const double halves = 2 * omega / speed;
-    diagnostics.push_back(
-        where + ": " + MessageNumber(out.excitation_hz, 8) + " Hz" +
-        (std::abs(halves - std::round(halves)) < 1e-6
-             ? " is a multiple of Ωp/2: H_z and the mirror of another order share each line, "
-               "one record cannot separate them"
-             : ": two of its response lines coincide; those H_z are left out (NaN)"));
-  }
+}
+
+// What the record shows beyond the requested lines, tallied for the notes said once: the
+// extra lines that stand out (synchronous orders, harmonics of ω), the speed's change, lines
+// off 2π/T without a measured angle, a written frequency other than the input's.
+void TallyExtraLines(const TimeRecord& rec, const IdentifyOptions& o, const Eigen::VectorXd& y,
+                     const std::vector<Line>& lines, const internal::LineFit& fit,
+                     const RecordExcitation& e, const std::vector<double>& theta, double speed,
+                     ExtraLines& extra) {
+  const double omega = e.rate.rate, L = rec.time.back() - rec.time.front();
+  const size_t requested = static_cast<size_t>(o.max_order - o.min_order + 1);
   double largest = 0;
-  for (size_t l = 0; l < out.h.size(); ++l)
-    if (out_fit.determined[l]) largest = std::max(largest, std::abs(out_fit.amplitude[l]));
+  for (size_t l = 0; l < requested; ++l)
+    if (fit.determined[l]) largest = std::max(largest, std::abs(fit.amplitude[l]));
   bool harmonic = false;
-  for (size_t l = out.h.size(); l < lines.size(); ++l) {
-    const double a = std::abs(out_fit.amplitude[l]);
-    if (!(a * a > 36 * out_fit.variance[l] && a > 1e-6 * largest)) continue;
+  for (size_t l = requested; l < lines.size(); ++l) {
+    const double a = std::abs(fit.amplitude[l]);
+    if (!(a * a > 36 * fit.variance[l] && a > 1e-6 * largest)) continue;
     if (lines[l].omega_factor == 0) extra.synchronous.insert(lines[l].order);
     harmonic = harmonic || lines[l].omega_factor > 1;
   }
@@ -332,14 +304,74 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   }
   // The written frequency is off when the input's own is further from it than its noise
   // allows (six standard errors) and than the digits a log keeps.
-  const double move = written ? std::abs(out.excitation_hz - rec.excitation_hz) : 0.0;
-  const double uncertainty = std::isfinite(excitation_rate.standard_error)
-                                 ? 6 * excitation_rate.standard_error / kTwoPi
-                                 : 1e-3 / L;
+  const double move = rec.excitation_hz > 0 ? std::abs(omega / kTwoPi - rec.excitation_hz) : 0.0;
+  const double uncertainty =
+      std::isfinite(e.rate.standard_error) ? 6 * e.rate.standard_error / kTwoPi : 1e-3 / L;
   if (move > std::max(1e-9 * rec.excitation_hz, uncertainty)) {
     ++extra.moved;
     extra.largest_move = std::max(extra.largest_move, move);
   }
+}
+
+IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
+                                   size_t index, std::vector<std::string>& diagnostics,
+                                   ExtraLines& extra) {
+  const std::string where = "record " + std::to_string(index + 1);
+  const double dt = SamplingStep(rec);
+  const double L = rec.time.back() - rec.time.front();
+  const double nyquist = std::numbers::pi / dt, bin = kTwoPi / L;
+  std::vector<double> theta = rec.angle;  // the system's phase: measured, or the model's
+  if (theta.empty())
+    for (double t : rec.time) theta.push_back(kTwoPi * t / T);
+  const double speed = (theta.back() - theta.front()) / L;
+  if (!(speed * L >= kTwoPi * (1 - 1e-9)))
+    throw InputError(where + ": " + MessageNumber(speed * L / kTwoPi, 6) +
+                     " periods long; the orders need at least one period to be told apart");
+  const Eigen::VectorXd u = rec.inputs.col(o.input), y = rec.outputs.col(o.output);
+  const RecordExcitation e = ExcitationOf(rec, u, o, where);
+  const double omega = e.rate.rate;
+  // The lines' phases are taken on absolute time: beyond ~1e12 rad a double keeps no digit of
+  // them (times written as epoch seconds at kHz would do that).
+  const double latest = std::max(std::abs(rec.time.front()), std::abs(rec.time.back()));
+  if (!(std::max(omega, std::abs(speed)) * latest < 1e12))
+    throw InputError(where + ": times up to " + MessageNumber(latest, 6) + " s at " +
+                     MessageNumber(omega / kTwoPi, 6) +
+                     " Hz leave the phase ωt no correct digit; give times from the start of "
+                     "the test (the model's phase must then be referenced to that start)");
+  for (int z : {o.min_order, o.max_order})
+    if (std::abs(omega + z * speed) >= nyquist * (1 - 1e-9))
+      throw InputError(where + ": the line of order " + std::to_string(z) +
+                       " lies above the Nyquist frequency: sample faster or ask for fewer orders");
+  if (!rec.angle.empty())
+    for (const double delay : {o.input_delay, o.output_delay})
+      if (std::abs(delay) > 0.05 * L)
+        throw InputError(where + ": a delay of " + MessageNumber(delay, 3) +
+                         " s is over 5 % of the record: the measured angle is not extrapolated "
+                         "that far; trim the records to the span both channels cover");
+  const std::vector<Line> lines = LinesToFit(omega, speed, nyquist, bin, o);
+  const internal::DelayedClock out_clock =
+      internal::Delayed(rec.time, theta, !rec.angle.empty(), T, o.output_delay);
+  const internal::LineFit fit =
+      internal::FitLines(y, LinePhases(lines, out_clock.time, out_clock.theta, omega));
+  IdentifiedFrequency out;
+  out.excitation_hz = omega / kTwoPi;
+  out.speed = speed;
+  out.noise = std::sqrt(fit.noise_variance);
+  FillEstimates(fit, e, rec, o, speed, out);
+  if (fit.dof == 0)
+    diagnostics.push_back(where +
+                          ": as many lines as samples: the noise (and the bounds) cannot "
+                          "be estimated; record longer");
+  if (!out.separable) {
+    const double halves = 2 * omega / speed;
+    diagnostics.push_back(
+        where + ": " + MessageNumber(out.excitation_hz, 8) + " Hz" +
+        (std::abs(halves - std::round(halves)) < 1e-6
+             ? " is a multiple of Ωp/2: H_z and the mirror of another order share each line, "
+               "one record cannot separate them"
+             : ": two of its response lines coincide; those H_z are left out (NaN)"));
+  }
+  TallyExtraLines(rec, o, y, lines, fit, e, theta, speed, extra);
   RecordNotes(rec, o, omega, dt, where, diagnostics);
   return out;
 }
@@ -419,6 +451,8 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
                    [](const auto& a, const auto& b) { return a.excitation_hz < b.excitation_hz; });
   return r;
 }
+
+namespace {
 
 // The bins a set of broadband records excites, told from the noise a measured input carries:
 // the input's power per bin averaged over the records, sorted, cut at its largest drop (a
@@ -515,139 +549,149 @@ IdentifyResult OnMeasuredAngle(const TimeData& data, const IdentifyOptions& o,
   return r;
 }
 
-IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options) {
-  CheckData(data, options);
-  const bool measured = !data.records.front().angle.empty();
+// The records' spectra on their common grid (one length and rate, every record broadband, all
+// on a measured angle or none), absolute time, and what the records share.
+struct BroadbandSpectra {
+  long N = 0, P = 0;  // samples per record; periods per record (model's speed)
+  double L = 0;       // record length (s)
+  bool measured = false;
+  std::vector<std::vector<cd>> u, y;
+  std::vector<double> t0;
+  double time_error = 0;
+};
+
+BroadbandSpectra SpectraOf(const TimeData& data, const IdentifyOptions& options) {
+  BroadbandSpectra s;
+  s.measured = !data.records.front().angle.empty();
   for (size_t r = 0; r < data.records.size(); ++r) {
     const std::string where = "record " + std::to_string(r + 1);
     RequireUniformSampling(data.records[r], where);  // the DFT needs the grid
-    if (data.records[r].angle.empty() == measured)
-      throw InputError(where + (measured ? " has no measured angle, record 1 has one"
-                                         : " has a measured angle, record 1 has none"));
+    if (data.records[r].angle.empty() == s.measured)
+      throw InputError(where + (s.measured ? " has no measured angle, record 1 has one"
+                                           : " has a measured angle, record 1 has none"));
   }
   const TimeRecord& first = data.records.front();
-  const long N = static_cast<long>(first.time.size());
-  const double dt = (first.time.back() - first.time.front()) / static_cast<double>(N - 1);
-  const double L = N * dt;
+  s.N = static_cast<long>(first.time.size());
+  const double dt = (first.time.back() - first.time.front()) / static_cast<double>(s.N - 1);
+  s.L = s.N * dt;
   bool whole = false;
-  const long P = WholeNumber(L / data.period, &whole);
+  s.P = WholeNumber(s.L / data.period, &whole);
   // At the model's speed the response lines sit on bins when the records are whole periods;
   // on a measured angle they do not anyway (broadband_on_angle.h).
-  if (!measured && (!whole || P < 1))
-    throw InputError("the records are " + MessageNumber(L / data.period, 8) +
+  if (!s.measured && (!whole || s.P < 1))
+    throw InputError("the records are " + MessageNumber(s.L / data.period, 8) +
                      " periods long; identification needs whole periods (or a measured "
                      "angle: --tacho/--angle)");
-  const long R = static_cast<long>(data.records.size());
-  std::vector<std::vector<cd>> u(R), y(R);
-  std::vector<double> t0(R);
-  double time_error = 0;
-  for (long r = 0; r < R; ++r) {
+  for (size_t r = 0; r < data.records.size(); ++r) {
     const TimeRecord& rec = data.records[r];
     const std::string where = "record " + std::to_string(r + 1);
     if (rec.excitation_hz != 0)
       throw InputError(where + " is a step-sine record (" + MessageNumber(rec.excitation_hz, 8) +
                        " Hz): identify it with the step-sine method");
-    const double dtr = (rec.time.back() - rec.time.front()) / static_cast<double>(N - 1);
-    if (static_cast<long>(rec.time.size()) != N || std::abs(dtr - dt) > 1e-9 * dt)
+    const double dtr = (rec.time.back() - rec.time.front()) / static_cast<double>(s.N - 1);
+    if (static_cast<long>(rec.time.size()) != s.N || std::abs(dtr - dt) > 1e-9 * dt)
       throw InputError(where +
                        " differs from record 1 in length or sampling: broadband "
                        "identification combines records of one length and rate");
-    u[r] = Spectrum(rec.inputs.col(options.input));
-    y[r] = Spectrum(rec.outputs.col(options.output));
-    t0[r] = rec.time.front();
-    time_error = std::max(time_error, rec.time_error);
+    s.u.push_back(Spectrum(rec.inputs.col(options.input)));
+    s.y.push_back(Spectrum(rec.outputs.col(options.output)));
+    s.t0.push_back(rec.time.front());
+    s.time_error = std::max(s.time_error, rec.time_error);
   }
-  // A channel sampled `delay` late: its bin k carries e^{−j2πk·delay/L}; undone here.
-  const auto undelayed = [&](const std::vector<cd>& c, long k, double t, double delay) {
-    return AbsoluteBin(c, k, t, L) * std::polar(1.0, kTwoPi * static_cast<double>(k) * delay / L);
-  };
-  const std::set<long> excited = ExcitedBins(u, N);
-  if (measured) return OnMeasuredAngle(data, options, excited, u, t0, L);
-  for (long k : excited)
-    for (int z : {options.min_order, options.max_order})
-      if (2 * std::abs(k + z * P) >= N)
-        throw InputError("the line of order " + std::to_string(z) + " of " +
-                         MessageNumber(k / L, 8) +
-                         " Hz lies above the Nyquist frequency: sample faster or ask for "
-                         "fewer orders");
-  // Per response line (bin b): the unknowns H_z at the excited b − zP, solved across records.
-  std::map<std::pair<long, int>, LineEstimate> found;
+  return s;
+}
+
+// Every response line's least-squares problem across the records, and the pooled residual.
+struct LineSolutions {
+  std::map<std::pair<long, int>, LineEstimate> found;  // (excited bin, z)
   double rss = 0;
   long dof = 0, lines = 0, under = 0, missing = 0;
-  for (long b = 1; 2 * b < N; ++b) {
-    std::vector<std::pair<int, long>> unknowns;  // (z, excitation bin; < 0: mirror)
-    for (int z = options.min_order; z <= options.max_order; ++z) {
-      const long k = b - z * P;
-      if (k != 0 && excited.count(std::abs(k))) unknowns.emplace_back(z, k);
-    }
-    if (unknowns.empty()) continue;
-    ++lines;
-    const long q = static_cast<long>(unknowns.size());
-    Eigen::MatrixXcd M(R, q);
-    Eigen::VectorXcd Y(R);
-    for (long r = 0; r < R; ++r) {
-      Y(r) = undelayed(y[r], b, t0[r], options.output_delay);
-      for (long j = 0; j < q; ++j) {
-        const long k = unknowns[j].second;
-        const cd uk = undelayed(u[r], std::abs(k), t0[r], options.input_delay);
-        M(r, j) = k > 0 ? uk : std::conj(uk);
-      }
-    }
-    Eigen::JacobiSVD<Eigen::MatrixXcd> svd(M, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    const Eigen::VectorXd& sv = svd.singularValues();
-    LineEstimate e;
-    if (R < q || !(sv(q - 1) > 1e-12 * sv(0))) {
-      ++under;
-      missing = std::max(missing, q - R);
-    } else {
-      const Eigen::VectorXcd x = svd.solve(Y);
-      const double res = (Y - M * x).squaredNorm();
-      rss += res;
-      dof += R - q;
-      e.condition = sv(0) / sv(q - 1);
-      if (R > q && Y.squaredNorm() > 0) e.quality = 1 - res / Y.squaredNorm();
-      if (R > q) e.line_variance = res / static_cast<double>(R - q);
-      for (long j = 0; j < q; ++j) {
-        LineEstimate ej = e;
-        ej.variance_factor = 0;
-        for (long i = 0; i < q; ++i)
-          ej.variance_factor += std::norm(svd.matrixV()(j, i)) / (sv(i) * sv(i));
-        const auto [z, k] = unknowns[j];
-        ej.h = k > 0 ? x(j) : std::conj(x(j));
-        // A mirrored unknown is H_z(−f) = conj H_{−z}(f) of the real system.
-        const std::pair<long, int> key = k > 0 ? std::make_pair(k, z) : std::make_pair(-k, -z);
-        auto [it, inserted] = found.emplace(key, ej);
-        if (!inserted && ej.variance_factor < it->second.variance_factor) it->second = ej;
-      }
-      continue;
-    }
-    for (const auto& [z, k] : unknowns) {
-      const std::pair<long, int> key = k > 0 ? std::make_pair(k, z) : std::make_pair(-k, -z);
-      found.emplace(key, e);
+};
+
+// One response line (bin b): the unknowns H_z at the excited b − zP, solved across records.
+void SolveResponseLine(const BroadbandSpectra& s, const std::set<long>& excited,
+                       const IdentifyOptions& o, long b, LineSolutions& out) {
+  // A channel sampled `delay` late: its bin k carries e^{−j2πk·delay/L}; undone here.
+  const auto undelayed = [&](const std::vector<cd>& c, long k, double t, double delay) {
+    return AbsoluteBin(c, k, t, s.L) *
+           std::polar(1.0, kTwoPi * static_cast<double>(k) * delay / s.L);
+  };
+  std::vector<std::pair<int, long>> unknowns;  // (z, excitation bin; < 0: mirror)
+  for (int z = o.min_order; z <= o.max_order; ++z) {
+    const long k = b - z * s.P;
+    if (k != 0 && excited.count(std::abs(k))) unknowns.emplace_back(z, k);
+  }
+  if (unknowns.empty()) return;
+  ++out.lines;
+  const long R = static_cast<long>(s.u.size()), q = static_cast<long>(unknowns.size());
+  Eigen::MatrixXcd M(R, q);
+  Eigen::VectorXcd Y(R);
+  for (long r = 0; r < R; ++r) {
+    Y(r) = undelayed(s.y[r], b, s.t0[r], o.output_delay);
+    for (long j = 0; j < q; ++j) {
+      const long k = unknowns[j].second;
+      const cd uk = undelayed(s.u[r], std::abs(k), s.t0[r], o.input_delay);
+      M(r, j) = k > 0 ? uk : std::conj(uk);
     }
   }
+  // A mirrored unknown is H_z(−f) = conj H_{−z}(f) of the real system.
+  const auto key = [](int z, long k) {
+    return k > 0 ? std::make_pair(k, z) : std::make_pair(-k, -z);
+  };
+  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(M, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  LineEstimate e;
+  if (R < q || !(sv(q - 1) > 1e-12 * sv(0))) {
+    ++out.under;
+    out.missing = std::max(out.missing, q - R);
+    for (const auto& [z, k] : unknowns) out.found.emplace(key(z, k), e);
+    return;
+  }
+  const Eigen::VectorXcd x = svd.solve(Y);
+  const double res = (Y - M * x).squaredNorm();
+  out.rss += res;
+  out.dof += R - q;
+  e.condition = sv(0) / sv(q - 1);
+  if (R > q && Y.squaredNorm() > 0) e.quality = 1 - res / Y.squaredNorm();
+  if (R > q) e.line_variance = res / static_cast<double>(R - q);
+  for (long j = 0; j < q; ++j) {
+    LineEstimate ej = e;
+    ej.variance_factor = 0;
+    for (long i = 0; i < q; ++i)
+      ej.variance_factor += std::norm(svd.matrixV()(j, i)) / (sv(i) * sv(i));
+    const auto [z, k] = unknowns[j];
+    ej.h = k > 0 ? x(j) : std::conj(x(j));
+    auto [it, inserted] = out.found.emplace(key(z, k), ej);
+    if (!inserted && ej.variance_factor < it->second.variance_factor) it->second = ej;
+  }
+}
+
+// The estimates per excited frequency from the lines' solutions, with their bounds and notes.
+IdentifyResult BroadbandEstimates(const TimeData& data, const IdentifyOptions& o,
+                                  const BroadbandSpectra& s, const std::set<long>& excited,
+                                  const LineSolutions& solved) {
   IdentifyResult r;
-  r.min_order = options.min_order;
-  r.max_order = options.max_order;
-  const double sigma2 = dof > 0 ? rss / static_cast<double>(dof) : kNaN;
+  r.min_order = o.min_order;
+  r.max_order = o.max_order;
+  const double sigma2 = solved.dof > 0 ? solved.rss / static_cast<double>(solved.dof) : kNaN;
   // A line whose residual is far above the pooled noise is fed by something the regression
   // lacks — orders outside the requested range, nonlinearity — a bias, not noise: its bounds
   // use its own residual (under white noise a ratio of 10 has probability < 1e-4 already at
   // R − q = 2) and the lines are reported.
   std::set<std::pair<long, int>> biased;
-  for (auto& [key, e] : found)
+  for (const auto& [key, e] : solved.found)
     if (e.line_variance > kBiasRatio * sigma2) biased.insert(key);
   for (long k : excited) {
     IdentifiedFrequency f;
-    f.excitation_hz = static_cast<double>(k) / L;
-    f.noise = std::sqrt(sigma2 * static_cast<double>(N));
-    for (int z = options.min_order; z <= options.max_order; ++z) {
-      const auto it = found.find({k, z});
-      const LineEstimate e = it != found.end() ? it->second : LineEstimate{};
+    f.excitation_hz = static_cast<double>(k) / s.L;
+    f.noise = std::sqrt(sigma2 * static_cast<double>(s.N));
+    for (int z = o.min_order; z <= o.max_order; ++z) {
+      const auto it = solved.found.find({k, z});
+      const LineEstimate e = it != solved.found.end() ? it->second : LineEstimate{};
       f.h.push_back(e.h);
       const double variance = biased.count({k, z}) ? e.line_variance : sigma2;
-      const double clock = std::abs(z * kTwoPi / data.period) * time_error * std::abs(e.h);
-      f.bound.push_back(dof > 0 && std::isfinite(e.variance_factor)
+      const double clock = std::abs(z * kTwoPi / data.period) * s.time_error * std::abs(e.h);
+      f.bound.push_back(solved.dof > 0 && std::isfinite(e.variance_factor)
                             ? kBoundFactor * std::sqrt(variance * e.variance_factor) + clock
                             : std::numeric_limits<double>::infinity());
       f.condition.push_back(e.condition);
@@ -655,23 +699,42 @@ IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& op
     }
     r.frequencies.push_back(std::move(f));
   }
-  if (under > 0)
-    r.diagnostics.push_back(std::to_string(under) + " of " + std::to_string(lines) +
+  if (solved.under > 0)
+    r.diagnostics.push_back(std::to_string(solved.under) + " of " + std::to_string(solved.lines) +
                             " response lines are under-determined (more unknown H_z than the " +
-                            std::to_string(R) + " records give equations): record at least " +
-                            std::to_string(missing) +
+                            std::to_string(s.u.size()) + " records give equations): record at " +
+                            "least " + std::to_string(solved.missing) +
                             " more records with new phases; their H_z are left out (NaN)");
   if (!biased.empty())
     r.diagnostics.push_back(
         std::to_string(biased.size()) + " estimates come from response lines whose residual is " +
         "over " + MessageNumber(kBiasRatio, 3) + "× the pooled noise: orders outside " +
-        std::to_string(options.min_order) + ".." + std::to_string(options.max_order) +
+        std::to_string(o.min_order) + ".." + std::to_string(o.max_order) +
         " (or nonlinearity) feed them; their bounds use their own residual — widen --orders");
-  if (dof == 0)
+  if (solved.dof == 0)
     r.diagnostics.push_back(
         "no response line has more records than unknowns: the noise cannot be estimated and "
         "the bounds are unknown (∞); record more records than orders");
   return r;
+}
+
+}  // namespace
+
+IdentifyResult IdentifyBroadband(const TimeData& data, const IdentifyOptions& options) {
+  CheckData(data, options);
+  const BroadbandSpectra s = SpectraOf(data, options);
+  const std::set<long> excited = ExcitedBins(s.u, s.N);
+  if (s.measured) return OnMeasuredAngle(data, options, excited, s.u, s.t0, s.L);
+  for (long k : excited)
+    for (int z : {options.min_order, options.max_order})
+      if (2 * std::abs(k + z * s.P) >= s.N)
+        throw InputError("the line of order " + std::to_string(z) + " of " +
+                         MessageNumber(k / s.L, 8) +
+                         " Hz lies above the Nyquist frequency: sample faster or ask for "
+                         "fewer orders");
+  LineSolutions solved;
+  for (long b = 1; 2 * b < s.N; ++b) SolveResponseLine(s, excited, options, b, solved);
+  return BroadbandEstimates(data, options, s, excited, solved);
 }
 
 }  // namespace ltp
