@@ -104,111 +104,125 @@ bool ReadTextLine(std::istream& in, std::string& line, const std::string& where)
   return true;
 }
 
+namespace {
+
+// A comment line's `# period_s: T` or `# rotor_speed_rad_s: W` into the data (a second period
+// line must agree with the first).
+void ReadCommentLine(const std::string& line, const std::string& where, TimeData& data,
+                     std::optional<double>& file_period) {
+  for (const auto& [key, field] :
+       {std::pair<std::string, int>{"period_s:", 0}, {"rotor_speed_rad_s:", 1}}) {
+    const size_t at = line.find(key);
+    if (at == std::string::npos) continue;
+    const double x = Number(line.substr(at + key.size()), where);
+    if (!(x > 0) || !std::isfinite(x))
+      throw InputError(where + ": " + key + " " + MessageNumber(x, 10) + " must be finite and > 0");
+    if (field == 1) {
+      data.rotor_speed = x;
+    } else if (file_period && *file_period != x) {
+      throw InputError(where + ": a second period_s line (" + MessageNumber(x, 15) +
+                       ") disagrees with the first (" + MessageNumber(*file_period, 15) + ")");
+    } else {
+      file_period = x;
+      data.period = x;
+    }
+  }
+}
+
+// The header record,excitation_hz,t,in:…,out:…,aux:… into the data's channel names.
+void ReadHeader(const std::vector<std::string>& cells, const std::string& where, TimeData& data) {
+  if (cells.size() < 5 || cells[0] != "record" || cells[1] != "excitation_hz" || cells[2] != "t")
+    throw InputError(where + ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
+  for (size_t c = 3; c < cells.size(); ++c) {
+    if (cells[c].rfind("in:", 0) == 0 && data.output_names.empty() && data.auxiliary_names.empty())
+      data.input_names.push_back(cells[c].substr(3));
+    else if (cells[c].rfind("out:", 0) == 0 && data.auxiliary_names.empty())
+      data.output_names.push_back(cells[c].substr(4));
+    else if (cells[c].rfind("aux:", 0) == 0)
+      data.auxiliary_names.push_back(cells[c].substr(4));
+    else
+      throw InputError(where + ": column '" + cells[c] +
+                       "' is not in:NAME, out:NAME or aux:NAME (in that order)");
+  }
+  if (data.input_names.empty() || data.output_names.empty())
+    throw InputError(where + ": needs at least one in: and one out: column");
+  for (const auto* names : {&data.input_names, &data.output_names, &data.auxiliary_names})
+    for (size_t a = 0; a < names->size(); ++a)
+      for (size_t b = a + 1; b < names->size(); ++b)
+        if ((*names)[a] == (*names)[b])
+          throw InputError(where + ": two columns are named '" + (*names)[a] +
+                           "': a channel chosen by name would be ambiguous");
+}
+
+// One record's rows (record, excitation_hz, t, inputs, outputs, auxiliaries) as a TimeRecord.
+TimeRecord RecordOf(const std::vector<std::vector<double>>& rows, const TimeData& data,
+                    const std::string& path, long number) {
+  const size_t inputs = data.input_names.size(), outputs = data.output_names.size();
+  const size_t auxiliaries = data.auxiliary_names.size();
+  TimeRecord rec;
+  rec.excitation_hz = rows[0][1];
+  for (const std::vector<double>& row : rows)
+    if (!(row[1] == rec.excitation_hz))
+      throw InputError(path + ": record " + std::to_string(number) + " has excitation_hz " +
+                       MessageNumber(rec.excitation_hz, 10) + " and " + MessageNumber(row[1], 10) +
+                       ": one frequency per record");
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  rec.inputs.resize(n, static_cast<Eigen::Index>(inputs));
+  rec.outputs.resize(n, static_cast<Eigen::Index>(outputs));
+  rec.auxiliary.resize(n, static_cast<Eigen::Index>(auxiliaries));
+  for (Eigen::Index s = 0; s < n; ++s) {
+    const std::vector<double>& row = rows[static_cast<size_t>(s)];
+    rec.time.push_back(row[2]);
+    for (size_t i = 0; i < inputs; ++i) rec.inputs(s, static_cast<Eigen::Index>(i)) = row[3 + i];
+    for (size_t i = 0; i < outputs; ++i)
+      rec.outputs(s, static_cast<Eigen::Index>(i)) = row[3 + inputs + i];
+    for (size_t i = 0; i < auxiliaries; ++i)
+      rec.auxiliary(s, static_cast<Eigen::Index>(i)) = row[3 + inputs + outputs + i];
+  }
+  return rec;
+}
+
+}  // namespace
+
 TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_period) {
   RequireRegularFile(path);
   std::ifstream in(path);
   if (!in) throw InputError("cannot read '" + path + "'");
   TimeData data;
   std::string line;
-  size_t number = 0, inputs = 0, outputs = 0, auxiliaries = 0;
+  size_t number = 0;
   bool header = false;
   long current = -1;
   std::vector<std::vector<double>> rows;
   std::optional<double> file_period;
   const auto flush = [&]() {
-    if (rows.empty()) return;
-    TimeRecord rec;
-    rec.excitation_hz = rows[0][1];
-    for (const std::vector<double>& row : rows)
-      if (!(row[1] == rec.excitation_hz))
-        throw InputError(path + ": record " + std::to_string(current) + " has excitation_hz " +
-                         MessageNumber(rec.excitation_hz, 10) + " and " +
-                         MessageNumber(row[1], 10) + ": one frequency per record");
-    rec.inputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(inputs));
-    rec.outputs.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(outputs));
-    rec.auxiliary.resize(static_cast<Eigen::Index>(rows.size()),
-                         static_cast<Eigen::Index>(auxiliaries));
-    for (size_t s = 0; s < rows.size(); ++s) {
-      rec.time.push_back(rows[s][2]);
-      for (size_t i = 0; i < inputs; ++i)
-        rec.inputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) = rows[s][3 + i];
-      for (size_t i = 0; i < outputs; ++i)
-        rec.outputs(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) =
-            rows[s][3 + inputs + i];
-      for (size_t i = 0; i < auxiliaries; ++i)
-        rec.auxiliary(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(i)) =
-            rows[s][3 + inputs + outputs + i];
-    }
-    data.records.push_back(std::move(rec));
+    if (!rows.empty()) data.records.push_back(RecordOf(rows, data, path, current));
     rows.clear();
   };
   while (ReadTextLine(in, line, path + ":" + std::to_string(number + 1))) {
-    ++number;
-    const std::string where = path + ":" + std::to_string(number);
+    const std::string where = path + ":" + std::to_string(++number);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     if (line[0] == '#') {
-      for (const auto& [key, field] :
-           {std::pair<std::string, int>{"period_s:", 0}, {"rotor_speed_rad_s:", 1}}) {
-        const size_t at = line.find(key);
-        if (at == std::string::npos) continue;
-        const double x = Number(line.substr(at + key.size()), where);
-        if (!(x > 0) || !std::isfinite(x))
-          throw InputError(where + ": " + key + " " + MessageNumber(x, 10) +
-                           " must be finite and > 0");
-        if (field == 1) {
-          data.rotor_speed = x;
-        } else if (file_period && *file_period != x) {
-          throw InputError(where + ": a second period_s line (" + MessageNumber(x, 15) +
-                           ") disagrees with the first (" + MessageNumber(*file_period, 15) + ")");
-        } else {
-          file_period = x;
-          data.period = x;
-        }
-      }
+      ReadCommentLine(line, where, data, file_period);
       continue;
     }
     const std::vector<std::string> cells = SplitCsv(line);
     if (!header) {
-      if (cells.size() < 5 || cells[0] != "record" || cells[1] != "excitation_hz" ||
-          cells[2] != "t")
-        throw InputError(where +
-                         ": expected the header record,excitation_hz,t,in:NAME...,out:NAME...");
-      for (size_t c = 3; c < cells.size(); ++c) {
-        if (cells[c].rfind("in:", 0) == 0 && outputs == 0 && auxiliaries == 0) {
-          ++inputs;
-          data.input_names.push_back(cells[c].substr(3));
-        } else if (cells[c].rfind("out:", 0) == 0 && auxiliaries == 0) {
-          ++outputs;
-          data.output_names.push_back(cells[c].substr(4));
-        } else if (cells[c].rfind("aux:", 0) == 0) {
-          ++auxiliaries;
-          data.auxiliary_names.push_back(cells[c].substr(4));
-        } else {
-          throw InputError(where + ": column '" + cells[c] +
-                           "' is not in:NAME, out:NAME or aux:NAME (in that order)");
-        }
-      }
-      if (inputs == 0 || outputs == 0)
-        throw InputError(where + ": needs at least one in: and one out: column");
-      for (const auto* names : {&data.input_names, &data.output_names, &data.auxiliary_names})
-        for (size_t a = 0; a < names->size(); ++a)
-          for (size_t b = a + 1; b < names->size(); ++b)
-            if ((*names)[a] == (*names)[b])
-              throw InputError(where + ": two columns are named '" + (*names)[a] +
-                               "': a channel chosen by name would be ambiguous");
+      ReadHeader(cells, where, data);
       header = true;
       continue;
     }
-    if (cells.size() != 3 + inputs + outputs + auxiliaries)
+    const size_t columns =
+        3 + data.input_names.size() + data.output_names.size() + data.auxiliary_names.size();
+    if (cells.size() != columns)
       throw InputError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
-                       std::to_string(3 + inputs + outputs + auxiliaries));
+                       std::to_string(columns));
     std::vector<double> row;
     for (const std::string& c : cells) row.push_back(Number(c, where));
     if (!(row[0] == std::round(row[0])) || std::abs(row[0]) > 1e9)
       throw InputError(where + ": record '" + cells[0] + "' is not a whole number");
-    const long record = std::lround(row[0]);
-    if (record != current) {
+    if (const long record = std::lround(row[0]); record != current) {
       flush();
       current = record;
     }
