@@ -47,6 +47,32 @@ TEST(WorkEstimate, BracketsTheEvaluationsTheAnalysisCounts) {
       }
 }
 
+// Breakpoints restart the adaptive integrators: at 10^3 and 10^4 of them the restarts are most of
+// the work, and the estimate counts them (10^5 from a Python callable took 16–22 s unannounced).
+TEST(WorkEstimate, RestartsAtBreakpointsAreCounted) {
+  for (const int cuts : {1000, 10000}) {
+    PeriodicSystem::Functions fn;
+    fn.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+      out << 0, 1, -(1 - 0.4 * std::cos(2 * t)), -0.3;
+    };
+    std::vector<double> breakpoints;
+    for (int k = 0; k < cuts; ++k) breakpoints.push_back(std::numbers::pi * k / cuts);
+    const PeriodicSystem system =
+        PeriodicSystem::FromFunctions(std::numbers::pi, 2, 0, 0, fn, breakpoints);
+    FloquetOptions o;
+    o.integrator.type = IntegratorType::kBulirschStoer;
+    const FloquetResult r = AnalyzeFloquet(system, o);
+    ASSERT_TRUE(r.ok);
+    const double pieces = static_cast<double>(system.breakpoints().size()) + 1;
+    const WorkEstimate e =
+        EstimateFloquetWork(MeasureSystemTraits(system), o.integrator, pieces, r.segments, 1e-7);
+    const double counted = static_cast<double>(r.rhs_evals);
+    EXPECT_GE(counted, e.fewest_evaluations) << cuts;
+    EXPECT_LE(counted, 3 * e.evaluations) << cuts;
+    EXPECT_GE(counted, e.evaluations / 3) << cuts;
+  }
+}
+
 // Fixed steps set the count themselves: the estimate brackets the integrators' tally, and a
 // step count no machine finishes in time is refused before the first step (--steps 1e8 on a
 // 2-state system ran silently for minutes).
