@@ -139,7 +139,10 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
       const int h = (b + 1) / 2;
       std::string label = "(cyclic";
       if (h > 1) label += " " + std::to_string(h);
-      if (!f.whirl.empty()) label += f.whirl == "forward" ? ", FW whirl" : ", BW whirl";
+      // Wind energy says forward/backward whirl, helicopters and rotordynamics progressive/
+      // regressive: both, so a reader from either field finds the word.
+      if (!f.whirl.empty())
+        label += f.whirl == "forward" ? ", FW whirl: progressive" : ", BW whirl: regressive";
       label += ")";
       std::string base = WithoutUnit(states[cos_index].description);
       const std::string cosine = "(" + CoordinateWord(c.blades, 2 * h - 1) + ")";

@@ -116,7 +116,7 @@ struct MbcMode {
   };
   std::vector<Share> dominant;  ///< single states, largest first
   /// Shares summed per coordinate family (a fixed-frame state, a collective, a cosine/sine
-  /// pair), e.g. "ED 1st flapwise bending-mode DOF of blade (cyclic, BW whirl) 99%".
+  /// pair), e.g. "ED 1st flapwise bending-mode DOF of blade (cyclic, BW whirl: regressive) 99%".
   std::string description;
   /// "forward" or "backward" when the leading family is a cyclic pair whose cosine and sine
   /// are about ±90° apart (the pattern travels with or against the rotor), else empty.
