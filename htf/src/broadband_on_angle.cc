@@ -11,6 +11,34 @@
 
 namespace ltp::internal {
 
+namespace {
+
+// Per record and line, the change of the model that a unit error of U_rk makes (real, then
+// imaginary part), with the estimates in it: 2 Re(δU Σ_z H_z e^{jφ_kz}) on the record's rows.
+std::vector<RowPerturbation> InputErrorChanges(const TimeData& data, const LineFit& fit,
+                                               const Eigen::MatrixXd& phases, long K, long Z) {
+  std::vector<RowPerturbation> changes;
+  Eigen::Index row = 0;
+  for (const TimeRecord& rec : data.records) {
+    const Eigen::Index n = static_cast<Eigen::Index>(rec.time.size());
+    for (long k = 0; k < K; ++k) {
+      Eigen::VectorXcd g = Eigen::VectorXcd::Zero(n);
+      for (long z = 0; z < Z; ++z) {
+        const std::complex<double> h = fit.amplitude[static_cast<size_t>(k * Z + z)];
+        if (!std::isfinite(std::abs(h))) continue;
+        for (Eigen::Index i = 0; i < n; ++i)
+          g(i) += h * std::polar(1.0, phases(row + i, k * Z + z));
+      }
+      changes.push_back({row, 2 * g.real()});
+      changes.push_back({row, -2 * g.imag()});
+    }
+    row += n;
+  }
+  return changes;
+}
+
+}  // namespace
+
 IdentifyResult IdentifyBroadbandOnAngle(const TimeData& data, const IdentifyOptions& o,
                                         const std::vector<double>& omegas,
                                         const Eigen::MatrixXcd& input_amplitudes,
@@ -48,31 +76,12 @@ IdentifyResult IdentifyBroadbandOnAngle(const TimeData& data, const IdentifyOpti
         }
     }
   }
-  LineFit fit = FitLines(y, phases, gains);
-  // The input's noise, through the same fit: per record and line, the change of the model
-  // that a unit error of U_rk (real, then imaginary) makes, with the estimates in it.
-  std::vector<RowPerturbation> changes;
-  row = 0;
-  for (size_t r = 0; r < data.records.size(); ++r) {
-    const Eigen::Index n = static_cast<Eigen::Index>(data.records[r].time.size());
-    for (long k = 0; k < K; ++k) {
-      Eigen::VectorXcd g = Eigen::VectorXcd::Zero(n);
-      for (long z = 0; z < Z; ++z) {
-        const std::complex<double> h = fit.amplitude[static_cast<size_t>(k * Z + z)];
-        if (!std::isfinite(std::abs(h))) continue;
-        for (Eigen::Index i = 0; i < n; ++i)
-          g(i) += h * std::polar(1.0, phases(row + i, k * Z + z));
-      }
-      changes.push_back({row, 2 * g.real()});
-      changes.push_back({row, -2 * g.imag()});
-    }
-    row += n;
-  }
-  if (input_bin_variance > 0)
-    fit.perturbation_response = FitLines(y, phases, gains, changes).perturbation_response;
-  else
-    fit.perturbation_response.clear();
-  const double bound_factor = std::sqrt(std::log(20.0));  // as identify.cc: 95 % of |error|
+  const LineBasis basis(phases, gains);
+  const LineFit fit = basis.Fit(y);
+  // The input's noise, through the same factored fit.
+  const std::vector<std::vector<std::complex<double>>> responses =
+      input_bin_variance > 0 ? basis.Response(InputErrorChanges(data, fit, phases, K, Z))
+                             : std::vector<std::vector<std::complex<double>>>{};
   IdentifyResult result;
   result.min_order = o.min_order;
   result.max_order = o.max_order;
@@ -88,9 +97,9 @@ IdentifyResult IdentifyBroadbandOnAngle(const TimeData& data, const IdentifyOpti
       f.separable = f.separable && fit.determined[l];
       undetermined += !fit.determined[l];
       double variance = fit.variance[l];  // output noise; then the input's, each δU's share
-      for (const auto& response : fit.perturbation_response)
+      for (const auto& response : responses)
         variance += input_bin_variance / 2 * std::norm(response[l]);
-      f.bound.push_back(fit.determined[l] && fit.dof > 0 ? bound_factor * std::sqrt(variance)
+      f.bound.push_back(fit.determined[l] && fit.dof > 0 ? kBoundFactor * std::sqrt(variance)
                                                          : std::numeric_limits<double>::infinity());
     }
     result.frequencies.push_back(std::move(f));

@@ -22,8 +22,7 @@ using cd = std::complex<double>;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kBiasRatio = 10;
-const double kBoundFactor =
-    std::sqrt(std::log(20.0));  // P(|circular Gaussian| > r) = e^{−r²/σ²} = 5 %
+using internal::kBoundFactor;
 
 // Nearest integer to x, with *ok = x is one to 1e-6 (and small enough to count samples).
 long WholeNumber(double x, bool* ok) {

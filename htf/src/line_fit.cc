@@ -8,69 +8,78 @@
 namespace ltp::internal {
 
 LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases) {
-  return FitLines(y, phases, Eigen::MatrixXcd());
+  return LineBasis(phases, Eigen::MatrixXcd()).Fit(y);
 }
 
-LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases,
-                 const Eigen::MatrixXcd& gains, const std::vector<RowPerturbation>& perturbations) {
-  const Eigen::Index n = y.size(), lines = phases.cols(), p = 1 + 2 * lines;
-  Eigen::MatrixXd X(n, p);
-  X.col(0).setOnes();
-  for (Eigen::Index l = 0; l < lines; ++l) {
+LineBasis::LineBasis(const Eigen::MatrixXd& phases, const Eigen::MatrixXcd& gains)
+    : lines_(phases.cols()), columns_(phases.rows(), 1 + 2 * phases.cols()) {
+  columns_.col(0).setOnes();
+  for (Eigen::Index l = 0; l < lines_; ++l) {
     // α Re w + β Im w = 2 Re(A w) with w = g e^{jφ} and A = (α − jβ)/2.
     Eigen::ArrayXcd w =
         phases.col(l).array().unaryExpr([](double phi) { return std::polar(1.0, phi); });
     if (gains.size() > 0) w *= gains.col(l).array();
-    X.col(1 + 2 * l) = w.real();
-    X.col(2 + 2 * l) = w.imag();
+    columns_.col(1 + 2 * l) = w.real();
+    columns_.col(2 + 2 * l) = w.imag();
   }
   // Columns scaled to unit norm, so the rank decision compares directions, not sizes.
-  const Eigen::VectorXd scale = X.colwise().norm().transpose().cwiseMax(1e-300);
-  X = X * scale.cwiseInverse().asDiagonal();
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(X, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd& s = svd.singularValues();
+  scale_ = columns_.colwise().norm().transpose().cwiseMax(1e-300);
+  columns_ = columns_ * scale_.cwiseInverse().asDiagonal();
+  svd_.compute(columns_, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& s = svd_.singularValues();
   const double cut = 1e-9 * s(0);
-  Eigen::Index rank = 0;
-  while (rank < s.size() && s(rank) > cut) ++rank;
-  const Eigen::MatrixXd& V = svd.matrixV();
-  // Minimum-norm solution and covariance factors on the determined subspace.
-  const Eigen::VectorXd coefficients =
-      V.leftCols(rank) *
-      (s.head(rank).cwiseInverse().asDiagonal() * (svd.matrixU().leftCols(rank).transpose() * y));
-  LineFit fit;
-  for (const RowPerturbation& d : perturbations) {
-    const Eigen::VectorXd change =
-        V.leftCols(rank) *
-        (s.head(rank).cwiseInverse().asDiagonal() *
-         (svd.matrixU().block(d.first, 0, d.values.size(), rank).transpose() * d.values));
-    std::vector<std::complex<double>> response;
-    for (Eigen::Index l = 0; l < lines; ++l)
-      response.emplace_back(change(1 + 2 * l) / scale(1 + 2 * l),
-                            -change(2 + 2 * l) / scale(2 + 2 * l));
-    for (auto& r : response) r /= 2.0;
-    fit.perturbation_response.push_back(std::move(response));
-  }
+  while (rank_ < s.size() && s(rank_) > cut) ++rank_;
+}
+
+Eigen::VectorXd LineBasis::Coefficients(const Eigen::VectorXd& projected) const {
+  // Minimum-norm solution on the determined subspace.
+  return svd_.matrixV().leftCols(rank_) *
+         (svd_.singularValues().head(rank_).cwiseInverse().asDiagonal() * projected);
+}
+
+LineFit LineBasis::Fit(const Eigen::VectorXd& y) const {
+  const Eigen::Index n = y.size(), p = 1 + 2 * lines_;
+  const Eigen::VectorXd& s = svd_.singularValues();
+  const Eigen::MatrixXd& V = svd_.matrixV();
+  const Eigen::VectorXd coefficients = Coefficients(svd_.matrixU().leftCols(rank_).transpose() * y);
+  // Covariance factors on the determined subspace.
   Eigen::VectorXd factor(p), undetermined(p);
   for (Eigen::Index i = 0; i < p; ++i) {
     factor(i) =
-        (V.row(i).head(rank).array().square() / s.head(rank).array().square().transpose()).sum() /
-        (scale(i) * scale(i));
-    undetermined(i) = V.row(i).tail(p - rank).squaredNorm();
+        (V.row(i).head(rank_).array().square() / s.head(rank_).array().square().transpose()).sum() /
+        (scale_(i) * scale_(i));
+    undetermined(i) = V.row(i).tail(p - rank_).squaredNorm();
   }
-  fit.dof = static_cast<long>(n - rank);
-  const double residual = (y - X * coefficients).squaredNorm();
+  LineFit fit;
+  fit.dof = static_cast<long>(n - rank_);
+  const double residual = (y - columns_ * coefficients).squaredNorm();
   fit.noise_variance = fit.dof > 0 ? residual / static_cast<double>(fit.dof)
                                    : std::numeric_limits<double>::quiet_NaN();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (Eigen::Index l = 0; l < lines; ++l) {
+  for (Eigen::Index l = 0; l < lines_; ++l) {
     const Eigen::Index c = 1 + 2 * l, si = 2 + 2 * l;
     const bool ok = undetermined(c) < 1e-6 && undetermined(si) < 1e-6;
-    const double a = coefficients(c) / scale(c), b = coefficients(si) / scale(si);
+    const double a = coefficients(c) / scale_(c), b = coefficients(si) / scale_(si);
     fit.determined.push_back(ok);
     fit.amplitude.push_back(ok ? std::complex<double>(a, -b) / 2.0 : std::complex<double>(nan, 0));
     fit.variance.push_back(ok ? fit.noise_variance * (factor(c) + factor(si)) / 4 : nan);
   }
   return fit;
+}
+
+std::vector<std::vector<std::complex<double>>> LineBasis::Response(
+    const std::vector<RowPerturbation>& changes) const {
+  std::vector<std::vector<std::complex<double>>> responses;
+  for (const RowPerturbation& d : changes) {
+    const Eigen::VectorXd change = Coefficients(
+        svd_.matrixU().block(d.first, 0, d.values.size(), rank_).transpose() * d.values);
+    std::vector<std::complex<double>> response;
+    for (Eigen::Index l = 0; l < lines_; ++l)
+      response.emplace_back(change(1 + 2 * l) / scale_(1 + 2 * l) / 2,
+                            -change(2 + 2 * l) / scale_(2 + 2 * l) / 2);
+    responses.push_back(std::move(response));
+  }
+  return responses;
 }
 
 FittedRate FitLineRate(const std::vector<double>& time, const Eigen::VectorXd& y,

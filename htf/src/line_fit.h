@@ -5,10 +5,15 @@
 // whole periods nor a uniform grid nor a constant speed, and reduces to the DFT bins of eq. 47
 // when those hold (the columns are then orthogonal). Internal to ltp::htf.
 #include <Eigen/Dense>
+#include <cmath>
 #include <complex>
 #include <vector>
 
 namespace ltp::internal {
+
+/// The radius that circular Gaussian noise of variance σ² exceeds with probability 5 %:
+/// P(|e| > r) = e^{−r²/σ²}, so r = sqrt(ln 20)·σ — every 95 % bound of identification.
+inline const double kBoundFactor = std::sqrt(std::log(20.0));
 
 struct LineFit {
   std::vector<std::complex<double>> amplitude;  ///< A_l (NaN when not determined)
@@ -18,8 +23,6 @@ struct LineFit {
   std::vector<bool> determined;
   double noise_variance = 0;  ///< σ² = |residual|² / (samples − rank)
   long dof = 0;               ///< samples − rank
-  /// δA_l for each perturbation asked for (the fit is linear in y): [perturbation][line].
-  std::vector<std::vector<std::complex<double>>> perturbation_response;
 };
 
 /// A change of y confined to rows first … first + values.size() − 1.
@@ -31,14 +34,27 @@ struct RowPerturbation {
 /// `phases` is samples × lines (φ_l(t_n), rad). A constant c is always fitted.
 LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases);
 
-/// The same with a known complex gain per sample and line: y ≈ c + Σ_l (A_l g_l(t_n) e^{jφ_l}
-/// + c.c.) — records stacked whose lines are driven by different measured inputs (g = U_r),
-/// one A_l = H for all. `gains` has the shape of `phases`.
-/// `perturbations`: changes of y whose effect on the A_l is wanted (errors of the gains, say),
-/// answered in LineFit::perturbation_response at the cost of one product each.
-LineFit FitLines(const Eigen::VectorXd& y, const Eigen::MatrixXd& phases,
-                 const Eigen::MatrixXcd& gains,
-                 const std::vector<RowPerturbation>& perturbations = {});
+/// The lines' least-squares basis, factored once (the SVD of the columns scaled to unit norm):
+/// y fitted with it, and the fit's linear response to changes of y without a second
+/// factorisation. With a known complex gain per sample and line, y ≈ c + Σ_l (A_l g_l(t_n)
+/// e^{jφ_l} + c.c.) — records stacked whose lines are driven by different measured inputs
+/// (g = U_r), one A_l = H for all; `gains` has the shape of `phases` (empty: all 1).
+class LineBasis {
+ public:
+  LineBasis(const Eigen::MatrixXd& phases, const Eigen::MatrixXcd& gains);
+  LineFit Fit(const Eigen::VectorXd& y) const;
+  /// δA_l for each change of y (errors of the gains, say): [change][line], one product each.
+  std::vector<std::vector<std::complex<double>>> Response(
+      const std::vector<RowPerturbation>& changes) const;
+
+ private:
+  // The coefficients (constant, then cos and sin per line, scaled) for U_rᵀ·y of the rows.
+  Eigen::VectorXd Coefficients(const Eigen::VectorXd& projected) const;
+  Eigen::Index lines_ = 0, rank_ = 0;
+  Eigen::MatrixXd columns_;  // scaled to unit norm
+  Eigen::VectorXd scale_;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
+};
 
 /// A rate r in lines of phases φ_l(t) = base_l(t) + m_l · r · t, fitted with their amplitudes
 /// by Gauss–Newton from r0 (the column ∂y/∂r = Σ_l m_l t (−a_l sin φ_l + b_l cos φ_l)).
