@@ -326,22 +326,29 @@ IdentifyOptions IdentifyOptionsFrom(const IdentifyArgs& args, const TimeData& da
   return o;
 }
 
-// --compare: the scene's partial FRFs at the identified frequencies (empty without).
-std::vector<std::vector<cd>> ModelValues(const IdentifyArgs& args, const TimeData& data,
-                                         bool measured_speed, const IdentifyOptions& o,
-                                         const IdentifyResult& r) {
-  if (args.compare.empty()) return {};
-  const LoadedScene l = LoadSceneInput({args.compare}, args.set);
+// --compare: the scene, loaded once for every output (none without), its period checked
+// against the data's unless the angle was measured.
+std::optional<LoadedScene> ComparedScene(const IdentifyArgs& args, const TimeData& data,
+                                         bool measured_speed) {
+  if (args.compare.empty()) return std::nullopt;
+  LoadedScene l = LoadSceneInput({args.compare}, args.set);
   if (!measured_speed && std::abs(l.system.period() - data.period) > 1e-9 * data.period)
     throw InputError("--compare: the scene's period " + Num(l.system.period(), 10) +
                      " s is not the data's " + Num(data.period, 10) + " s");
+  return l;
+}
+
+// The compared scene's partial FRFs at the identified frequencies (empty without one).
+std::vector<std::vector<cd>> ModelValues(const std::optional<LoadedScene>& scene,
+                                         const IdentifyOptions& o, const IdentifyResult& r) {
+  if (!scene) return {};
   PfrfOptions po;
   for (const auto& f : r.frequencies) po.frequencies_hz.push_back(f.excitation_hz);
   po.min_order = o.min_order;
   po.max_order = o.max_order;
   po.input = o.input;
   po.output = o.output;
-  return ComputePartialFrf(l.system, po).values;
+  return ComputePartialFrf(scene->system, po).values;
 }
 
 // One output's estimate, with its name and the model's values (--compare; empty without).
@@ -540,6 +547,7 @@ int RunIdentify(const IdentifyArgs& args) {
   if (!args.convergence.empty() && method != "broadband")
     throw InputError("--convergence: needs broadband records (it adds them one by one)");
   const ChannelDelays delays = ParseDelays(args, data, options);
+  const std::optional<LoadedScene> compared = ComparedScene(args, data, speeds.has_value());
   std::vector<OutputEstimate> estimates;
   for (const int output : OutputIndices(args, data, ltp_format)) {
     OutputEstimate e{data.output_names[static_cast<size_t>(output)], options, {}, {}};
@@ -549,15 +557,19 @@ int RunIdentify(const IdentifyArgs& args) {
         (delays.outputs.count(e.name) ? delays.outputs.at(e.name) : 0.0) - delays.angle;
     e.result = method == "broadband" ? IdentifyBroadband(data, e.options)
                                      : IdentifyStepSine(data, e.options);
-    e.model = ModelValues(args, data, speeds.has_value(), e.options, e.result);
+    e.model = ModelValues(compared, e.options, e.result);
     estimates.push_back(std::move(e));
   }
   const bool several = estimates.size() > 1;
   std::vector<std::string> written;
-  if (!args.csv.empty()) WriteIdentifiedCsv(args.csv, estimates);
-  if (!args.csv.empty()) written.push_back(args.csv);
-  if (!args.uff.empty()) WriteIdentifiedUff(args.uff, data, estimates, args.binary);
-  if (!args.uff.empty()) written.push_back(args.uff);
+  if (!args.csv.empty()) {
+    WriteIdentifiedCsv(args.csv, estimates);
+    written.push_back(args.csv);
+  }
+  if (!args.uff.empty()) {
+    WriteIdentifiedUff(args.uff, data, estimates, args.binary);
+    written.push_back(args.uff);
+  }
   for (const OutputEstimate& e : estimates) {
     if (!args.plot.empty()) {
       written.push_back(PerOutputFile(args.plot, e.name, several));

@@ -30,25 +30,26 @@ double Number(const std::string& text, const std::string& where) {
 
 }  // namespace
 
+std::string ChannelNameOr(const std::vector<std::string>& names, Eigen::Index i,
+                          const std::string& fallback) {
+  if (static_cast<size_t>(i) < names.size()) return names[static_cast<size_t>(i)];
+  std::string text = fallback;  // (not fallback + to_string: g++ 12 warns falsely, -Wrestrict)
+  return text += std::to_string(i + 1);
+}
+
 void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment) {
   std::ofstream out(path);
   out.precision(15);
   out << "# ltp time data: " << comment << "\n# period_s: " << data.period << "\n";
   if (data.rotor_speed) out << "# rotor_speed_rad_s: " << *data.rotor_speed << "\n";
   out << "record,excitation_hz,t";
-  const auto name = [](const std::vector<std::string>& names, Eigen::Index i,
-                       const char* fallback) {
-    if (static_cast<size_t>(i) < names.size()) return names[static_cast<size_t>(i)];
-    std::string text = fallback;  // (not fallback + to_string: g++ 12 warns falsely, -Wrestrict)
-    return text += std::to_string(i + 1);
-  };
   const TimeRecord& first = data.records.front();
   for (Eigen::Index i = 0; i < first.inputs.cols(); ++i)
-    out << ",in:" << name(data.input_names, i, "u");
+    out << ",in:" << ChannelNameOr(data.input_names, i, "u");
   for (Eigen::Index i = 0; i < first.outputs.cols(); ++i)
-    out << ",out:" << name(data.output_names, i, "y");
+    out << ",out:" << ChannelNameOr(data.output_names, i, "y");
   for (Eigen::Index i = 0; i < first.auxiliary.cols(); ++i)
-    out << ",aux:" << name(data.auxiliary_names, i, "a");
+    out << ",aux:" << ChannelNameOr(data.auxiliary_names, i, "a");
   out << "\n";
   for (size_t r = 0; r < data.records.size(); ++r) {
     const TimeRecord& rec = data.records[r];

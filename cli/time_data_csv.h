@@ -26,6 +26,10 @@ void RequireRegularFile(const std::string& path);
 /// line ends) is refused with `where`, not read into memory to its end. False at the end.
 bool ReadTextLine(std::istream& in, std::string& line, const std::string& where);
 
+/// The channel's name, or `fallback` and its number (from 1) when the data name none.
+std::string ChannelNameOr(const std::vector<std::string>& names, Eigen::Index i,
+                          const std::string& fallback);
+
 /// @throws InputError when the file cannot be written.
 void WriteTimeDataCsv(const std::string& path, const TimeData& data, const std::string& comment);
 

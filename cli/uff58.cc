@@ -13,17 +13,12 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 #include "time_data_csv.h"
 
 namespace ltp::cli {
 
 namespace {
-
-std::string Trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
-}
 
 // Columns [from, from + width) of a fixed-format line (blank beyond its end).
 std::string Columns(const std::string& line, size_t from, size_t width) {
@@ -518,20 +513,18 @@ double WriteTimeDataUff(const std::string& path, const TimeData& data, const std
         if (!binary) rounding = std::max(rounding, std::abs(*FortranNumber(E13(t)) - t));
     }
     const auto add = [&](const Eigen::MatrixXd& channels, const std::vector<std::string>& names,
-                         const std::string& fallback, int direction) {
+                         const std::string& fallback) {
       for (Eigen::Index c = 0; c < channels.cols(); ++c) {
-        f.description = static_cast<size_t>(c) < names.size() ? names[static_cast<size_t>(c)]
-                                                              : fallback + std::to_string(c + 1);
+        f.description = ChannelNameOr(names, c, fallback);
         f.response_name = f.description;
         f.response_node = static_cast<int>(c + 1);
-        f.response_direction = direction;
         f.real.assign(channels.col(c).data(), channels.col(c).data() + channels.rows());
         functions.push_back(f);
       }
     };
-    add(rec.inputs, data.input_names, "u", 0);
-    add(rec.outputs, data.output_names, "y", 0);
-    add(rec.auxiliary, data.auxiliary_names, "a", 0);
+    add(rec.inputs, data.input_names, "u");
+    add(rec.outputs, data.output_names, "y");
+    add(rec.auxiliary, data.auxiliary_names, "a");
   }
   WriteUff58(path, functions, binary);
   return rounding;
