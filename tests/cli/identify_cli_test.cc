@@ -310,6 +310,25 @@ TEST(IdentifyCli, DaqFilesAreRecordsAndTheirFrequenciesComeFromTheInput) {
   EXPECT_NE(no_period.err.find("--period"), std::string::npos) << no_period.err;
 }
 
+// An estimate of `ltp identify --json` and the model's value beside it (--compare).
+std::complex<double> Estimated(const json& h) {
+  return {h["re"].get<double>(), h["im"].get<double>()};
+}
+std::complex<double> Modelled(const json& h) {
+  return {h["model"][0].get<double>(), h["model"][1].get<double>()};
+}
+
+// The largest |estimate − model| over a run's frequencies and orders, and the largest |model|.
+std::pair<double, double> LargestModelError(const json& run) {
+  double worst = 0, largest = 0;
+  for (const json& f : run["frequencies"])
+    for (const json& h : f["H"]) {
+      worst = std::max(worst, std::abs(Estimated(h) - Modelled(h)));
+      largest = std::max(largest, std::abs(Modelled(h)));
+    }
+  return {worst, largest};
+}
+
 // UFF 58 as the format's description lays it out (written here field by field, not by ltp's
 // writer): records 1–11 of each function, then record 12's values; the rig's two step-sine
 // records, three channels each, in one file (a channel name met again starts the next record).
@@ -389,8 +408,7 @@ TEST(IdentifyCli, UffFilesAsTheFormatDescribesThemAreRead) {
     const auto truth = rig.PartialFrf(truth_hz[f], rig.Speed());
     for (size_t z = 0; z < 5; ++z) {
       const json& e = j["frequencies"][f]["H"][z];
-      const double error =
-          std::abs(std::complex<double>(e["re"].get<double>(), e["im"].get<double>()) - truth[z]);
+      const double error = std::abs(Estimated(e) - truth[z]);
       // The rounding is noise to the fit: its 95 % bounds are of the error's size.
       EXPECT_LT(error, 2 * e["bound_95"].get<double>()) << f << " z=" << int(z) - 2;
       EXPECT_LT(error, 1e-5 * std::abs(truth[2])) << f << " z=" << int(z) - 2;
@@ -420,11 +438,11 @@ TEST(IdentifyCli, UffRoundTripsThroughSimulateAndIdentify) {
     std::map<std::pair<int, long>, std::complex<double>> estimates;  // (z, frequency in 1e-7 Hz)
     for (const json& f : j["frequencies"])
       for (const json& h : f["H"]) {
-        const std::complex<double> v(h["re"].get<double>(), h["im"].get<double>());
-        const std::complex<double> m(h["model"][0].get<double>(), h["model"][1].get<double>());
         // The 7-digit time step moves the frequencies by ~1e-7: H_z with them.
-        EXPECT_LT(std::abs(v - m), 2e-6) << f["excitation_hz"] << " z=" << h["z"];
-        estimates[{h["z"].get<int>(), std::lround(f["excitation_hz"].get<double>() * 1e7)}] = v;
+        EXPECT_LT(std::abs(Estimated(h) - Modelled(h)), 2e-6)
+            << f["excitation_hz"] << " z=" << h["z"];
+        estimates[{h["z"].get<int>(), std::lround(f["excitation_hz"].get<double>() * 1e7)}] =
+            Estimated(h);
       }
     const std::vector<ltp::cli::Uff58Function> read = ltp::cli::ReadUff58(h_file);
     ASSERT_EQ(read.size(), 6u);  // H_z and its bound, z = −1, 0, 1
@@ -496,13 +514,7 @@ TEST(IdentifyCli, SeveralOutputsAndAChannelDelay) {
     const auto r = RunLtp("identify " + csv + " --output " + name + " --orders -2:2 --compare " +
                           jeff + " --json" + extra);
     EXPECT_EQ(r.code, 0) << r.err;
-    double worst = 0;
-    const json parsed = json::parse(r.out);
-    for (const json& f : parsed["frequencies"])
-      for (const json& h : f["H"])
-        worst = std::max(worst, std::hypot(h["re"].get<double>() - h["model"][0].get<double>(),
-                                           h["im"].get<double>() - h["model"][1].get<double>()));
-    return worst;
+    return LargestModelError(json::parse(r.out)).first;
   };
   EXPECT_GT(error(""), 1e-2);
   std::ostringstream delay;
@@ -577,14 +589,7 @@ TEST(IdentifyCli, BroadbandRecordsOnATacho) {
     said =
         said || d.get<std::string>().find("broadband on the measured angle") != std::string::npos;
   EXPECT_TRUE(said) << j["diagnostics"];
-  double worst = 0, largest = 0;
-  for (const json& f : j["frequencies"])
-    for (const json& h : f["H"]) {
-      const std::complex<double> v(h["re"].get<double>(), h["im"].get<double>());
-      const std::complex<double> m(h["model"][0].get<double>(), h["model"][1].get<double>());
-      worst = std::max(worst, std::abs(v - m));
-      largest = std::max(largest, std::abs(m));
-    }
+  const auto [worst, largest] = LargestModelError(j);
   EXPECT_LT(worst, 1e-6 * largest);
 }
 
