@@ -1,7 +1,7 @@
-// Route 2: the truncated harmonic transfer function (Wereley). For u = U e^{jωt} and
-// x = Σ_u X_u e^{j(ω+uΩp)t}, harmonic balance gives for v = −N..N
-//   j(ω + vΩp) X_v − Σ_u A_{v−u} X_u = B_v U,
-// i.e. (jωI + 𝒩 − 𝒜) X = ℬ with block bandwidth H_A (the harmonics of A). The matrix is
+// Route 2: the truncated harmonic transfer function (Wereley). For u = U e^{st} (s = jω on the
+// frequency axis) and x = Σ_u X_u e^{(s+juΩp)t}, harmonic balance gives for v = −N..N
+//   (s + jvΩp) X_v − Σ_u A_{v−u} X_u = B_v U,
+// i.e. (sI + 𝒩 − 𝒜) X = ℬ with block bandwidth H_A (the harmonics of A). The matrix is
 // solved as banded (LAPACK zgbtrf/zgbtrs, scalar bandwidth (H_A+1)n − 1): never densely.
 // Then Y_z = Σ_u C_{z−u} X_u + D_z U.
 #include <lapacke.h>
@@ -103,12 +103,14 @@ int HtfSolver::ChooseTruncation(int min_order, int max_order,
   // A couples neighbours H_A harmonics apart, so X_{±Z} needs about H_A more on each side.
   int N = std::max({2 * Z, Z + std::min(ha_, 8), 8});
   N = std::min(N, std::max(options_.max_harmonics, Z));
+  truncation_converged_ = true;
   for (bool first = true;; first = false) {
     if (!first && BandBytes(n_, N + std::max(2, N / 4), ha_) > kMaxBandBytes) {
       std::ostringstream s;
       s << "htf: truncation stopped at N = " << harmonics_
         << ": the next would not fit in memory (more than 2 GiB of band matrix)";
       diagnostics_.push_back(s.str());
+      truncation_converged_ = false;
       break;
     }
     harmonics_ = N;
@@ -133,6 +135,7 @@ int HtfSolver::ChooseTruncation(int min_order, int max_order,
       s << "htf: truncation N = " << N << " (max_harmonics) still changes H_z by " << change / scale
         << " (relative) against N + " << delta();
       diagnostics_.push_back(s.str());
+      truncation_converged_ = false;
       break;
     }
     N = std::min(options_.max_harmonics, N + std::max(2, N / 2));
@@ -228,15 +231,19 @@ bool HtfSolver::PrepareSweep(int frequencies, const std::vector<int>& truncation
 }
 
 PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int harmonics) const {
+  return EvaluateAt(cd(0, omega), min_order, max_order, harmonics);
+}
+
+PartialFrfs HtfSolver::EvaluateAt(cd s, int min_order, int max_order, int harmonics) const {
   const int N = harmonics > 0 ? harmonics : harmonics_;
   const auto reduced = reduced_.find(N);
-  if (reduced == reduced_.end()) return EvaluateBanded(omega, min_order, max_order, N);
+  if (reduced == reduced_.end()) return EvaluateBanded(s, min_order, max_order, N);
   PartialFrfs h(max_order - min_order + 1, Eigen::MatrixXcd::Zero(p_, m_));
   // Only the orders asked for that the truncated X reaches (|z| <= N + H_C).
   const int zr = N + MaxHarmonic(fourier_.C.series);
   const int z0 = std::max(min_order, -zr), z1 = std::min(max_order, zr);
   Eigen::MatrixXcd y;
-  if (z0 <= z1 && !reduced->second->Solve(omega, (z0 + zr) * p_, (z1 - z0 + 1) * p_, y)) {
+  if (z0 <= z1 && !reduced->second->Solve(s, (z0 + zr) * p_, (z1 - z0 + 1) * p_, y)) {
     for (auto& x : h) x.setConstant(cd(std::numeric_limits<double>::quiet_NaN(), 0));
     return h;
   }
@@ -249,7 +256,7 @@ PartialFrfs HtfSolver::Evaluate(double omega, int min_order, int max_order, int 
   return h;
 }
 
-PartialFrfs HtfSolver::EvaluateBanded(double omega, int min_order, int max_order, int N) const {
+PartialFrfs HtfSolver::EvaluateBanded(cd s, int min_order, int max_order, int N) const {
   const int n = n_;
   const int size = (2 * N + 1) * n;
   const int ha = std::min(ha_, N);
@@ -260,11 +267,11 @@ PartialFrfs HtfSolver::EvaluateBanded(double omega, int min_order, int max_order
     ab[static_cast<size_t>(kl + ku + i - j) + static_cast<size_t>(j) * ldab] += value;
   });
   for (int i = 0; i < size; ++i)
-    ab[static_cast<size_t>(kl + ku) + static_cast<size_t>(i) * ldab] += cd(0, omega);
+    ab[static_cast<size_t>(kl + ku) + static_cast<size_t>(i) * ldab] += s;
   Eigen::MatrixXcd rhs = HillRhs(N);
   std::vector<lapack_int> ipiv(size);
   // The _work drivers: the plain ones first scan the whole band for NaN (5 % of a tower-rotor
-  // sweep); the entries here are finite by construction (a validated system, finite ω).
+  // sweep); the entries here are finite by construction (a validated system, finite s).
   lapack_int info =
       LAPACKE_zgbtrf_work(LAPACK_COL_MAJOR, size, size, kl, ku,
                           reinterpret_cast<lapack_complex_double*>(ab.data()), ldab, ipiv.data());

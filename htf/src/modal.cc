@@ -258,13 +258,17 @@ ModalModel BuildModalModel(const PeriodicSystem& system, const FloquetResult& fl
 }
 
 PartialFrfs ModalModel::Evaluate(double omega, int min_order, int max_order) const {
+  return EvaluateAt(cd(0, omega), min_order, max_order);
+}
+
+PartialFrfs ModalModel::EvaluateAt(cd s, int min_order, int max_order) const {
   const int V = harmonics;
   PartialFrfs h(max_order - min_order + 1, Eigen::MatrixXcd::Zero(outputs, inputs));
   Eigen::MatrixXcd scaled(states, inputs);
   for (int u = -V; u <= V; ++u) {
-    // R_u = (j(ω+uΩp) I − Λ)⁻¹ B̂_u, reused for every z.
-    const cd s(0, omega + u * omega_p);
-    for (int k = 0; k < states; ++k) scaled.row(k) = b_hat[u + V].row(k) / (s - exponents[k]);
+    // R_u = ((s + juΩp) I − Λ)⁻¹ B̂_u, reused for every z.
+    const cd su = s + cd(0, u * omega_p);
+    for (int k = 0; k < states; ++k) scaled.row(k) = b_hat[u + V].row(k) / (su - exponents[k]);
     for (int z = min_order; z <= max_order; ++z) {
       const int v = z - u;
       if (std::abs(v) <= V) h[z - min_order].noalias() += c_hat[v + V] * scaled;

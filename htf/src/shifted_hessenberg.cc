@@ -38,11 +38,10 @@ ShiftedHessenbergSolver::ShiftedHessenbergSolver(Eigen::MatrixXcd h, const Eigen
   ok_ = true;
 }
 
-bool ShiftedHessenbergSolver::Solve(double omega, int first, int count,
-                                    Eigen::MatrixXcd& out) const {
+bool ShiftedHessenbergSolver::Solve(cd s, int first, int count, Eigen::MatrixXcd& out) const {
   if (!ok_) return false;
   const int n = size(), m = static_cast<int>(qb_.cols());
-  const cd shift(0, omega);
+  const cd shift = s;
   // Forward elimination keeps one working row w: at step k it is row k of the partly reduced
   // matrix. Only w and row k + 1 of jωI + 𝐻 have an entry in column k; the larger one there is
   // the pivot and becomes row k of U, the other minus l × pivot the next w. One pass per step

@@ -22,10 +22,10 @@ class ShiftedHessenbergSolver {
   /// h: n × n; b: n × m right-hand sides; g: r × n output rows.
   ShiftedHessenbergSolver(Eigen::MatrixXcd h, const Eigen::MatrixXcd& b, const Eigen::MatrixXcd& g);
 
-  /// out = rows first … first + count − 1 of G (jωI + H)⁻¹ B (count × m). False when jωI + H
-  /// is exactly singular or the reduction failed; out is then unspecified. Safe to call from
-  /// several threads at once.
-  bool Solve(double omega, int first, int count, Eigen::MatrixXcd& out) const;
+  /// out = rows first … first + count − 1 of G (sI + H)⁻¹ B (count × m), s = jω on the
+  /// frequency axis. False when sI + H is exactly singular or the reduction failed; out is then
+  /// unspecified. Safe to call from several threads at once.
+  bool Solve(std::complex<double> s, int first, int count, Eigen::MatrixXcd& out) const;
 
   bool ok() const { return ok_; }
   int size() const { return static_cast<int>(hessenberg_.rows()); }

@@ -97,6 +97,9 @@ struct ModalModel {
 
   /// H_z(ω) for z = min_order..max_order.
   PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
+  /// H_z(s) at a complex frequency s (jω on the frequency axis): the same sum with
+  /// (s + juΩp − λ_k)⁻¹ — the harmonic transfer function's continuation off the axis.
+  PartialFrfs EvaluateAt(std::complex<double> s, int min_order, int max_order) const;
   /// The term of mode k, harmonic pair (u, v = z − u): [Ĉ_v]_{o,k} [B̂_u]_{k,i} / (j(ω+uΩp) − λ_k).
   std::complex<double> Term(double omega, int k, int u, int v, int output, int input) const;
 };
@@ -166,15 +169,21 @@ class HtfSolver {
   /// H_z(ω) at truncation N (0 = the current one). Never throws for a singular matrix: the
   /// entries are then NaN.
   PartialFrfs Evaluate(double omega, int min_order, int max_order, int harmonics = 0) const;
+  /// H_z(s) at a complex frequency s ((sI + 𝒩 − 𝒜) X = ℬ; s = jω on the frequency axis).
+  PartialFrfs EvaluateAt(std::complex<double> s, int min_order, int max_order,
+                         int harmonics = 0) const;
 
   int harmonics() const { return harmonics_; }
   int delta() const;
   int coefficient_harmonics() const { return ha_; }  ///< H_A used (after capping)
   double fourier_tail() const { return fourier_tail_; }
+  /// The automatic truncation reached its target (always true for a fixed N).
+  bool truncation_converged() const { return truncation_converged_; }
   const std::vector<std::string>& diagnostics() const { return diagnostics_; }
 
  private:
   int n_ = 0, m_ = 0, p_ = 0;
+  bool truncation_converged_ = true;
   double omega_p_ = 0;
   HtfOptions options_;
   int harmonics_ = 0, ha_ = 0;
@@ -183,7 +192,7 @@ class HtfSolver {
   std::vector<std::string> diagnostics_;
   std::map<int, std::shared_ptr<const internal::ShiftedHessenbergSolver>> reduced_;  ///< by N
 
-  PartialFrfs EvaluateBanded(double omega, int min_order, int max_order, int N) const;
+  PartialFrfs EvaluateBanded(std::complex<double> s, int min_order, int max_order, int N) const;
   bool PaysToReduce(int frequencies, int N) const;
   std::shared_ptr<const internal::ShiftedHessenbergSolver> Reduce(int N) const;
   Eigen::MatrixXcd HillRhs(int N) const;
