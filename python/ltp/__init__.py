@@ -23,6 +23,7 @@ Analyses (each runs without the GIL)
     simulate(system, freq, ...) -> SimulationResult  `ltp simulate`: time data of a test (a rig's
                                               speed offset, ramp, tacho, input and output noise)
     identify(time, input, output, ...) -> IdentifyResult  `ltp identify` on numpy arrays
+    HarmonicTransferFunction(system)      the HTF as an operator at any complex s; .hinf(), .h2()
 
 Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
 ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
@@ -36,7 +37,10 @@ from ._ltp import (  # noqa: F401
     ChartResult,
     Error,
     FloquetResult,
+    H2Norm,
+    HarmonicTransferFunction,
     HillResult,
+    HinfNorm,
     HillStudy,
     IdentifyResult,
     InputError,
@@ -65,7 +69,8 @@ from ._ltp import (  # noqa: F401
 )
 
 __all__ = [
-    "CampbellResult", "ChartResult", "Error", "FloquetResult", "HillResult", "HillStudy", "IdentifyResult",
+    "CampbellResult", "ChartResult", "Error", "FloquetResult", "H2Norm", "HarmonicTransferFunction",
+    "HillResult", "HinfNorm", "HillStudy", "IdentifyResult",
     "InputError", "MbcResult", "PfrfResult",
     "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
     "campbell", "chart", "floquet", "hill", "hill_study", "identify", "mbc", "mbc_check", "pfrf", "scene",

@@ -152,6 +152,7 @@ void BindChart(py::module_& m);
 void BindMbc(py::module_& m);
 void BindCampbell(py::module_& m);
 void BindIdentify(py::module_& m);
+void BindHtfOperator(py::module_& m);
 
 /// A Campbell diagram's lines (dicts with per-point arrays), its per-rev crossings (dicts) and
 /// weakly damped intervals, as ltp.chart and ltp.campbell give them (chart_binding.cc).

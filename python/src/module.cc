@@ -66,4 +66,5 @@ PYBIND11_MODULE(_ltp, m) {
   BindMbc(m);
   BindCampbell(m);
   BindIdentify(m);
+  BindHtfOperator(m);
 }
