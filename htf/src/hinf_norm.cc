@@ -177,7 +177,8 @@ void SearchFrequencies(const HarmonicTransferFunction& htf, const NormOptions& o
 }
 
 // Bisection on γ between a level with axis exponents (lo) and one without (hi), starting
-// 1e-4 either side of the search's value and widening geometrically where that is wrong.
+// 100 × rel_tol (at least 1e-6) either side of the search's value, widening geometrically
+// where that is wrong.
 HinfNorm BisectHamiltonian(const PeriodicSystem& system, HinfNorm r, const NormOptions& options) {
   const double found = r.search_value, floor = MaxFeedthrough(system);
   if (!(found > 0) || !std::isfinite(found)) {
@@ -193,7 +194,8 @@ HinfNorm BisectHamiltonian(const PeriodicSystem& system, HinfNorm r, const NormO
     ++r.hamiltonian_analyses;
     return HasAxisExponent(system, gamma, options, &failure);
   };
-  constexpr double kStep = 1e-4;
+  // The search is usually right to rel_tol: a bracket 100× wider costs ~7 bisections.
+  const double kStep = std::max(1e-6, 100 * options.rel_tol);
   double lo = found * (1 - kStep), hi = found * (1 + kStep);
   for (int i = 1;; ++i) {  // lo: axis exponents (or the feedthrough's floor)
     if (lo <= floor * (1 + 1e-12)) {

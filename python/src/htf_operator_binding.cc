@@ -1,6 +1,8 @@
 // ltp.HarmonicTransferFunction: the HTF as an operator (MIMO, any complex s) with its H∞ and
 // H2 norms, each by two routes (ltp/htf/harmonic_transfer_function.h).
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "binding.h"
 #include "ltp/core/error.h"
@@ -49,6 +51,14 @@ NormOptions NormOptionsFrom(const System& system, double rel_tol, int grid_point
   return o;
 }
 
+std::string NormRepr(const char* name, double value, double estimate, bool ok,
+                     const std::string& failure) {
+  std::ostringstream s;
+  s << std::setprecision(10) << "<" << name << " " << value << " ± " << std::setprecision(2)
+    << estimate << (ok ? "" : " (not ok: " + failure + ")") << ">";
+  return s.str();
+}
+
 void BindNormResults(py::module_& m) {
   py::class_<HinfNorm>(m, "HinfNorm", R"doc(
 ‖G‖∞ of a periodic system (HarmonicTransferFunction.hinf): the L2-induced gain, by a frequency
@@ -74,8 +84,7 @@ Hamiltonian's Floquet exponents (a bracket). ok when both ran and agree.)doc")
       .def_readonly("elapsed_s", &HinfNorm::elapsed_s, "wall time of the whole call (s)")
       .def_readonly("diagnostics", &HinfNorm::diagnostics, "notes, one sentence each")
       .def("__repr__", [](const HinfNorm& r) {
-        return "<HinfNorm " + std::to_string(r.value) + " ± " + std::to_string(r.error_estimate) +
-               (r.ok ? "" : " (not ok: " + r.failure + ")") + ">";
+        return NormRepr("HinfNorm", r.value, r.error_estimate, r.ok, r.failure);
       });
   py::class_<H2Norm>(m, "H2Norm", R"doc(
 ‖G‖₂ of a periodic system (HarmonicTransferFunction.h2), by the Floquet modal form integrated
@@ -95,8 +104,7 @@ routes ran (or the modal one alone, said in diagnostics) and agree.)doc")
       .def_readonly("elapsed_s", &H2Norm::elapsed_s, "wall time of the whole call (s)")
       .def_readonly("diagnostics", &H2Norm::diagnostics, "notes, one sentence each")
       .def("__repr__", [](const H2Norm& r) {
-        return "<H2Norm " + std::to_string(r.value) + " ± " + std::to_string(r.error_estimate) +
-               (r.ok ? "" : " (not ok: " + r.failure + ")") + ">";
+        return NormRepr("H2Norm", r.value, r.error_estimate, r.ok, r.failure);
       });
 }
 
