@@ -30,8 +30,7 @@ double ModalH2Squared(const ModalModel& model) {
     for (int l = 0; l < n; ++l)
       for (int k = 0; k < n; ++k)
         total += gc(l, k) * gb(k, l) /
-                 (-model.exponents[k] - std::conj(model.exponents[l]) +
-                  cd(0, d * model.omega_p));
+                 (-model.exponents[k] - std::conj(model.exponents[l]) + cd(0, d * model.omega_p));
   }
   return total.real();
 }
@@ -93,8 +92,8 @@ H2Norm CompareWithLyapunov(const PeriodicSystem& system, H2Norm r, double modal_
   if (!r.ok) {
     std::ostringstream s;
     s << "H2: the modal (" << r.modal_value << ") and Lyapunov (" << value
-      << ") routes disagree by " << disagreement << ", more than their estimates allow ("
-      << allowed << ")";
+      << ") routes disagree by " << disagreement << ", more than their estimates allow (" << allowed
+      << ")";
     r.failure = s.str();
     r.diagnostics.push_back(s.str());
   }

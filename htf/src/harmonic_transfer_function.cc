@@ -82,8 +82,7 @@ PartialFrfs HarmonicTransferFunction::Partial(cd s, int min_order, int max_order
                      Eigen::MatrixXcd::Constant(system_.outputs(), system_.inputs(), cd(nan, 0)));
 }
 
-Eigen::MatrixXcd HarmonicTransferFunction::Section(cd s, int harmonics,
-                                                   OperatorRoute route) const {
+Eigen::MatrixXcd HarmonicTransferFunction::Section(cd s, int harmonics, OperatorRoute route) const {
   if (harmonics < 0) throw InputError("htf operator: section harmonics must be >= 0");
   const int K = harmonics, p = system_.outputs(), m = system_.inputs();
   Eigen::MatrixXcd h((2 * K + 1) * p, (2 * K + 1) * m);

@@ -51,8 +51,8 @@ Peak ClimbToPeak(Sigma sigma, double w0, double half, int* points) {
   for (int moves = 0; moves < 20; ++moves) {
     const double lo = std::max(0.0, w0 - half), hi = w0 + half;
     std::uintmax_t iterations = 200;
-    const auto found = boost::math::tools::brent_find_minima(
-        [&](double w) { return -sigma(w); }, lo, hi, 52, iterations);
+    const auto found = boost::math::tools::brent_find_minima([&](double w) { return -sigma(w); },
+                                                             lo, hi, 52, iterations);
     *points += static_cast<int>(iterations);
     if (!(-found.second > best.value)) break;
     best = {found.first, -found.second};
@@ -107,8 +107,7 @@ PeriodicSystem HamiltonianSystem(const PeriodicSystem& system, double gamma) {
   PeriodicSystem::Functions f;
   f.A = [system, gamma, n, m](double t, Eigen::Ref<Eigen::MatrixXd> out) {
     const Eigen::MatrixXd a = system.A(t), b = system.B(t), c = system.C(t), d = system.D(t);
-    const Eigen::MatrixXd r =
-        gamma * gamma * Eigen::MatrixXd::Identity(m, m) - d.transpose() * d;
+    const Eigen::MatrixXd r = gamma * gamma * Eigen::MatrixXd::Identity(m, m) - d.transpose() * d;
     const Eigen::LLT<Eigen::MatrixXd> llt(r);
     const Eigen::MatrixXd ri_dt_c = llt.solve(d.transpose() * c);  // R⁻¹DᵀC
     const Eigen::MatrixXd ri_bt = llt.solve(b.transpose());        // R⁻¹Bᵀ
@@ -137,8 +136,8 @@ std::optional<bool> HasAxisExponent(const PeriodicSystem& system, double gamma,
   fo.integrator.abs_tol = options.hamiltonian_rel_tol * 1e-3;
   const FloquetResult r = AnalyzeFloquet(internal::HamiltonianSystem(system, gamma), fo);
   if (!r.ok) {
-    *failure = "the Hamiltonian system's Floquet analysis failed at γ = " +
-               std::to_string(gamma) + ": " + r.failure;
+    *failure = "the Hamiltonian system's Floquet analysis failed at γ = " + std::to_string(gamma) +
+               ": " + r.failure;
     return std::nullopt;
   }
   for (const FloquetMode& m : r.modes) {
@@ -230,8 +229,8 @@ HinfNorm BisectHamiltonian(const PeriodicSystem& system, HinfNorm r, const NormO
   r.ok = disagreement <= 10 * options.rel_tol * r.value + (hi - lo);
   if (!r.ok) {
     std::ostringstream s;
-    s << "H∞: the frequency search (" << found << ") and the Hamiltonian bisection ([" << lo
-      << ", " << hi << "]) disagree";
+    s << "H∞: the frequency search (" << found << ") and the Hamiltonian bisection ([" << lo << ", "
+      << hi << "]) disagree";
     r.failure = s.str();
   }
   return r;

@@ -168,9 +168,9 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
       .def(
           "h2",
           [norm](const PyHtf& h, double rel_tol, int max_lyapunov_states) {
-            const NormOptions o = NormOptionsFrom(h.system, rel_tol, norm.grid_points,
-                                                  norm.max_section_harmonics,
-                                                  max_lyapunov_states, 0);
+            const NormOptions o =
+                NormOptionsFrom(h.system, rel_tol, norm.grid_points, norm.max_section_harmonics,
+                                max_lyapunov_states, 0);
             return WithoutGil(h.system, [&] { return h.htf->H2(o); });
           },
           py::kw_only(), py::arg("rel_tol") = norm.rel_tol,

@@ -118,9 +118,9 @@ TEST(HarmonicTransferFunction, HinfOfAnLtiSystemWithFeedthroughMatchesAFineGrid)
   b << 1, 0.5, -1;
   c << 0.7, -1.2, 0.4;
   d << 0.25;
-  const PeriodicSystem sys = PeriodicSystem::FromFourier(
-      1.3, FourierMatrix::Constant(a), FourierMatrix::Constant(b), FourierMatrix::Constant(c),
-      FourierMatrix::Constant(d));
+  const PeriodicSystem sys =
+      PeriodicSystem::FromFourier(1.3, FourierMatrix::Constant(a), FourierMatrix::Constant(b),
+                                  FourierMatrix::Constant(c), FourierMatrix::Constant(d));
   auto gain = [&](double w) {
     const Eigen::MatrixXcd m = cd(0, w) * Eigen::MatrixXcd::Identity(3, 3) - a.cast<cd>();
     return std::abs((c.cast<cd>() * m.partialPivLu().solve(b.cast<cd>()))(0, 0) + d(0, 0));
