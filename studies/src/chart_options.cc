@@ -26,9 +26,12 @@ void ChartOptions::Validate() const {
 IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base) {
   if (options.integrator) return *options.integrator;
   if (!map) return IntegratorType::kRkf78;
-  // Only a Fourier series can pay; other forms are not sampled for traits at all (a user's
-  // A(t) at the base point need not be the sweep's concern).
-  const bool taylor = base.RealSeriesA(nullptr) && TaylorSeriesPay(MeasureSystemTraits(base));
+  // Taylor: only a Fourier series can pay. Constant between breakpoints (Meissner, sampled
+  // models): a product of exponentials per piece is exact. Should another point of the sweep
+  // not be piecewise constant, expm's automatic step count still converges there.
+  const SystemTraits traits = MeasureSystemTraits(base);
+  if (traits.constant_pieces) return IntegratorType::kExpm;
+  const bool taylor = base.RealSeriesA(nullptr) && TaylorSeriesPay(traits);
   return taylor ? IntegratorType::kTaylor : IntegratorType::kBulirschStoer;
 }
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "ltp/core/error.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/models/scene.h"
@@ -13,12 +15,20 @@
 namespace ltp {
 namespace {
 
-// A Fourier-form scene (Mathieu) and one whose A(t) is not a Fourier series (Meissner's jumps).
+// A Fourier-form scene (Mathieu), one whose A(t) is constant between jumps (Meissner's square
+// wave), and a smooth A(t) given as a function.
 PeriodicSystem FourierScene() {
   return LoadScene("mathieu").build(LoadScene("mathieu").Resolve({}));
 }
 PeriodicSystem JumpScene() {
   return LoadScene("meissner").build(LoadScene("meissner").Resolve({}));
+}
+PeriodicSystem SmoothFunction() {
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, -(1.5 - 0.4 * std::cos(2 * t)), -0.02;
+  };
+  return PeriodicSystem::FromFunctions(3.141592653589793, 2, 0, 0, f);
 }
 
 TEST(ChartOptions, MapsAndCampbellSweepsGetTheirOwnDefaults) {
@@ -26,9 +36,12 @@ TEST(ChartOptions, MapsAndCampbellSweepsGetTheirOwnDefaults) {
   const SweepOptions line = ChartSweepOptions(defaults, false, FourierScene()),
                      map = ChartSweepOptions(defaults, true, FourierScene());
   EXPECT_EQ(line.floquet.integrator.type, IntegratorType::kRkf78);
-  // Maps: Taylor series where A(t) is a Fourier series, Bulirsch–Stoer elsewhere.
+  // Maps: Taylor series where A(t) is a Fourier series, exact exponentials where it is constant
+  // between jumps, Bulirsch–Stoer elsewhere.
   EXPECT_EQ(map.floquet.integrator.type, IntegratorType::kTaylor);
   EXPECT_EQ(ChartSweepOptions(defaults, true, JumpScene()).floquet.integrator.type,
+            IntegratorType::kExpm);
+  EXPECT_EQ(ChartSweepOptions(defaults, true, SmoothFunction()).floquet.integrator.type,
             IntegratorType::kBulirschStoer);
   EXPECT_EQ(line.check_every, 1);
   EXPECT_EQ(map.check_every, 97);
