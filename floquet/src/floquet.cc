@@ -754,6 +754,8 @@ void Finish(const Setup& s, const internal::SegmentGrid& grid, const LogEigenval
   const double T = r.period;
   if (s.scale.size()) {  // back to the given states: x = S z
     r.monodromy = s.scale.asDiagonal() * r.monodromy * s.scale.cwiseInverse().asDiagonal();
+    for (Eigen::MatrixXd& f : r.segment_factors)
+      f = s.scale.asDiagonal() * f * s.scale.cwiseInverse().asDiagonal();
     for (Eigen::MatrixXcd& m : r.mode_samples) m = s.scale.asDiagonal() * m;
     for (Eigen::MatrixXcd& m : r.mode_fourier) m = s.scale.asDiagonal() * m;
   }
@@ -847,6 +849,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   r.segment_times = grid.times;
   r.monodromy = Eigen::MatrixXd::Identity(n, n);
   for (const auto& f : grid.factors) r.monodromy = f * r.monodromy;
+  if (options.keep_segment_factors) r.segment_factors = grid.factors;
   // 4. Modes: periodic eigenvectors at the grid points, samples on the uniform mode grid.
   std::vector<FloquetMode> modes;
   const std::vector<double> kappa =

@@ -110,6 +110,21 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
       .def_readonly("monodromy", &FloquetResult::monodromy,
                     "Φ(T, 0), n×n (with modes_below: the part of the modes analysed, U Φ_r Wᵀ)")
       .def_property_readonly(
+          "segment_factors",
+          [](const FloquetResult& f) -> py::object {
+            if (f.segment_factors.empty()) return py::none();
+            const py::ssize_t k = static_cast<py::ssize_t>(f.segment_factors.size());
+            const py::ssize_t n = f.segment_factors.front().rows();
+            py::array_t<double> a({k, n, n});
+            auto out = a.mutable_unchecked<3>();
+            for (py::ssize_t i = 0; i < k; ++i)
+              for (py::ssize_t r = 0; r < n; ++r)
+                for (py::ssize_t c = 0; c < n; ++c) out(i, r, c) = f.segment_factors[i](r, c);
+            return a;
+          },
+          "with keep_factors=True: Φ(t_{i+1}, t_i) over segment i of segment_times, shape (K, n, "
+          "n); their product (last leftmost) is the monodromy. None otherwise")
+      .def_property_readonly(
           "reduction",
           [](const FloquetResult& f) -> py::object {
             if (!f.reduction) return py::none();
@@ -199,8 +214,10 @@ formula beyond the error estimate): the diagnostics say why.)doc");
 FloquetResult LtpFloquet(const System& system, const std::string& integrator, double tol, int steps,
                          const py::object& segments, const std::string& multipliers,
                          const std::string& estimate, int mode_samples, int threads,
-                         double max_work, double modes_below, const py::object& progress) {
+                         double max_work, double modes_below, bool keep_factors,
+                         const py::object& progress) {
   FloquetOptions o;
+  o.keep_segment_factors = keep_factors;
   o.integrator.type = IntegratorFrom(integrator);
   o.integrator.rel_tol = tol;
   o.integrator.steps_per_period = steps;
@@ -251,6 +268,7 @@ void BindFloquetFunction(py::module_& m) {
         py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
         py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
         py::arg("max_work") = defaults.max_work_seconds, py::arg("modes_below") = 0.0,
+        py::arg("keep_factors") = defaults.keep_segment_factors,
         py::arg("progress") = py::none(), R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
@@ -272,6 +290,8 @@ the same options and defaults.
   modes_below   analyse only the modes whose eigenvalue of the mean A(t) is below this many Hz
                 (|λ|/2π), checked against twice the cut-off (its change is in each estimate;
                 result.reduction says what was left out); 0 = every mode
+  keep_factors  keep the segment factors Φ(t_{i+1}, t_i) (result.segment_factors): the monodromy
+                as the product it is, where the formed one under- or overflows
   progress      None, or a callable progress(phase, fraction) told each phase of the work
                 ('run', 'refined run', 'mode shapes'; 'other model 1 of 2: run' for .lin data)
                 and the fraction of its period integrated, at most every half percent

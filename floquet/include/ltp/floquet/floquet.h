@@ -77,6 +77,10 @@ struct FloquetOptions {
   ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
   /// Compute mode shapes, left modes and branch selection (off: multipliers only, faster).
   bool compute_modes = true;
+  /// Keep the segment factors Φ_i = Φ(t_{i+1}, t_i) in the result (FloquetResult::
+  /// segment_factors): the monodromy as the product it is, usable where the formed product
+  /// under- or overflows. K n² numbers.
+  bool keep_segment_factors = false;
   /// OpenMP threads for the segments; 0 = all cores.
   int threads = 0;
   /// Largest T · max_t ‖A(t)‖ analysed: beyond it (a = 1e200, a rotor speed of 1e-300) no
@@ -198,6 +202,10 @@ struct FloquetResult {
   /// States whose units spread A's scales beyond 2¹⁰ are analysed in balanced states
   /// (powers of two, exact); monodromy and mode shapes are given back in the system's states.
   Eigen::MatrixXd monodromy;
+  /// With FloquetOptions::keep_segment_factors: Φ(t_{i+1}, t_i) over segment i of
+  /// `segment_times`, in the system's states (Φ = the product, last factor leftmost); of the
+  /// reduced system when `reduction` is set. Empty otherwise.
+  std::vector<Eigen::MatrixXd> segment_factors;
   /// Periodic mode shapes at `sample_times` (uniform, t_s = s T/S): column k of
   /// mode_samples[s] is ξ_k(t_s) on mode k's chosen branch.
   std::vector<double> sample_times;
