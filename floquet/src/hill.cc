@@ -153,6 +153,7 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
   // Modes, sorted as AnalyzeFloquet sorts them: |frequency|, positive first, then Re λ.
   std::vector<FloquetMode> modes;
   std::vector<HillModeInfo> infos;
+  std::vector<Eigen::VectorXcd> vectors;
   Eigen::MatrixXcd xi0 =
       Eigen::MatrixXcd::Zero(n, static_cast<Eigen::Index>(solved.sel.chosen.size()));
   for (size_t k = 0; k < solved.sel.chosen.size(); ++k) {
@@ -170,6 +171,13 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
       info.centroid -= 1;
       shift = 1;
     }
+    Eigen::VectorXcd v = x / x.norm();  // the eigenvector of the reported value
+    if (shift == 1) {  // λ + jΩp's vector: block v is block v + 1 of λ's (block N + 1 is beyond)
+      v.head(v.size() - n) = v.tail(v.size() - n).eval();
+      v.tail(n).setZero();
+      v /= v.norm();
+    }
+    vectors.push_back(std::move(v));
     FloquetMode m = MakeMode(value, T, omega, info.ambiguous);
     const std::vector<double> e = hill_internal::BlockEnergies(x, n, N);
     m.central_weight = e[N + shift];
@@ -183,10 +191,13 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
   }
   const std::vector<int> order = ModeDisplayOrder(modes);  // the monodromy route's order
   r.mode_shapes.resize(n, static_cast<Eigen::Index>(order.size()));
+  r.eigenvectors.resize(static_cast<Eigen::Index>(2 * N + 1) * n,
+                        static_cast<Eigen::Index>(order.size()));
   for (size_t j = 0; j < order.size(); ++j) {
     r.modes.push_back(modes[order[j]]);
     r.info.push_back(infos[order[j]]);
     r.mode_shapes.col(static_cast<Eigen::Index>(j)) = xi0.col(order[j]);
+    r.eigenvectors.col(static_cast<Eigen::Index>(j)) = vectors[order[j]];
   }
   r.ok = static_cast<int>(r.modes.size()) == n;
   if (!r.ok)
@@ -717,31 +728,56 @@ void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOpti
 
 }  // namespace hill_internal
 
+namespace {
+
+// A's Fourier coefficients as Hill's method uses them: exact for a Fourier-form system, else the
+// FFT fit of A(t) (kept, with a sentence saying how it went).
+struct HillCoefficients {
+  FourierMatrix A;
+  std::optional<FourierFit> fit;
+  std::string note;  ///< empty for exact coefficients
+};
+HillCoefficients CoefficientsOf(const PeriodicSystem& system, const FourierFitOptions& options) {
+  HillCoefficients c;
+  if (const FourierMatrix* fa = system.fourier_A()) {
+    c.A = *fa;
+    return c;
+  }
+  auto f = [&system](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalA(t, out); };
+  c.fit = FitFourier(f, system.states(), system.states(), system.period(), options);
+  c.A = c.fit->series;
+  std::ostringstream s;
+  s << "A(t) fitted by FFT: " << c.A.max_harmonic() << " harmonics from " << c.fit->samples
+    << " samples, relative tail " << c.fit->tail << ", decay " << ToString(c.fit->decay);
+  if (c.fit->decay == FourierDecay::kExponential) s << " (b = " << c.fit->decay_rate << ")";
+  if (c.fit->decay == FourierDecay::kAlgebraic)
+    s << " (|A_w| ~ |w|^-" << c.fit->decay_rate
+      << ": discontinuous A(t), expect algebraic convergence in N)";
+  c.note = s.str();
+  return c;
+}
+
+}  // namespace
+
+Eigen::MatrixXcd HillMatrix(const PeriodicSystem& system, int harmonics,
+                            const HillOptions& options) {
+  if (harmonics < 0) throw InputError("HillMatrix: harmonics must be >= 0");
+  hill_internal::CheckDenseMemory(system.states(), harmonics, options.max_dense_bytes);
+  return HillMatrix(CoefficientsOf(system, options.fourier).A, system.omega(), harmonics,
+                    options.max_dense_bytes);
+}
+
 HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requested) {
   requested.Validate();
   const auto start = std::chrono::steady_clock::now();
   const double T = system.period();
   std::vector<std::string> notes;
-  std::string fit_note;
   HillOptions options = requested;
-  FourierMatrix A;
-  std::optional<FourierFit> fit;
-  if (const FourierMatrix* fa = system.fourier_A()) {
-    A = *fa;
-  } else {
-    auto f = [&system](double t, Eigen::Ref<Eigen::MatrixXd> out) { system.EvalA(t, out); };
-    fit = FitFourier(f, system.states(), system.states(), T, options.fourier);
-    A = fit->series;
-    std::ostringstream s;
-    s << "A(t) fitted by FFT: " << A.max_harmonic() << " harmonics from " << fit->samples
-      << " samples, relative tail " << fit->tail << ", decay " << ToString(fit->decay);
-    if (fit->decay == FourierDecay::kExponential) s << " (b = " << fit->decay_rate << ")";
-    if (fit->decay == FourierDecay::kAlgebraic)
-      s << " (|A_w| ~ |w|^-" << fit->decay_rate
-        << ": discontinuous A(t), expect algebraic convergence in N)";
-    fit_note = s.str();
-    notes.push_back(fit_note);
-  }
+  HillCoefficients coefficients = CoefficientsOf(system, options.fourier);
+  const FourierMatrix& A = coefficients.A;
+  const std::optional<FourierFit>& fit = coefficients.fit;
+  const std::string& fit_note = coefficients.note;
+  if (fit) notes.push_back(fit_note);
 
   if (options.solver == HillSolver::kAuto) {  // needs H_A: after the fit
     const HillSolverChoice c =

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "hill_internal.h"
 #include "ltp/core/elapsed.h"
@@ -274,6 +275,7 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     return v;
   };
 
+  std::vector<cd> final_order;  // the exponents of the analysis at max_harmonics, in its order
   for (size_t i = 0; i < rows.size(); ++i) {
     const int N = rows[i];
     HillOptions o = options;
@@ -318,7 +320,48 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
       if (!r.fourier_fit.empty()) study.diagnostics.push_back(r.fourier_fit);
     }
     study.rows.push_back(row);
+    if (N == rows.back()) final_order = exponents(r);
     if (last && N == rows.back()) *last = std::move(r);
+  }
+
+  // The modes' columns in the order of the analysis at max_harmonics (HillStudyRun::last), so
+  // that the last row is its exponents mode by mode: modes of equal |frequency| (a 2:1
+  // resonance's pair) are ordered by round-off, differently by each analysis and each route.
+  // Without a reference, every row is matched to those exponents (modulo jΩp; Hill's branch at
+  // that N kept, NaN where none matched); with one, the reference's order is permuted.
+  if (!have_ref) {
+    for (HillStudyRow& row : study.rows) {
+      const std::vector<int> match =
+          MatchExponentIndices(final_order, row.exponents, system.omega());
+      std::vector<cd> ordered;
+      for (int m : match)
+        ordered.push_back(m < 0 ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                                : row.exponents[static_cast<size_t>(m)]);
+      row.exponents = std::move(ordered);
+    }
+  } else if (!study.rows.empty()) {
+    const std::vector<cd>& matched = study.rows.back().exponents;  // values of final_order
+    std::vector<size_t> order;
+    std::vector<bool> taken(matched.size(), false);
+    for (const cd& e : final_order)
+      for (size_t i = 0; i < matched.size(); ++i)
+        if (!taken[i] && matched[i] == e) {
+          order.push_back(i);
+          taken[i] = true;
+          break;
+        }
+    for (size_t i = 0; i < matched.size(); ++i)  // reference exponents Hill did not match
+      if (!taken[i]) order.push_back(i);
+    auto permuted = [&order](const auto& v) {
+      std::decay_t<decltype(v)> out;
+      for (size_t i : order) out.push_back(v[i]);
+      return out;
+    };
+    study.reference = permuted(study.reference);
+    for (HillStudyRow& row : study.rows) {
+      row.exponents = permuted(row.exponents);
+      row.errors = permuted(row.errors);
+    }
   }
 
   // Convergence law from the points clearly above round-off.

@@ -85,6 +85,69 @@ TEST(HillMatrix, BlocksFollowTheConvention) {
     }
 }
 
+TEST(HillMatrix, OfASystemIsTheOneAnalysed) {
+  // Fourier form: the exact coefficients, so the same matrix as from them (the test above).
+  const PeriodicSystem s = test::Mathieu(2, 0.7, 0.1);
+  EXPECT_EQ((HillMatrix(s, 4) - HillMatrix(*s.fourier_A(), s.omega(), 4)).norm(), 0);
+  // Function form: the FFT fit of A(t); for a trigonometric polynomial it is exact to round-off.
+  PeriodicSystem::Functions f;
+  f.A = [](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    out << 0, 1, -2 + 1.4 * std::cos(2 * t), -0.1;
+  };
+  const PeriodicSystem g = PeriodicSystem::FromFunctions(kPi, 2, 0, 0, f);
+  EXPECT_LT((HillMatrix(g, 4) - HillMatrix(*s.fourier_A(), s.omega(), 4)).norm(), 1e-13);
+  EXPECT_THROW(HillMatrix(s, -1), InputError);
+}
+
+// The Hill matrix's eigenvectors of the reported exponents: H v = λ v, unit norm, and their
+// blocks summed give the mode shapes at t = 0 (up to a factor).
+void ExpectEigenpairs(const PeriodicSystem& s, int N, double tolerance) {
+  HillOptions o;
+  o.harmonics = N;
+  const HillResult r = AnalyzeHill(s, o);
+  ASSERT_TRUE(r.ok);
+  const Eigen::MatrixXcd H = HillMatrix(s, N);
+  const int n = s.states();
+  ASSERT_EQ(r.eigenvectors.rows(), H.rows());
+  ASSERT_EQ(r.eigenvectors.cols(), n);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::VectorXcd v = r.eigenvectors.col(k);
+    EXPECT_NEAR(v.norm(), 1, 1e-14) << k;
+    EXPECT_LT((H * v - r.modes[k].exponent * v).norm() / H.norm(), tolerance) << k;
+    Eigen::VectorXcd sum = Eigen::VectorXcd::Zero(n);
+    for (int b = 0; b <= 2 * N; ++b) sum += v.segment(b * n, n);
+    const Eigen::VectorXcd shape = r.mode_shapes.col(k);
+    EXPECT_NEAR(std::abs(sum.dot(shape)), sum.norm() * shape.norm(), 1e-12 * shape.norm()) << k;
+  }
+}
+
+TEST(HillEigenvectors, AreTheReportedExponentsEigenvectors) {
+  ExpectEigenpairs(test::Mathieu(2.5, 1.0, 0.2), 12, 1e-14);
+  // A tie (2:1 resonance, exponents on the strip edge): reported as found or, for the member
+  // λ + jΩp, λ's vector shifted one block, exact but for the truncation edge (small at N = 20).
+  ExpectEigenpairs(test::Mathieu(1.5, 2.0), 20, 1e-12);
+}
+
+TEST(HillStudyOrder, TheLastRowIsTheLastAnalysisModeByMode) {
+  // Mathieu in its first tongue: two modes of equal |Im λ| = Ωp/2, whose order in each analysis
+  // rests on round-off. With and without the monodromy reference, the study's columns follow
+  // HillStudyRun::last, and each error is that of its column's exponent.
+  for (const bool reference : {true, false}) {
+    const PeriodicSystem s = test::Mathieu(1.5, 2.0, 0.05);
+    const HillStudyRun run = RunHillStudy(s, 12, HillOptions{}, reference);
+    ASSERT_TRUE(run.last.ok);
+    ASSERT_EQ(run.study.rows.back().harmonics, 12);
+    EXPECT_EQ(run.study.rows.back().exponents, Exponents(run.last.modes)) << reference;
+    for (const HillStudyRow& row : run.study.rows) {
+      ASSERT_EQ(row.exponents.size(), 2u);
+      ASSERT_EQ(row.errors.size(), reference ? 2u : 0u);
+      for (size_t k = 0; k < row.errors.size(); ++k)
+        EXPECT_DOUBLE_EQ(row.errors[k],
+                         ExponentDistance(run.study.reference[k], row.exponents[k], s.omega()));
+    }
+  }
+}
+
 // --- Smooth systems agree with the monodromy route ----------------------------------------
 
 TEST(HillSmooth, DampedMathieuMatchesMonodromy) {

@@ -150,6 +150,11 @@ struct HillResult {
   /// Periodic mode shapes at t = 0, ξ_k(0) = Σ_w v_w (the eigenvector's blocks summed), one
   /// column per mode in modes' order (n × n; empty when no exponents were found).
   Eigen::MatrixXcd mode_shapes;
+  /// The Hill matrix's eigenvectors of the selected eigenvalues, one column per mode in modes'
+  /// order ((2N+1)n × n, blocks v = −N..N of n rows each; unit 2-norm): H_N v_k ≈ λ_k v_k.
+  /// For a tie reported as λ + jΩp (see HillOptions::ambiguity_threshold) the eigenvector of
+  /// the eigenvalue found, λ, shifted down one block (exact but for the truncation edge).
+  Eigen::MatrixXcd eigenvectors;
   double max_real_exponent = 0;
   bool stable = false;  ///< verdict == kStable
   StabilityVerdict verdict = StabilityVerdict::kFailed;
@@ -215,13 +220,14 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& options 
 struct HillStudyRow {
   int harmonics = 0;
   int matrix_size = 0;
-  /// Per physical exponent (in the order of the reference): |λ_Hill − λ_ref| modulo jΩp of
-  /// the analysed period; empty without a reference.
+  /// Per physical exponent (in the order of HillStudy::reference): |λ_Hill − λ_ref| modulo jΩp
+  /// of the analysed period; empty without a reference.
   std::vector<double> errors;
   std::optional<double> max_error;  ///< max of errors; empty without a reference
-  /// The exponents at this N (1/s): with a reference, Hill's match of each reference exponent
-  /// in the reference's order (NaN where none matched; the branch Hill selected, so the
-  /// errors above are these modulo jΩp); without, the analysis's modes in their order.
+  /// The exponents at this N (1/s), Hill's branch, one column per mode in the order of the
+  /// analysis at max_harmonics (the last row is its exponents): with a reference, Hill's match
+  /// of each reference exponent (so the errors above are these modulo jΩp); without, Hill's
+  /// match of each exponent of the last row. NaN where none matched.
   std::vector<std::complex<double>> exponents;
   double apriori_bound = 0;                   ///< HillResult::apriori_bound
   std::optional<double> truncation_estimate;  ///< N vs N+Δ (HillResult::truncation_estimate)
@@ -249,7 +255,9 @@ struct HillStudy {
   /// nullopt: too few points above round-off (then rate = 0).
   std::optional<HillConvergence> rate_kind;
   double rate = 0;
-  std::vector<std::complex<double>> reference;  ///< reference exponents used
+  /// The reference exponents used, in the order of the rows' exponents (the analysis at
+  /// max_harmonics; reference exponents Hill did not match last).
+  std::vector<std::complex<double>> reference;
   double elapsed_s = 0;
   std::vector<std::string> diagnostics;
 };
@@ -283,6 +291,13 @@ HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
 /// @throws ResourceError when it would exceed `max_bytes`.
 Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics,
                             double max_bytes = 2.0 * 1024 * 1024 * 1024);
+
+/// The Hill matrix of `system` at truncation N as AnalyzeHill builds it: from A's exact Fourier
+/// coefficients, or from the FFT fit of A(t) that AnalyzeHill makes (options.fourier) for a
+/// system in another form. Block (v,u) = A_{v−u} − j v Ωp δ_vu I, v, u = −N..N.
+/// @throws InputError for harmonics < 0; ResourceError beyond options.max_dense_bytes.
+Eigen::MatrixXcd HillMatrix(const PeriodicSystem& system, int harmonics,
+                            const HillOptions& options = {});
 
 /// Koopman–Hill projection Φ(t) ≈ C expm(H_N t) W (C picks block 0, W stacks identities).
 Eigen::MatrixXcd KoopmanHillTransition(const FourierMatrix& A, double omega, int harmonics,
