@@ -14,6 +14,7 @@ Analyses (each runs without the GIL)
     floquet(system, ...)   -> FloquetResult   `ltp floquet`: exponents, multipliers, mode shapes
     hill(system, ...)      -> HillResult      `ltp floquet --method hill`: Hill's method
     hill_study(system, ...) -> HillStudy      `ltp hill`: convergence over the truncation N
+    hill_matrix(system, harmonics=N) -> ndarray  the truncated Hill matrix ((2N+1)n square)
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
@@ -57,6 +58,7 @@ from ._ltp import (  # noqa: F401
     chart,
     floquet,
     hill,
+    hill_matrix,
     hill_study,
     identify,
     mbc,
@@ -73,6 +75,6 @@ __all__ = [
     "HillResult", "HinfNorm", "HillStudy", "IdentifyResult",
     "InputError", "MbcResult", "PfrfResult",
     "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
-    "campbell", "chart", "floquet", "hill", "hill_study", "identify", "mbc", "mbc_check", "pfrf", "scene",
+    "campbell", "chart", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "pfrf", "scene",
     "scenes", "simulate", "snapshot",
 ]

@@ -27,8 +27,8 @@ auto InfoColumn(Field field) {
 template <class Member>
 auto StudyColumn(Member HillStudyRow::*member) {
   return [member](const HillStudyRun& r) {
-    if constexpr (std::is_integral_v<Member>) {  // counts stay integers (N, sizes)
-      py::array_t<Member> a(static_cast<py::ssize_t>(r.study.rows.size()));
+    if constexpr (std::is_integral_v<Member>) {  // counts stay integers (N, sizes): int64
+      py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.study.rows.size()));
       for (size_t i = 0; i < r.study.rows.size(); ++i)
         a.mutable_at(static_cast<py::ssize_t>(i)) = r.study.rows[i].*member;
       return py::object(a);
@@ -87,7 +87,13 @@ void BindHillSelection(py::class_<HillResult>& r) {
                              "selection margin below the threshold (a tie between λ and λ ± jΩp)")
       .def_readonly("mode_shapes", &HillResult::mode_shapes,
                     "periodic mode shapes at t = 0 (n × n complex, one column per exponent): "
-                    "the eigenvector's harmonic blocks summed");
+                    "the eigenvector's harmonic blocks summed")
+      .def_readonly("eigenvectors", &HillResult::eigenvectors,
+                    "the Hill matrix's eigenvectors of the selected eigenvalues ((2N+1)n × n "
+                    "complex128, column k for exponents[k], unit 2-norm; rows: harmonic blocks "
+                    "-N..N of n states, as ltp.hill_matrix orders them): hill_matrix v_k = λ_k v_k "
+                    "up to round-off (a tie reported as λ + jΩp: λ's vector shifted one block "
+                    "down, exact but for the truncation edge)");
 }
 
 // The verdict and the error estimate with the parts it is made of.
@@ -170,7 +176,8 @@ at N = max_harmonics (`last`).)doc")
             for (const HillStudyRow& row : r.study.rows) v.push_back(row.errors);
             return RealTable(v, r.study.reference.size());
           },
-          "|λ_Hill − λ_ref| mod jΩp per row and reference exponent (empty without a reference)")
+          "|λ_Hill − λ_ref| mod jΩp (1/s), float64 (rows, n): per row and mode, columns as in "
+          "exponents and reference (empty without a reference)")
       .def_property_readonly(
           "exponents",
           [](const HillStudyRun& r) {
@@ -186,9 +193,9 @@ at N = max_harmonics (`last`).)doc")
                     k < r.study.rows[i].exponents.size() ? r.study.rows[i].exponents[k] : nan;
             return a;
           },
-          "Hill's exponents per row (1/s): with a reference, its match of each reference exponent "
-          "in the reference's order (NaN where none matched); without, the analysis's order; "
-          "NaN-padded to the widest row")
+          "Hill's exponents at each N (1/s), complex128 (len(harmonics), n): Hill's branch, one "
+          "column per mode in the order of last.exponents (the last row is last.exponents); with "
+          "a reference, Hill's match of each reference exponent; NaN where none matched")
       .def_property_readonly("max_error", StudyColumn(&HillStudyRow::max_error),
                              "per row; NaN without a reference")
       .def_property_readonly("apriori_bound", StudyColumn(&HillStudyRow::apriori_bound),
@@ -219,7 +226,8 @@ at N = max_harmonics (`last`).)doc")
           "how fast the Fourier coefficients of A decay")
       .def_property_readonly(
           "reference", [](const HillStudyRun& r) { return ComplexArray(r.study.reference); },
-          "the monodromy route's exponents (empty: no reference)")
+          "the monodromy route's exponents (rel tol 1e-12), in the columns' order of exponents "
+          "and errors (empty: no reference)")
       .def_readonly("last", &HillStudyRun::last, "the HillResult at N = max_harmonics")
       .def_property_readonly(
           "elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
@@ -306,6 +314,31 @@ HillResult LtpHill(const System& system, const py::object& harmonics, const std:
   });
 }
 
+// ltp.hill_matrix: the library's Hill matrix of the system (exact or FFT-fitted coefficients, as
+// ltp.hill uses them).
+Eigen::MatrixXcd LtpHillMatrix(const System& system, const py::object& harmonics) {
+  if (!py::isinstance<py::int_>(harmonics) || py::isinstance<py::bool_>(harmonics) ||
+      harmonics.cast<long>() < 0 || harmonics.cast<long>() > 100000)
+    throw InputError("harmonics must be an integer >= 0, got " +
+                     py::repr(harmonics).cast<std::string>());
+  const int N = harmonics.cast<int>();
+  return WithoutGil(system, [&] { return HillMatrix(system.system, N); });
+}
+
+void BindHillMatrixFunction(py::module_& m) {
+  m.def("hill_matrix", &LtpHillMatrix, py::arg("system"), py::kw_only(), py::arg("harmonics"),
+        R"doc(
+The truncated Hill matrix H_N of the system, as ltp.hill builds it: a complex128 array of
+shape ((2N+1)n, (2N+1)n) whose block (v, u) (rows v·n.., columns u·n.. for the harmonics
+v, u = -N..N in that order) is
+
+    A_{v-u} - j v Ωp δ_vu I,     A(t) = sum_w A_w exp(j w Ωp t),  Ωp = 2π/T.
+
+Its eigenvalues approximate λ_k + j m Ωp for every exponent λ_k and shift m; ltp.hill picks
+n of them (HillResult.eigenvectors are this matrix's). A system not in Fourier form has A(t)
+fitted by FFT first, as ltp.hill does. Raises ltp.ResourceError beyond 2 GiB.)doc");
+}
+
 void BindHillFunction(py::module_& m) {
   const HillOptions defaults;
   m.def("hill", &LtpHill, py::arg("system"), py::kw_only(), py::arg("harmonics") = "auto",
@@ -333,6 +366,7 @@ void BindHill(py::module_& m) {
   BindHillStudyResult(m);
   BindHillStudyFunction(m);
   BindHillFunction(m);
+  BindHillMatrixFunction(m);
 }
 
 }  // namespace ltp::python
