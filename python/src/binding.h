@@ -28,6 +28,23 @@ namespace ltp::python {
 
 namespace py = pybind11;
 
+/// A complex number of any kind: Python's complex, a numpy complex scalar (np.complex64 is not a
+/// subclass of complex) or a 0-d complex array. Converted to a double they lose their imaginary
+/// part with at most a ComplexWarning.
+bool IsComplexNumber(py::handle value);
+
+/// A real number argument (a double in a binding's signature): what pybind11 takes for a double,
+/// except a complex number of any kind, refused with the TypeError pybind11 raises for Python's
+/// complex (a numpy complex scalar would otherwise pass as its real part).
+struct Real {
+  double value = 0;
+  Real() = default;
+  Real(double v) : value(v) {}  // NOLINT(google-explicit-constructor): defaults are doubles
+  operator double() const { return value; }  // NOLINT(google-explicit-constructor)
+};
+/// `v` as doubles.
+std::vector<double> Doubles(const std::vector<Real>& v);
+
 /// on_long_work for an analysis started from Python: a UserWarning with the library's estimate
 /// before the work, where the command prints it on stderr. Under warnings.simplefilter("error")
 /// the warning is raised and the work does not start.
@@ -135,8 +152,11 @@ int ChannelFrom(const py::object& channel, const std::vector<std::string>& names
 /// `value` (an array, a list or a scalar) as numpy reads it: an ndarray as it is, anything else
 /// converted once; null when numpy cannot. @throws InputError when it holds a complex number
 /// with a non-zero imaginary part, which numpy's cast to float would drop silently; `what()`
-/// names the value (built only then).
-py::array RealValued(const py::handle& value, const std::function<std::string()>& what);
+/// names the value (built only then), `why` says what it must be. An array of complex dtype whose
+/// imaginary parts are all 0 comes back as its real part.
+py::array RealValued(
+    const py::handle& value, const std::function<std::string()>& what,
+    const char* why = "a system's matrices must be real (give the real form of the equations)");
 
 /// t of a periodic quantity of period `period`: finite (else InputError naming `what`), reduced
 /// exactly to [0, T) by fmod, so t = 1e308 is the value at its remainder, not cos(ω·1e308)'s NaN.
@@ -162,3 +182,20 @@ py::list CampbellCrossings(const CampbellDiagram& d);
 py::array_t<double> WeaklyDamped(const CampbellDiagram& d);
 
 }  // namespace ltp::python
+
+namespace pybind11::detail {
+template <>
+struct type_caster<ltp::python::Real> {
+  PYBIND11_TYPE_CASTER(ltp::python::Real, const_name("float"));
+  bool load(handle src, bool convert) {
+    if (!src || ltp::python::IsComplexNumber(src)) return false;
+    make_caster<double> d;
+    if (!d.load(src, convert)) return false;
+    value.value = cast_op<double>(d);
+    return true;
+  }
+  static handle cast(ltp::python::Real r, return_value_policy, handle) {
+    return PyFloat_FromDouble(r.value);
+  }
+};
+}  // namespace pybind11::detail

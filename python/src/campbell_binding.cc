@@ -87,7 +87,7 @@ void BindCampbellResult(py::module_& m) {
 
 // ltp.campbell: the options checked in the CLI's words; the diagram computed without the GIL.
 LinCampbellResult LtpCampbell(const std::vector<std::string>& points, const std::string& by,
-                              const std::string& frequency, double max_damping, bool keep_going) {
+                              const std::string& frequency, Real max_damping, bool keep_going) {
   LinCampbellOptions o;
   const auto kind = ParseCampbellFrequency(frequency);
   if (!kind) throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");

@@ -12,7 +12,17 @@
 
 namespace ltp::python {
 
-py::array RealValued(const py::handle& value, const std::function<std::string()>& what) {
+bool IsComplexNumber(py::handle value) {
+  if (PyComplex_Check(value.ptr())) return true;
+  if (!py::hasattr(value, "dtype")) return false;  // numpy scalars and 0-d arrays have one
+  const py::object dtype = value.attr("dtype");
+  return py::isinstance<py::dtype>(dtype) && dtype.cast<py::dtype>().kind() == 'c';
+}
+
+std::vector<double> Doubles(const std::vector<Real>& v) { return {v.begin(), v.end()}; }
+
+py::array RealValued(const py::handle& value, const std::function<std::string()>& what,
+                     const char* why) {
   // An ndarray is taken as it is (its dtype says whether to look further); a list or a scalar is
   // converted here once, and the caller casts this array, not the value again.
   const py::array raw = py::array::ensure(value);
@@ -23,11 +33,11 @@ py::array RealValued(const py::handle& value, const std::function<std::string()>
     for (py::ssize_t i = 0; i < c.size(); ++i) imag = std::max(imag, std::abs(c.data()[i].imag()));
   if (imag > 0) {
     std::ostringstream s;
-    s << what() << " has complex values (|Im| up to " << imag
-      << "): a system's matrices must be real (give the real form of the equations)";
+    s << what() << " has complex values (|Im| up to " << imag << "): " << why;
     throw InputError(s.str());
   }
-  return raw;
+  // All imaginary parts 0: the real part, without the ComplexWarning of numpy's cast.
+  return py::array::ensure(raw.attr("real"));
 }
 
 Callbacks::~Callbacks() {
@@ -137,7 +147,8 @@ py::array_t<double> RealTable(const std::vector<std::vector<double>>& rows, size
 
 std::vector<double> FrequenciesFrom(const py::object& freq) {
   if (py::isinstance<py::str>(freq)) return ParseFrequencyRange(freq.cast<std::string>(), "freq");
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(freq);
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(RealValued(
+      freq, [] { return std::string("freq"); }, "frequencies are real numbers (Hz)"));
   if (!a || a.ndim() > 1)
     throw InputError("freq must be 'F0:F1:DF' (Hz) or a 1-D array of frequencies in Hz");
   std::vector<double> f(a.data(), a.data() + a.size());

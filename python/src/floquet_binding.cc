@@ -194,14 +194,14 @@ formula beyond the error estimate): the diagnostics say why.)doc");
                     "what the analysis noticed, one line each")
       .def(
           "mode_matrix",
-          [](const FloquetResult& f, double t) {
+          [](const FloquetResult& f, Real t) {
             return f.ModeMatrix(PeriodicTime(t, f.period, "mode_matrix"));
           },
           py::arg("t"),
           "Ξ(t): the mode shapes at time t (spectral interpolation), n×n, column k = mode k")
       .def(
           "left_modes",
-          [](const FloquetResult& f, double t) {
+          [](const FloquetResult& f, Real t) {
             return f.LeftModes(PeriodicTime(t, f.period, "left_modes"));
           },
           py::arg("t"), "rows of Ξ(t)⁻¹")
@@ -211,11 +211,10 @@ formula beyond the error estimate): the diagnostics say why.)doc");
 
 // ltp.floquet: the options checked as the CLI checks them; the analysis runs without the GIL,
 // a progress callable is called with it.
-FloquetResult LtpFloquet(const System& system, const std::string& integrator, double tol, int steps,
+FloquetResult LtpFloquet(const System& system, const std::string& integrator, Real tol, int steps,
                          const py::object& segments, const std::string& multipliers,
-                         const std::string& estimate, int mode_samples, int threads,
-                         double max_work, double modes_below, bool keep_factors,
-                         const py::object& progress) {
+                         const std::string& estimate, int mode_samples, int threads, Real max_work,
+                         Real modes_below, bool keep_factors, const py::object& progress) {
   FloquetOptions o;
   o.keep_segment_factors = keep_factors;
   o.integrator.type = IntegratorFrom(integrator);

@@ -284,10 +284,9 @@ G(ω) = Σ_z H_z(ω − zΩp) (paper Fig. 6), with an error estimate.)doc")
 }
 
 // ltp.snapshot: exactly one of angle and time; the FRFs computed without the GIL.
-SnapshotResult LtpSnapshot(const System& system, const py::object& freq,
-                           std::optional<double> angle, std::optional<double> time,
-                           const py::object& input, const py::object& output,
-                           const py::object& orders, bool compare) {
+SnapshotResult LtpSnapshot(const System& system, const py::object& freq, std::optional<Real> angle,
+                           std::optional<Real> time, const py::object& input,
+                           const py::object& output, const py::object& orders, bool compare) {
   if (angle.has_value() == time.has_value())
     throw InputError("give exactly one of angle= (degrees) and time= (s)");
   NeedChannels(system);

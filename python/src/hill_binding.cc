@@ -290,7 +290,7 @@ Returns a HillStudy. Runs without the GIL.)doc");
 
 // ltp.hill: harmonics 'auto' or a positive integer; the analysis runs without the GIL.
 HillResult LtpHill(const System& system, const py::object& harmonics, const std::string& solver,
-                   const std::string& selection, double tol) {
+                   const std::string& selection, Real tol) {
   HillOptions o = HillOptionsFrom("hill", solver, selection);
   if (!(tol > 0 && tol < 1)) throw InputError("tol must be in (0, 1)");
   if (py::isinstance<py::str>(harmonics) && harmonics.cast<std::string>() == "auto") {

@@ -16,11 +16,14 @@ namespace ltp::python {
 
 namespace {
 
+constexpr const char* kRealSamples = "measured samples are real numbers";
+
 // Records given as one 1-D array (one record) or a sequence of them, each finite.
 std::vector<Eigen::VectorXd> RecordArrays(const py::object& value, const std::string& what) {
   std::vector<Eigen::VectorXd> out;
   const auto one = [&](const py::handle& h, size_t k) {
-    const py::array a = RealValued(h, [&] { return what + "[" + std::to_string(k) + "]"; });
+    const py::array a = RealValued(
+        h, [&] { return what + "[" + std::to_string(k) + "]"; }, kRealSamples);
     if (!a || a.ndim() != 1)
       throw InputError(what + ": each record must be a 1-D array of samples");
     const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -29,7 +32,8 @@ std::vector<Eigen::VectorXd> RecordArrays(const py::object& value, const std::st
     for (py::ssize_t i = 0; i < d.size(); ++i) v(static_cast<Eigen::Index>(i)) = d.at(i);
     out.push_back(std::move(v));
   };
-  const py::array as_array = RealValued(value, [&] { return what; });
+  const py::array as_array = RealValued(
+      value, [&] { return what; }, kRealSamples);
   if (as_array && as_array.ndim() == 1) {
     one(value, 0);
     return out;
@@ -138,9 +142,9 @@ per broadband realisation), ready for ltp.identify(r.time, r.input, r.output, pe
 // ltp.simulate: the options checked as the CLI checks them; the records made without the GIL.
 SimulatedRecords LtpSimulate(const System& system, const py::object& freq, const py::object& input,
                              const py::object& output, const std::string& excitation, int periods,
-                             int samples_per_period, double amplitude, std::optional<double> noise,
-                             std::optional<double> input_noise, double speed_offset,
-                             double speed_ramp, bool tacho, std::uint64_t seed, int records) {
+                             int samples_per_period, Real amplitude, std::optional<Real> noise,
+                             std::optional<Real> input_noise, Real speed_offset, Real speed_ramp,
+                             bool tacho, std::uint64_t seed, int records) {
   if (system.callbacks)
     throw InputError(
         "simulate: a system behind Python callables is not supported (its "
@@ -290,11 +294,12 @@ TimeData RecordsData(const std::vector<Eigen::VectorXd>& t, const std::vector<Ei
 // ltp.identify: the records checked against each other, the rotor's phase measured when given;
 // the estimation runs without the GIL.
 IdentifiedRecords LtpIdentify(const py::object& time, const py::object& input,
-                              const py::object& output, std::optional<double> period,
+                              const py::object& output, std::optional<Real> period_in,
                               const py::object& excitation_hz, const py::object& tacho,
-                              const py::object& angle, int pulses_per_period, double tacho_angle,
-                              const py::object& orders, const std::string& method,
-                              double input_delay, double output_delay) {
+                              const py::object& angle, int pulses_per_period, Real tacho_angle,
+                              const py::object& orders, const std::string& method, Real input_delay,
+                              Real output_delay) {
+  const std::optional<double> period = period_in ? std::optional<double>(*period_in) : std::nullopt;
   const std::vector<Eigen::VectorXd> t = RecordArrays(time, "time");
   const std::vector<Eigen::VectorXd> u = RecordArrays(input, "input");
   const std::vector<Eigen::VectorXd> y = RecordArrays(output, "output");

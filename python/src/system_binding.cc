@@ -108,8 +108,8 @@ TimeFunction FunctionFrom(const py::object& obj, const char* name,
           static_cast<int>(m.cols())};
 }
 
-System FromFunction(double period, const py::object& a, const py::object& b, const py::object& c,
-                    const py::object& d, const std::vector<double>& breakpoints) {
+System FromFunction(Real period, const py::object& a, const py::object& b, const py::object& c,
+                    const py::object& d, const std::vector<Real>& breakpoints) {
   if (!PyCallable_Check(a.ptr()))
     throw InputError("A must be a callable A(t) returning an n×n array");
   std::vector<py::object> callables;
@@ -129,7 +129,7 @@ System FromFunction(double period, const py::object& a, const py::object& b, con
   *owner = std::make_shared<Callbacks>(std::move(callables));
   PeriodicSystem system = PeriodicSystem::FromFunctions(
       period, fa.rows, inputs, outputs, {fa.function, fb.function, fc.function, fd.function},
-      breakpoints);
+      Doubles(breakpoints));
   // Checked as scene files are: a NaN or a pole inside the period is refused here, in one line,
   // not found by the integrator after seconds and thousands of diagnostics.
   if (const auto problem = UnboundedCoefficients(system)) throw InputError(*problem);
@@ -142,7 +142,7 @@ System FromFunction(double period, const py::object& a, const py::object& b, con
 std::vector<Eigen::MatrixXd> SamplesFrom(const py::object& obj, size_t count,
                                          const std::string& name) {
   if (obj.is_none()) return std::vector<Eigen::MatrixXd>(count);
-  const Array a = Array::ensure(obj);
+  const Array a = Array::ensure(RealValued(obj, [&] { return name; }));
   if (a && a.ndim() == 2) return std::vector<Eigen::MatrixXd>(count, MatrixFrom(obj, name));
   if (!a || a.ndim() != 3 || static_cast<size_t>(a.shape(0)) != count)
     throw InputError(name +
@@ -156,8 +156,9 @@ std::vector<Eigen::MatrixXd> SamplesFrom(const py::object& obj, size_t count,
   return out;
 }
 
-System FromSamples(double period, const std::vector<double>& times, const py::object& a,
+System FromSamples(Real period, const std::vector<Real>& times_in, const py::object& a,
                    const py::object& b, const py::object& c, const py::object& d) {
+  const std::vector<double> times = Doubles(times_in);
   const size_t k = times.size();
   const auto as = SamplesFrom(a, k, "A"), bs = SamplesFrom(b, k, "B"), cs = SamplesFrom(c, k, "C"),
              ds = SamplesFrom(d, k, "D");
@@ -184,6 +185,9 @@ std::string ParameterText(const py::handle& value) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "1" : "0";
   if (py::isinstance<py::int_>(value)) return py::str(value).cast<std::string>();
+  if (IsComplexNumber(value))  // float() would keep the real part of a numpy complex
+    throw InputError("a scene parameter must be a real number or an expression string, got " +
+                     py::repr(value).cast<std::string>());
   try {
     return py::str(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
   } catch (const py::error_already_set&) {
@@ -257,7 +261,7 @@ std::string FormName(PeriodicSystem::Form form) {
 }
 
 // System.from_fourier: every matrix as Fourier coefficients (or constant).
-System FromFourier(double period, const py::object& a, const py::object& b, const py::object& c,
+System FromFourier(Real period, const py::object& a, const py::object& b, const py::object& c,
                    const py::object& d) {
   return System{PeriodicSystem::FromFourier(period, FourierFrom(a, "A"), FourierFrom(b, "B"),
                                             FourierFrom(c, "C"), FourierFrom(d, "D")),
@@ -269,7 +273,7 @@ System FromFourier(double period, const py::object& a, const py::object& b, cons
 }
 
 // System.from_second_order: M q'' + D q' + K q = F u, each as Fourier coefficients (or constant).
-System FromSecondOrder(double period, const py::object& mass, const py::object& stiffness,
+System FromSecondOrder(Real period, const py::object& mass, const py::object& stiffness,
                        const py::object& damping, const py::object& f, const py::object& cd,
                        const py::object& cv) {
   return System{FromSecondOrderSeries(period, FourierFrom(mass, "M"), FourierFrom(damping, "D"),
@@ -360,7 +364,7 @@ Raises ltp.InputError (a ValueError) on inconsistent sizes or non-finite entries
 singular or ill-conditioned mass matrix (the time is named).)doc")
       .def_static("from_function", &FromFunction, py::arg("period"), py::arg("A"),
                   py::arg("B") = py::none(), py::arg("C") = py::none(), py::arg("D") = py::none(),
-                  py::arg("breakpoints") = std::vector<double>{}, R"doc(
+                  py::arg("breakpoints") = std::vector<Real>{}, R"doc(
 A system from a Python callable A(t) returning an n×n array (B, C, D: callables or constant
 2-D arrays, or None). `breakpoints`: times in [0, period) where a matrix jumps (the
 integrators restart there).
@@ -393,7 +397,7 @@ void BindSystemCopies(py::class_<System>& c) {
         "pfrf and snapshot then take input= and output= by name.")
       .def(
           "with_rotor_speed",
-          [](const System& s, double speed) {
+          [](const System& s, Real speed) {
             System out = s;
             out.system = s.system.WithRotorSpeed(speed);
             return out;
@@ -462,13 +466,13 @@ ltp.chart takes a system made by ltp.scene, whose parameters it sweeps.)doc");
   BindSystemCopies(c);
   BindSystemProperties(c);
   c.def(
-       "A", [](const System& s, double t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
+       "A", [](const System& s, Real t) { return Evaluate(s, 'A', t); }, py::arg("t"), "A(t)")
       .def(
-          "B", [](const System& s, double t) { return Evaluate(s, 'B', t); }, py::arg("t"), "B(t)")
+          "B", [](const System& s, Real t) { return Evaluate(s, 'B', t); }, py::arg("t"), "B(t)")
       .def(
-          "C", [](const System& s, double t) { return Evaluate(s, 'C', t); }, py::arg("t"), "C(t)")
+          "C", [](const System& s, Real t) { return Evaluate(s, 'C', t); }, py::arg("t"), "C(t)")
       .def(
-          "D", [](const System& s, double t) { return Evaluate(s, 'D', t); }, py::arg("t"), "D(t)")
+          "D", [](const System& s, Real t) { return Evaluate(s, 'D', t); }, py::arg("t"), "D(t)")
       .def("__repr__", &SystemRepr);
 }
 

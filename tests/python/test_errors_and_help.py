@@ -5,6 +5,7 @@ The messages are the library's: each names the argument and what was expected, s
 fix the call from the message alone.
 """
 import inspect
+import warnings
 
 import numpy as np
 import pytest
@@ -84,6 +85,49 @@ def test_wrong_python_types_are_type_errors():
         ltp.floquet(MATHIEU, tol="small")
 
 
+# Complex numbers where real ones are meant: refused, never truncated to their real part (numpy
+# casts a complex array or scalar to float with only a ComplexWarning). Arrays and scene
+# parameters: ltp.InputError naming the value; scalar arguments: the TypeError pybind11 raises
+# for Python's complex, now for numpy's complex scalars too.
+@pytest.mark.parametrize("call, message", [
+    (lambda: ltp.pfrf(MATHIEU, np.array([0.1 + 0.5j, 0.2])), r"freq has complex values \(\|Im\| up to 0\.5\)"),
+    (lambda: ltp.pfrf(MATHIEU, [0.1, 0.2 + 1j]), r"freq has complex values"),
+    (lambda: ltp.scene("mathieu", a=np.complex128(1 + 1j)), r"a scene parameter must be a real number"),
+    (lambda: ltp.scene("mathieu", a=1 + 0j), r"a scene parameter must be a real number"),
+    (lambda: ltp.System.from_samples(1.0, [0.0, 0.5], np.zeros((2, 2, 2)) + 1e-3j), r"A has complex values"),
+    (lambda: ltp.identify(np.arange(8.0) + 1j, np.ones(8), np.ones(8), period=1.0), r"time has complex values"),
+])
+def test_complex_arrays_where_real_is_meant_raise_input_error(call, message):
+    with pytest.raises(ltp.InputError, match=message):
+        call()
+
+
+@pytest.mark.parametrize("call", [
+    lambda: ltp.floquet(MATHIEU, tol=np.complex128(1e-8 + 1e-9j)),
+    lambda: ltp.hill(MATHIEU, tol=np.complex64(1e-8)),  # even with Im = 0: Python's 1e-8+0j is refused too
+    lambda: ltp.hill(MATHIEU, tol=1e-8 + 0j),
+    lambda: ltp.snapshot(ltp.scene("rotor"), "0.1:0.2:0.1", angle=np.complex128(90 + 1j)),
+    lambda: MATHIEU.A(np.complex128(0.5 + 1j)),
+    lambda: MATHIEU.with_rotor_speed(np.complex128(1 + 1j)),
+    lambda: ltp.System.from_fourier(np.complex128(np.pi + 1j), np.eye(2)),
+    lambda: ltp.System.from_function(1.0, lambda t: np.eye(1), breakpoints=np.array([0.5 + 1j])),
+    lambda: ltp.System.from_samples(1.0, np.array([0.0, 0.5 + 1j]), np.zeros((2, 1, 1))),
+    lambda: ltp.simulate(ltp.scene("mathieu", c=0.3), "0.1:0.2:0.1", noise=np.complex128(30 + 1j)),
+])
+def test_complex_scalars_where_real_is_meant_raise_type_error(call):
+    with pytest.raises(TypeError, match="incompatible function arguments"):
+        call()
+
+
+def test_complex_arrays_with_zero_imaginary_part_are_their_real_part():
+    # Frequencies computed in complex arithmetic (Im = 0 exactly): taken, without a ComplexWarning,
+    # as the same real frequencies (reference: the real array).
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        complex_freq = ltp.pfrf(MATHIEU, np.array([0.1, 0.2]) + 0j)
+    assert np.array_equal(complex_freq.H, ltp.pfrf(MATHIEU, np.array([0.1, 0.2])).H)
+
+
 def test_help_text_on_everything():
     for name in ltp.__all__:
         obj = getattr(ltp, name)
@@ -160,7 +204,6 @@ def test_long_work_is_announced_before_it_starts():
     # UserWarning; filtered to an error, it stops the job before any work (hence fast here).
     # Both jobs are estimated at minutes on this machine (far from the 10 s announcement and the
     # hour's refusal either way, so no timing decides the test).
-    import warnings
     A = np.zeros((3, 2, 2), complex)
     A[1] = [[0, 1], [-1, -0.01]]
     A[0][1, 0] = A[2][1, 0] = -0.05
