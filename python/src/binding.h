@@ -133,6 +133,8 @@ inline double OrNaN(std::optional<double> x) {
   return x.value_or(std::numeric_limits<double>::quiet_NaN());
 }
 py::array_t<double> RealArray(const std::vector<double>& v);
+/// Strings as a numpy str array (dtype '<U…', as chart.verdicts).
+py::array StringArray(const std::vector<std::string>& v);
 py::array_t<Complex> ComplexArray(const std::vector<Complex>& v);
 /// Matrices of equal size stacked along a first axis: shape (count, rows, cols).
 py::array_t<Complex> ComplexStack(const std::vector<Eigen::MatrixXcd>& m, int rows, int cols);

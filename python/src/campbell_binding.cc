@@ -65,7 +65,11 @@ void BindCampbellResult(py::module_& m) {
           "crossings", [](const LinCampbellResult& x) { return CampbellCrossings(x.diagram); },
           "where each line crosses a per-rev line n·Ω/2π (mode numbered as in lines, from 1)")
       .def_property_readonly(
-          "per_rev", [](const LinCampbellResult& x) { return x.diagram.per_rev; },
+          "per_rev",
+          [](const LinCampbellResult& x) {
+            const std::vector<std::int64_t> n(x.diagram.per_rev.begin(), x.diagram.per_rev.end());
+            return py::array_t<std::int64_t>(static_cast<py::ssize_t>(n.size()), n.data());
+          },
           "n of the per-rev lines drawn")
       .def_property_readonly(
           "weakly_damped", [](const LinCampbellResult& x) { return WeaklyDamped(x.diagram); },

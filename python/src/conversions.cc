@@ -109,6 +109,10 @@ py::array_t<double> RealArray(const std::vector<double>& v) {
   return a;
 }
 
+py::array StringArray(const std::vector<std::string>& v) {
+  return py::module_::import("numpy").attr("array")(py::cast(v), "U");
+}
+
 py::array_t<Complex> ComplexArray(const std::vector<Complex>& v) {
   py::array_t<Complex> a(static_cast<py::ssize_t>(v.size()));
   std::copy(v.begin(), v.end(), a.mutable_data());

@@ -143,10 +143,13 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
           "modes "
           "beyond the check, second order; twice in every estimate), "
           "dropped_mean_eigenvalues, periodic_part (max ‖A(t) − Ā‖_F)")
-      .def_readonly("mode_descriptions", &FloquetResult::mode_descriptions,
-                    "what carries each mode: shares of its displacement energy per state at t = 0, "
-                    "blade states "
-                    "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
+      .def_property_readonly(
+          "mode_descriptions",
+          [](const FloquetResult& f) { return StringArray(f.mode_descriptions); },
+          "what carries each mode (numpy str array): shares of its displacement energy per state "
+          "at t = 0, "
+          "blade states "
+          "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
       .def_property_readonly(
           "sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); },
           "uniform times of mode_samples")
@@ -166,7 +169,7 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
       .def_property_readonly(
           "mode_harmonic_orders",
           [](const FloquetResult& f) {
-            py::array_t<int> v(2 * f.mode_harmonics + 1);
+            py::array_t<std::int64_t> v(2 * f.mode_harmonics + 1);
             for (int h = -f.mode_harmonics; h <= f.mode_harmonics; ++h)
               v.mutable_at(h + f.mode_harmonics) = h;
             return v;

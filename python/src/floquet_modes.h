@@ -57,7 +57,7 @@ void BindModeArrays(Class& c) {
       .def_property_readonly(
           "branches",
           [](const Result& r) {
-            py::array_t<int> a(static_cast<py::ssize_t>(r.modes.size()));
+            py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.modes.size()));
             for (size_t k = 0; k < r.modes.size(); ++k)
               a.mutable_at(static_cast<py::ssize_t>(k)) = r.modes[k].branch;
             return a;

@@ -19,7 +19,7 @@ void NeedChannels(const System& s) {
 py::dict RouteDict(const RouteRun& run) {
   double worst = 0;
   for (double d : run.deviation) worst = std::max(worst, d);
-  py::array_t<int> points(static_cast<py::ssize_t>(run.points.size()));
+  py::array_t<std::int64_t> points(static_cast<py::ssize_t>(run.points.size()));
   for (size_t i = 0; i < run.points.size(); ++i)
     points.mutable_at(static_cast<py::ssize_t>(i)) = run.points[i];
   return py::dict(py::arg("route") = std::string(ToString(run.route)), py::arg("points") = points,
@@ -40,7 +40,7 @@ void BindPfrfValues(py::class_<PfrfResult>& r) {
       .def_property_readonly(
           "orders",
           [](const PfrfResult& r) {
-            py::array_t<int> a(r.max_order - r.min_order + 1);
+            py::array_t<std::int64_t> a(r.max_order - r.min_order + 1);
             for (int z = r.min_order; z <= r.max_order; ++z) a.mutable_at(z - r.min_order) = z;
             return a;
           },

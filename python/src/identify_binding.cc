@@ -217,9 +217,9 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
       .def_property_readonly(
           "orders",
           [](const IdentifiedRecords& r) {
-            std::vector<int> z;
+            std::vector<std::int64_t> z;
             for (int k = r.result.min_order; k <= r.result.max_order; ++k) z.push_back(k);
-            return py::array_t<int>(static_cast<py::ssize_t>(z.size()), z.data());
+            return py::array_t<std::int64_t>(static_cast<py::ssize_t>(z.size()), z.data());
           },
           "z of each column")
       .def_property_readonly(

@@ -112,7 +112,9 @@ void BindMbcResult(py::module_& m) {
       .def_readonly("reason", &Mbc3Result::reason, "why MBC does not apply; empty when it does")
       .def_readonly("blades", &Mbc3Result::blades, "number of rotor blades found in the states")
       .def_readonly("rotor_speed", &Mbc3Result::rotor_speed, "mean Ω (rad/s)")
-      .def_readonly("azimuths", &Mbc3Result::azimuths, "ψ_k of the files (rad)")
+      .def_property_readonly(
+          "azimuths", [](const Mbc3Result& x) { return RealArray(x.azimuths); },
+          "ψ_k of the files (rad)")
       .def_property_readonly(
           "states",
           [](const Mbc3Result& x) {

@@ -23,7 +23,7 @@ def test_campbell_equals_cli(ltp_cli, tmp_path):
     assert c.axis_label == j["axis"]
     assert len(c.lines) == len(j["campbell"]["lines"])
     assert [l["description"] for l in c.lines] == [l["description"] for l in j["campbell"]["lines"]]
-    assert list(c.per_rev) == j["campbell"]["per_rev"]
+    assert list(c.per_rev) == j["campbell"]["per_rev"] and c.per_rev.dtype == np.int64
     assert len(c.crossings) == len(j["campbell"]["crossings"])
     for x, y in zip(c.crossings, j["campbell"]["crossings"]):
         assert x["mode"] == y["mode"] and x["per_rev"] == y["per_rev"]

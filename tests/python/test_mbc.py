@@ -29,6 +29,8 @@ def test_mbc_equals_cli(ltp_cli):
             assert same(mode["damping_ratio"], m.damping_ratios[k]), k
         assert mode["kind"] == m.kinds[k] and mode["rigid_body"] == m.rigid_body[k]
         assert mode["whirl"] == m.whirl[k] and mode["description"] == m.descriptions[k]
+    # Numbers as numpy arrays: the files' azimuths (rad), as the JSON lists them.
+    assert m.azimuths.dtype == np.float64 and len(m.azimuths) == 3
     assert same(j["max_real_part"], m.max_real_part) and same(j["periodic_part"], m.periodic_part)
     # The mode shapes are eigenvectors of the averaged matrix: A v = λ v.
     v = m.eigenvectors

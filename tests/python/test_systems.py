@@ -187,8 +187,24 @@ def test_from_fourier_docstring_example_is_the_scene():
 
 def test_study_and_chart_columns_have_numpy_dtypes():
     s = ltp.hill_study(ltp.scene("mathieu"), max_harmonics=4)
-    assert s.harmonics.dtype.kind == "i" and list(s.harmonics) == [1, 2, 3, 4]
-    assert s.matrix_size.dtype.kind == "i" and list(s.matrix_size) == [6, 10, 14, 18]
+    assert s.harmonics.dtype == np.int64 and list(s.harmonics) == [1, 2, 3, 4]
+    assert s.matrix_size.dtype == np.int64 and list(s.matrix_size) == [6, 10, 14, 18]
+    # Integers are int64, text per mode a numpy str array (as chart.verdicts); the values from
+    # their definitions (orders zmin..zmax, harmonics -H..H, the branch m of λ = Log ρ/T + jmΩp).
+    system = ltp.scene("mathieu", a=A_, q=Q_, c=C_)
+    f = ltp.floquet(system)
+    assert f.branches.dtype == np.int64 and ltp.hill(system).branches.dtype == np.int64
+    assert np.allclose(f.exponents, f.log_multipliers / f.period + 1j * f.branches * 2.0, atol=1e-12)
+    H = (len(f.mode_harmonic_orders) - 1) // 2
+    assert f.mode_harmonic_orders.dtype == np.int64 and list(f.mode_harmonic_orders) == list(range(-H, H + 1))
+    assert isinstance(f.mode_descriptions, np.ndarray) and f.mode_descriptions.dtype.kind == "U"
+    assert f.mode_descriptions.shape == (2,)
+    p = ltp.pfrf(system, "0.1:0.2:0.1", orders="-2:3")
+    assert p.orders.dtype == np.int64 and list(p.orders) == [-2, -1, 0, 1, 2, 3]
+    assert all(r["points"].dtype == np.int64 for r in p.routes)
+    d = ltp.simulate(ltp.scene("mathieu", c=0.3), "0.1:0.2:0.1")  # stable: a steady state
+    i = ltp.identify(d.time, d.input, d.output, period=np.pi, orders="-1:1")
+    assert i.orders.dtype == np.int64 and list(i.orders) == [-1, 0, 1]
     c = ltp.chart(ltp.scene("mathieu"), "a=0:1:0.5")
     assert isinstance(c.verdicts, np.ndarray) and c.verdicts.dtype.kind == "U"
     assert set(c.verdicts) <= {"stable", "marginal", "unstable", "failed"}
