@@ -7,7 +7,8 @@
 // the generated failure map (Markdown).
 //
 //   build/benchmarks/work_precision_benchmark --out out/work-precision [--quick] [--scenes a,b]
-//   scripts/work-precision     (runs this, then gnuplot → docs/work-precision-*.svg)
+//   scripts/work-precision     (runs this, then gnuplot → OUT_DIR/work-precision-*.svg; into
+//                               docs/ with --update-docs)
 //
 // Timing: threads = 1 for the segments (OPENBLAS_NUM_THREADS=1 is set by the script), so
 // CPU time ≈ wall time when the machine is idle; CPU time is what the charts show because the
