@@ -181,8 +181,10 @@ def test_from_fourier_docstring_example_is_the_scene():
     scope = {"np": np, "a": A_, "q": Q_, "c": C_}
     exec(example, scope)
     system = ltp.System.from_fourier(np.pi, scope["A"])
+    scene = ltp.scene("mathieu", a=A_, q=Q_, c=C_)
     for t in (0.0, 0.4, 1.3):
         assert np.abs(system.A(t) - mathieu_A(t)).max() < 1e-15
+        assert np.abs(system.A(t) - scene.A(t)).max() < 1e-15  # and the built-in scene's A(t)
 
 
 def test_study_and_chart_columns_have_numpy_dtypes():
