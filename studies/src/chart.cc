@@ -72,6 +72,12 @@ ChartAnalysis AnalyseChart(const Scene& scene, const ParameterMap& base, const S
     a.boundary = RefineBoundaryPoints(scene, base, plan.grid, points, plan.sweep, boundary);
   }
   a.refine_s = SecondsSince(start);
+  if (plan.map && plan.chart.refine && plan.chart.curves) {
+    const auto traced = std::chrono::steady_clock::now();
+    a.curves = TraceBoundaryCurves(scene, base, plan.grid, a.boundary, plan.sweep, boundary,
+                                   plan.chart.curve);
+    a.curves_s = SecondsSince(traced);
+  }
   a.tally = TallySweep(points);
   return a;
 }

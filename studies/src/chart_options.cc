@@ -21,6 +21,7 @@ void ChartOptions::Validate() const {
   if (!(refine_tol > 0 && refine_tol < 1e-2))
     fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
   campbell.Validate();
+  curve.Validate();
 }
 
 IntegratorType ChartIntegrator(const ChartOptions& options, bool map, const PeriodicSystem& base) {

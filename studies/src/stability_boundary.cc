@@ -28,15 +28,7 @@ struct Evaluation {
 
 Evaluation Evaluate(const Scene& scene, ParameterMap params, const SweepOptions& sweep,
                     const BoundaryOptions& options, bool checked) {
-  SweepOptions tight = sweep;
-  tight.modes = false;
-  tight.floquet.integrator.rel_tol =
-      std::min(sweep.floquet.integrator.rel_tol, options.rel_tol_integrator);
-  tight.floquet.integrator.abs_tol =
-      std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
-  tight.hill_tol = std::min(sweep.hill_tol, options.rel_tol_integrator * 10);
-  SweepGrid none;  // no swept axes: the point is `params` itself
-  const SweepPoint point = AnalyzeSweepPoint(scene, params, none, 0, tight, checked);
+  const SweepPoint point = AnalyzeBoundaryPoint(scene, params, sweep, options, checked);
   Evaluation e;
   if (!point.ok) return e;
   if (checked) {
@@ -170,6 +162,20 @@ std::vector<size_t> SpreadLines(size_t count, int max_lines) {
 }
 
 }  // namespace
+
+SweepPoint AnalyzeBoundaryPoint(const Scene& scene, const ParameterMap& params,
+                                const SweepOptions& sweep, const BoundaryOptions& options,
+                                bool checked) {
+  SweepOptions tight = sweep;
+  tight.modes = false;
+  tight.floquet.integrator.rel_tol =
+      std::min(sweep.floquet.integrator.rel_tol, options.rel_tol_integrator);
+  tight.floquet.integrator.abs_tol =
+      std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
+  tight.hill_tol = std::min(sweep.hill_tol, options.rel_tol_integrator * 10);
+  const SweepGrid none;  // no swept axes: the point is `params` itself
+  return AnalyzeSweepPoint(scene, params, none, 0, tight, checked);
+}
 
 std::vector<UnstableInterval> RefineUnstableIntervals(const Scene& scene, const ParameterMap& base,
                                                       const SweepGrid& grid,

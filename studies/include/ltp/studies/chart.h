@@ -10,6 +10,7 @@
 
 #include "ltp/core/periodic_system.h"
 #include "ltp/models/scene.h"
+#include "ltp/studies/boundary_curves.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/chart_options.h"
 #include "ltp/studies/mode_tracking.h"
@@ -69,8 +70,10 @@ struct ChartAnalysis {
   CampbellDiagram campbell;                 ///< 1-D
   std::vector<UnstableInterval> intervals;  ///< 1-D: refined beyond the grid
   std::vector<BoundaryPoint> boundary;      ///< maps, when ChartOptions::refine
+  BoundaryCurves curves;                    ///< maps, when ChartOptions::refine and ::curves
   SweepTally tally;
-  double refine_s = 0;  ///< wall time of the refinement
+  double refine_s = 0;  ///< wall time of the refinement (points)
+  double curves_s = 0;  ///< wall time of tracing the boundary curves
 };
 
 /// `points`: the complete sweep in grid order; `labels`: those of the scene's system (they

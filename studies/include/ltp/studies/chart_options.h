@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "ltp/integrate/integrator.h"
+#include "ltp/studies/boundary_curves.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/stability_boundary.h"
 #include "ltp/studies/sweep.h"
@@ -32,6 +33,9 @@ struct ChartOptions {
   double refine_tol = 1e-8;
   /// Maps: grid lines per axis along which boundaries are refined (0 or less = all).
   int refine_lines = 50;
+  /// Maps: trace the boundaries through the refined points as curves (boundary_curves.h).
+  bool curves = true;
+  BoundaryCurveOptions curve;
   /// 1-D: per-rev lines, crossings, weakly damped regions and mode names.
   CampbellOptions campbell;
   /// @throws InputError naming the field and the violated constraint.

@@ -43,6 +43,13 @@ struct BoundaryEstimate {
   std::string note;
 };
 
+/// One evaluation during refinement and tracing: AnalyzeSweepPoint of the scene at `params`
+/// (no swept axes) at the refinement tolerance (`options.rel_tol_integrator`, tighter than the
+/// grid's), multipliers only; `checked`: with its own error estimate (about twice the work).
+SweepPoint AnalyzeBoundaryPoint(const Scene& scene, const ParameterMap& params,
+                                const SweepOptions& sweep, const BoundaryOptions& options,
+                                bool checked);
+
 struct UnstableInterval {
   BoundaryEstimate lo, hi;
 };
