@@ -457,8 +457,9 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
                const BoundaryCurveOptions& o, int max_points) {
   Walk w;
   Vec P = seed, tangent{dir * frame.tangent[0], dir * frame.tangent[1]}, normal = frame.normal;
+  const Vec start = tangent;
   double h = 0.25 * o.initial_step, last_disp = 0, last_bracket = 0;
-  bool first = true;
+  bool first = true, refreshed = false;
   while (static_cast<int>(w.u.size()) < max_points) {
     const int step = std::abs(tangent[0]) >= std::abs(tangent[1]) ? 0 : 1, across = 1 - step;
     const size_t s = static_cast<size_t>(step), a = static_cast<size_t>(across);
@@ -493,6 +494,17 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
                             : 0;
     if (!c.ok || len == 0 ||
         (!first && (disp > o.max_displacement * h || turn > o.max_turn) && !c.merged)) {
+      // The secant lags the curve where it turns fast (a damped tongue's nose): once per
+      // point, take the tangent from the gradient of D_σ instead, keeping the direction.
+      if (!refreshed && !first) {
+        refreshed = true;
+        if (const auto f = SeedFrame(t, P)) {
+          const double s = f->tangent[0] * tangent[0] + f->tangent[1] * tangent[1] < 0 ? -1 : 1;
+          tangent = {s * f->tangent[0], s * f->tangent[1]};
+          normal = f->normal;
+          continue;
+        }
+      }
       h *= 0.5;
       if (h < o.min_step)
         return w.end = "the step fell below its minimum: " +
@@ -501,6 +513,7 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
       continue;
     }
     Append(w, R, across, c);
+    refreshed = false;
     const Vec next{chord[0] / len, chord[1] / len};
     Vec n{-next[1], next[0]};
     if (n[0] * normal[0] + n[1] * normal[1] < 0) n = {-n[0], -n[1]};
@@ -514,7 +527,11 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
     if (first || (disp < 0.25 * o.max_displacement * h && turn < 0.25 * o.max_turn))
       h = std::min(first ? o.initial_step : 1.6 * h, o.max_step);
     first = false;
-    if (w.u.size() > 3 && Norm(Add(R, seed, -1)) < h) return w.end = "the curve closes", w;
+    // Closed: back next to the seed, heading the way the walk set out (the other edge of a
+    // tongue passes next to a seed near its nose, heading the other way).
+    if (w.u.size() > 3 && Norm(Add(R, seed, -1)) < h &&
+        tangent[0] * start[0] + tangent[1] * start[1] > 0.5)
+      return w.end = "the curve closes", w;
   }
   return w.end = "reached max_points", w;
 }
@@ -528,12 +545,14 @@ struct Seed {
   int pos_dir = 0;
 };
 
-std::optional<Seed> FindSeed(Tracer& t, const Line& line, double a, double b, double value) {
+template <class Skip>
+std::optional<Seed> FindSeed(Tracer& t, const Line& line, double a, double b, double value,
+                             Skip skip) {
   std::optional<Seed> best;
   for (int sigma : {1, -1}) {
     t.SetSigma(sigma);
     const auto da = t.D(line.Point(a)), db = t.D(line.Point(b));
-    if (!da || !db || da->sign * db->sign >= 0) continue;
+    if (!da || !db || da->sign * db->sign >= 0 || skip(sigma)) continue;
     Crossing c = t.Bracketed(line, a, b, std::abs(b - a), true);
     if (!c.ok) continue;
     if (!best || std::abs(c.x - value) < std::abs(best->crossing.x - value))
@@ -542,15 +561,17 @@ std::optional<Seed> FindSeed(Tracer& t, const Line& line, double a, double b, do
   return best;
 }
 
-// Does a curve cross the seed's grid line within `near` of it (unit coordinates along axis)?
+// Does a curve (of σ = `sigma`; 0: any) cross the seed's grid line within `near` of it (unit
+// coordinates along axis), or end next to it on the line?
 bool OnACurve(const std::vector<BoundaryCurve>& curves, const Vec& u, int axis, double near,
-              const Tracer& t) {
+              const Tracer& t, int sigma = 0) {
   const size_t k = static_cast<size_t>(axis), o = 1 - k;
   const double line = t.Value(1 - axis, u[o]), at = t.Value(axis, u[k]);
-  for (const BoundaryCurve& c : curves)
+  for (const BoundaryCurve& c : curves) {
+    if (sigma != 0 && (c.kind == BoundaryKind::kRealPlusOne) != (sigma > 0)) continue;
     for (size_t i = 0; i < c.points.size(); ++i) {
       const auto& p = c.points[i];
-      if (std::abs(p[o] - line) <= near * t.Span(1 - axis) &&
+      if (std::abs(p[o] - line) <= 1e-6 * t.Span(1 - axis) &&
           std::abs(p[k] - at) <= near * t.Span(axis))
         return true;  // a curve's point next to it (ends exactly at the grid line)
       if (i + 1 == c.points.size()) continue;
@@ -559,6 +580,7 @@ bool OnACurve(const std::vector<BoundaryCurve>& curves, const Vec& u, int axis, 
       const double x = p[k] + (q[k] - p[k]) * (line - p[o]) / (q[o] - p[o]);
       if (std::abs(x - at) <= near * t.Span(axis)) return true;
     }
+  }
   return false;
 }
 
@@ -599,13 +621,20 @@ BoundaryCurves TraceBoundaryCurves(const Scene& scene, const ParameterMap& base,
     const double step = (v.back() - v.front()) / double(v.size() - 1);
     Vec u{(bp.values[0] - grid.values[0].front()) / t.Span(0),
           (bp.values[1] - grid.values[1].front()) / t.Span(1)};
-    if (OnACurve(out.curves, u, bp.axis, 0.25 * step / t.Span(bp.axis), t)) continue;
+    // On a traced curve of the same σ (crossing the grid line within a quarter step, or 5e-4 of
+    // the span: the chords' sagitta): no new seed. Two edges of a thin tongue share a σ but do
+    // not share a grid interval where the grid shows a boundary point.
+    const double near = std::max(0.25 * step / t.Span(bp.axis), 5e-4);
+    const bool near_any = OnACurve(out.curves, u, bp.axis, near, t);
     const auto above = std::upper_bound(v.begin(), v.end(), bp.values[k]);
     if (above == v.begin() || above == v.end()) continue;
     const double a = (*(above - 1) - v.front()) / t.Span(bp.axis),
                  b = (*above - v.front()) / t.Span(bp.axis);
     Line line{bp.axis, u};
-    const auto seed = FindSeed(t, line, a, b, u[k]);
+    const auto seed = FindSeed(t, line, a, b, u[k], [&](int sigma) {
+      return near_any && OnACurve(out.curves, u, bp.axis, near, t, sigma);
+    });
+    if (!seed && near_any) continue;
     if (!seed) {
       out.untraced.push_back(i);
       out.untraced_notes.push_back(
@@ -639,7 +668,7 @@ BoundaryCurves TraceBoundaryCurves(const Scene& scene, const ParameterMap& base,
     const double step = (v.back() - v.front()) / double(v.size() - 1);
     const Vec u{(bp.values[0] - grid.values[0].front()) / t.Span(0),
                 (bp.values[1] - grid.values[1].front()) / t.Span(1)};
-    if (OnACurve(out.curves, u, bp.axis, 0.25 * step / t.Span(bp.axis), t)) continue;
+    if (OnACurve(out.curves, u, bp.axis, 1.25 * step / t.Span(bp.axis), t)) continue;
     kept.untraced.push_back(out.untraced[j]);
     kept.untraced_notes.push_back(out.untraced_notes[j]);
   }

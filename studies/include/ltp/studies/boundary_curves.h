@@ -49,7 +49,7 @@ struct BoundaryCurveOptions {
   /// (the evaluations' own error usually dominates the reported bracket).
   double rel_tol = 1e-11;
   /// Steps along the curve, as fractions of the map's diagonal in units of each axis's span.
-  double initial_step = 0.004, min_step = 1e-6, max_step = 0.04;
+  double initial_step = 0.002, min_step = 1e-6, max_step = 0.01;
   /// Corrector displacement (fraction of the step) and turning per step (radians) above which
   /// a step is rejected and halved.
   double max_displacement = 0.15, max_turn = 0.3;
