@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -54,7 +55,8 @@ struct ChartArgs {
   double tol = ChartOptions{}.tol;
   int threads = ChartOptions{}.threads;
   std::string csv, plot;
-  bool json = false, resume = false, compare = false, no_refine = false;
+  std::string plot_x;  // maps: the parameter drawn horizontally (empty: the first sweep's)
+  bool json = false, resume = false, compare = false, no_refine = false, no_curves = false;
   std::optional<int> check_every;  // empty: the library's choice (1-D: all, maps: every 97th)
   int refine_lines = ChartOptions{}.refine_lines;
   double refine_tol = ChartOptions{}.refine_tol;
@@ -83,6 +85,55 @@ json BoundaryJson(const BoundaryEstimate& e) {
           {"evaluations", e.evaluations},     {"note", e.note}};
 }
 
+// Maps: the traced boundary curves, each with its kind and per point its bracket, the
+// parameter solved along and whether the tongue's edges merge there (boundary_curves.h).
+json CurvesJson(const BoundaryCurves& curves, const SweepGrid& grid) {
+  json list = json::array();
+  for (const BoundaryCurve& c : curves.curves) {
+    json points = json::array(), across = json::array(), bracket = json::array(),
+         merged = json::array();
+    for (size_t i = 0; i < c.points.size(); ++i) {
+      points.push_back({JsonNumber(c.points[i][0]), JsonNumber(c.points[i][1])});
+      across.push_back(grid.axes[static_cast<size_t>(c.across[i])].name);
+      bracket.push_back(JsonNumber(c.bracket[i]));
+      merged.push_back(c.merged[i] != 0);
+    }
+    list.push_back({{"kind", c.kind == BoundaryKind::kRealPlusOne ? "+1" : "-1"},
+                    {"points", points},
+                    {"across", across},
+                    {"bracket", bracket},
+                    {"merged", merged},
+                    {"end_notes", {c.end_notes[0], c.end_notes[1]}},
+                    {"evaluations", c.evaluations}});
+  }
+  json untraced = json::array();
+  for (size_t k = 0; k < curves.untraced.size(); ++k)
+    untraced.push_back({{"index", curves.untraced[k]}, {"note", curves.untraced_notes[k]}});
+  return {{"curves", list},
+          {"untraced_boundary_points", untraced},
+          {"evaluations", curves.evaluations}};
+}
+
+// Maps: FILE-curves.csv beside --csv, one row per curve point.
+std::string CurvesCsvPath(const std::string& csv) {
+  const std::string stem = csv.ends_with(".csv") ? csv.substr(0, csv.size() - 4) : csv;
+  return stem + "-curves.csv";
+}
+
+void WriteCurvesCsv(const std::string& path, const BoundaryCurves& curves, const SweepGrid& grid) {
+  std::ofstream f(path);
+  f << "curve,kind," << grid.axes[0].name << "," << grid.axes[1].name << ",across,bracket,merged\n";
+  for (size_t k = 0; k < curves.curves.size(); ++k) {
+    const BoundaryCurve& c = curves.curves[k];
+    for (size_t i = 0; i < c.points.size(); ++i)
+      f << k + 1 << "," << (c.kind == BoundaryKind::kRealPlusOne ? "+1" : "-1") << ","
+        << Num(c.points[i][0], 17) << "," << Num(c.points[i][1], 17) << ","
+        << grid.axes[static_cast<size_t>(c.across[i])].name << "," << Num(c.bracket[i], 3) << ","
+        << (c.merged[i] ? 1 : 0) << "\n";
+  }
+  if (!f) throw InputError("cannot write '" + path + "'");
+}
+
 ChartOptions MakeOptions(const ChartArgs& args) {
   ChartOptions o;
   const auto method = ParseSweepMethod(args.method);
@@ -103,6 +154,7 @@ ChartOptions MakeOptions(const ChartArgs& args) {
   if (args.threads < 0) throw InputError("--threads must be >= 0");
   o.threads = args.threads;
   o.refine = !args.no_refine;
+  o.curves = !args.no_curves;
   o.refine_tol = args.refine_tol;
   o.refine_lines = args.refine_lines;
   o.campbell = args.campbell;
@@ -195,6 +247,28 @@ void Analyse(const ChartArgs& args, ChartOutcome& c) {
   }
 }
 
+// --plot-x: the grid axis a map draws horizontally. @throws InputError for a name not swept.
+int PlotXAxis(const ChartArgs& args, const SweepGrid& grid) {
+  if (args.plot_x.empty()) return 0;
+  for (size_t a = 0; a < grid.axes.size(); ++a)
+    if (grid.axes[a].name == args.plot_x) return static_cast<int>(a);
+  throw InputError("--plot-x '" + args.plot_x + "' is not a swept parameter");
+}
+
+// Every parameter of the scene that is not swept, defaults included: "c = 0.02".
+std::string Caption(const ChartOutcome& c) {
+  ParameterMap fixed = c.scene.parameters;
+  std::string swept;
+  for (const auto& a : c.plan.grid.axes) {
+    fixed.erase(a.name);
+    swept += (swept.empty() ? "" : ", ") + a.name;
+  }
+  std::string text = fixed.empty() ? "" : ParameterList(fixed);
+  for (size_t i = 0; (i = text.find('=', i)) != std::string::npos; i += 3)
+    text.replace(i, 1, " = ");
+  return (text.empty() ? "" : text + "; ") + "swept: " + swept;
+}
+
 std::string Plot(const ChartArgs& args, const ChartOutcome& c) {
   ChartPlotInput in;
   in.title = (c.plan.map ? "Stability map: " : "Campbell diagram: ") + c.title;
@@ -204,6 +278,9 @@ std::string Plot(const ChartArgs& args, const ChartOutcome& c) {
   in.campbell = &c.analysis.campbell;
   in.intervals = &c.analysis.intervals;
   in.boundary = &c.analysis.boundary;
+  if (c.plan.map && c.plan.chart.refine && c.plan.chart.curves) in.curves = &c.analysis.curves;
+  in.x_axis = PlotXAxis(args, c.plan.grid);
+  in.caption = Caption(c);
   in.sidebands = args.sidebands;
   in.compare = args.compare;
   return DrawChart(in, args.plot);
@@ -265,9 +342,41 @@ json ChartJson(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c)
                         {"estimate", BoundaryJson(b.estimate)}});
     j["boundary_points"] = list;
     j["boundary_point_details"] = detail;
+    j["boundary_curves"] = CurvesJson(c.analysis.curves, c.plan.grid);
+    j["curves_s"] = c.analysis.curves_s;
   }
   if (!c.plot_note.empty()) j["plot_note"] = c.plot_note;
   return j;
+}
+
+// Maps: the traced curves, one line each: kind, extent, largest bracket, merged points.
+void PrintCurves(const ChartOutcome& c) {
+  const BoundaryCurves& t = c.analysis.curves;
+  if (t.curves.empty() && t.untraced.empty()) return;
+  std::cout << "  boundary curves: " << t.curves.size() << " traced by continuation ("
+            << t.evaluations << " evaluations, " << Num(c.analysis.curves_s, 3)
+            << " s); within ±bracket along the parameter solved for:\n";
+  const auto& axes = c.plan.grid.axes;
+  for (size_t k = 0; k < t.curves.size(); ++k) {
+    const BoundaryCurve& curve = t.curves[k];
+    double widest = 0;
+    size_t merged = 0;
+    for (size_t i = 0; i < curve.points.size(); ++i) {
+      widest = std::max(widest, curve.bracket[i]);
+      merged += curve.merged[i] != 0;
+    }
+    std::cout << "    " << std::setw(2) << k + 1 << "  " << ToString(curve.kind) << ", "
+              << curve.points.size() << " points from (" << axes[0].name << ", " << axes[1].name
+              << ") = (" << Num(curve.points.front()[0], 6) << ", "
+              << Num(curve.points.front()[1], 6) << ") to (" << Num(curve.points.back()[0], 6)
+              << ", " << Num(curve.points.back()[1], 6) << "), bracket <= " << Num(widest, 2);
+    if (merged) std::cout << "; " << merged << " points where the tongue's edges merge";
+    std::cout << "\n";
+  }
+  if (!t.untraced.empty())
+    std::cout << "    " << t.untraced.size()
+              << " refined points on no curve (drawn as dots): " << t.untraced_notes.front()
+              << "\n";
 }
 
 void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c) {
@@ -338,6 +447,7 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
               << " grid crossings along "
               << (args.refine_lines ? std::to_string(args.refine_lines) : "all")
               << " lines per axis (" << Num(c.analysis.refine_s, 3) << " s)\n";
+    PrintCurves(c);
   }
   const int failed = static_cast<int>(c.count(StabilityVerdict::kFailed));
   if (failed) {
@@ -352,7 +462,10 @@ void PrintChart(const ChartArgs& args, const Ranks& ranks, const ChartOutcome& c
       }
   }
   if (!args.csv.empty())
-    std::cout << "  wrote " << args.csv << (c.plan.map ? "" : " and " + CrossingsCsvPath(args.csv))
+    std::cout << "  wrote " << args.csv
+              << (c.plan.map
+                      ? (c.analysis.curves.curves.empty() ? "" : " and " + CurvesCsvPath(args.csv))
+                      : " and " + CrossingsCsvPath(args.csv))
               << "\n";
   if (!args.plot.empty())
     std::cout << (c.plot_note.empty() ? "  wrote " + args.plot : "  " + c.plot_note) << "\n";
@@ -374,6 +487,7 @@ int RunChart(ChartArgs& args) {
     if (!args.sweep2.empty()) axes.push_back(SweepAxis::Parse(args.sweep2));
     c.plan = PlanChart(c.scene.scene, c.scene.system, std::move(axes), MakeOptions(args));
     args.integrator = ToString(c.plan.sweep.floquet.integrator.type);
+    PlotXAxis(args, c.plan.grid);  // a bad --plot-x fails before the sweep
     c.threads = ThreadsFor(c.plan.sweep.threads);
 
     json identity = {{"scene", c.scene.scene.name},
@@ -396,6 +510,8 @@ int RunChart(ChartArgs& args) {
     Analyse(args, c);
     if (!c.plan.map && !args.csv.empty())
       WriteCrossingsCsv(CrossingsCsvPath(args.csv), c.analysis.campbell, c.plan.grid.axes[0].name);
+    if (c.plan.map && !args.csv.empty() && !c.analysis.curves.curves.empty())
+      WriteCurvesCsv(CurvesCsvPath(args.csv), c.analysis.curves, c.plan.grid);
     record->Finish(c.points, c.plan.map ? nullptr : &c.analysis.campbell);
     if (!args.plot.empty()) c.plot_note = Plot(args, c);
     const bool all_failed = c.count(StabilityVerdict::kFailed) == c.plan.grid.size();
@@ -439,7 +555,11 @@ Command AddChartCommand(CLI::App& app) {
   cmd->add_option("--csv", args.csv, "one row per point, written as points complete");
   cmd->add_flag("--resume", args.resume, "finish the interrupted sweep of --csv FILE");
   cmd->add_option("--plot", args.plot,
-                  "Campbell + damping diagram or stability map (FILE.svg|.png)");
+                  "Campbell + damping diagram or stability map (FILE.svg|.png|.pdf)");
+  cmd->add_option("--plot-x", args.plot_x,
+                  "maps: the swept parameter drawn horizontally (default: --sweep's)");
+  cmd->add_flag("--no-curves", args.no_curves,
+                "maps: do not trace the boundaries as curves (refined points only)");
   cmd->add_flag("--json", args.json, "one JSON summary on stdout");
   cmd->add_flag("--compare", args.compare,
                 "also snapshot A(0) and averaged-system frequencies (1-D)");

@@ -1,6 +1,7 @@
 #include "chart_plot.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -235,7 +236,8 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
   std::ostringstream g;
   g << GnuplotTerminal(file, 1400, 950) << "set output '" << file << "'\n";
   const CampbellExtras x = CampbellData(in, g);
-  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title) << "\" font ',13'\n"
+  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title)
+    << (in.caption.empty() ? "" : "\\n" + GnuplotEscape(in.caption)) << "\" font ',13'\n"
     << "set grid\nset xlabel \"" << GnuplotEscape(in.axis_labels.at(0))
     << "\"\nset key outside right top font ',9'\n"
     << "set lmargin 12\nset rmargin " << LegendMargin(*in.campbell) << "\n";
@@ -246,12 +248,9 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
   return g.str();
 }
 
-std::string MapScript(const ChartPlotInput& in, const std::string& file) {
-  const SweepGrid& grid = *in.grid;
-  const auto& points = *in.points;
-  const size_t n0 = grid.values[0].size(), n1 = grid.values[1].size();
-  // Colour scale: symmetric around 0 so stable (blue) and unstable (red) read at a glance;
-  // clipped at the 98th percentile of |max Re λ| so a few deep points do not wash it out.
+// The colour scale of a map: symmetric around 0 so stable (blue) and unstable (red) read at a
+// glance; clipped at the 98th percentile of |max Re λ| so a few deep points do not wash it out.
+double MapColourScale(const std::vector<SweepPoint>& points) {
   std::vector<double> mags;
   for (const SweepPoint& p : points)
     if (p.ok) mags.push_back(std::abs(p.max_real_exponent));
@@ -261,37 +260,85 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
     scale = mags[static_cast<size_t>(0.98 * double(mags.size() - 1))];
     if (!(scale > 0)) scale = mags.back() > 0 ? mags.back() : 1;
   }
-  std::ostringstream g;
-  g << GnuplotTerminal(file, 1000, 820) << "set output '" << file << "'\n$G << EOD\n";
-  for (size_t i1 = 0; i1 < n1; ++i1) {
-    for (size_t i0 = 0; i0 < n0; ++i0) {
-      const SweepPoint& p = points[i0 + n0 * i1];
-      g << V(p.values[0]) << " " << V(p.values[1]) << " " << (p.ok ? V(p.max_real_exponent) : "NaN")
-        << "\n";
+  return scale;
+}
+
+// The data blocks of a map, horizontal axis `xa`: $G (the grid, x fastest), $P and $M (the
+// curves following multipliers +1 and −1, one block per curve), $B (refined boundary points on
+// no curve). Returns which of $P, $M, $B hold data.
+std::array<bool, 3> MapData(const ChartPlotInput& in, size_t xa, std::ostringstream& g) {
+  const SweepGrid& grid = *in.grid;
+  const size_t ya = 1 - xa, n0 = grid.values[0].size();
+  g << "$G << EOD\n";
+  for (size_t iy = 0; iy < grid.values[ya].size(); ++iy) {
+    for (size_t ix = 0; ix < grid.values[xa].size(); ++ix) {
+      const size_t i0 = xa == 0 ? ix : iy, i1 = xa == 0 ? iy : ix;
+      const SweepPoint& p = (*in.points)[i0 + n0 * i1];
+      g << V(p.values[xa]) << " " << V(p.values[ya]) << " "
+        << (p.ok ? V(p.max_real_exponent) : "NaN") << "\n";
     }
     g << "\n";
   }
   g << "EOD\n";
-  const bool boundary = in.boundary && !in.boundary->empty();
-  if (boundary) {
-    g << "$B << EOD\n";
-    for (const auto& b : *in.boundary)
-      if (b.estimate.refined) g << V(b.values[0]) << " " << V(b.values[1]) << "\n";
-    g << "EOD\n";
+  std::array<bool, 3> have{false, false, false};
+  for (int k = 0; k < 2 && in.curves; ++k) {
+    const BoundaryKind kind = k == 0 ? BoundaryKind::kRealPlusOne : BoundaryKind::kRealMinusOne;
+    std::ostringstream block;
+    for (const BoundaryCurve& c : in.curves->curves) {
+      if (c.kind != kind) continue;
+      for (const auto& p : c.points) block << V(p[xa]) << " " << V(p[ya]) << "\n";
+      block << "\n\n";
+      have[static_cast<size_t>(k)] = true;
+    }
+    if (have[static_cast<size_t>(k)])
+      g << (k == 0 ? "$P" : "$M") << " << EOD\n" << block.str() << "EOD\n";
   }
-  g << "set title \"" << GnuplotEscape(in.title) << "\" font ',13'\n"
-    << "set xlabel \"" << GnuplotEscape(in.axis_labels.at(0)) << "\"\n"
-    << "set ylabel \"" << GnuplotEscape(in.axis_labels.at(1)) << "\"\n"
+  std::ostringstream dots;
+  if (in.boundary) {
+    std::vector<char> traced(in.boundary->size(), in.curves != nullptr);
+    if (in.curves)
+      for (size_t i : in.curves->untraced) traced[i] = 0;
+    for (size_t i = 0; i < in.boundary->size(); ++i) {
+      const BoundaryPoint& b = (*in.boundary)[i];
+      if (!b.estimate.refined || traced[i]) continue;
+      dots << V(b.values[xa]) << " " << V(b.values[ya]) << "\n";
+      have[2] = true;
+    }
+  }
+  if (have[2]) g << "$B << EOD\n" << dots.str() << "EOD\n";
+  return have;
+}
+
+std::string MapScript(const ChartPlotInput& in, const std::string& file) {
+  const SweepGrid& grid = *in.grid;
+  const size_t xa = in.x_axis == 1 ? 1 : 0, ya = 1 - xa;
+  const double scale = MapColourScale(*in.points);
+  std::ostringstream g;
+  g << GnuplotTerminal(file, 1000, 900) << "set output '" << file << "'\n";
+  const std::array<bool, 3> have = MapData(in, xa, g);
+  g << "set title \"" << GnuplotEscape(in.title)
+    << (in.caption.empty() ? "" : "\\n" + GnuplotEscape(in.caption)) << "\" font ',12'\n"
+    << "set xlabel \"" << GnuplotEscape(in.axis_labels.at(xa)) << "\"\n"
+    << "set ylabel \"" << GnuplotEscape(in.axis_labels.at(ya)) << "\"\n"
     << "set cblabel 'max Re λ  [1/s]   (blue: stable, white: marginal, red: unstable)'\n"
     << "set palette defined (-1 '#2166ac', -1e-4 '#a6cee3', 0 '#ffffff', 1e-4 '#fddbc7', 1 "
        "'#b2182b')\n"
     << "set cbrange [" << V(-scale) << ":" << V(scale) << "]\n"
-    << "set xrange [" << V(grid.values[0].front()) << ":" << V(grid.values[0].back()) << "]\n"
-    << "set yrange [" << V(grid.values[1].front()) << ":" << V(grid.values[1].back()) << "]\n"
-    << "set key top left opaque box\nset tics out\n";
+    << "set xrange [" << V(grid.values[xa].front()) << ":" << V(grid.values[xa].back()) << "]\n"
+    << "set yrange [" << V(grid.values[ya].front()) << ":" << V(grid.values[ya].back()) << "]\n"
+    << "set key outside below center horizontal font ',10'\nset tics out\n";
   g << "plot $G using 1:2:3 with image notitle";
-  if (boundary)
-    g << ", $B using 1:2 with points pt 7 ps 0.35 lc rgb '#000000' title 'refined boundary points'";
+  if (have[0])
+    g << ", \\\n     $P using 1:2 with lines lw 1.6 lc rgb '#000000' title 'transition curve: "
+         "multiplier +1 (T-periodic solution)'";
+  if (have[1])
+    g << ", \\\n     $M using 1:2 with lines lw 1.6 dt 2 lc rgb '#000000' title 'transition curve: "
+         "multiplier −1 (2T-periodic solution)'";
+  if (have[2])
+    g << ", \\\n     $B using 1:2 with points pt 7 ps 0.35 lc rgb '#404040' title '"
+      << (in.curves ? "refined boundary points on no curve (complex multipliers)"
+                    : "refined boundary points")
+      << "'";
   g << "\n";
   return g.str();
 }

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/studies/boundary_curves.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/stability_boundary.h"
 #include "ltp/studies/sweep.h"
@@ -21,6 +22,11 @@ struct ChartPlotInput {
   const CampbellDiagram* campbell = nullptr;        ///< 1-D
   const std::vector<UnstableInterval>* intervals = nullptr;  ///< 1-D
   const std::vector<BoundaryPoint>* boundary = nullptr;      ///< 2-D
+  const BoundaryCurves* curves = nullptr;  ///< 2-D: drawn as lines; untraced points as dots
+  /// 2-D: the grid axis drawn horizontally (0: the first sweep; 1: the second).
+  int x_axis = 0;
+  /// A line under the title: every parameter of the scene, defaults included.
+  std::string caption;
   int sidebands = 2;  ///< faint families f ± kΩp/2π, k = 1..sidebands (1-D)
   /// The lower Campbell panel shows the damping ratio ζ in % (eigenvalues of one averaged
   /// system, MBC3) instead of Re λ (Floquet exponents, whose ζ depends on the branch).

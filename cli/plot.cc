@@ -33,8 +33,12 @@ std::string GnuplotTerminal(const std::string& file, int width, int height) {
   } else if (ext == ".png") {
     s << "set terminal pngcairo size " << width << "," << height
       << " enhanced font 'DejaVu Sans,11' background rgb 'white'\n";
+  } else if (ext == ".pdf") {
+    // Vector output for papers: pdfcairo, sized in inches (100 pixels to the inch).
+    s << "set terminal pdfcairo size " << width / 100.0 << "in," << height / 100.0
+      << "in enhanced font 'DejaVu Sans,10' background rgb 'white'\n";
   } else {
-    throw InputError("plot file '" + file + "' must end in .svg or .png");
+    throw InputError("plot file '" + file + "' must end in .svg, .png or .pdf");
   }
   return s.str();
 }
@@ -43,6 +47,11 @@ void RunGnuplot(const std::string& output_file, const std::string& script) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw InputError("cannot draw '" + output_file +
                      "': gnuplot is not installed (apt-get install gnuplot-nox)");
+  if (std::filesystem::path(output_file).extension() == ".pdf" &&
+      std::system("gnuplot -e 'set terminal pdfcairo' >/dev/null 2>&1") != 0)
+    throw InputError("cannot draw '" + output_file +
+                     "': this gnuplot has no pdfcairo terminal (Debian's gnuplot-nox, -qt and "
+                     "-x11 have it); use .svg or .png, or convert the SVG");
   char path[] = "/tmp/ltp-plot-XXXXXX";
   const int fd = mkstemp(path);
   if (fd < 0) throw InputError("cannot create a temporary file for gnuplot");

@@ -1,5 +1,5 @@
 #pragma once
-// Pictures through gnuplot (PNG or SVG, chosen by the file name's extension).
+// Pictures through gnuplot (PNG, SVG or PDF, chosen by the file name's extension).
 #include <string>
 
 #include "ltp/floquet/floquet.h"
@@ -7,14 +7,14 @@
 namespace ltp::cli {
 
 /// Runs a gnuplot script with the given inline data blocks. @throws InputError if the file
-/// extension is not .svg/.png or gnuplot is missing or fails.
+/// extension is not .svg/.png/.pdf, gnuplot is missing or fails, or (.pdf) it has no pdfcairo.
 void RunGnuplot(const std::string& output_file, const std::string& script);
 
 /// Text for a double-quoted gnuplot title in enhanced mode: '_', '^', '{', '}' and '@' are
 /// taken literally (names like z_tip otherwise turn into subscripts).
 std::string GnuplotEscape(const std::string& text);
 
-/// Terminal line for the extension of `file` ("set terminal svg ..." / "pngcairo").
+/// Terminal line for the extension of `file` ("set terminal svg ..." / "pngcairo" / "pdfcairo").
 std::string GnuplotTerminal(const std::string& file, int width, int height);
 
 /// Left: Floquet exponents (Re λ vs frequency, the stability boundary Re λ = 0).

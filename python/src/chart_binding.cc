@@ -7,6 +7,7 @@
 #include "binding.h"
 #include "ltp/core/error.h"
 #include "ltp/integrate/threads.h"
+#include "ltp/studies/boundary_curves.h"
 #include "ltp/studies/campbell.h"
 #include "ltp/studies/chart.h"
 #include "ltp/studies/chart_options.h"
@@ -45,6 +46,17 @@ py::dict BoundaryDict(const BoundaryEstimate& e) {
   return py::dict(py::arg("value") = e.value, py::arg("refined") = e.refined,
                   py::arg("bracket") = e.bracket, py::arg("at_sweep_edge") = e.at_sweep_edge,
                   py::arg("evaluations") = e.evaluations, py::arg("note") = e.note);
+}
+
+// A numpy array of str (dtype '<U…') from strings.
+py::array StringArray(const std::vector<std::string>& v) {
+  return py::array(py::cast(v)).attr("astype")("str");
+}
+
+py::array_t<long> IntArray(const std::vector<long>& v) {
+  py::array_t<long> a(static_cast<py::ssize_t>(v.size()));
+  for (size_t i = 0; i < v.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = v[i];
+  return a;
 }
 
 template <class Field>
@@ -132,9 +144,9 @@ void BindChartPlan(py::class_<ChartResult>& r) {
           [](const ChartResult& c) {
             std::vector<std::string> names;
             for (const auto& a : c.chart.plan.grid.axes) names.push_back(a.name);
-            return names;
+            return StringArray(names);
           },
-          "the swept parameters' names")
+          "the swept parameters' names (numpy array of str)")
       .def_property_readonly(
           "values",
           [](const ChartResult& c) {
@@ -169,7 +181,7 @@ void BindChartPoints(py::class_<ChartResult>& r) {
           [](const ChartResult& c) {
             std::vector<std::string> v;
             for (const SweepPoint& p : c.chart.points) v.emplace_back(ToString(p.verdict));
-            return py::array(py::cast(v));  // a numpy array of str, like every other column
+            return StringArray(v);  // a numpy array of str, like every other column
           },
           "'stable', 'marginal', 'unstable' or 'failed' per point (numpy array of str)")
       .def_property_readonly("periods", PointArray([](const SweepPoint& p) { return p.period; }),
@@ -313,13 +325,94 @@ void BindChartBoundaries(py::class_<ChartResult>& r) {
           "maps: every grid crossing, refined or not, with its estimate");
 }
 
+// Maps: the boundaries traced as curves through the refined points (boundary_curves.h).
+void BindChartCurves(py::class_<ChartResult>& r) {
+  r.def_property_readonly(
+       "boundary_curves",
+       [](const ChartResult& c) {
+         py::list out;
+         for (const BoundaryCurve& curve : c.chart.analysis.curves.curves) {
+           std::vector<std::vector<double>> v;
+           for (const auto& p : curve.points) v.push_back({p[0], p[1]});
+           out.append(RealTable(v, 2));
+         }
+         return out;
+       },
+       "maps: every stability boundary traced as a curve, a float64 array of shape (points, 2) "
+       "(columns in the order of axes)")
+      .def_property_readonly(
+          "boundary_curve_kinds",
+          [](const ChartResult& c) {
+            std::vector<std::string> v;
+            for (const BoundaryCurve& curve : c.chart.analysis.curves.curves)
+              v.emplace_back(curve.kind == BoundaryKind::kRealPlusOne ? "+1" : "-1");
+            return StringArray(v);
+          },
+          "maps: per curve, the multiplier σ whose crossing it follows: '+1' (a T-periodic "
+          "solution on the curve) or '-1' (2T-periodic)")
+      .def_property_readonly(
+          "boundary_curve_brackets",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const BoundaryCurve& curve : c.chart.analysis.curves.curves)
+              out.append(RealArray(curve.bracket));
+            return out;
+          },
+          "maps: per curve, per point: the boundary crosses the line through the point along "
+          "boundary_curve_details[k]['across'] within ±bracket")
+      .def_property_readonly(
+          "boundary_curve_details",
+          [](const ChartResult& c) {
+            py::list out;
+            for (const BoundaryCurve& curve : c.chart.analysis.curves.curves) {
+              std::vector<std::string> across;
+              py::array_t<bool> merged(static_cast<py::ssize_t>(curve.merged.size()));
+              for (size_t i = 0; i < curve.merged.size(); ++i) {
+                across.push_back(c.chart.plan.grid.axes[static_cast<size_t>(curve.across[i])].name);
+                merged.mutable_at(static_cast<py::ssize_t>(i)) = curve.merged[i] != 0;
+              }
+              out.append(py::dict(
+                  py::arg("kind") = std::string(ToString(curve.kind)),
+                  py::arg("across") = StringArray(across), py::arg("merged") = merged,
+                  py::arg("end_notes") = py::make_tuple(curve.end_notes[0], curve.end_notes[1]),
+                  py::arg("evaluations") = curve.evaluations));
+            }
+            return out;
+          },
+          "maps: per curve: kind, per point the parameter the root was solved along (across) and "
+          "whether the tongue's two edges merge there below resolution (merged: the bracket holds "
+          "both), why each end stopped, evaluations")
+      .def_property_readonly(
+          "untraced_boundary_points",
+          [](const ChartResult& c) {
+            py::list out;
+            const auto& t = c.chart.analysis.curves;
+            for (size_t k = 0; k < t.untraced.size(); ++k)
+              out.append(
+                  py::dict(py::arg("values") = c.chart.analysis.boundary[t.untraced[k]].values,
+                           py::arg("note") = t.untraced_notes[k]));
+            return out;
+          },
+          "maps: refined boundary points on no curve (a complex pair crossing), with why")
+      .def_property_readonly(
+          "curves_s", [](const ChartResult& c) { return c.chart.analysis.curves_s; },
+          "wall time of tracing the boundary curves (s)")
+      .def_property_readonly(
+          "curve_evaluations",
+          [](const ChartResult& c) { return c.chart.analysis.curves.evaluations; },
+          "analyses the curves took");
+}
+
 // 1-D: the modes tracked along the sweep, as a Campbell diagram.
 void BindChartCampbell(py::class_<ChartResult>& r) {
   r.def_property_readonly(
        "mode_tracking",
        [](const ChartResult& c) {
+         std::vector<long> ambiguous;
+         for (const auto i : c.chart.analysis.tracking.ambiguous)
+           ambiguous.push_back(static_cast<long>(i));
          return py::dict(py::arg("min_mac") = c.chart.analysis.tracking.min_mac,
-                         py::arg("ambiguous_points") = c.chart.analysis.tracking.ambiguous);
+                         py::arg("ambiguous_points") = IntArray(ambiguous));
        },
        "1-D: smallest accepted MAC and the points where a match was ambiguous")
       .def_property_readonly(
@@ -332,8 +425,12 @@ void BindChartCampbell(py::class_<ChartResult>& r) {
           [](const ChartResult& c) { return RealArray(c.chart.analysis.campbell.rotor_speed); },
           "1-D: rotor speed per point (rad/s; NaN when the scene is not a rotor)")
       .def_property_readonly(
-          "per_rev", [](const ChartResult& c) { return c.chart.analysis.campbell.per_rev; },
-          "1-D: n of the per-rev lines n*Omega/2pi of the diagram")
+          "per_rev",
+          [](const ChartResult& c) {
+            const auto& n = c.chart.analysis.campbell.per_rev;
+            return IntArray(std::vector<long>(n.begin(), n.end()));
+          },
+          "1-D: n of the per-rev lines n*Omega/2pi of the diagram (numpy int array)")
       .def_property_readonly(
           "crossings",
           [](const ChartResult& c) { return CampbellCrossings(c.chart.analysis.campbell); },
@@ -363,6 +460,7 @@ members of each conjugate pair).)doc");
   BindChartExponents(r);
   BindChartTally(r);
   BindChartBoundaries(r);
+  BindChartCurves(r);
   BindChartCampbell(r);
   r.def_property_readonly(
        "sweep_s", [](const ChartResult& c) { return c.chart.sweep_s; },
@@ -380,7 +478,8 @@ members of each conjugate pair).)doc");
 ChartResult LtpChart(const py::object& scene, const py::object& sweep, const py::object& sweep2,
                      const std::string& method, std::optional<std::string> integrator, double tol,
                      int threads, bool compare, std::optional<int> check_every, bool refine,
-                     double refine_tol, int refine_lines, int per_rev, double weak_damping) {
+                     double refine_tol, int refine_lines, bool curves, int per_rev,
+                     double weak_damping) {
   const System system = py::isinstance<py::str>(scene)
                             ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
                             : scene.cast<System>();
@@ -398,6 +497,7 @@ ChartResult LtpChart(const py::object& scene, const py::object& sweep, const py:
   o.refine = refine;
   o.refine_tol = refine_tol;
   o.refine_lines = refine_lines;
+  o.curves = curves;
   o.campbell.max_per_rev = per_rev;
   o.campbell.weak_damping_ratio = weak_damping;
   o.Validate();
@@ -413,7 +513,7 @@ void BindChartFunction(py::module_& m) {
         py::arg("threads") = defaults.threads, py::arg("compare") = defaults.compare,
         py::arg("check_every") = defaults.check_every, py::arg("refine") = defaults.refine,
         py::arg("refine_tol") = defaults.refine_tol,
-        py::arg("refine_lines") = defaults.refine_lines,
+        py::arg("refine_lines") = defaults.refine_lines, py::arg("curves") = defaults.curves,
         py::arg("per_rev") = defaults.campbell.max_per_rev,
         py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
 Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
@@ -432,6 +532,8 @@ defaults (the library's ChartOptions).
   refine        refine the stability boundaries beyond the grid
   refine_tol    relative tolerance of refined boundaries
   refine_lines  maps: grid lines per axis along which boundaries are refined (0 = all)
+  curves        maps: trace the boundaries through the refined points as curves
+                (boundary_curves, boundary_curve_kinds, boundary_curve_brackets)
   per_rev       1-D: per-rev lines 1P..NP (0 = up to the highest mode frequency)
   weak_damping  1-D: damping ratio below which a stable point counts as weakly damped
 

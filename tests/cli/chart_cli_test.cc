@@ -202,7 +202,7 @@ TEST(ChartCli, FailedPointsAreRowsWithTheirReason) {
 
 TEST(ChartCli, BadInputIsOneLineExitTwo) {
   for (const char* args : {"chart mathieu --sweep a=1:0:0.1", "chart mathieu --sweep zz=0:1:0.1",
-                           "chart mathieu --sweep a=0:1:0.1 --plot x.pdf",
+                           "chart mathieu --sweep a=0:1:0.1 --plot x.jpg",
                            "chart mathieu --sweep a=0:1:0.1 --resume"}) {
     const auto r = RunLtp(args);
     EXPECT_EQ(r.code, 2) << args;
@@ -220,6 +220,46 @@ TEST(ChartCli, WithoutGnuplotWritesTheScript) {
   const std::string script = ReadFile(png + ".gp");
   EXPECT_NE(script.find("set output '" + png + "'"), std::string::npos);
   EXPECT_NE(script.find("$M << EOD"), std::string::npos);
+}
+
+// Maps: the boundary curves in the JSON and FILE-curves.csv, drawn into a PDF; --plot-x puts
+// the chosen parameter on the horizontal axis. Reference: the undamped Mathieu tongues reach
+// the a axis at a_m(0) = b_m(0) = m² (DLMF 28.6.1–28.6.4 at q = 0).
+TEST(ChartCli, MapCurvesInJsonCsvAndPdf) {
+  const std::string csv = Tmp("chart_curves.csv"), pdf = Tmp("chart_curves.pdf");
+  std::filesystem::remove(pdf);
+  const std::string map = "chart mathieu --set c=0 --sweep q=0:3:0.25 --sweep2 a=-1:5:0.25 ";
+  const auto r = RunLtp(map + "--json --csv " + csv + " --plot " + pdf + " --plot-x a");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json curves = json::parse(r.out)["boundary_curves"]["curves"];
+  ASSERT_EQ(curves.size(), 5u);  // a_0, b_1, a_1, b_2, a_2
+  std::vector<double> tips;
+  size_t points = 0;
+  for (const json& c : curves) {
+    EXPECT_TRUE(c["kind"] == "+1" || c["kind"] == "-1");
+    ASSERT_EQ(c["points"].size(), c["bracket"].size());
+    points += c["points"].size();
+    for (const json& p : c["points"])
+      if (p[0].get<double>() == 0) tips.push_back(p[1].get<double>());
+  }
+  std::sort(tips.begin(), tips.end());
+  const double expected[] = {0, 1, 1, 4, 4};
+  ASSERT_EQ(tips.size(), 5u);
+  for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(tips[k], expected[k], 1e-8);
+  const std::string table = ReadFile(Tmp("chart_curves-curves.csv"));
+  EXPECT_EQ(table.rfind("curve,kind,q,a,across,bracket,merged\n", 0), 0u) << table.substr(0, 80);
+  EXPECT_EQ(static_cast<size_t>(std::count(table.begin(), table.end(), '\n')), points + 1);
+  if (std::system("gnuplot -e 'set terminal pdfcairo' >/dev/null 2>&1") == 0) {
+    EXPECT_EQ(ReadFile(pdf).substr(0, 4), "%PDF");
+  }
+  // The script (no gnuplot on the PATH): a horizontal, the curves as lines, every parameter.
+  const auto gp = RunLtp(map + "--plot " + pdf + " --plot-x a", "PATH=/nonexistent ");
+  ASSERT_EQ(gp.code, 0) << gp.err;
+  const std::string script = ReadFile(pdf + ".gp");
+  EXPECT_NE(script.find("set xlabel \"a"), std::string::npos);
+  EXPECT_NE(script.find("set terminal pdfcairo"), std::string::npos);
+  EXPECT_NE(script.find("transition curve: multiplier +1"), std::string::npos);
+  EXPECT_NE(script.find("c = 0; swept: q, a"), std::string::npos);
 }
 
 // An interrupted 2-D sweep leaves a valid CSV and its journal; --resume computes only the

@@ -189,7 +189,7 @@ def assert_chart_equal(j, c):
         assert j[verdict] == c.counts[verdict], verdict
     assert j["checked_points"] == c.checked_points
     assert same(j["max_error_estimate"], c.max_error_estimate)
-    assert [a["name"] for a in j["sweep"]] == c.axes
+    assert [a["name"] for a in j["sweep"]] == list(c.axes)
     assert [a["count"] for a in j["sweep"]] == [len(v) for v in c.values]
 
 
