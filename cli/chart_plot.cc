@@ -37,6 +37,26 @@ std::string LineStyle(size_t k, size_t points) {
 
 std::string V(double x) { return std::isfinite(x) ? Num(x, 9) : std::string("NaN"); }
 
+// The title and, under it, the caption wrapped at ", " to lines of at most `width` characters,
+// as the text of a double-quoted gnuplot title.
+std::string TitleText(const std::string& title, const std::string& caption, size_t width) {
+  std::string text = GnuplotEscape(title), line;
+  size_t from = 0;
+  while (from < caption.size()) {
+    size_t end = caption.find(", ", from);
+    end = end == std::string::npos ? caption.size() : end + 2;
+    const std::string piece = caption.substr(from, end - from);
+    if (!line.empty() && line.size() + piece.size() > width) {
+      text += "\\n" + GnuplotEscape(line);
+      line.clear();
+    }
+    line += piece;
+    from = end;
+  }
+  if (!line.empty()) text += "\\n" + GnuplotEscape(line);
+  return text;
+}
+
 // Bands over the unstable intervals (light red) and the weakly damped ones (light yellow),
 // in both panels.
 void Bands(std::ostringstream& g, const ChartPlotInput& in) {
@@ -236,8 +256,8 @@ std::string CampbellScript(const ChartPlotInput& in, const std::string& file) {
   std::ostringstream g;
   g << GnuplotTerminal(file, 1400, 950) << "set output '" << file << "'\n";
   const CampbellExtras x = CampbellData(in, g);
-  g << "set multiplot layout 2,1 title \"" << GnuplotEscape(in.title)
-    << (in.caption.empty() ? "" : "\\n" + GnuplotEscape(in.caption)) << "\" font ',13'\n"
+  g << "set multiplot layout 2,1 title \"" << TitleText(in.title, in.caption, 150)
+    << "\" font ',13'\n"
     << "set grid\nset xlabel \"" << GnuplotEscape(in.axis_labels.at(0))
     << "\"\nset key outside right top font ',9'\n"
     << "set lmargin 12\nset rmargin " << LegendMargin(*in.campbell) << "\n";
@@ -316,8 +336,7 @@ std::string MapScript(const ChartPlotInput& in, const std::string& file) {
   std::ostringstream g;
   g << GnuplotTerminal(file, 1000, 900) << "set output '" << file << "'\n";
   const std::array<bool, 3> have = MapData(in, xa, g);
-  g << "set title \"" << GnuplotEscape(in.title)
-    << (in.caption.empty() ? "" : "\\n" + GnuplotEscape(in.caption)) << "\" font ',12'\n"
+  g << "set title \"" << TitleText(in.title, in.caption, 110) << "\" font ',12'\n"
     << "set xlabel \"" << GnuplotEscape(in.axis_labels.at(xa)) << "\"\n"
     << "set ylabel \"" << GnuplotEscape(in.axis_labels.at(ya)) << "\"\n"
     << "set cblabel 'max Re λ  [1/s]   (blue: stable, white: marginal, red: unstable)'\n"

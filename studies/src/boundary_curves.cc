@@ -542,7 +542,6 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
 struct Seed {
   int sigma = 0;
   Crossing crossing;
-  int pos_dir = 0;
 };
 
 template <class Skip>
@@ -555,8 +554,7 @@ std::optional<Seed> FindSeed(Tracer& t, const Line& line, double a, double b, do
     if (!da || !db || da->sign * db->sign >= 0 || skip(sigma)) continue;
     Crossing c = t.Bracketed(line, a, b, std::abs(b - a), true);
     if (!c.ok) continue;
-    if (!best || std::abs(c.x - value) < std::abs(best->crossing.x - value))
-      best = Seed{sigma, c, db->sign > 0 ? (b > a ? 1 : -1) : (b > a ? -1 : 1)};
+    if (!best || std::abs(c.x - value) < std::abs(best->crossing.x - value)) best = Seed{sigma, c};
   }
   return best;
 }

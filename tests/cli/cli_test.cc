@@ -288,7 +288,7 @@ TEST(Cli, BadInputGivesExitTwoAndOneLine) {
            "floquet nosuchscene", "floquet mathieu --set nosuch=1", "floquet mathieu --set a=nan",
            "floquet mathieu --integrator euler", "floquet mathieu --segments 0",
            "floquet mathieu --tol -1", "info " + Src("tests/data/does-not-exist.yaml"),
-           "frobnicate", "floquet mathieu --plot out.pdf", "floquet mathieu --method magic",
+           "frobnicate", "floquet mathieu --plot out.jpg", "floquet mathieu --method magic",
            "floquet mathieu --method hill --harmonics -3"}) {
     const Outcome r = Ltp(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
