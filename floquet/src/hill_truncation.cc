@@ -230,6 +230,48 @@ double KoopmanHillBound(const HillDecay& decay, int harmonics, double period) {
 
 namespace {
 
+// The modes' columns in the order of the analysis at max_harmonics (HillStudyRun::last), so
+// that the last row is its exponents mode by mode: modes of equal |frequency| (a 2:1
+// resonance's pair) are ordered by round-off, differently by each analysis and each route.
+// Without a reference, every row is matched to those exponents (modulo jΩp; Hill's branch at
+// that N kept, NaN where none matched); with one, the reference's order is permuted.
+void OrderColumnsLike(const std::vector<cd>& final_order, bool have_ref, double omega_p,
+                      HillStudy& study) {
+  if (!have_ref) {
+    for (HillStudyRow& row : study.rows) {
+      const std::vector<int> match = MatchExponentIndices(final_order, row.exponents, omega_p);
+      std::vector<cd> ordered;
+      for (int m : match)
+        ordered.push_back(m < 0 ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                                : row.exponents[static_cast<size_t>(m)]);
+      row.exponents = std::move(ordered);
+    }
+  } else if (!study.rows.empty()) {
+    const std::vector<cd>& matched = study.rows.back().exponents;  // values of final_order
+    std::vector<size_t> order;
+    std::vector<bool> taken(matched.size(), false);
+    for (const cd& e : final_order)
+      for (size_t i = 0; i < matched.size(); ++i)
+        if (!taken[i] && matched[i] == e) {
+          order.push_back(i);
+          taken[i] = true;
+          break;
+        }
+    for (size_t i = 0; i < matched.size(); ++i)  // reference exponents Hill did not match
+      if (!taken[i]) order.push_back(i);
+    auto permuted = [&order](const auto& v) {
+      std::decay_t<decltype(v)> out;
+      for (size_t i : order) out.push_back(v[i]);
+      return out;
+    };
+    study.reference = permuted(study.reference);
+    for (HillStudyRow& row : study.rows) {
+      row.exponents = permuted(row.exponents);
+      row.errors = permuted(row.errors);
+    }
+  }
+}
+
 // HillConvergenceStudy; `last` (when given) receives the analysis at max_harmonics, the
 // study's last row, so a caller that wants its modes need not solve it again.
 HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
@@ -324,45 +366,7 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     if (last && N == rows.back()) *last = std::move(r);
   }
 
-  // The modes' columns in the order of the analysis at max_harmonics (HillStudyRun::last), so
-  // that the last row is its exponents mode by mode: modes of equal |frequency| (a 2:1
-  // resonance's pair) are ordered by round-off, differently by each analysis and each route.
-  // Without a reference, every row is matched to those exponents (modulo jΩp; Hill's branch at
-  // that N kept, NaN where none matched); with one, the reference's order is permuted.
-  if (!have_ref) {
-    for (HillStudyRow& row : study.rows) {
-      const std::vector<int> match =
-          MatchExponentIndices(final_order, row.exponents, system.omega());
-      std::vector<cd> ordered;
-      for (int m : match)
-        ordered.push_back(m < 0 ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
-                                : row.exponents[static_cast<size_t>(m)]);
-      row.exponents = std::move(ordered);
-    }
-  } else if (!study.rows.empty()) {
-    const std::vector<cd>& matched = study.rows.back().exponents;  // values of final_order
-    std::vector<size_t> order;
-    std::vector<bool> taken(matched.size(), false);
-    for (const cd& e : final_order)
-      for (size_t i = 0; i < matched.size(); ++i)
-        if (!taken[i] && matched[i] == e) {
-          order.push_back(i);
-          taken[i] = true;
-          break;
-        }
-    for (size_t i = 0; i < matched.size(); ++i)  // reference exponents Hill did not match
-      if (!taken[i]) order.push_back(i);
-    auto permuted = [&order](const auto& v) {
-      std::decay_t<decltype(v)> out;
-      for (size_t i : order) out.push_back(v[i]);
-      return out;
-    };
-    study.reference = permuted(study.reference);
-    for (HillStudyRow& row : study.rows) {
-      row.exponents = permuted(row.exponents);
-      row.errors = permuted(row.errors);
-    }
-  }
+  OrderColumnsLike(final_order, have_ref, system.omega(), study);
 
   // Convergence law from the points clearly above round-off.
   double scale = 1;
