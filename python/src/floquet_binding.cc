@@ -270,8 +270,8 @@ void BindFloquetFunction(py::module_& m) {
         py::arg("estimate") = std::string(ToString(defaults.error_estimate_method)),
         py::arg("mode_samples") = defaults.mode_samples, py::arg("threads") = defaults.threads,
         py::arg("max_work") = defaults.max_work_seconds, py::arg("modes_below") = 0.0,
-        py::arg("keep_factors") = defaults.keep_segment_factors,
-        py::arg("progress") = py::none(), R"doc(
+        py::arg("keep_factors") = defaults.keep_segment_factors, py::arg("progress") = py::none(),
+        R"doc(
 Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a function, with
 the same options and defaults.
 
