@@ -475,14 +475,85 @@ members of each conjugate pair).)doc");
 }
 
 // ltp.chart: a scene by name is made as ltp.scene makes it; the chart runs without the GIL.
+// A scene whose systems a Python callable builds: builder(**parameters) -> ltp.System. The
+// chart calls it from its worker threads, each call with the GIL; what it raises fails that
+// point with the message (as a scene's bad parameter value does). The callable is held through
+// a shared_ptr so that copies of the scene never touch Python's reference counts without the GIL.
+Scene BuilderScene(const py::object& builder, const py::dict& parameters) {
+  Scene scene;
+  scene.name = py::str(py::getattr(builder, "__name__", py::str("builder"))).cast<std::string>();
+  scene.description = "systems built by a Python callable";
+  scene.source = "python";
+  for (const auto& [name, value] : parameters) {
+    if (!py::isinstance<py::str>(name))
+      throw InputError("parameters: names must be strings, got " +
+                       py::repr(name).cast<std::string>());
+    Real real;
+    try {
+      real = value.cast<Real>();
+    } catch (const py::cast_error&) {
+      throw InputError("parameters: " + name.cast<std::string>() + " must be a real number, got " +
+                       py::repr(value).cast<std::string>());
+    }
+    scene.parameters.push_back({name.cast<std::string>(), real.value, ""});
+  }
+  const std::shared_ptr<py::object> fn(new py::object(builder), [](py::object* o) {
+    py::gil_scoped_acquire gil;
+    delete o;
+  });
+  scene.build = [fn](const ParameterMap& p) -> PeriodicSystem {
+    py::gil_scoped_acquire gil;
+    try {
+      py::dict kwargs;
+      for (const auto& [name, value] : p) kwargs[py::str(name)] = value;
+      const py::object result = (*fn)(**kwargs);
+      if (!py::isinstance<System>(result))
+        throw InputError("the builder must return an ltp.System, got " +
+                         py::str(py::type::of(result).attr("__name__")).cast<std::string>());
+      const System& system = result.cast<const System&>();
+      if (system.callbacks)
+        throw InputError(
+            "the builder returned a System.from_function system; a chart needs "
+            "systems from from_fourier, from_second_order or from_samples");
+      return system.system;
+    } catch (py::error_already_set& e) {
+      // The exception's type and message, without pybind11's appended traceback.
+      throw InputError("the builder raised " +
+                       py::str(e.type().attr("__name__")).cast<std::string>() + ": " +
+                       py::str(e.value()).cast<std::string>());
+    }
+  };
+  return scene;
+}
+
+System SystemToSweep(const py::object& scene, const py::object& parameters) {
+  if (py::isinstance<py::str>(scene))
+    return py::module_::import("ltp").attr("scene")(scene).cast<System>();
+  if (py::isinstance<System>(scene)) {
+    if (!parameters.is_none())
+      throw InputError(
+          "parameters= belongs to a builder; a scene's parameters are set in ltp.scene");
+    return scene.cast<System>();
+  }
+  if (!PyCallable_Check(scene.ptr()))
+    throw InputError("chart sweeps a scene (ltp.scene(...) or its name) or a builder callable");
+  if (parameters.is_none() || !py::isinstance<py::dict>(parameters) || py::len(parameters) == 0)
+    throw InputError(
+        "a builder needs parameters={name: default, ...}: the base point and the "
+        "names the sweeps may use");
+  Scene built = BuilderScene(scene, parameters.cast<py::dict>());
+  ParameterMap base;
+  for (const SceneParameter& p : built.parameters) base[p.name] = p.value;
+  System system{built.build(base), std::move(built), base, {}, nullptr, {}};
+  return system;
+}
+
 ChartResult LtpChart(const py::object& scene, const py::object& sweep, const py::object& sweep2,
                      const std::string& method, std::optional<std::string> integrator, double tol,
                      int threads, bool compare, std::optional<int> check_every, bool refine,
                      double refine_tol, int refine_lines, bool curves, int per_rev,
-                     double weak_damping) {
-  const System system = py::isinstance<py::str>(scene)
-                            ? py::module_::import("ltp").attr("scene")(scene).cast<System>()
-                            : scene.cast<System>();
+                     double weak_damping, const py::object& parameters) {
+  const System system = SystemToSweep(scene, parameters);
   std::vector<SweepAxis> axes{AxisFrom(sweep)};
   if (!sweep2.is_none()) axes.push_back(AxisFrom(sweep2));
   ChartOptions o;
@@ -515,12 +586,16 @@ void BindChartFunction(py::module_& m) {
         py::arg("refine_tol") = defaults.refine_tol,
         py::arg("refine_lines") = defaults.refine_lines, py::arg("curves") = defaults.curves,
         py::arg("per_rev") = defaults.campbell.max_per_rev,
-        py::arg("weak_damping") = defaults.campbell.weak_damping_ratio, R"doc(
+        py::arg("weak_damping") = defaults.campbell.weak_damping_ratio,
+        py::arg("parameters") = py::none(), R"doc(
 Campbell/damping diagram (one sweep) or stability map (sweep and sweep2) of a scene's
 parameters: `ltp chart SCENE --sweep ... --json` as a function, with the same options and
 defaults (the library's ChartOptions).
 
-  scene         a System made by ltp.scene(...) (its parameters are the base) or a name
+  scene         a System made by ltp.scene(...) (its parameters are the base), a scene name,
+                or a builder: a callable builder(**params) -> ltp.System, swept over
+                parameters={name: default, ...} (called with the GIL from the worker threads;
+                what it raises fails that point with the message)
   sweep, sweep2 'NAME=START:STOP:STEP' or (name, start, stop, step)
   method        monodromy | hill
   integrator    None: rkf78 for 1-D sweeps; for maps taylor when A(t) is a Fourier series
