@@ -549,10 +549,10 @@ System SystemToSweep(const py::object& scene, const py::object& parameters) {
 }
 
 ChartResult LtpChart(const py::object& scene, const py::object& sweep, const py::object& sweep2,
-                     const std::string& method, std::optional<std::string> integrator, double tol,
+                     const std::string& method, std::optional<std::string> integrator, Real tol,
                      int threads, bool compare, std::optional<int> check_every, bool refine,
-                     double refine_tol, int refine_lines, bool curves, int per_rev,
-                     double weak_damping, const py::object& parameters) {
+                     Real refine_tol, int refine_lines, bool curves, int per_rev, Real weak_damping,
+                     const py::object& parameters) {
   const System system = SystemToSweep(scene, parameters);
   std::vector<SweepAxis> axes{AxisFrom(sweep)};
   if (!sweep2.is_none()) axes.push_back(AxisFrom(sweep2));

@@ -113,6 +113,8 @@ def test_complex_arrays_where_real_is_meant_raise_input_error(call, message):
     lambda: ltp.System.from_function(1.0, lambda t: np.eye(1), breakpoints=np.array([0.5 + 1j])),
     lambda: ltp.System.from_samples(1.0, np.array([0.0, 0.5 + 1j]), np.zeros((2, 1, 1))),
     lambda: ltp.simulate(ltp.scene("mathieu", c=0.3), "0.1:0.2:0.1", noise=np.complex128(30 + 1j)),
+    lambda: ltp.chart(MATHIEU, "a=0:1:0.5", tol=np.complex128(1e-8 + 1e-9j)),
+    lambda: ltp.chart(MATHIEU, "a=0:1:0.5", refine_tol=np.complex128(1e-8)),
 ])
 def test_complex_scalars_where_real_is_meant_raise_type_error(call):
     with pytest.raises(TypeError, match="incompatible function arguments"):
