@@ -92,11 +92,12 @@ over frequency in closed form and by the periodic Lyapunov differential equation
 routes ran (or the modal one alone, said in diagnostics) and agree.)doc")
       .def_readonly("ok", &H2Norm::ok, "the routes ran and agree within the estimate")
       .def_readonly("failure", &H2Norm::failure, "why ok is False ('' when ok)")
-      .def_readonly("value", &H2Norm::value,
-                    "‖G‖₂: the Lyapunov value when that route ran, else the modal one (inf for "
-                    "an unstable system or D ≠ 0)")
+      .def_readonly(
+          "value", &H2Norm::value,
+          "‖G‖₂: the value of the route with the smaller own estimate (inf for an unstable "
+          "system or D ≠ 0)")
       .def_readonly("error_estimate", &H2Norm::error_estimate,
-                    "absolute: the routes' disagreement plus their own estimates")
+                    "absolute: the chosen route's estimate, or the disagreement beyond the other's")
       .def_readonly("modal_value", &H2Norm::modal_value, "the modal route's value")
       .def_property_readonly(
           "lyapunov_value", [](const H2Norm& r) { return r.lyapunov_value; },

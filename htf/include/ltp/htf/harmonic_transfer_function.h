@@ -91,8 +91,12 @@ struct H2Norm {
   /// estimate. +inf for an unstable system or one with a direct feedthrough D ≠ 0 (ok).
   bool ok = false;
   std::string failure;
-  double value = 0;           ///< the Lyapunov value when that route ran, else the modal one
-  double error_estimate = 0;  ///< absolute: the routes' disagreement plus their own estimates
+  /// The value of the route with the smaller own estimate (the modal one when the Lyapunov
+  /// route was skipped).
+  double value = 0;
+  /// Absolute: the chosen route's own estimate, or the disagreement beyond the other route's
+  /// estimate when that is larger.
+  double error_estimate = 0;
   double modal_value = 0;
   std::optional<double> lyapunov_value;  ///< empty when the route was skipped
   double elapsed_s = 0;
