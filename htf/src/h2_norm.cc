@@ -36,13 +36,6 @@ double ModalH2Squared(const ModalModel& model) {
   return total.real();
 }
 
-bool HasFeedthrough(const PeriodicSystem& system) {
-  constexpr int kSamples = 64;
-  for (int s = 0; s < kSamples; ++s)
-    if (system.D(s * system.period() / kSamples).cwiseAbs().maxCoeff() > 0) return true;
-  return false;
-}
-
 struct LyapunovRun {
   bool ok = false;
   double squared = 0;
@@ -177,7 +170,7 @@ H2Norm HarmonicTransferFunction::H2(const NormOptions& options) const {
     r.failure = "the Floquet decomposition failed: " + floquet_.failure;
     return finish(r);
   }
-  if (floquet_.verdict == StabilityVerdict::kUnstable || HasFeedthrough(system_)) {
+  if (floquet_.verdict == StabilityVerdict::kUnstable || internal::MaxFeedthrough(system_) > 0) {
     r.ok = true;
     r.value = r.modal_value = std::numeric_limits<double>::infinity();
     r.diagnostics.push_back(floquet_.verdict == StabilityVerdict::kUnstable

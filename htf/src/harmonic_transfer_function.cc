@@ -105,4 +105,18 @@ std::vector<std::string> HarmonicTransferFunction::diagnostics() const {
   return d;
 }
 
+namespace internal {
+
+double MaxFeedthrough(const PeriodicSystem& system) {
+  constexpr int kSamples = 64;
+  double d = 0;
+  for (int s = 0; s < kSamples; ++s) {
+    const Eigen::MatrixXd ds = system.D(s * system.period() / kSamples);
+    if (ds.size()) d = std::max(d, Eigen::JacobiSVD<Eigen::MatrixXd>(ds).singularValues()(0));
+  }
+  return d;
+}
+
+}  // namespace internal
+
 }  // namespace ltp

@@ -29,16 +29,6 @@ double LargestSingularValue(const Eigen::MatrixXcd& m) {
   return Eigen::BDCSVD<Eigen::MatrixXcd>(m).singularValues()(0);
 }
 
-double MaxFeedthrough(const PeriodicSystem& system) {
-  constexpr int kSamples = 64;
-  double d = 0;
-  for (int s = 0; s < kSamples; ++s) {
-    const Eigen::MatrixXd ds = system.D(s * system.period() / kSamples);
-    if (ds.size()) d = std::max(d, Eigen::JacobiSVD<Eigen::MatrixXd>(ds).singularValues()(0));
-  }
-  return d;
-}
-
 struct Peak {
   double omega = 0, value = 0;
 };
@@ -92,7 +82,7 @@ Peak SearchSection(const HarmonicTransferFunction& htf, OperatorRoute route, int
     for (const FloquetMode& m : htf.floquet().modes)
       if (std::abs(std::abs(m.exponent.imag()) - w0) < 1e-12 * wp)
         half = std::clamp(2 * std::abs(m.exponent.real()), spacing, 0.25 * wp);
-    const Peak found = ClimbToPeak([&](double w) { return sigma(w); }, w0, half, points);
+    const Peak found = ClimbToPeak(sigma, w0, half, points);
     if (found.value > best.value) best = found;
   }
   return best;
@@ -179,7 +169,7 @@ void SearchFrequencies(const HarmonicTransferFunction& htf, const NormOptions& o
 // 100 × rel_tol (at least 1e-6) either side of the search's value, widening geometrically
 // where that is wrong.
 HinfNorm BisectHamiltonian(const PeriodicSystem& system, HinfNorm r, const NormOptions& options) {
-  const double found = r.search_value, floor = MaxFeedthrough(system);
+  const double found = r.search_value, floor = internal::MaxFeedthrough(system);
   if (!(found > 0) || !std::isfinite(found)) {
     r.failure = "H∞ search found no positive gain (" + std::to_string(found) + ")";
     return r;

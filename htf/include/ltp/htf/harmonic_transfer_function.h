@@ -140,6 +140,9 @@ class HarmonicTransferFunction {
 };
 
 namespace internal {
+/// max_t σmax(D(t)) on 64 samples of the period: the H∞ norm's floor, and 0 exactly when the
+/// system has no feedthrough (its H2 norm is finite only then).
+double MaxFeedthrough(const PeriodicSystem& system);
 /// The periodic Hamiltonian system of the bounded-real test at level γ > max_t σmax(D(t)):
 /// with R = γ²I − DᵀD, [[A + BR⁻¹DᵀC, BR⁻¹Bᵀ], [−Cᵀ(I + DR⁻¹Dᵀ)C, −(A + BR⁻¹DᵀC)ᵀ]].
 PeriodicSystem HamiltonianSystem(const PeriodicSystem& system, double gamma);
