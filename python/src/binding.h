@@ -138,6 +138,7 @@ py::array StringArray(const std::vector<std::string>& v);
 py::array_t<Complex> ComplexArray(const std::vector<Complex>& v);
 /// Matrices of equal size stacked along a first axis: shape (count, rows, cols).
 py::array_t<Complex> ComplexStack(const std::vector<Eigen::MatrixXcd>& m, int rows, int cols);
+py::array_t<double> RealStack(const std::vector<Eigen::MatrixXd>& m, int rows, int cols);
 /// Rows of equal length: shape (rows, cols).
 py::array_t<Complex> ComplexTable(const std::vector<std::vector<Complex>>& rows, size_t cols);
 py::array_t<double> RealTable(const std::vector<std::vector<double>>& rows, size_t cols);

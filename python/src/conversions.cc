@@ -119,14 +119,25 @@ py::array_t<Complex> ComplexArray(const std::vector<Complex>& v) {
   return a;
 }
 
-py::array_t<Complex> ComplexStack(const std::vector<Eigen::MatrixXcd>& m, int rows, int cols) {
-  py::array_t<Complex> a({static_cast<py::ssize_t>(m.size()), static_cast<py::ssize_t>(rows),
-                          static_cast<py::ssize_t>(cols)});
-  auto out = a.mutable_unchecked<3>();
+namespace {
+template <class Scalar, class Matrix>
+py::array_t<Scalar> Stack(const std::vector<Matrix>& m, int rows, int cols) {
+  py::array_t<Scalar> a({static_cast<py::ssize_t>(m.size()), static_cast<py::ssize_t>(rows),
+                         static_cast<py::ssize_t>(cols)});
+  auto out = a.template mutable_unchecked<3>();
   for (size_t k = 0; k < m.size(); ++k)
     for (int i = 0; i < rows; ++i)
       for (int j = 0; j < cols; ++j) out(static_cast<py::ssize_t>(k), i, j) = m[k](i, j);
   return a;
+}
+}  // namespace
+
+py::array_t<Complex> ComplexStack(const std::vector<Eigen::MatrixXcd>& m, int rows, int cols) {
+  return Stack<Complex>(m, rows, cols);
+}
+
+py::array_t<double> RealStack(const std::vector<Eigen::MatrixXd>& m, int rows, int cols) {
+  return Stack<double>(m, rows, cols);
 }
 
 py::array_t<Complex> ComplexTable(const std::vector<std::vector<Complex>>& rows, size_t cols) {

@@ -113,14 +113,8 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
           "segment_factors",
           [](const FloquetResult& f) -> py::object {
             if (f.segment_factors.empty()) return py::none();
-            const py::ssize_t k = static_cast<py::ssize_t>(f.segment_factors.size());
-            const py::ssize_t n = f.segment_factors.front().rows();
-            py::array_t<double> a({k, n, n});
-            auto out = a.mutable_unchecked<3>();
-            for (py::ssize_t i = 0; i < k; ++i)
-              for (py::ssize_t r = 0; r < n; ++r)
-                for (py::ssize_t c = 0; c < n; ++c) out(i, r, c) = f.segment_factors[i](r, c);
-            return a;
+            const int n = static_cast<int>(f.segment_factors.front().rows());
+            return RealStack(f.segment_factors, n, n);
           },
           "with keep_factors=True: Φ(t_{i+1}, t_i) over segment i of segment_times, shape (K, n, "
           "n); their product (last leftmost) is the monodromy. None otherwise")
