@@ -99,6 +99,7 @@ json CurvesJson(const BoundaryCurves& curves, const SweepGrid& grid) {
       merged.push_back(c.merged[i] != 0);
     }
     list.push_back({{"kind", c.kind == BoundaryKind::kRealPlusOne ? "+1" : "-1"},
+                    {"symmetry", ToString(c.symmetry)},
                     {"points", points},
                     {"across", across},
                     {"bracket", bracket},
@@ -122,14 +123,15 @@ std::string CurvesCsvPath(const std::string& csv) {
 
 void WriteCurvesCsv(const std::string& path, const BoundaryCurves& curves, const SweepGrid& grid) {
   std::ofstream f(path);
-  f << "curve,kind," << grid.axes[0].name << "," << grid.axes[1].name << ",across,bracket,merged\n";
+  f << "curve,kind,symmetry," << grid.axes[0].name << "," << grid.axes[1].name
+    << ",across,bracket,merged\n";
   for (size_t k = 0; k < curves.curves.size(); ++k) {
     const BoundaryCurve& c = curves.curves[k];
     for (size_t i = 0; i < c.points.size(); ++i)
       f << k + 1 << "," << (c.kind == BoundaryKind::kRealPlusOne ? "+1" : "-1") << ","
-        << Num(c.points[i][0], 17) << "," << Num(c.points[i][1], 17) << ","
-        << grid.axes[static_cast<size_t>(c.across[i])].name << "," << Num(c.bracket[i], 3) << ","
-        << (c.merged[i] ? 1 : 0) << "\n";
+        << ToString(c.symmetry) << "," << Num(c.points[i][0], 17) << "," << Num(c.points[i][1], 17)
+        << "," << grid.axes[static_cast<size_t>(c.across[i])].name << "," << Num(c.bracket[i], 3)
+        << "," << (c.merged[i] ? 1 : 0) << "\n";
   }
   if (!f) throw InputError("cannot write '" + path + "'");
 }
@@ -365,9 +367,12 @@ void PrintCurves(const ChartOutcome& c) {
       widest = std::max(widest, curve.bracket[i]);
       merged += curve.merged[i] != 0;
     }
-    std::cout << "    " << std::setw(2) << k + 1 << "  " << ToString(curve.kind) << ", "
-              << curve.points.size() << " points from (" << axes[0].name << ", " << axes[1].name
-              << ") = (" << Num(curve.points.front()[0], 6) << ", "
+    std::cout << "    " << std::setw(2) << k + 1 << "  " << ToString(curve.kind)
+              << (curve.symmetry == BoundarySymmetry::kNone   ? ""
+                  : curve.symmetry == BoundarySymmetry::kEven ? " (even solution)"
+                                                              : " (odd solution)")
+              << ", " << curve.points.size() << " points from (" << axes[0].name << ", "
+              << axes[1].name << ") = (" << Num(curve.points.front()[0], 6) << ", "
               << Num(curve.points.front()[1], 6) << ") to (" << Num(curve.points.back()[0], 6)
               << ", " << Num(curve.points.back()[1], 6) << "), bracket <= " << Num(widest, 2);
     if (merged) std::cout << "; " << merged << " points where the tongue's edges merge";

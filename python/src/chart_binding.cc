@@ -373,13 +373,17 @@ void BindChartCurves(py::class_<ChartResult>& r) {
               }
               out.append(py::dict(
                   py::arg("kind") = std::string(ToString(curve.kind)),
+                  py::arg("symmetry") = std::string(ToString(curve.symmetry)),
                   py::arg("across") = StringArray(across), py::arg("merged") = merged,
                   py::arg("end_notes") = py::make_tuple(curve.end_notes[0], curve.end_notes[1]),
                   py::arg("evaluations") = curve.evaluations));
             }
             return out;
           },
-          "maps: per curve: kind, per point the parameter the root was solved along (across) and "
+          "maps: per curve: kind; symmetry ('even'/'odd': the periodic solution on the curve of "
+          "a time-reversible undamped system, traced as a root of one half-period block; "
+          "'none': of det(Phi(T) -/+ I)); per point the parameter the root was solved along "
+          "(across) and "
           "whether the tongue's two edges merge there below resolution (merged: the bracket holds "
           "both), why each end stopped, evaluations")
       .def_property_readonly(

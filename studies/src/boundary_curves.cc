@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "ltp/core/error.h"
+#include "ltp/floquet/half_period_blocks.h"
 
 namespace ltp {
 
@@ -21,26 +22,6 @@ using cd = std::complex<double>;
 using Vec = std::array<double, 2>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// log|e^z − 1| and the phase of e^z − 1, without cancellation or overflow: for Re z ≤ 0,
-// e^z − 1 = expm1(x) cos y − 2 sin²(y/2) + j e^x sin y; for Re z > 0, e^z − 1 = −e^z (e^{−z} − 1).
-std::pair<double, cd> LogExpm1(cd z) {
-  if (z.real() > 0) {
-    const auto [log_abs, phase] = LogExpm1(-z);
-    return {z.real() + log_abs, -phase * std::polar(1.0, z.imag())};
-  }
-  const double x = z.real(), y = z.imag(), s = std::sin(0.5 * y);
-  const double re = std::expm1(x) * std::cos(y) - 2 * s * s, im = std::exp(x) * std::sin(y);
-  const double mag = std::hypot(re, im);
-  return {std::log(mag), mag > 0 ? cd(re / mag, im / mag) : cd(1, 0)};
-}
-
-double LogSumExp(double a, double b) {
-  if (a == -kInf) return b;
-  if (b == -kInf) return a;
-  const double m = std::max(a, b);
-  return m + std::log(std::exp(a - m) + std::exp(b - m));
-}
-
 // Is `v` certainly nonzero, beyond `log_noise`?
 bool Certain(const CharacteristicValue& v, double log_noise) {
   return v.sign != 0 && v.log_abs > log_noise;
@@ -48,65 +29,7 @@ bool Certain(const CharacteristicValue& v, double log_noise) {
 
 }  // namespace
 
-std::string_view ToString(BoundaryKind kind) {
-  switch (kind) {
-    case BoundaryKind::kRealPlusOne:
-      return "real multiplier +1";
-    case BoundaryKind::kRealMinusOne:
-      return "real multiplier -1";
-    case BoundaryKind::kComplex:
-      return "complex pair";
-  }
-  return "?";
-}
-
-CharacteristicValue MultiplierDeterminant(const std::vector<cd>& log_multipliers, int sigma,
-                                          double log_error) {
-  // ρ − σ = σ (σρ − 1) = σ (e^{L'} − 1), L' = log ρ (+ jπ for σ = −1), imaginary part wrapped.
-  const size_t n = log_multipliers.size();
-  std::vector<double> log_factor(n);
-  cd phase = sigma < 0 && n % 2 ? cd(-1, 0) : cd(1, 0);
-  CharacteristicValue v;
-  v.log_abs = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const cd L = log_multipliers[k];
-    const double y =
-        std::remainder(L.imag() + (sigma < 0 ? std::numbers::pi : 0.0), 2 * std::numbers::pi);
-    const auto [log_abs, factor_phase] = LogExpm1(cd(L.real(), y));
-    log_factor[k] = log_abs;
-    v.log_abs += log_abs;
-    phase *= factor_phase;
-  }
-  v.sign = v.log_abs == -kInf ? 0 : (phase.real() >= 0 ? 1 : -1);
-  if (n == 0) v.sign = 1;
-  if (log_error > 0) {
-    // Round-off: D_σ formed from O(1) factors carries an absolute error of a few ε_machine
-    // times its larger factors even where the first-order bound below vanishes (two
-    // multipliers both near σ, a tongue's tip: there the error is second order in Φ's).
-    double floor = std::log(8 * n * std::numeric_limits<double>::epsilon());
-    for (size_t k = 0; k < n; ++k) floor += std::max(0.0, log_factor[k]);
-    v.log_abs_error = floor;
-    // Σ_k |ρ_k| ε Π_{j≠k} |ρ_j − σ|, each term summed in logs (a factor may be exactly 0).
-    for (size_t k = 0; k < n; ++k) {
-      double term = log_multipliers[k].real() + std::log(log_error);
-      for (size_t j = 0; j < n; ++j)
-        if (j != k) term += log_factor[j];
-      v.log_abs_error = LogSumExp(v.log_abs_error, term);
-    }
-  }
-  return v;
-}
-
 namespace {
-
-// One evaluation: the scene's multipliers at a point of the map (unit coordinates u), through
-// the refinement's analysis (AnalyzeBoundaryPoint); `log_error`: the exponents' error estimate ×
-// T when checked.
-struct Multipliers {
-  bool ok = false;
-  std::vector<cd> logs;
-  double log_error = 0;
-};
 
 // A point on a line of the map: the line holds every coordinate but `axis` fixed at `at`.
 struct Line {
@@ -128,48 +51,55 @@ struct Crossing {
   std::string note;
 };
 
+// What a curve is a root of: D_σ (symmetry kNone), or the determinant of the half-period
+// block of σ and the symmetry (half_period_blocks.h).
+struct Target {
+  int sigma = 1;
+  BoundarySymmetry symmetry = BoundarySymmetry::kNone;
+  bool operator==(const Target&) const = default;
+};
+
 class Tracer {
  public:
   Tracer(const Scene& scene, const ParameterMap& base, const SweepGrid& grid,
          const SweepOptions& sweep, const BoundaryOptions& options,
          const BoundaryCurveOptions& curve)
-      : scene_(scene), base_(base), grid_(grid), sweep_(sweep), options_(options), curve_(curve) {
+      : scene_(scene),
+        base_(base),
+        grid_(grid),
+        sweep_(sweep),
+        options_(options),
+        curve_(curve),
+        integrator_(BoundaryIntegrator(sweep, options)) {
     for (size_t a = 0; a < 2; ++a) {
       lo_[a] = grid.values[a].front();
       span_[a] = grid.values[a].back() - grid.values[a].front();
     }
+    factored = sweep.method == SweepMethod::kMonodromy && FactoredOverMap();
   }
   int evaluations = 0;
-  int sigma = 1;
-  double log_noise = -kInf;  // log of D_σ's error at the last checked point, doubled
+  Target target;
+  /// The map's system is time-reversible without damping (at its corners and centre): its
+  /// curves are roots of half-period blocks' determinants.
+  bool factored = false;
+  double log_noise = -kInf;  // log of the traced function's error at the last checked point, ×2
 
-  Multipliers Analyse(const Vec& u, bool checked) {
-    ParameterMap params = base_;
-    for (size_t a = 0; a < 2; ++a) params[grid_.axes[a].name] = lo_[a] + u[a] * span_[a];
-    ++evaluations;
-    const SweepPoint p = AnalyzeBoundaryPoint(scene_, params, sweep_, options_, checked);
-    Multipliers m;
-    if (!p.ok || (checked && !(p.error_estimate && std::isfinite(*p.error_estimate)))) return m;
-    for (const FloquetMode& mode : p.modes) m.logs.push_back(mode.exponent * p.period);
-    if (checked) m.log_error = std::max(*p.error_estimate * p.period, 1e-16);
-    m.ok = true;
-    return m;
-  }
   std::optional<CharacteristicValue> D(const Vec& u, bool checked = false) {
     if (!checked) {
       const auto hit = cache_.find(u);
       if (hit != cache_.end()) return hit->second;
     }
-    const Multipliers m = Analyse(u, checked);
-    if (!m.ok) return std::nullopt;
-    CharacteristicValue v = MultiplierDeterminant(m.logs, sigma, m.log_error);
-    if (checked) log_noise = v.log_abs_error + std::log(2.0);
+    const std::optional<CharacteristicValue> v = target.symmetry == BoundarySymmetry::kNone
+                                                     ? FromMultipliers(u, checked)
+                                                     : FromBlocks(u, checked);
+    if (!v) return std::nullopt;
+    if (checked) log_noise = v->log_abs_error + std::log(2.0);
     if (!checked) cache_[u] = v;
     return v;
   }
-  void SetSigma(int s) {
-    if (s != sigma) cache_.clear();
-    sigma = s;
+  void SetTarget(const Target& next) {
+    if (!(next == target)) cache_.clear();
+    target = next;
   }
   // The tolerance of the 1-D root along `axis` at unit coordinate x.
   double Tolerance(int axis, double x) const {
@@ -186,6 +116,14 @@ class Tracer {
   Crossing Bracketed(const Line& line, double a, double b, double reach, bool valley_ok);
 
  private:
+  ParameterMap Params(const Vec& u) const {
+    ParameterMap params = base_;
+    for (size_t a = 0; a < 2; ++a) params[grid_.axes[a].name] = lo_[a] + u[a] * span_[a];
+    return params;
+  }
+  bool FactoredOverMap() const;
+  std::optional<CharacteristicValue> FromMultipliers(const Vec& u, bool checked);
+  std::optional<CharacteristicValue> FromBlocks(const Vec& u, bool checked);
   Crossing Valley(const Line& line, double center, double window, int outside, int pos_dir);
   double Vertex(const Line& line, double center, double spread);
   std::optional<double> Edge(const Line& line, double m, double end, int outside);
@@ -196,9 +134,64 @@ class Tracer {
   const SweepOptions& sweep_;
   const BoundaryOptions& options_;
   const BoundaryCurveOptions& curve_;
+  const IntegratorOptions integrator_;
   Vec lo_{}, span_{};
-  std::map<Vec, std::optional<CharacteristicValue>> cache_;  // unchecked evaluations at sigma
+  std::map<Vec, std::optional<CharacteristicValue>> cache_;  // unchecked evaluations of target
 };
+
+bool Tracer::FactoredOverMap() const {
+  for (const Vec& u : {Vec{0, 0}, Vec{0, 1}, Vec{1, 0}, Vec{1, 1}, Vec{0.5, 0.5}}) {
+    try {
+      if (!HasHalfPeriodBlocks(scene_.build(Params(u)))) return false;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// D_σ from the multipliers of the refinement's analysis (AnalyzeBoundaryPoint); checked: with
+// the exponents' error estimate × T as each log multiplier's error.
+std::optional<CharacteristicValue> Tracer::FromMultipliers(const Vec& u, bool checked) {
+  ++evaluations;
+  const SweepPoint p = AnalyzeBoundaryPoint(scene_, Params(u), sweep_, options_, checked);
+  if (!p.ok || (checked && !(p.error_estimate && std::isfinite(*p.error_estimate))))
+    return std::nullopt;
+  std::vector<cd> logs;
+  for (const FloquetMode& mode : p.modes) logs.push_back(mode.exponent * p.period);
+  const double log_error = checked ? std::max(*p.error_estimate * p.period, 1e-16) : 0.0;
+  return MultiplierDeterminant(logs, target.sigma, log_error);
+}
+
+// The determinant of the target's half-period block; checked: the block again at a hundredth
+// of the tolerance (its value is reported), the difference plus the round-off of Φ(T/2)'s
+// entries (16 n ε max|Φ(T/2)|) as the entries' error.
+std::optional<CharacteristicValue> Tracer::FromBlocks(const Vec& u, bool checked) {
+  ++evaluations;
+  const bool even = target.symmetry == BoundarySymmetry::kEven;
+  try {
+    const PeriodicSystem system = scene_.build(Params(u));
+    const auto blocks = ComputeHalfPeriodBlocks(system, integrator_);
+    if (!blocks) return std::nullopt;
+    const Eigen::MatrixXd& coarse = blocks->Factor(target.sigma, even);
+    if (!checked) return BlockDeterminant(coarse);
+    IntegratorOptions fine = integrator_;
+    fine.rel_tol = std::max(integrator_.rel_tol * 1e-2, 1e-15);
+    fine.abs_tol = integrator_.abs_tol * 1e-2;
+    const auto refined = ComputeHalfPeriodBlocks(system, fine);
+    if (!refined) return std::nullopt;
+    const double largest =
+        std::max({refined->P.cwiseAbs().maxCoeff(), refined->Q.cwiseAbs().maxCoeff(),
+                  refined->U.cwiseAbs().maxCoeff(), refined->W.cwiseAbs().maxCoeff()});
+    const double round_off =
+        16 * system.states() * std::numeric_limits<double>::epsilon() * largest;
+    const Eigen::MatrixXd& value = refined->Factor(target.sigma, even);
+    const Eigen::MatrixXd error = ((value - coarse).cwiseAbs().array() + round_off).matrix();
+    return BlockDeterminant(value, &error);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
 
 // TOMS 748's function: D_σ scaled by e^{-norm} (a constant per solve, so it stays smooth),
 // clamped into the doubles; NaN when the analysis fails.
@@ -536,37 +529,52 @@ Walk WalkCurve(Tracer& t, const Vec& seed, const Frame& frame, int dir,
   return w.end = "reached max_points", w;
 }
 
-// The seed of a curve at a refined boundary point: the root of D_σ on the point's grid line
-// between the grid values around it, for the σ whose D_σ changes sign there (the nearer root
-// when both do). Empty when neither does: a complex pair crosses.
+// The seed of a curve at a refined boundary point: the root of the traced function on the
+// point's grid line between the grid values around it, for the target (σ, and the symmetry on a
+// factored map) whose function changes sign there (the nearer root when several do). Empty when
+// none does: a complex pair crosses.
 struct Seed {
-  int sigma = 0;
+  Target target;
   Crossing crossing;
 };
+
+std::vector<Target> Targets(bool factored) {
+  if (!factored) return {{1, BoundarySymmetry::kNone}, {-1, BoundarySymmetry::kNone}};
+  std::vector<Target> all;
+  for (int sigma : {1, -1})
+    for (BoundarySymmetry s : {BoundarySymmetry::kEven, BoundarySymmetry::kOdd})
+      all.push_back({sigma, s});
+  return all;
+}
 
 template <class Skip>
 std::optional<Seed> FindSeed(Tracer& t, const Line& line, double a, double b, double value,
                              Skip skip) {
   std::optional<Seed> best;
-  for (int sigma : {1, -1}) {
-    t.SetSigma(sigma);
+  for (const Target& target : Targets(t.factored)) {
+    t.SetTarget(target);
     const auto da = t.D(line.Point(a)), db = t.D(line.Point(b));
-    if (!da || !db || da->sign * db->sign >= 0 || skip(sigma)) continue;
+    if (!da || !db || da->sign * db->sign >= 0 || skip(target)) continue;
     Crossing c = t.Bracketed(line, a, b, std::abs(b - a), true);
     if (!c.ok) continue;
-    if (!best || std::abs(c.x - value) < std::abs(best->crossing.x - value)) best = Seed{sigma, c};
+    if (!best || std::abs(c.x - value) < std::abs(best->crossing.x - value)) best = Seed{target, c};
   }
   return best;
 }
 
-// Does a curve (of σ = `sigma`; 0: any) cross the seed's grid line within `near` of it (unit
+bool Follows(const BoundaryCurve& c, const Target& target) {
+  return (c.kind == BoundaryKind::kRealPlusOne) == (target.sigma > 0) &&
+         c.symmetry == target.symmetry;
+}
+
+// Does a curve (of `target`; none: any) cross the seed's grid line within `near` of it (unit
 // coordinates along axis), or end next to it on the line?
 bool OnACurve(const std::vector<BoundaryCurve>& curves, const Vec& u, int axis, double near,
-              const Tracer& t, int sigma = 0) {
+              const Tracer& t, const std::optional<Target>& target = std::nullopt) {
   const size_t k = static_cast<size_t>(axis), o = 1 - k;
   const double line = t.Value(1 - axis, u[o]), at = t.Value(axis, u[k]);
   for (const BoundaryCurve& c : curves) {
-    if (sigma != 0 && (c.kind == BoundaryKind::kRealPlusOne) != (sigma > 0)) continue;
+    if (target && !Follows(c, *target)) continue;
     for (size_t i = 0; i < c.points.size(); ++i) {
       const auto& p = c.points[i];
       if (std::abs(p[o] - line) <= 1e-6 * t.Span(1 - axis) &&
@@ -582,10 +590,11 @@ bool OnACurve(const std::vector<BoundaryCurve>& curves, const Vec& u, int axis, 
   return false;
 }
 
-BoundaryCurve Assemble(const Tracer& t, int sigma, const Vec& seed, int seed_axis,
+BoundaryCurve Assemble(const Tracer& t, const Target& target, const Vec& seed, int seed_axis,
                        const Crossing& c, Walk back, const Walk& ahead) {
   BoundaryCurve curve;
-  curve.kind = sigma > 0 ? BoundaryKind::kRealPlusOne : BoundaryKind::kRealMinusOne;
+  curve.kind = target.sigma > 0 ? BoundaryKind::kRealPlusOne : BoundaryKind::kRealMinusOne;
+  curve.symmetry = target.symmetry;
   auto add = [&](const Vec& u, int across, double bracket, bool merged) {
     curve.points.push_back({t.Value(0, u[0]), t.Value(1, u[1])});
     curve.across.push_back(across);
@@ -629,8 +638,8 @@ BoundaryCurves TraceBoundaryCurves(const Scene& scene, const ParameterMap& base,
     const double a = (*(above - 1) - v.front()) / t.Span(bp.axis),
                  b = (*above - v.front()) / t.Span(bp.axis);
     Line line{bp.axis, u};
-    const auto seed = FindSeed(t, line, a, b, u[k], [&](int sigma) {
-      return near_any && OnACurve(out.curves, u, bp.axis, near, t, sigma);
+    const auto seed = FindSeed(t, line, a, b, u[k], [&](const Target& target) {
+      return near_any && OnACurve(out.curves, u, bp.axis, near, t, target);
     });
     if (!seed && near_any) continue;
     if (!seed) {
@@ -640,7 +649,7 @@ BoundaryCurves TraceBoundaryCurves(const Scene& scene, const ParameterMap& base,
           "crosses the unit circle (or the analysis failed)");
       continue;
     }
-    t.SetSigma(seed->sigma);
+    t.SetTarget(seed->target);
     const int before = t.evaluations;
     const Vec start = line.Point(seed->crossing.x);
     const int half = curve_options.max_points / 2;
@@ -653,7 +662,7 @@ BoundaryCurves TraceBoundaryCurves(const Scene& scene, const ParameterMap& base,
     Walk back = WalkCurve(t, start, *frame, -1, curve_options, half);
     Walk ahead = WalkCurve(t, start, *frame, 1, curve_options, half);
     out.curves.push_back(
-        Assemble(t, seed->sigma, start, bp.axis, seed->crossing, std::move(back), ahead));
+        Assemble(t, seed->target, start, bp.axis, seed->crossing, std::move(back), ahead));
     out.curves.back().evaluations = t.evaluations - before;
   }
   // A point whose seed failed may lie on a curve traced later (a tongue's tip at the map's edge).

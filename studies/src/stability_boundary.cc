@@ -163,15 +163,19 @@ std::vector<size_t> SpreadLines(size_t count, int max_lines) {
 
 }  // namespace
 
+IntegratorOptions BoundaryIntegrator(const SweepOptions& sweep, const BoundaryOptions& options) {
+  IntegratorOptions o = sweep.floquet.integrator;
+  o.rel_tol = std::min(o.rel_tol, options.rel_tol_integrator);
+  o.abs_tol = std::min(o.abs_tol, options.rel_tol_integrator * 1e-3);
+  return o;
+}
+
 SweepPoint AnalyzeBoundaryPoint(const Scene& scene, const ParameterMap& params,
                                 const SweepOptions& sweep, const BoundaryOptions& options,
                                 bool checked) {
   SweepOptions tight = sweep;
   tight.modes = false;
-  tight.floquet.integrator.rel_tol =
-      std::min(sweep.floquet.integrator.rel_tol, options.rel_tol_integrator);
-  tight.floquet.integrator.abs_tol =
-      std::min(sweep.floquet.integrator.abs_tol, options.rel_tol_integrator * 1e-3);
+  tight.floquet.integrator = BoundaryIntegrator(sweep, options);
   tight.hill_tol = std::min(sweep.hill_tol, options.rel_tol_integrator * 10);
   const SweepGrid none;  // no swept axes: the point is `params` itself
   return AnalyzeSweepPoint(scene, params, none, 0, tight, checked);

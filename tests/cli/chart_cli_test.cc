@@ -247,7 +247,8 @@ TEST(ChartCli, MapCurvesInJsonCsvAndPdf) {
   ASSERT_EQ(tips.size(), 5u);
   for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(tips[k], expected[k], 1e-8);
   const std::string table = ReadFile(Tmp("chart_curves-curves.csv"));
-  EXPECT_EQ(table.rfind("curve,kind,q,a,across,bracket,merged\n", 0), 0u) << table.substr(0, 80);
+  EXPECT_EQ(table.rfind("curve,kind,symmetry,q,a,across,bracket,merged\n", 0), 0u)
+      << table.substr(0, 80);
   EXPECT_EQ(static_cast<size_t>(std::count(table.begin(), table.end(), '\n')), points + 1);
   if (std::system("gnuplot -e 'set terminal pdfcairo' >/dev/null 2>&1") == 0) {
     EXPECT_EQ(ReadFile(pdf).substr(0, 4), "%PDF");

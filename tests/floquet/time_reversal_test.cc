@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "ltp/core/fourier_matrix.h"
+#include "ltp/floquet/half_period_blocks.h"
 #include "ltp/models/scene.h"
 
 namespace ltp::internal {
@@ -146,6 +147,57 @@ TEST(TimeReversal, DampedOscillatorMultipliersMatchTheClosedForm) {
       std::exp(std::complex<double>(-c / 2, std::sqrt(a - c * c / 4)) * T);
   const double error = std::min(std::abs(rho(0) - exact), std::abs(rho(1) - exact));
   EXPECT_LT(error, 1e-11);
+}
+
+// The half-period factorization (half_period_blocks.h) against the full-period monodromy
+// (another route): det(Φ(T) − I) = (−4)^p det Q det U / det Φh, det(Φ(T) + I) = 4^p det P det W /
+// det Φh, on two coupled undamped Hill equations (p = 2) at three stiffness scalings.
+TEST(HalfPeriodBlocks, FactorTheCharacteristicDeterminants) {
+  IntegratorOptions o;
+  o.type = IntegratorType::kBulirschStoer;
+  o.rel_tol = 1e-12;
+  o.abs_tol = 1e-15;
+  for (double stiffness : {1.0, 0.31, 2.2}) {
+    const PeriodicSystem s = CoupledHill(0, 0, stiffness);
+    ASSERT_TRUE(HasHalfPeriodBlocks(s));
+    const auto blocks = ComputeHalfPeriodBlocks(s, o);
+    ASSERT_TRUE(blocks);
+    ASSERT_EQ(blocks->P.rows(), 2);
+    const TransitionResult full = StateTransition(s, 0, s.period(), o);
+    ASSERT_TRUE(full.ok);
+    MatrixXd half(4, 4);
+    half << blocks->P, blocks->Q, blocks->U, blocks->W;  // R = diag(1, 1, −1, −1): no reordering
+    const double det_half = half.determinant();
+    const MatrixXd I = MatrixXd::Identity(4, 4);
+    const double minus = (full.phi - I).determinant(), plus = (full.phi + I).determinant();
+    const double scale = std::pow(1 + full.phi.norm(), 4);
+    EXPECT_NEAR(16 * blocks->Q.determinant() * blocks->U.determinant() / det_half, minus,
+                1e-9 * scale)
+        << stiffness;
+    EXPECT_NEAR(16 * blocks->P.determinant() * blocks->W.determinant() / det_half, plus,
+                1e-9 * scale)
+        << stiffness;
+    EXPECT_NEAR(det_half, 1, 1e-10);  // Liouville: tr A = 0
+  }
+  // Damping (μ ≠ 0) and a sine term (reversible about T/4, not 0) have no such factorization.
+  EXPECT_FALSE(HasHalfPeriodBlocks(CoupledHill(0.1, 0)));
+  EXPECT_FALSE(HasHalfPeriodBlocks(CoupledHill(0, 0.2)));
+  EXPECT_FALSE(ComputeHalfPeriodBlocks(CoupledHill(0.1, 0), o));
+}
+
+// q = 0: y'' + a y = 0 over T/2 = π/2 is the rotation by θ = √a π/2 (closed form).
+TEST(HalfPeriodBlocks, MathieuAtZeroExcitationIsTheRotation) {
+  const double a = 2.7, w = std::sqrt(a), theta = w * std::numbers::pi / 2;
+  IntegratorOptions o;
+  o.rel_tol = 1e-12;
+  const auto blocks = ComputeHalfPeriodBlocks(Mathieu(a, 0, 0), o);
+  ASSERT_TRUE(blocks);
+  EXPECT_NEAR(blocks->P(0, 0), std::cos(theta), 1e-11);
+  EXPECT_NEAR(blocks->Q(0, 0), std::sin(theta) / w, 1e-11);
+  EXPECT_NEAR(blocks->U(0, 0), -w * std::sin(theta), 1e-11);
+  EXPECT_NEAR(blocks->W(0, 0), std::cos(theta), 1e-11);
+  EXPECT_EQ(&blocks->Factor(1, true), &blocks->U);
+  EXPECT_EQ(&blocks->Factor(-1, false), &blocks->W);
 }
 
 }  // namespace

@@ -9,12 +9,13 @@ import ltp
 special = pytest.importorskip("scipy.special")
 
 
-def characteristic(kind, q):
-    """The same-kind characteristic values at q, m ≤ 7 (σ = +1: even m, σ = −1: odd m)."""
+def characteristic(kind, symmetry, q):
+    """The same-kind characteristic values at q, m ≤ 7 (σ = +1: even m, σ = −1: odd m): a_m for
+    a curve of even solutions (ce_m), b_m for odd ones (se_m)."""
     ms = range(0, 8, 2) if kind == "+1" else range(1, 8, 2)
-    values = [special.mathieu_a(m, q) for m in ms]
-    values += [special.mathieu_b(m, q) for m in ms if m > 0]
-    return np.array(values), [("a", m) for m in ms] + [("b", m) for m in ms if m > 0]
+    if symmetry == "even":
+        return np.array([special.mathieu_a(m, q) for m in ms]), list(ms)
+    return np.array([special.mathieu_b(m, q) for m in ms if m > 0]), [m for m in ms if m > 0]
 
 
 def test_undamped_mathieu_curves_follow_the_characteristic_values():
@@ -28,19 +29,21 @@ def test_undamped_mathieu_curves_follow_the_characteristic_values():
                                             c.boundary_curve_brackets, c.boundary_curve_details):
         assert curve.dtype == np.float64 and curve.shape[1] == 2 and len(bracket) == len(curve)
         assert detail["end_notes"] == ("reached the map's edge", "reached the map's edge")
-        for (q, a), b, merged in zip(curve, bracket, detail["merged"]):
-            values, names = characteristic(kind, q)
+        # Undamped Mathieu is time-reversible: each curve is one half-period block's root.
+        assert detail["symmetry"] in ("even", "odd")
+        assert not any(detail["merged"])  # both edges resolved down to the tips
+        for (q, a), b in zip(curve, bracket):
+            values, orders = characteristic(kind, detail["symmetry"], q)
             k = int(np.argmin(np.abs(values - a)))
             dev = abs(values[k] - a)
             assert dev <= b + 1e-12, (q, a, b)  # the promise: within ±bracket
-            if not merged:
-                assert dev <= 1e-8, (q, a)
-            m = names[k][1]
+            assert b <= 1e-8 and dev <= 1e-8, (q, a, b)
+            m = orders[k]
             worst[m] = max(worst.get(m, 0.0), dev)
             if q == 0:
                 tips.append(a)
     # Every tongue reaches the a axis at m² (scipy: a_m(0) = b_m(0) = m²).
-    assert np.allclose(sorted(tips), [0, 1, 1, 4, 4, 9, 9, 16, 16, 25, 25], atol=1e-8, rtol=0)
+    assert np.allclose(sorted(tips), [0, 1, 1, 4, 4, 9, 9, 16, 16, 25, 25], atol=1e-10, rtol=0)
     assert set(worst) == {0, 1, 2, 3, 4, 5}
 
 

@@ -14,6 +14,11 @@
 //
 // A boundary of another kind (a complex pair crossing the unit circle) stays as its refined
 // points; the result says how many and why.
+//
+// Time-reversible systems without damping (half_period_blocks.h; undamped Hill equations) are
+// traced through the half-period factorization instead: each edge of a tongue is then a simple
+// root of one block's determinant, resolved to the integration's accuracy down to the tip.
+#include <Eigen/Dense>
 #include <array>
 #include <string>
 #include <vector>
@@ -32,6 +37,12 @@ enum class BoundaryKind {
 };
 std::string_view ToString(BoundaryKind kind);
 
+/// For a time-reversible system without damping (half_period_blocks.h): the symmetry of the
+/// periodic solution on a curve, x(−t) = R x(t) (even) or −R x(t) (odd). The curve is then the
+/// root of one half-period block's determinant; kNone: of D_σ.
+enum class BoundarySymmetry { kNone, kEven, kOdd };
+std::string_view ToString(BoundarySymmetry symmetry);
+
 /// D_σ = Π_k (ρ_k − σ) as sign and log|·|, from log multipliers (any branch): no overflow or
 /// underflow for multipliers of any size. `log_error`: the error of each log ρ_k (an exponent's
 /// error estimate × T); `log_abs_error` is then the first-order bound of D_σ's error,
@@ -43,6 +54,15 @@ struct CharacteristicValue {
 };
 CharacteristicValue MultiplierDeterminant(const std::vector<std::complex<double>>& log_multipliers,
                                           int sigma, double log_error = 0);
+
+/// det M as sign and log|·| (LU with partial pivoting). Given `error`, entrywise bounds of M's
+/// error (M's shape), `log_abs_error` bounds det's error (Ipsen & Rehman, SIAM J. Matrix Anal.
+/// Appl. 30, 2008): |det(M + E) − det M| ≤ Σ_{k=1}^{m} s_{m−k} ‖E‖₂^k, s_j the j-th elementary
+/// symmetric function of M's singular values, ‖E‖₂ ≤ ‖E‖_F plus the LU's own backward error
+/// 8 m ε σmax. No first-order cut: two singular values near zero (a double root) keep their
+/// second-order term.
+CharacteristicValue BlockDeterminant(const Eigen::MatrixXd& block,
+                                     const Eigen::MatrixXd* error = nullptr);
 
 struct BoundaryCurveOptions {
   /// The 1-D root across the curve stops at a bracket below rel_tol × max(|p|, 1e-3 · span)
@@ -60,6 +80,7 @@ struct BoundaryCurveOptions {
 
 struct BoundaryCurve {
   BoundaryKind kind = BoundaryKind::kRealPlusOne;
+  BoundarySymmetry symmetry = BoundarySymmetry::kNone;
   /// Along the curve: both swept parameters per point, in grid-axis order.
   std::vector<std::array<double, 2>> points;
   /// Per point: the axis the 1-D root was solved along (the other is held fixed) and the bound:

@@ -43,6 +43,10 @@ struct BoundaryEstimate {
   std::string note;
 };
 
+/// The integrator of every evaluation during refinement and tracing: the sweep's, at the
+/// refinement tolerance (`options.rel_tol_integrator`) where that is tighter.
+IntegratorOptions BoundaryIntegrator(const SweepOptions& sweep, const BoundaryOptions& options);
+
 /// One evaluation during refinement and tracing: AnalyzeSweepPoint of the scene at `params`
 /// (no swept axes) at the refinement tolerance (`options.rel_tol_integrator`, tighter than the
 /// grid's), multipliers only; `checked`: with its own error estimate (about twice the work).
