@@ -120,6 +120,7 @@ json ModesJson(const std::vector<FloquetMode>& modes, json* multipliers, json* e
                       {"central_weight", JsonNumber(m.central_weight)},
                       {"branch_margin", JsonNumber(m.branch_margin)},
                       {"eigenvector_residual", JsonNumber(m.eigvec_residual)}});
+    if (m.forward_whirl) extra->back()["forward_whirl"] = JsonNumber(*m.forward_whirl);
   }
   return exps;
 }
@@ -200,6 +201,14 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"diagnostics", h.diagnostics}};
 }
 
+// "; forward whirl 97%" (the share turning with the rotor, or against it when that is larger).
+std::string WhirlText(const FloquetMode& m) {
+  if (!m.forward_whirl || !std::isfinite(*m.forward_whirl)) return "";
+  const double f = *m.forward_whirl;
+  return f >= 0.5 ? "; forward whirl " + Num(100 * f, 3) + "%"
+                  : "; backward whirl " + Num(100 * (1 - f), 3) + "%";
+}
+
 void PrintModeTable(const std::vector<FloquetMode>& modes,
                     const std::vector<std::string>& descriptions = {}) {
   std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ       log|ρ|    "
@@ -211,7 +220,7 @@ void PrintModeTable(const std::vector<FloquetMode>& modes,
               << Num(m.exponent.imag(), 7, 16) << Num(m.frequency_hz, 6, 14)
               << Num(m.damping_ratio, 4, 12) << Num(m.log_multiplier.real(), 6, 13)
               << Num(m.log_multiplier.imag(), 6, 15) << std::setw(8) << m.branch
-              << (k < descriptions.size() ? "   " + descriptions[k] : std::string())
+              << (k < descriptions.size() ? "   " + descriptions[k] : std::string()) << WhirlText(m)
               << (m.rigid_body ? "  rigid body" : "") << "\n";
   }
 }
@@ -362,15 +371,21 @@ HillResult RunHillRoute(const LoadedScene& l, const FloquetArgs& args, const Flo
   return h;
 }
 
-// --modes-csv: the periodic mode shapes ξ_k(t) at the sample times, one row per time.
-void WriteModesCsv(const FloquetResult& r, const std::string& file) {
+// --modes-csv: the periodic mode shapes ξ_k(t) at the sample times, one row per time; columns
+// re_mode1_x, im_mode1_x: by mode number (as in the table) and state name.
+void WriteModesCsv(const FloquetResult& r, const SystemLabels& labels, const std::string& file) {
   std::ofstream csv(file);
   if (!csv) throw InputError("cannot write '" + file + "'");
   csv << "t";
   const int modes = static_cast<int>(r.modes.size());  // fewer than states with --modes-below
   for (int k = 0; k < modes; ++k)
-    for (int i = 0; i < r.states; ++i)
-      csv << ",re_xi" << k << "_" << i << ",im_xi" << k << "_" << i;
+    for (int i = 0; i < r.states; ++i) {
+      const std::string state = i < static_cast<int>(labels.states.size())
+                                    ? labels.states[static_cast<size_t>(i)]
+                                    : "x" + std::to_string(i + 1);
+      const std::string column = "_mode" + std::to_string(k + 1) + "_" + state;
+      csv << "," << CsvText("re" + column) << "," << CsvText("im" + column);
+    }
   csv << "\n" << std::setprecision(12);
   for (size_t s = 0; s < r.mode_samples.size(); ++s) {
     csv << r.sample_times[s];
@@ -450,7 +465,7 @@ int RunFloquet(FloquetArgs& args) {
   if (run_hill) h = RunHillRoute(l, args, run_mono ? &r : nullptr);
 
   progress.Clear();
-  if (run_mono && !args.modes_csv.empty()) WriteModesCsv(r, args.modes_csv);
+  if (run_mono && !args.modes_csv.empty()) WriteModesCsv(r, l.system.labels(), args.modes_csv);
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
   if (run_mono && !r.ok)

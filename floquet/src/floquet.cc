@@ -563,6 +563,7 @@ void StoreOrderedModes(const PeriodicSystem& system, const std::vector<FloquetMo
   for (auto& m : r.mode_samples) permute(m);
   for (auto& m : r.mode_fourier) permute(m);
   r.mode_descriptions = DescribeModeShapes(system.labels(), r.mode_samples.front());
+  internal::AssignWhirl(system, r);
 }
 
 // Round-off floor of each exponent (1/s): every factor carries a backward error of a few eps,

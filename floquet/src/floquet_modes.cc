@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
+#include "ltp/core/whirl.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/integrate/detail/condition_number.h"
 #include "ltp/integrate/detail/matrix_product.h"
@@ -322,6 +324,20 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
     out.diagnostics.push_back(s.str());
   }
   return out;
+}
+
+void AssignWhirl(const PeriodicSystem& system, FloquetResult& r) {
+  const auto& pairs = system.labels().whirl_pairs;
+  if (pairs.empty() || r.mode_fourier.empty()) return;
+  const int spin = system.rotor_speed().value_or(1.0) < 0 ? -1 : 1;
+  const double omega_p = 2 * std::numbers::pi / r.period;
+  std::vector<Eigen::VectorXcd> harmonics(r.mode_fourier.size());
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    for (size_t v = 0; v < harmonics.size(); ++v)
+      harmonics[v] = r.mode_fourier[v].col(static_cast<Eigen::Index>(k));
+    r.modes[k].forward_whirl =
+        ForwardWhirlShare(pairs, harmonics, r.modes[k].exponent.imag(), omega_p, spin);
+  }
 }
 
 }  // namespace ltp::internal

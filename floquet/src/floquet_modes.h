@@ -33,4 +33,9 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
                              const std::vector<std::complex<double>>& log_rho, int samples,
                              const IntegratorOptions& integrator, int threads, bool constant);
 
+/// Each mode's FloquetMode::forward_whirl from r.mode_fourier (in the system's states), when
+/// `system` declares whirl pairs; the rotor turns the way its rotor speed's sign says (+ when it
+/// has none).
+void AssignWhirl(const PeriodicSystem& system, FloquetResult& r);
+
 }  // namespace ltp::internal

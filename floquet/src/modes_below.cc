@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "floquet_modes.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
@@ -307,6 +308,7 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
               : r.ok               ? ""
                                    : "the analyses at the two cut-offs found different modes";
   TakeFromProjection(numbers, used, scale, given.labels(), std::move(modes), columns, r);
+  AssignWhirl(given, r);
   if (numbers.error_estimate) {
     double largest = 0;
     for (const FloquetMode& mode : r.modes) largest = std::max(largest, *mode.error_estimate);

@@ -86,8 +86,10 @@ PeriodicSystem BuildJeffcott(const ParameterMap& p) {
   cm.leftCols(2).setIdentity();
   return PeriodicSystem::FromFourier(pi / omega, std::move(A), FourierMatrix::Constant(b),
                                      FourierMatrix::Constant(cm))
-      .WithLabels(
-          {.states = {"x", "y", "x_dot", "y_dot"}, .inputs = {"fx", "fy"}, .outputs = {"x", "y"}})
+      .WithLabels({.states = {"x", "y", "x_dot", "y_dot"},
+                   .inputs = {"fx", "fy"},
+                   .outputs = {"x", "y"},
+                   .whirl_pairs = {{0, 1}}})  // R(Ωt) turns x towards y
       .WithRotorSpeed(omega);
 }
 

@@ -82,7 +82,8 @@ SystemLabels RotorLabels(int blades) {
   labels.outputs = {"x", "y"};
   labels.blades = blades;
   for (int b = 0; b < blades; ++b)
-    labels.blade_states.push_back(b);  // zeta_b (rates are left out anyway)
+    labels.blade_states.push_back(b);           // zeta_b (rates are left out anyway)
+  labels.whirl_pairs = {{blades, blades + 1}};  // the hub's (x, y)
   return labels;
 }
 

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -311,6 +312,29 @@ void CheckLabels(const Reader& reader, const YAML::Node& root, const std::string
                     std::to_string(count) + " " + key);
 }
 
+// whirl_pairs: [[x, y], ...] by state name (the rotor turning from x towards y).
+void ReadWhirlPairs(const Reader& reader, const YAML::Node& root, SystemLabels& labels) {
+  const YAML::Node node = root["whirl_pairs"];
+  if (!node) return;
+  const std::string hint = "expected a list of [x, y] state-name pairs, e.g. [[x, y]]";
+  if (!node.IsSequence()) reader.Fail(node, "whirl_pairs", hint);
+  for (size_t i = 0; i < node.size(); ++i) {
+    const std::string entry = "whirl_pairs[" + std::to_string(i) + "]";
+    if (!node[i].IsSequence() || node[i].size() != 2) reader.Fail(node[i], entry, hint);
+    std::array<int, 2> pair{};
+    for (size_t c = 0; c < 2; ++c) {
+      if (!node[i][c].IsScalar()) reader.Fail(node[i][c], entry, hint);
+      const std::string name = node[i][c].Scalar();
+      const auto it = std::find(labels.states.begin(), labels.states.end(), name);
+      if (it == labels.states.end())
+        reader.Fail(node[i][c], entry, "'" + name + "' is not one of the scene's states");
+      pair[c] = static_cast<int>(it - labels.states.begin());
+    }
+    if (pair[0] == pair[1]) reader.Fail(node[i], entry, "x and y must be different states");
+    labels.whirl_pairs.push_back(pair);
+  }
+}
+
 // Evaluates a constant expression in pi and the parameters. @throws SceneError.
 double Value(const ExpressionEntry& entry, const internal::Constants& constants) {
   double value = 0;
@@ -544,7 +568,7 @@ Scene ParseSceneYaml(const std::string& text, const std::string& source) {
   reader.CheckKeys(root, "",
                    {"name", "description", "period", "omega", "parameters",
                     "parameter_descriptions", "breakpoints", "rotor_speed", "inputs", "outputs",
-                    "states", "state_space", "second_order", "sampled"});
+                    "states", "whirl_pairs", "state_space", "second_order", "sampled"});
 
   Scene scene;
   scene.source = source;
@@ -622,6 +646,7 @@ Scene ParseSceneYaml(const std::string& text, const std::string& source) {
   CheckLabels(reader, root, "states", model.labels.states, model.states);
   CheckLabels(reader, root, "inputs", model.labels.inputs, model.inputs);
   CheckLabels(reader, root, "outputs", model.labels.outputs, model.outputs);
+  ReadWhirlPairs(reader, root, model.labels);
 
   scene.build = [model = std::move(model)](const ParameterMap& parameters) {
     return BuildFromModel(model, parameters);

@@ -1,4 +1,5 @@
 // ltp.floquet: the monodromy route, and its result.
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -144,6 +145,20 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
           "at t = 0, "
           "blade states "
           "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
+      .def_property_readonly(
+          "forward_whirl",
+          [](const FloquetResult& f) -> py::object {
+            std::vector<double> share;
+            for (const FloquetMode& m : f.modes)
+              share.push_back(m.forward_whirl.value_or(std::numeric_limits<double>::quiet_NaN()));
+            if (std::none_of(f.modes.begin(), f.modes.end(),
+                             [](const FloquetMode& m) { return m.forward_whirl.has_value(); }))
+              return py::none();
+            return RealArray(share);
+          },
+          "per mode, the share (0..1) of its motion in the scene's whirl planes (whirl_pairs) "
+          "that turns with the rotor: 1 forward, 0 backward whirl (NaN: the mode does not move "
+          "there); None when the system declares no whirl pairs or there are no mode shapes")
       .def_property_readonly(
           "sample_times", [](const FloquetResult& f) { return RealArray(f.sample_times); },
           "uniform times of mode_samples")

@@ -1,6 +1,8 @@
 // ltp.System and ltp.scene: every way to make the one type the analyses take.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "binding.h"
 #include "ltp/core/bounded_coefficients.h"
@@ -287,13 +289,27 @@ System FromSecondOrder(Real period, const py::object& mass, const py::object& st
 }
 
 // System.with_labels: a copy whose names are replaced where given.
-System SystemWithLabels(const System& s, std::optional<std::vector<std::string>> states,
-                        std::optional<std::vector<std::string>> inputs,
-                        std::optional<std::vector<std::string>> outputs) {
+System SystemWithLabels(
+    const System& s, std::optional<std::vector<std::string>> states,
+    std::optional<std::vector<std::string>> inputs, std::optional<std::vector<std::string>> outputs,
+    std::optional<std::vector<std::pair<std::string, std::string>>> whirl_pairs) {
   SystemLabels labels = s.system.labels();
   if (states) labels.states = *states;
   if (inputs) labels.inputs = *inputs;
   if (outputs) labels.outputs = *outputs;
+  if (whirl_pairs) {
+    labels.whirl_pairs.clear();
+    auto index = [&](const std::string& name) {
+      const auto it = std::find(labels.states.begin(), labels.states.end(), name);
+      if (it == labels.states.end())
+        throw InputError("with_labels: whirl pair state '" + name + "' is not a state name");
+      return static_cast<int>(it - labels.states.begin());
+    };
+    for (const auto& [x, y] : *whirl_pairs) {
+      if (x == y) throw InputError("with_labels: a whirl pair needs two different states");
+      labels.whirl_pairs.push_back({index(x), index(y)});
+    }
+  }
   System out = s;
   out.system = s.system.WithLabels(labels);
   return out;
@@ -393,8 +409,11 @@ of matrix exponentials (e.g. a rotor measured at K azimuths).)doc");
 void BindSystemCopies(py::class_<System>& c) {
   c.def("with_labels", &SystemWithLabels, py::arg("states") = py::none(),
         py::arg("inputs") = py::none(), py::arg("outputs") = py::none(),
+        py::arg("whirl_pairs") = py::none(),
         "A copy with these names of states, inputs and outputs (None keeps the present ones); "
-        "pfrf and snapshot then take input= and output= by name.")
+        "pfrf and snapshot then take input= and output= by name. whirl_pairs: [(x, y), ...] "
+        "state names of a rotor's lateral displacements, the rotor turning from x towards y: "
+        "floquet results then give each mode's forward_whirl.")
       .def(
           "with_rotor_speed",
           [](const System& s, Real speed) {

@@ -1,5 +1,6 @@
 // End-to-end: run the `ltp` binary as a user would and check its output and exit codes.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -54,6 +55,36 @@ TEST(Cli, FloquetModesAreNamedByTheirStates) {
     }
   }
   EXPECT_EQ(collective, 2);  // the conjugate pair
+  // The hub's (x, y) are the rotor scene's whirl plane: the collective mode leaves the hub
+  // still, so it has no whirl; the others say how much of their hub motion turns with the
+  // rotor (the share itself is tested against the rotating frame in floquet_test.cc).
+  for (size_t k = 0; k < 10; ++k) {
+    const auto& mode = j["modes"][k];
+    if (mode["description"] == "zeta collective 100%") {
+      EXPECT_EQ(mode["forward_whirl"], "nan") << k;  // JSON numbers write NaN as "nan"
+    } else {
+      const double share = mode["forward_whirl"];
+      EXPECT_TRUE(share >= 0 && share <= 1) << k;
+    }
+  }
+}
+
+TEST(Cli, ModesCsvColumnsNameModeAndState) {
+  // Per process: the plain and sanitized test runs must not share files.
+  const std::string csv =
+      std::string(::testing::TempDir()) + "ltp-" + std::to_string(getpid()) + "-modes.csv";
+  const Outcome r = Ltp("floquet jeffcott --set c=0.05 --set Omega=0.5 --modes-csv " + csv);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = test::ReadFile(csv);
+  EXPECT_EQ(
+      text.rfind(
+          "t,\"re_mode1_x\",\"im_mode1_x\",\"re_mode1_y\",\"im_mode1_y\",\"re_mode1_x_dot\",", 0),
+      0u)
+      << text.substr(0, 120);
+  // The table says which way each mode whirls (Jeffcott below its critical speeds: the lower
+  // mode forward, the upper backward; the shares in floquet_test.cc against the rotating frame).
+  EXPECT_NE(r.out.find("; forward whirl 96.1%"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("; backward whirl 99.4%"), std::string::npos) << r.out;
 }
 
 TEST(Cli, InfoMathieu) {

@@ -177,6 +177,65 @@ TEST(Jeffcott, UnstableBandAndRealPartsFromRotatingFrame) {
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(got[i], want[i], 1e-8);
 }
 
+// --- Whirl: the fixed-frame mode shapes against the rotating frame's eigenvectors --------------
+// In the rotating frame (q = R(Ωt)ᵀ p) the Jeffcott rotor is time-invariant; an eigenvector with
+// q-entries (a, b) at eigenvalue s moves the fixed-frame x + jy = e^{jΩt}(ξ + jη) on a circle of
+// radius |a + jb| turning at Im s + Ω and one of radius |a − jb| turning at −Im s + Ω. The
+// forward share of each mode from that independent route equals the one ltp measures from the
+// periodic mode shapes' harmonics (ltp/core/whirl.h), below, between and above the critical
+// speeds.
+std::vector<double> RotatingFrameForwardShares(double m, double k1, double k2, double c,
+                                               double omega) {
+  Eigen::Matrix2d J;
+  J << 0, -1, 1, 0;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  Eigen::Matrix2d K;
+  K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
+  K += c * omega * J;
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  A.block(0, 2, 2, 2) = I;
+  A.block(2, 0, 2, 2) = -K / m;
+  A.block(2, 2, 2, 2) = -(2 * m * omega * J + c * I) / m;
+  const Eigen::EigenSolver<Eigen::Matrix4d> eig(A);
+  std::vector<double> shares;
+  for (int k = 0; k < 4; ++k) {
+    const cd a = eig.eigenvectors()(0, k), b = eig.eigenvectors()(1, k), j(0, 1);
+    const double w = eig.eigenvalues()(k).imag();
+    const double plus = std::norm(a + j * b), minus = std::norm(a - j * b);
+    shares.push_back(((w + omega > 0 ? plus : 0) + (-w + omega > 0 ? minus : 0)) / (plus + minus));
+  }
+  std::sort(shares.begin(), shares.end());
+  return shares;
+}
+
+TEST(Jeffcott, ForwardWhirlMatchesTheRotatingFrame) {
+  const double m = 1, k1 = 1, k2 = 1.5, c = 0.05;
+  for (double omega : {0.5, 1.1, 1.6}) {
+    const PeriodicSystem system =
+        test::Jeffcott(m, k1, k2, c, omega)
+            .WithLabels({.states = {"x", "y", "x_dot", "y_dot"}, .whirl_pairs = {{0, 1}}})
+            .WithRotorSpeed(omega);
+    const FloquetResult r = AnalyzeFloquet(system, Tight());
+    ASSERT_TRUE(r.ok);
+    std::vector<double> got;
+    for (const FloquetMode& mode : r.modes) {
+      ASSERT_TRUE(mode.forward_whirl.has_value());
+      got.push_back(*mode.forward_whirl);
+    }
+    std::sort(got.begin(), got.end());
+    const std::vector<double> want = RotatingFrameForwardShares(m, k1, k2, c, omega);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(got[k], want[k], 1e-9) << "Ω = " << omega;
+    // The same rotor turning the other way (x towards −y) swaps forward and backward.
+    const FloquetResult reversed = AnalyzeFloquet(system.WithRotorSpeed(-omega), Tight());
+    for (size_t k = 0; k < r.modes.size(); ++k)
+      EXPECT_NEAR(*reversed.modes[k].forward_whirl, 1 - *r.modes[k].forward_whirl, 1e-12);
+  }
+  // Without whirl pairs nothing is reported.
+  EXPECT_FALSE(AnalyzeFloquet(test::Jeffcott(m, k1, k2, c, 1.1), Tight())
+                   .modes.front()
+                   .forward_whirl.has_value());
+}
+
 // --- Multipliers spanning far more than the double range --------------------------------------
 // Exponents (0.3, −2, −40, −120): multipliers e^{2π·0.3} … e^{−2π·120} = 10^{−327}, i.e. 328
 // decades. The periodic Schur route keeps every exponent; the formed product cannot.

@@ -7,6 +7,7 @@
 // every evaluation is const and thread-safe, so sweeps and segment integrations may call it in
 // parallel.
 #include <Eigen/Dense>
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -35,6 +36,10 @@ struct SystemLabels {
   /// (collective, cyclic); other states are named singly, whatever digits their labels hold.
   int blades = 0;
   std::vector<int> blade_states{};
+  /// (x, y) state pairs of a rotor's lateral motion (displacements, not rates), the rotor
+  /// turning from x towards y when its speed is positive: the modes' forward and backward
+  /// whirl is measured in these planes (ltp/core/whirl.h). Empty: no whirl is reported.
+  std::vector<std::array<int, 2>> whirl_pairs{};
 };
 
 class PeriodicSystem {

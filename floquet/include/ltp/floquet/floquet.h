@@ -159,6 +159,10 @@ struct FloquetMode {
   /// The free rotation of a state in SystemLabels::rigid_body_states: exponent 0 in theory
   /// (its distance from 0 is the model's error), left out of max_real_exponent and stable.
   bool rigid_body = false;
+  /// The share of the mode's motion in the system's whirl planes (SystemLabels::whirl_pairs)
+  /// that turns with the rotor: 1 forward, 0 backward whirl (ltp/core/whirl.h). Empty without
+  /// whirl pairs or mode shapes; NaN when the mode does not move in those planes.
+  std::optional<double> forward_whirl;
 };
 
 struct FloquetResult {
