@@ -535,69 +535,15 @@ bool InClusterOf(Complex a, Complex b) {
   return LogDistance(b, a) <= kClusterTol * std::max(1.0, std::abs(a));
 }
 
-}  // namespace
-
-std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
-    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<Complex>& log_rho, int threads) {
-  if (std::string problem = CheckFactors(factors); !problem.empty()) {
-    throw InputError("ComputePeriodicEigenvectors: " + problem);
-  }
-  const int k = static_cast<int>(factors.size());
-  const Eigen::Index n = factors[0].rows();
-  if (dt.size() != factors.size()) {
-    throw InputError("ComputePeriodicEigenvectors: " + std::to_string(dt.size()) +
-                     " segment lengths for " + std::to_string(k) + " factors");
-  }
-  double period = 0;
-  for (double d : dt) {
-    if (!std::isfinite(d) || d <= 0) {
-      throw InputError("ComputePeriodicEigenvectors: segment lengths must be finite and > 0");
-    }
-    period += d;
-  }
-  for (const Complex& l : log_rho) {
-    if (std::isnan(l.real()) || !std::isfinite(l.imag()) || l.real() == kInf) {
-      throw InputError("ComputePeriodicEigenvectors: log_rho must be finite (or -inf real)");
-    }
-  }
-
-  std::vector<PeriodicEigenvector> result(log_rho.size());
-  if (n == 0) {
-    for (auto& r : result) r.v.assign(k, Eigen::VectorXcd());
-    return result;
-  }
-  std::vector<double> norms(k);
-  for (int i = 0; i < k; ++i) norms[i] = factors[i].norm();
-
+/// Block-cyclic inverse iteration for every mode not yet done, one cluster of close log ρ at a
+/// time (a cluster shares the random starts of one subspace iteration); marks them done.
+void InverseIterationVectors(const std::vector<Eigen::MatrixXd>& factors,
+                             const std::vector<double>& norms, const std::vector<double>& dt,
+                             double period, const std::vector<Complex>& log_rho,
+                             std::vector<char>& done, std::vector<PeriodicEigenvector>& result) {
   std::mt19937_64 rng(20240531);
   std::normal_distribution<double> normal;
-  const Eigen::Index size = static_cast<Eigen::Index>(k) * n;
-
-  // Isolated multipliers from the periodic Schur form (O(K n³) for all of them); the rest, and
-  // any whose residual is not at round-off, by block-cyclic inverse iteration.
-  std::vector<bool> isolated(log_rho.size(), true);
-  for (std::size_t a = 0; a < log_rho.size(); ++a)
-    for (std::size_t b = 0; b < log_rho.size(); ++b)
-      if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
-  std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
-  {
-    const std::vector<Eigen::VectorXcd> schur =
-        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
-    const long modes = static_cast<long>(log_rho.size());
-#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
-    for (long m = 0; m < modes; ++m) {
-      if (schur[m].size() == 0) continue;
-      std::vector<Complex> sigma(k);
-      for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
-      PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
-      if (v.residual <= kSchurResidual) {
-        v.method = PeriodicEigenvectorMethod::kSchur;
-        result[m] = std::move(v);
-        done[m] = 1;
-      }
-    }
-  }
+  const Eigen::Index size = static_cast<Eigen::Index>(factors.size()) * factors[0].rows();
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;
     std::vector<std::size_t> cluster;
@@ -645,6 +591,68 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       result[member] = FinishVector(factors, norms, sys->sigma, refined);
     }
   }
+}
+
+}  // namespace
+
+std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
+    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
+    const std::vector<Complex>& log_rho, int threads) {
+  if (std::string problem = CheckFactors(factors); !problem.empty()) {
+    throw InputError("ComputePeriodicEigenvectors: " + problem);
+  }
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  if (dt.size() != factors.size()) {
+    throw InputError("ComputePeriodicEigenvectors: " + std::to_string(dt.size()) +
+                     " segment lengths for " + std::to_string(k) + " factors");
+  }
+  double period = 0;
+  for (double d : dt) {
+    if (!std::isfinite(d) || d <= 0) {
+      throw InputError("ComputePeriodicEigenvectors: segment lengths must be finite and > 0");
+    }
+    period += d;
+  }
+  for (const Complex& l : log_rho) {
+    if (std::isnan(l.real()) || !std::isfinite(l.imag()) || l.real() == kInf) {
+      throw InputError("ComputePeriodicEigenvectors: log_rho must be finite (or -inf real)");
+    }
+  }
+
+  std::vector<PeriodicEigenvector> result(log_rho.size());
+  if (n == 0) {
+    for (auto& r : result) r.v.assign(k, Eigen::VectorXcd());
+    return result;
+  }
+  std::vector<double> norms(k);
+  for (int i = 0; i < k; ++i) norms[i] = factors[i].norm();
+
+  // Isolated multipliers from the periodic Schur form (O(K n³) for all of them); the rest, and
+  // any whose residual is not at round-off, by block-cyclic inverse iteration.
+  std::vector<bool> isolated(log_rho.size(), true);
+  for (std::size_t a = 0; a < log_rho.size(); ++a)
+    for (std::size_t b = 0; b < log_rho.size(); ++b)
+      if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
+  std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
+  {
+    const std::vector<Eigen::VectorXcd> schur =
+        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
+    const long modes = static_cast<long>(log_rho.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+    for (long m = 0; m < modes; ++m) {
+      if (schur[m].size() == 0) continue;
+      std::vector<Complex> sigma(k);
+      for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
+      PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
+      if (v.residual <= kSchurResidual) {
+        v.method = PeriodicEigenvectorMethod::kSchur;
+        result[m] = std::move(v);
+        done[m] = 1;
+      }
+    }
+  }
+  InverseIterationVectors(factors, norms, dt, period, log_rho, done, result);
   return result;
 }
 
