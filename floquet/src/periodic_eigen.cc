@@ -1,10 +1,11 @@
 // Eigenvalues and periodic eigenvectors of a cyclic matrix product Φ_K ⋯ Φ_1.
 //
-// Eigenvalues: SLICOT chain MB03VD → MB03BD.
+// Eigenvalues and the periodic Schur form: SLICOT chain MB03VD → (MB03VY) → MB03BD, one call
+// path (RunPeriodicQz) for the eigenvalues alone and for the Schur form with its vectors.
 //   MB03VD reduces the product A_1 A_2 ⋯ A_K to periodic Hessenberg-triangular form
 //   (A_1 Hessenberg, the others upper triangular) by orthogonal transformations
 //   Q_j' A_j Q_{j+1}, Q_{K+1} = Q_1, which leave the eigenvalues of the product unchanged.
-//   MB03BD (periodic QZ, JOB='E', signatures S = +1, Hessenberg index H = 1) then returns each
+//   MB03BD (periodic QZ, JOB='E' or 'S', signatures S = +1, Hessenberg index H = 1) returns each
 //   eigenvalue as (ALPHAR + j ALPHAI)/BETA · BASE^SCAL with ALPHA of order one, so log ρ is
 //   formed from the pieces and never from ρ itself (which may lie far outside double range).
 //   SLICOT's product is ordered A_1 A_2 ⋯ A_K (A_1 leftmost), so A_j = Φ_{K+1-j}.
@@ -93,6 +94,102 @@ std::atomic<int> injected_failures{0};  // periodic_schur_testing.h (sweeps call
 
 void internal::InjectPeriodicSchurFailures(int count) { injected_failures = count; }
 
+namespace {
+
+/// One periodic QZ run, in SLICOT's order: n×n×K column-major arrays with A_j = Φ_{K−j}.
+struct PeriodicQz {
+  std::vector<double> a;  ///< the factors: with Schur form, in periodic Schur form
+  std::vector<double> q;  ///< the orthogonal Q_j (with Schur form only)
+  std::vector<double> alphar, alphai, beta;
+  std::vector<int> scal;
+  int iwarn = 0;
+  std::string failure;  ///< empty on success
+};
+
+/// MB03VD: periodic Hessenberg-triangular form of A_1 ⋯ A_K (A_1 Hessenberg), with MB03VY's
+/// orthogonal factors in qz.q when `vectors`. The reflectors MB03VD leaves below the band are
+/// zeroed, as MB03BD expects. False (and qz.failure) when SLICOT reports an error.
+bool HessenbergTriangular(int n, int k, bool vectors, PeriodicQz& qz) {
+  const int ilo = 1, ihi = n, lda = n, ldtau = std::max(1, n - 1);
+  std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
+  std::vector<double> dwork(static_cast<std::size_t>(std::max(1, n)) * 32);
+  const int ldwork = static_cast<int>(dwork.size());
+  int info = 0;
+  mb03vd_(&n, &k, &ilo, &ihi, qz.a.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &info);
+  if (info != 0) {
+    qz.failure = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
+    return false;
+  }
+  if (vectors) {  // from the reflectors, before they are zeroed below
+    qz.q = qz.a;
+    mb03vy_(&n, &k, &ilo, &ihi, qz.q.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &ldwork,
+            &info);
+    if (info != 0) {
+      qz.failure = "SLICOT MB03VY failed, INFO = " + std::to_string(info);
+      return false;
+    }
+  }
+  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
+  for (int j = 0; j < k; ++j) {
+    Eigen::Map<Eigen::MatrixXd> aj(qz.a.data() + j * block, n, n);
+    for (int c = 0; c < n; ++c)
+      for (int r = c + (j == 0 ? 2 : 1); r < n; ++r) aj(r, c) = 0.0;
+  }
+  return true;
+}
+
+/// The one SLICOT call path of this library: MB03VD (+ MB03VY) then MB03BD (signatures +1,
+/// Hessenberg index H = 1, careful deflation), eigenvalues only (JOB = 'E') or with the periodic
+/// Schur form and its vectors (JOB = 'S', COMPQ = 'U'). The factors are checked by the caller
+/// (square, one size n ≥ 1, finite), so SLICOT's XERBLA (which would print) is never reached.
+PeriodicQz RunPeriodicQz(const std::vector<Eigen::MatrixXd>& factors, bool schur_form) {
+  const int n = static_cast<int>(factors[0].rows());
+  const int k = static_cast<int>(factors.size());
+  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
+  PeriodicQz qz;
+  qz.a.resize(static_cast<std::size_t>(block * k));
+  for (int j = 0; j < k; ++j)  // A(:,:,j) = Φ_{K+1-j}, so that A_1 ⋯ A_K = Φ_K ⋯ Φ_1
+    Eigen::Map<Eigen::MatrixXd>(qz.a.data() + j * block, n, n) = factors[k - 1 - j];
+  if (!HessenbergTriangular(n, k, schur_form, qz)) return qz;
+
+  // Workspace: the larger of the SLICOT 5.0 and 5.7 minimums (5.0 has no workspace query; a
+  // too-short workspace would make it call XERBLA).
+  const char job = schur_form ? 'S' : 'E', defl = 'C', compq = schur_form ? 'U' : 'N';
+  const int h = 1, ilo = 1, ihi = n, lda = n, ldq = schur_form ? n : 1;
+  std::vector<int> qind(k, 0), signature(k, 1), iwork(2 * k + n);
+  const int liwork = static_cast<int>(iwork.size());
+  const int ldwork = k + std::max(2 * n, 8 * k);
+  std::vector<double> dwork(ldwork);
+  double q_unused = 0.0;
+  qz.alphar.resize(n);
+  qz.alphai.resize(n);
+  qz.beta.resize(n);
+  qz.scal.resize(n);
+  int info = 0;
+  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), qz.a.data(),
+          &lda, &lda, schur_form ? qz.q.data() : &q_unused, &ldq, &ldq, qz.alphar.data(),
+          qz.alphai.data(), qz.beta.data(), qz.scal.data(), iwork.data(), &liwork, dwork.data(),
+          &ldwork, &qz.iwarn, &info, 1, 1, 1);
+  // The test hook fails the eigenvalue route only (periodic_schur_testing.h).
+  if (!schur_form && injected_failures.load(std::memory_order_relaxed) > 0 &&
+      injected_failures-- > 0)
+    info = n;  // as MB03BD reports an iteration that did not converge
+  if (info != 0) {
+    qz.failure = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
+                 (info > 0 ? " (iteration did not converge)" : "");
+  }
+  return qz;
+}
+
+std::string IwarnMessage(int iwarn) {
+  if (iwarn == 0) return {};
+  return "SLICOT MB03BD warning IWARN = " + std::to_string(iwarn) +
+         ": eigenvalues of the leading 2x2 blocks (up to index " + std::to_string(iwarn + 1) +
+         ") may be inaccurate";
+}
+
+}  // namespace
+
 LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& factors) {
   LogEigenvalues result;
   if (std::string problem = CheckFactors(factors); !problem.empty()) {
@@ -100,88 +197,126 @@ LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& f
     return result;
   }
   const int n = static_cast<int>(factors[0].rows());
-  const int k = static_cast<int>(factors.size());
   if (n == 0) {
     result.ok = true;
     return result;
   }
-
-  // A(:,:,j) = Φ_{K+1-j}, column-major n×n×K, so that A_1 ⋯ A_K = Φ_K ⋯ Φ_1.
-  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
-  std::vector<double> a(static_cast<std::size_t>(block * k));
-  for (int j = 0; j < k; ++j) {
-    Eigen::Map<Eigen::MatrixXd>(a.data() + j * block, n, n) = factors[k - 1 - j];
-  }
-
-  // Periodic Hessenberg-triangular form. Arguments are validated above, so SLICOT's XERBLA
-  // (which would print) is never reached.
-  const int ilo = 1, ihi = n, lda = n, ldtau = std::max(1, n - 1);
-  std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
-  std::vector<double> dwork_vd(n);
-  int info = 0;
-  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork_vd.data(), &info);
-  if (info != 0) {
-    result.message = "SLICOT MB03VD failed, INFO = " + std::to_string(info);
+  const PeriodicQz qz = RunPeriodicQz(factors, /*schur_form=*/false);
+  if (!qz.failure.empty()) {
+    result.message = qz.failure;
     return result;
   }
-  // MB03VD leaves its Householder vectors below the Hessenberg (j = 1) or triangular part;
-  // MB03BD expects those entries to be zero.
-  for (int j = 0; j < k; ++j) {
-    Eigen::Map<Eigen::MatrixXd> aj(a.data() + j * block, n, n);
-    const int first_zero_below = (j == 0) ? 2 : 1;
-    for (int c = 0; c < n; ++c) {
-      for (int r = c + first_zero_below; r < n; ++r) aj(r, c) = 0.0;
-    }
-  }
-
-  // Periodic QZ, eigenvalues only. Workspace: the larger of the SLICOT 5.0 and 5.7 minimums
-  // (5.0 has no workspace query; a too-short workspace would make it call XERBLA).
-  const char job = 'E', defl = 'C', compq = 'N';
-  const int h = 1, ldq = 1;
-  std::vector<int> qind(k, 0), signature(k, 1);
-  double q_unused = 0.0;
-  std::vector<double> alphar(n), alphai(n), beta(n);
-  std::vector<int> scal(n);
-  const int liwork = 2 * k + n;
-  const int ldwork = k + std::max(2 * n, 8 * k);
-  std::vector<int> iwork(liwork);
-  std::vector<double> dwork(ldwork);
-  int iwarn = 0;
-  info = 0;
-  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
-          &lda, &lda, &q_unused, &ldq, &ldq, alphar.data(), alphai.data(), beta.data(), scal.data(),
-          iwork.data(), &liwork, dwork.data(), &ldwork, &iwarn, &info, 1, 1, 1);
-  if (injected_failures.load(std::memory_order_relaxed) > 0 && injected_failures-- > 0)
-    info = n;  // as MB03BD reports an iteration that did not converge
-  if (info != 0) {
-    result.message = "SLICOT MB03BD (periodic QZ) failed, INFO = " + std::to_string(info) +
-                     (info > 0 ? " (iteration did not converge)" : "");
-    return result;
-  }
-
   // log ρ = log|ALPHA| − log|BETA| + SCAL·log(BASE) + j arg(ALPHA); BETA is 1 or 0 (0 = infinite
   // eigenvalue, impossible here since no factor is inverted, but kept for completeness).
   const double log_base = std::log(static_cast<double>(std::numeric_limits<double>::radix));
   result.log_values.reserve(n);
   for (int i = 0; i < n; ++i) {
-    const double modulus = std::hypot(alphar[i], alphai[i]);
-    if (beta[i] == 0.0) {
-      result.log_values.emplace_back(kInf, PrincipalArg(alphar[i], alphai[i]));
+    const double re = qz.alphar[i], im = qz.alphai[i], beta = qz.beta[i];
+    const double modulus = std::hypot(re, im);
+    if (beta == 0.0) {
+      result.log_values.emplace_back(kInf, PrincipalArg(re, im));
     } else if (modulus == 0.0) {
       result.log_values.emplace_back(-kInf, 0.0);
     } else {
-      const double log_abs = std::log(modulus) - std::log(std::abs(beta[i])) + scal[i] * log_base;
-      result.log_values.emplace_back(log_abs,
-                                     PrincipalArg(alphar[i] * beta[i], alphai[i] * beta[i]));
+      const double log_abs = std::log(modulus) - std::log(std::abs(beta)) + qz.scal[i] * log_base;
+      result.log_values.emplace_back(log_abs, PrincipalArg(re * beta, im * beta));
     }
   }
   SortDescending(result.log_values);
   result.ok = true;
-  if (iwarn != 0) {
-    result.message = "SLICOT MB03BD warning IWARN = " + std::to_string(iwarn) +
-                     ": eigenvalues of the leading 2x2 blocks (up to index " +
-                     std::to_string(iwarn + 1) + ") may be inaccurate";
+  result.message = IwarnMessage(qz.iwarn);
+  return result;
+}
+
+namespace {
+
+/// log ρ of the 2×2 block in rows p, p+1 (a complex pair; the pair with the positive arg first).
+/// |ρ|² = Π_k det B_k, summed as logs; the arg from the eigenvalues of the blocks' product,
+/// normalised after each factor. Two real eigenvalues (a block SLICOT could not split: IWARN)
+/// come from that normalised product with its log scale.
+void BlockLogValues(const std::vector<Eigen::MatrixXd>& t, int p, std::vector<Complex>& out) {
+  double log_det = 0, log_scale = 0;
+  Eigen::Matrix2d product = Eigen::Matrix2d::Identity();
+  for (const Eigen::MatrixXd& tk : t) {
+    const Eigen::Matrix2d b = tk.block<2, 2>(p, p);
+    log_det += std::log(std::abs(b.determinant()));
+    product = (b * product).eval();
+    const double norm = product.norm();
+    if (norm > 0 && std::isfinite(norm)) {
+      product /= norm;
+      log_scale += std::log(norm);
+    }
   }
+  const Eigen::Vector2cd mu = Eigen::EigenSolver<Eigen::Matrix2d>(product, false).eigenvalues();
+  if (mu(0).imag() != 0) {
+    const double arg = std::abs(std::arg(mu(0)));
+    out.emplace_back(0.5 * log_det, arg);
+    out.emplace_back(0.5 * log_det, -arg);
+    return;
+  }
+  for (int i = 0; i < 2; ++i) {
+    const double m = std::abs(mu(i).real());
+    out.emplace_back(m == 0 ? -kInf : std::log(m) + log_scale, PrincipalArg(mu(i).real(), 0.0));
+  }
+}
+
+/// log ρ along the diagonal of a periodic Schur form whose factor K−1 is quasi-triangular.
+std::vector<Complex> DiagonalLogValues(const std::vector<Eigen::MatrixXd>& t) {
+  const int n = static_cast<int>(t[0].rows());
+  const Eigen::MatrixXd& quasi = t.back();
+  std::vector<Complex> out;
+  out.reserve(n);
+  for (int p = 0; p < n; ++p) {
+    if (p + 1 < n && quasi(p + 1, p) != 0.0) {
+      BlockLogValues(t, p++, out);
+      continue;
+    }
+    double log_abs = 0;
+    int negatives = 0;
+    for (const Eigen::MatrixXd& tk : t) {
+      log_abs += std::log(std::abs(tk(p, p)));  // −inf for a zero entry
+      negatives += tk(p, p) < 0;
+    }
+    out.emplace_back(log_abs, std::isinf(log_abs) && log_abs < 0
+                                  ? 0.0
+                                  : PrincipalArg(negatives % 2 ? -1.0 : 1.0, 0.0));
+  }
+  return out;
+}
+
+}  // namespace
+
+PeriodicSchurForm PeriodicSchurDecomposition(const std::vector<Eigen::MatrixXd>& factors) {
+  PeriodicSchurForm result;
+  if (std::string problem = CheckFactors(factors); !problem.empty()) {
+    result.message = "PeriodicSchurDecomposition: " + problem;
+    return result;
+  }
+  const int n = static_cast<int>(factors[0].rows());
+  const int k = static_cast<int>(factors.size());
+  result.quasi_triangular = k - 1;
+  if (n == 0) {
+    result.t.assign(k, Eigen::MatrixXd(0, 0));
+    result.z.assign(k, Eigen::MatrixXd(0, 0));
+    result.ok = true;
+    return result;
+  }
+  const PeriodicQz qz = RunPeriodicQz(factors, /*schur_form=*/true);
+  if (!qz.failure.empty()) {
+    result.message = qz.failure;
+    return result;
+  }
+  // SLICOT: Q_jᵀ A_j Q_{j+1} = S_j with A_j = Φ_{K−j}, so T_i = S_{K−i}, Z_i = Q_{(K−i) mod K + 1}.
+  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
+  result.t.resize(k);
+  result.z.resize(k);
+  for (int i = 0; i < k; ++i) {
+    result.t[i] = Eigen::Map<const Eigen::MatrixXd>(qz.a.data() + (k - 1 - i) * block, n, n);
+    result.z[i] = Eigen::Map<const Eigen::MatrixXd>(qz.q.data() + ((k - i) % k) * block, n, n);
+  }
+  result.log_values = DiagonalLogValues(result.t);
+  result.ok = true;
+  result.message = IwarnMessage(qz.iwarn);
   return result;
 }
 
@@ -400,69 +535,15 @@ bool InClusterOf(Complex a, Complex b) {
   return LogDistance(b, a) <= kClusterTol * std::max(1.0, std::abs(a));
 }
 
-}  // namespace
-
-std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
-    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<Complex>& log_rho, int threads) {
-  if (std::string problem = CheckFactors(factors); !problem.empty()) {
-    throw InputError("ComputePeriodicEigenvectors: " + problem);
-  }
-  const int k = static_cast<int>(factors.size());
-  const Eigen::Index n = factors[0].rows();
-  if (dt.size() != factors.size()) {
-    throw InputError("ComputePeriodicEigenvectors: " + std::to_string(dt.size()) +
-                     " segment lengths for " + std::to_string(k) + " factors");
-  }
-  double period = 0;
-  for (double d : dt) {
-    if (!std::isfinite(d) || d <= 0) {
-      throw InputError("ComputePeriodicEigenvectors: segment lengths must be finite and > 0");
-    }
-    period += d;
-  }
-  for (const Complex& l : log_rho) {
-    if (std::isnan(l.real()) || !std::isfinite(l.imag()) || l.real() == kInf) {
-      throw InputError("ComputePeriodicEigenvectors: log_rho must be finite (or -inf real)");
-    }
-  }
-
-  std::vector<PeriodicEigenvector> result(log_rho.size());
-  if (n == 0) {
-    for (auto& r : result) r.v.assign(k, Eigen::VectorXcd());
-    return result;
-  }
-  std::vector<double> norms(k);
-  for (int i = 0; i < k; ++i) norms[i] = factors[i].norm();
-
+/// Block-cyclic inverse iteration for every mode not yet done, one cluster of close log ρ at a
+/// time (a cluster shares the random starts of one subspace iteration); marks them done.
+void InverseIterationVectors(const std::vector<Eigen::MatrixXd>& factors,
+                             const std::vector<double>& norms, const std::vector<double>& dt,
+                             double period, const std::vector<Complex>& log_rho,
+                             std::vector<char>& done, std::vector<PeriodicEigenvector>& result) {
   std::mt19937_64 rng(20240531);
   std::normal_distribution<double> normal;
-  const Eigen::Index size = static_cast<Eigen::Index>(k) * n;
-
-  // Isolated multipliers from the periodic Schur form (O(K n³) for all of them); the rest, and
-  // any whose residual is not at round-off, by block-cyclic inverse iteration.
-  std::vector<bool> isolated(log_rho.size(), true);
-  for (std::size_t a = 0; a < log_rho.size(); ++a)
-    for (std::size_t b = 0; b < log_rho.size(); ++b)
-      if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
-  std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
-  {
-    const std::vector<Eigen::VectorXcd> schur =
-        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
-    const long modes = static_cast<long>(log_rho.size());
-#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
-    for (long m = 0; m < modes; ++m) {
-      if (schur[m].size() == 0) continue;
-      std::vector<Complex> sigma(k);
-      for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
-      PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
-      if (v.residual <= kSchurResidual) {
-        v.method = PeriodicEigenvectorMethod::kSchur;
-        result[m] = std::move(v);
-        done[m] = 1;
-      }
-    }
-  }
+  const Eigen::Index size = static_cast<Eigen::Index>(factors.size()) * factors[0].rows();
   for (std::size_t first = 0; first < log_rho.size(); ++first) {
     if (done[first]) continue;
     std::vector<std::size_t> cluster;
@@ -510,6 +591,68 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       result[member] = FinishVector(factors, norms, sys->sigma, refined);
     }
   }
+}
+
+}  // namespace
+
+std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
+    const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
+    const std::vector<Complex>& log_rho, int threads) {
+  if (std::string problem = CheckFactors(factors); !problem.empty()) {
+    throw InputError("ComputePeriodicEigenvectors: " + problem);
+  }
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  if (dt.size() != factors.size()) {
+    throw InputError("ComputePeriodicEigenvectors: " + std::to_string(dt.size()) +
+                     " segment lengths for " + std::to_string(k) + " factors");
+  }
+  double period = 0;
+  for (double d : dt) {
+    if (!std::isfinite(d) || d <= 0) {
+      throw InputError("ComputePeriodicEigenvectors: segment lengths must be finite and > 0");
+    }
+    period += d;
+  }
+  for (const Complex& l : log_rho) {
+    if (std::isnan(l.real()) || !std::isfinite(l.imag()) || l.real() == kInf) {
+      throw InputError("ComputePeriodicEigenvectors: log_rho must be finite (or -inf real)");
+    }
+  }
+
+  std::vector<PeriodicEigenvector> result(log_rho.size());
+  if (n == 0) {
+    for (auto& r : result) r.v.assign(k, Eigen::VectorXcd());
+    return result;
+  }
+  std::vector<double> norms(k);
+  for (int i = 0; i < k; ++i) norms[i] = factors[i].norm();
+
+  // Isolated multipliers from the periodic Schur form (O(K n³) for all of them); the rest, and
+  // any whose residual is not at round-off, by block-cyclic inverse iteration.
+  std::vector<bool> isolated(log_rho.size(), true);
+  for (std::size_t a = 0; a < log_rho.size(); ++a)
+    for (std::size_t b = 0; b < log_rho.size(); ++b)
+      if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
+  std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
+  {
+    const std::vector<Eigen::VectorXcd> schur =
+        internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads);
+    const long modes = static_cast<long>(log_rho.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+    for (long m = 0; m < modes; ++m) {
+      if (schur[m].size() == 0) continue;
+      std::vector<Complex> sigma(k);
+      for (int i = 0; i < k; ++i) sigma[i] = std::exp(log_rho[m] * (dt[i] / period));
+      PeriodicEigenvector v = FinishVector(factors, norms, sigma, schur[m]);
+      if (v.residual <= kSchurResidual) {
+        v.method = PeriodicEigenvectorMethod::kSchur;
+        result[m] = std::move(v);
+        done[m] = 1;
+      }
+    }
+  }
+  InverseIterationVectors(factors, norms, dt, period, log_rho, done, result);
   return result;
 }
 

@@ -1,7 +1,8 @@
 // Periodic eigenvectors from the periodic Schur form, by cyclic back-substitution
 // (docs/periodic-eigenvectors.md):
-//   1. SLICOT MB03VD + MB03VY + MB03BD give the real periodic Schur form with its vectors,
-//      R_i = U_{i+1}ᵀ Φ_i U_i, every R_i upper triangular except one quasi-triangular factor;
+//   1. PeriodicSchurDecomposition (SLICOT MB03VD + MB03VY + MB03BD) gives the real periodic
+//      Schur form with its vectors, R_i = U_{i+1}ᵀ Φ_i U_i, every R_i upper triangular except
+//      the quasi-triangular R_{K−1};
 //   2. each 2×2 block (a complex pair) is split by unitary 2×2 rotations W_i built from the
 //      eigenvector of the block's own 2×2 product, giving complex upper triangular T_i;
 //   3. for the multiplier at diagonal position j, y_i(j) = 1 and each row above is a scalar
@@ -20,63 +21,14 @@
 #include <numbers>
 #include <optional>
 
+#include "ltp/floquet/periodic_eigen.h"
 #include "ltp/integrate/detail/matrix_product.h"
-#include "slicot.h"
 
 namespace ltp::internal {
 
 namespace {
 
 using Complex = std::complex<double>;
-
-/// Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i (U_K = U_0), R_{K−1}
-/// quasi-triangular, the others upper triangular. SLICOT's product is A_1 ⋯ A_K with
-/// A_j = Φ_{K−j} and Q_jᵀ A_j Q_{j+1} = S_j, so R_i = S_{K−i} and U_i = Q_{(K−i) mod K + 1}.
-bool RealPeriodicSchur(const std::vector<Eigen::MatrixXd>& factors, std::vector<Eigen::MatrixXd>& r,
-                       std::vector<Eigen::MatrixXd>& u) {
-  const int n = static_cast<int>(factors[0].rows());
-  const int k = static_cast<int>(factors.size());
-  const std::ptrdiff_t block = static_cast<std::ptrdiff_t>(n) * n;
-  std::vector<double> a(static_cast<std::size_t>(block * k));
-  for (int j = 0; j < k; ++j)
-    Eigen::Map<Eigen::MatrixXd>(a.data() + j * block, n, n) = factors[k - 1 - j];
-  const int ilo = 1, ihi = n, lda = n, ldtau = std::max(1, n - 1);
-  std::vector<double> tau(static_cast<std::size_t>(ldtau) * k);
-  std::vector<double> dwork(static_cast<std::size_t>(std::max(1, n)) * 32);
-  int info = 0;
-  mb03vd_(&n, &k, &ilo, &ihi, a.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &info);
-  if (info != 0) return false;
-  std::vector<double> q = a;
-  const int ldwork_vy = static_cast<int>(dwork.size());
-  mb03vy_(&n, &k, &ilo, &ihi, q.data(), &lda, &lda, tau.data(), &ldtau, dwork.data(), &ldwork_vy,
-          &info);
-  if (info != 0) return false;
-  for (int j = 0; j < k; ++j) {  // MB03BD wants zeros where MB03VD left its reflectors
-    Eigen::Map<Eigen::MatrixXd> aj(a.data() + j * block, n, n);
-    for (int c = 0; c < n; ++c)
-      for (int row = c + (j == 0 ? 2 : 1); row < n; ++row) aj(row, c) = 0.0;
-  }
-  const char job = 'S', defl = 'C', compq = 'U';
-  const int h = 1;
-  std::vector<int> qind(k, 0), signature(k, 1), scal(n);
-  std::vector<double> alphar(n), alphai(n), beta(n);
-  const int liwork = 2 * k + n;
-  const int ldwork = k + std::max(2 * n, 8 * k);  // the larger of the SLICOT 5.0 and 5.7 minimums
-  std::vector<int> iwork(liwork);
-  std::vector<double> work(ldwork);
-  int iwarn = 0;
-  mb03bd_(&job, &defl, &compq, qind.data(), &k, &n, &h, &ilo, &ihi, signature.data(), a.data(),
-          &lda, &lda, q.data(), &lda, &lda, alphar.data(), alphai.data(), beta.data(), scal.data(),
-          iwork.data(), &liwork, work.data(), &ldwork, &iwarn, &info, 1, 1, 1);
-  if (info != 0) return false;
-  r.resize(k);
-  u.resize(k);
-  for (int i = 0; i < k; ++i) {
-    r[i] = Eigen::Map<const Eigen::MatrixXd>(a.data() + (k - 1 - i) * block, n, n);
-    u[i] = Eigen::Map<const Eigen::MatrixXd>(q.data() + ((k - i) % k) * block, n, n);
-  }
-  return true;
-}
 
 /// Complex periodic Schur form T_i = V_{i+1}ᴴ Φ_i V_i, all upper triangular.
 struct ComplexSchurForm {
@@ -242,9 +194,10 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
   const int n = static_cast<int>(factors[0].rows());
   double period = 0;
   for (double d : dt) period += d;
-  std::vector<Eigen::MatrixXd> r, u;
+  // Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i, R_{K−1} quasi-triangular.
+  const PeriodicSchurForm real = PeriodicSchurDecomposition(factors);
   ComplexSchurForm s;
-  if (!RealPeriodicSchur(factors, r, u) || !Complexify(r, u, s)) return out;
+  if (!real.ok || !Complexify(real.t, real.z, s)) return out;
   std::vector<Complex> log_diag(n, 0.0);
   for (int i = 0; i < k; ++i)
     for (int l = 0; l < n; ++l) log_diag[l] += std::log(s.t[i](l, l));

@@ -15,6 +15,9 @@ Analyses (each runs without the GIL)
     hill(system, ...)      -> HillResult      `ltp floquet --method hill`: Hill's method
     hill_study(system, ...) -> HillStudy      `ltp hill`: convergence over the truncation N
     hill_matrix(system, harmonics=N) -> ndarray  the truncated Hill matrix ((2N+1)n square)
+    periodic_schur(factors) -> PeriodicSchurForm  the periodic Schur form of a product of
+                                              factors (FloquetResult.segment_factors): Z, T,
+                                              log_multipliers, where the monodromy overflows
     pfrf(system, freq, ...) -> PfrfResult     `ltp pfrf`: partial FRFs H_z over frequency and order
     snapshot(system, freq, ...) -> SnapshotResult  `ltp snapshot`: frozen-system FRF, Fig. 6
     chart(scene, sweep, ...) -> ChartResult   `ltp chart`: Campbell diagrams, stability maps
@@ -46,6 +49,7 @@ from ._ltp import (  # noqa: F401
     IdentifyResult,
     InputError,
     MbcResult,
+    PeriodicSchurForm,
     PfrfResult,
     ResourceError,
     SceneError,
@@ -63,6 +67,7 @@ from ._ltp import (  # noqa: F401
     identify,
     mbc,
     mbc_check,
+    periodic_schur,
     pfrf,
     scene,
     scenes,
@@ -73,8 +78,8 @@ from ._ltp import (  # noqa: F401
 __all__ = [
     "CampbellResult", "ChartResult", "Error", "FloquetResult", "H2Norm", "HarmonicTransferFunction",
     "HillResult", "HinfNorm", "HillStudy", "IdentifyResult",
-    "InputError", "MbcResult", "PfrfResult",
+    "InputError", "MbcResult", "PeriodicSchurForm", "PfrfResult",
     "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
-    "campbell", "chart", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "pfrf", "scene",
+    "campbell", "chart", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "periodic_schur", "pfrf", "scene",
     "scenes", "simulate", "snapshot",
 ]

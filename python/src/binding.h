@@ -177,6 +177,8 @@ void BindMbc(py::module_& m);
 void BindCampbell(py::module_& m);
 void BindIdentify(py::module_& m);
 void BindHtfOperator(py::module_& m);
+/// ltp.periodic_schur and its result; before BindFloquet (FloquetResult.periodic_schur returns it).
+void BindPeriodicSchur(py::module_& m);
 
 /// A Campbell diagram's lines (dicts with per-point arrays), its per-rev crossings (dicts) and
 /// weakly damped intervals, as ltp.chart and ltp.campbell give them (chart_binding.cc).

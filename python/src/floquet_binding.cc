@@ -13,6 +13,7 @@
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/model_error.h"
+#include "ltp/floquet/periodic_eigen.h"
 #include "ltp/studies/rotor_mbc_check.h"
 
 namespace ltp::python {
@@ -217,6 +218,18 @@ formula beyond the error estimate): the diagnostics say why.)doc");
             return f.LeftModes(PeriodicTime(t, f.period, "left_modes"));
           },
           py::arg("t"), "rows of Ξ(t)⁻¹")
+      .def(
+          "periodic_schur",
+          [](const FloquetResult& f) {
+            if (f.segment_factors.empty())
+              throw InputError(
+                  "periodic_schur needs the segment factors: run ltp.floquet(..., "
+                  "keep_factors=True)");
+            py::gil_scoped_release release;
+            return PeriodicSchurDecomposition(f.segment_factors);
+          },
+          "ltp.periodic_schur(segment_factors): the periodic Schur form of the kept factors "
+          "(keep_factors=True, else ltp.InputError)")
       .def("__repr__",
            [](const FloquetResult& f) { return "<ltp.FloquetResult: " + f.BriefReport() + ">"; });
 }

@@ -59,6 +59,7 @@ PYBIND11_MODULE(_ltp, m) {
   });
 
   BindSystem(m);
+  BindPeriodicSchur(m);
   BindFloquet(m);
   BindHill(m);
   BindFrf(m);

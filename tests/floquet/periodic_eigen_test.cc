@@ -1,4 +1,5 @@
-// Tests of the periodic Schur eigenvalues (SLICOT MB03VD + MB03BD) and of the periodic
+// Tests of the periodic Schur eigenvalues (SLICOT MB03VD + MB03BD), of the periodic Schur form
+// itself (MB03VD + MB03VY + MB03BD) and of the periodic
 // eigenvectors (block-cyclic null vectors). Reference values are either eig of the formed
 // product (well-conditioned cases only) or closed forms of factors built from known pieces.
 #include "ltp/floquet/periodic_eigen.h"
@@ -239,6 +240,178 @@ TEST(SingleShotTest, ClosedFormAndInvalidInput) {
   inf(0, 1) = std::numeric_limits<double>::infinity();
   EXPECT_FALSE(SingleShotLogEigenvalues(inf).ok);
   EXPECT_TRUE(SingleShotLogEigenvalues(Eigen::MatrixXd(0, 0)).ok);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The periodic Schur form itself.
+// ---------------------------------------------------------------------------------------------
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// max_k ||Z_{k+1} T_k Z_kᵀ − Φ_k||_F / ||Φ_k||_F and max_k ||Z_kᵀ Z_k − I||_F, recomputed from
+/// the definition (the reference is the factors themselves).
+struct SchurResiduals {
+  double reconstruction = 0, orthogonality = 0;
+};
+SchurResiduals MeasureSchurForm(const std::vector<Eigen::MatrixXd>& factors,
+                                const PeriodicSchurForm& s) {
+  const std::size_t k = factors.size();
+  const Eigen::Index n = factors[0].rows();
+  SchurResiduals r;
+  for (std::size_t i = 0; i < k; ++i) {
+    const Eigen::MatrixXd back = s.z[(i + 1) % k] * s.t[i] * s.z[i].transpose();
+    r.reconstruction = std::max(r.reconstruction, (back - factors[i]).norm() / factors[i].norm());
+    r.orthogonality = std::max(
+        r.orthogonality, (s.z[i].transpose() * s.z[i] - Eigen::MatrixXd::Identity(n, n)).norm());
+  }
+  return r;
+}
+
+/// The structure SLICOT promises: T_k upper triangular for k < K−1, T_{K−1} quasi-upper-
+/// triangular (zero below the subdiagonal, no two consecutive subdiagonal entries), every entry
+/// below exactly 0. Each 2×2 block holds a complex pair, diagonal order = log_values order.
+void ExpectSchurStructure(const PeriodicSchurForm& s) {
+  const int k = static_cast<int>(s.t.size());
+  const int n = static_cast<int>(s.t[0].rows());
+  ASSERT_EQ(s.quasi_triangular, k - 1);
+  ASSERT_EQ(s.log_values.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < k; ++i) {
+    const int first_zero = i == k - 1 ? 2 : 1;
+    for (int c = 0; c < n; ++c)
+      for (int r = c + first_zero; r < n; ++r)
+        EXPECT_EQ(s.t[i](r, c), 0.0) << "T_" << i << "(" << r << ", " << c << ")";
+  }
+  const Eigen::MatrixXd& quasi = s.t[k - 1];
+  for (int p = 0; p + 1 < n; ++p) {
+    const bool block = quasi(p + 1, p) != 0.0;
+    const bool pair =
+        s.log_values[p].imag() != 0 && s.log_values[p] == std::conj(s.log_values[p + 1]);
+    if (block) {
+      EXPECT_TRUE(pair) << "2x2 block at " << p << " but log values " << s.log_values[p] << ", "
+                        << s.log_values[p + 1];
+      EXPECT_GT(s.log_values[p].imag(), 0) << "the pair lists +arg first";
+      if (p + 2 < n) {
+        EXPECT_EQ(quasi(p + 2, p + 1), 0.0) << "two consecutive subdiagonal entries";
+      }
+      ++p;
+    }
+  }
+}
+
+class PeriodicSchurFormRandomTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(PeriodicSchurFormRandomTest, ReconstructsTheFactorsWithOrthogonalZ) {
+  // Random 6×6 factors (complex pairs likely). References: (a) the factors themselves and the
+  // definition Z_{k+1} T_k Z_kᵀ = Φ_k, ZᵀZ = I; (b) SLICOT's structure; (c) the eigenvalue-only
+  // route PeriodicSchurLogEigenvalues (JOB = 'E', log ρ from ALPHA, BETA and SCAL), a different
+  // computation from this one's sums of logs of the Schur form's diagonal.
+  const int k = GetParam();
+  Uniform random(2024 + k);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < k; ++i) factors.push_back(random.Matrix(6));
+  const PeriodicSchurForm s = PeriodicSchurDecomposition(factors);
+  ASSERT_TRUE(s.ok) << s.message;
+  ASSERT_EQ(s.t.size(), static_cast<std::size_t>(k));
+  ASSERT_EQ(s.z.size(), static_cast<std::size_t>(k));
+  const SchurResiduals r = MeasureSchurForm(factors, s);
+  EXPECT_LT(r.reconstruction, 100 * kEps) << "K = " << k;
+  EXPECT_LT(r.orthogonality, 100 * kEps) << "K = " << k;
+  ExpectSchurStructure(s);
+
+  const LogEigenvalues eig = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(eig.ok) << eig.message;
+  ExpectLogEigenvaluesNear(s.log_values, eig.log_values, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicSchurFormRandomTest,
+                         ::testing::Values(1, 2, 5, 12));
+
+TEST(PeriodicSchurFormTest, PlusMinusThousandWhereTheFormedProductOverflows) {
+  // Φ_k = Q_{k+1} diag(e^{1000/K}, e^{−1000/K}) Q_kᵀ with random orthogonal Q_k (Q_K = Q_0):
+  // the product is Q_0 diag(e^{1000}, e^{−1000}) Q_0ᵀ in closed form, log ρ = ±1000 exactly.
+  // e^{1000} is beyond the double range: the formed product holds inf. K = 200 keeps each
+  // factor's range e^{±5}, as in an integrated system: forming Φ_k in double perturbs its small
+  // component by about eps e^{10} relative (measured: −1000 to 8e-12 absolute). With K = 20
+  // (e^{±50}) that rounding, eps · e^{50}, is larger than e^{−50} itself and the factors no
+  // longer hold the small multiplier (both routes then report −inf): a limit of the data.
+  const int k = 200;
+  const StiffProduct p = MakeStiffProduct(Eigen::Vector2d(1000.0, -1000.0), k, 1.0, 11);
+  EXPECT_FALSE(FormProduct(p.factors).allFinite());
+  const PeriodicSchurForm s = PeriodicSchurDecomposition(p.factors);
+  ASSERT_TRUE(s.ok) << s.message;
+  ExpectSchurStructure(s);
+  const SchurResiduals r = MeasureSchurForm(p.factors, s);
+  EXPECT_LT(r.reconstruction, 100 * kEps);
+  EXPECT_LT(r.orthogonality, 100 * kEps);
+  ASSERT_EQ(s.log_values.size(), 2u);
+  // Schur order (not sorted): whichever comes first, the two are +1000 and −1000, real.
+  const Complex high = s.log_values[0].real() > 0 ? s.log_values[0] : s.log_values[1];
+  const Complex low = s.log_values[0].real() > 0 ? s.log_values[1] : s.log_values[0];
+  EXPECT_LE(std::abs(high - 1000.0), 1e-12 * 1000.0) << high;
+  EXPECT_LE(std::abs(low + 1000.0), 1e-12 * 1000.0) << low;
+}
+
+TEST(PeriodicSchurFormTest, ComplexPairAndSignsInClosedForm) {
+  // Φ_i = Q_{i+1} blockdiag(e^{−600/K} R(θ_i), e^{800/K}, −e^{−900/K}) Q_iᵀ, K = 201 (odd):
+  // log ρ = −600 ± j wrap(Σθ_i), 800, −900 + jπ in closed form; e^{800} overflows and e^{−900}
+  // underflows in the formed product. The pair must come out as a 2×2 block of T_{K−1}. K = 201
+  // keeps each factor's range at e^{8.5} (see the test above for why it matters).
+  const int k = 201;
+  Uniform random(5151);
+  std::vector<Eigen::MatrixXd> q, factors;
+  for (int i = 0; i < k; ++i) q.push_back(random.Orthogonal(4));
+  double theta = 0;
+  for (int i = 0; i < k; ++i) {
+    const double th = 0.2 + 0.001 * i;
+    theta += th;
+    Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+    block.topLeftCorner<2, 2>() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th);
+    block.topLeftCorner<2, 2>() *= std::exp(-600.0 / k);
+    block(2, 2) = std::exp(800.0 / k);
+    block(3, 3) = -std::exp(-900.0 / k);
+    factors.push_back(q[(i + 1) % k] * block * q[i].transpose());
+  }
+  const double wrapped = std::remainder(theta, 2 * std::numbers::pi);
+  const std::vector<Complex> expected = {
+      {-600.0, wrapped}, {-600.0, -wrapped}, {800.0, 0.0}, {-900.0, std::numbers::pi}};
+  const PeriodicSchurForm s = PeriodicSchurDecomposition(factors);
+  ASSERT_TRUE(s.ok) << s.message;
+  ExpectSchurStructure(s);
+  const SchurResiduals r = MeasureSchurForm(factors, s);
+  EXPECT_LT(r.reconstruction, 100 * kEps);
+  EXPECT_LT(r.orthogonality, 100 * kEps);
+  ExpectLogEigenvaluesNear(s.log_values, expected, 1e-12);
+  int blocks = 0;
+  for (int p = 0; p + 1 < 4; ++p) blocks += s.t[k - 1](p + 1, p) != 0.0;
+  EXPECT_EQ(blocks, 1);
+}
+
+TEST(PeriodicSchurFormTest, ZeroEmptyAndInvalidInput) {
+  // diag(2, 0) · diag(3, 5): log ρ = log 6 and −inf (closed form), already in Schur form.
+  const PeriodicSchurForm zero = PeriodicSchurDecomposition(
+      {Eigen::Vector2d(3, 5).asDiagonal(), Eigen::Vector2d(2, 0).asDiagonal()});
+  ASSERT_TRUE(zero.ok) << zero.message;
+  ASSERT_EQ(zero.log_values.size(), 2u);
+  const Complex finite =
+      std::isfinite(zero.log_values[0].real()) ? zero.log_values[0] : zero.log_values[1];
+  const Complex infinite =
+      std::isfinite(zero.log_values[0].real()) ? zero.log_values[1] : zero.log_values[0];
+  EXPECT_NEAR(std::abs(finite - std::log(6.0)), 0, 1e-15);
+  EXPECT_EQ(infinite.real(), -std::numeric_limits<double>::infinity());
+
+  const PeriodicSchurForm empty = PeriodicSchurDecomposition({Eigen::MatrixXd(0, 0)});
+  EXPECT_TRUE(empty.ok);
+  EXPECT_TRUE(empty.log_values.empty());
+  EXPECT_EQ(empty.t.size(), 1u);
+  EXPECT_FALSE(PeriodicSchurDecomposition({}).ok);
+  Eigen::MatrixXd bad = Eigen::MatrixXd::Identity(3, 3);
+  bad(0, 1) = std::numeric_limits<double>::infinity();
+  const PeriodicSchurForm inf = PeriodicSchurDecomposition({bad});
+  EXPECT_FALSE(inf.ok);
+  EXPECT_NE(inf.message.find("non-finite"), std::string::npos) << inf.message;
+  EXPECT_FALSE(
+      PeriodicSchurDecomposition({Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Ones(2, 3)})
+          .ok);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -16,9 +16,36 @@ struct LogEigenvalues {
   std::string message;
 };
 
-/// Eigenvalues of factors[K-1] ⋯ factors[0] (all n×n) by periodic Schur (SLICOT MB03BD),
-/// as logarithms. Sorted by log|ρ| descending.
+/// Eigenvalues of factors[K-1] ⋯ factors[0] (all n×n) by periodic Schur (SLICOT MB03BD, JOB =
+/// 'E': eigenvalues only, no Schur vectors), as logarithms. Sorted by log|ρ| descending.
 LogEigenvalues PeriodicSchurLogEigenvalues(const std::vector<Eigen::MatrixXd>& factors);
+
+/// The real periodic Schur decomposition of the product Φ = factors[K-1] ⋯ factors[0] (all
+/// n×n), by the same SLICOT computation as PeriodicSchurLogEigenvalues (MB03VD, MB03VY, MB03BD
+/// with JOB = 'S', COMPQ = 'U'; backward stable, O(K n³), the product is never formed):
+///
+///   Z_{k+1}ᵀ Φ_k Z_k = T_k,   k = 0 … K-1,   Z_K = Z_0,
+///
+/// so Z_0ᵀ Φ Z_0 = T_{K-1} ⋯ T_0. SLICOT's convention, in this time order: T_{K-1} (the last
+/// factor, leftmost in the product; SLICOT's Hessenberg factor H = 1) is quasi-upper-triangular
+/// (a 2×2 diagonal block for each complex pair, in the same rows and columns in every T_k), every
+/// other T_k is upper triangular. The entries below that structure are exactly zero. A 2×2 block
+/// is SLICOT's JOB = 'S' form, not the standardised one (its 2×2 products are not made diagonal).
+struct PeriodicSchurForm {
+  std::vector<Eigen::MatrixXd> z;  ///< Z_0 … Z_{K-1}, orthogonal n×n
+  std::vector<Eigen::MatrixXd> t;  ///< T_0 … T_{K-1}, n×n; T_{K-1} quasi-upper-triangular
+  /// The index of the quasi-triangular factor: always K-1 (the others are upper triangular).
+  int quasi_triangular = 0;
+  /// log ρ in the order of the Schur form's diagonal (not sorted): for a 1×1 position l,
+  /// Σ_k log T_k(l,l) (sums of logs, so nothing overflows; a zero entry gives −inf); for a 2×2
+  /// block, the conjugate pair with the positive arg first, log|ρ| = ½ Σ_k log|det B_k| and arg
+  /// from the block's product normalised as it is formed. arg in (−π, π].
+  std::vector<std::complex<double>> log_values;
+  bool ok = false;
+  /// Why ok is false (bad factors, or SLICOT's INFO); when ok, empty or SLICOT's warning.
+  std::string message;
+};
+PeriodicSchurForm PeriodicSchurDecomposition(const std::vector<Eigen::MatrixXd>& factors);
 
 /// The same from the formed product with a plain eigen-solver (single shot), for comparison:
 /// inaccurate for every |ρ| below about eps · max|ρ|.
