@@ -181,3 +181,34 @@ TEST(ModelError, ClusteredAzimuthsAreRefused) {
 
 }  // namespace
 }  // namespace ltp
+
+namespace ltp {
+namespace {
+
+// The term is at least the distance to the other model's *exact* exponents: each distance plus
+// the other analysis's own estimate for that exponent (the other models run at a looser
+// tolerance than the analysed one). Exponents by hand: distances 0.01 and 0.002, own estimates
+// 1e-3 and 4e-3.
+TEST(ModelError, TermCarriesTheOtherAnalysisOwnEstimate) {
+  auto mode = [](std::complex<double> lambda, std::optional<double> estimate) {
+    FloquetMode m;
+    m.exponent = lambda;
+    m.error_estimate = estimate;
+    return m;
+  };
+  FloquetResult r, other;
+  r.ok = other.ok = true;
+  r.states = other.states = 2;
+  r.period = other.period = 2 * std::numbers::pi;  // Ωp = 1
+  r.modes = {mode({-0.1, 0.3}, 1e-9), mode({-0.5, 0}, 1e-9)};
+  r.max_real_exponent = -0.1;
+  r.error_estimate = 1e-9;
+  other.modes = {mode({-0.11, 0.3}, 1e-3), mode({-0.502, 0}, 4e-3)};
+  IncludeModelError(std::vector<FloquetResult>{other}, r);
+  EXPECT_NEAR(*r.modes[0].error_estimate, 1e-9 + 0.01 + 1e-3, 1e-15);
+  EXPECT_NEAR(*r.modes[1].error_estimate, 1e-9 + 0.002 + 4e-3, 1e-15);
+  EXPECT_NEAR(*r.model_error, 0.011, 1e-15);
+}
+
+}  // namespace
+}  // namespace ltp
