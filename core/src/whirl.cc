@@ -37,4 +37,22 @@ double ForwardWhirlShare(const std::vector<std::array<int, 2>>& pairs,
   return forward / total;
 }
 
+Orbit OrbitOf(std::complex<double> X, std::complex<double> Y, double frequency, int spin) {
+  const std::complex<double> j(0, 1);
+  Orbit o;
+  if (frequency == 0) return o;
+  const std::complex<double> a = 0.5 * (X + j * Y), b = 0.5 * std::conj(X - j * Y);
+  const bool a_forward = frequency * spin > 0;  // a turns at +ω
+  o.forward = std::abs(a_forward ? a : b);
+  o.backward = std::abs(a_forward ? b : a);
+  o.semi_major = std::abs(a) + std::abs(b);
+  o.semi_minor = std::abs(std::abs(a) - std::abs(b));
+  double tilt = 0.5 * (std::arg(a) + std::arg(b));
+  const double pi = std::acos(-1.0);
+  while (tilt > pi / 2) tilt -= pi;
+  while (tilt <= -pi / 2) tilt += pi;
+  o.tilt = tilt;
+  return o;
+}
+
 }  // namespace ltp

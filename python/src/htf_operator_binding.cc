@@ -7,6 +7,7 @@
 #include "binding.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/harmonic_transfer_function.h"
+#include "ltp/htf/response_orbit.h"
 
 namespace ltp::python {
 
@@ -17,6 +18,31 @@ struct PyHtf {
   System system;
   std::shared_ptr<const HarmonicTransferFunction> htf;
 };
+
+// ResponseOrbits as a dict of numpy arrays, one entry per order.
+py::dict OrbitsDict(const std::vector<ResponseOrbit>& orbits) {
+  std::vector<double> frequency, forward, backward, major, minor, tilt;
+  std::vector<Complex> x, y;
+  py::array_t<std::int64_t> order(static_cast<py::ssize_t>(orbits.size()));
+  for (size_t k = 0; k < orbits.size(); ++k) {
+    const ResponseOrbit& o = orbits[k];
+    order.mutable_at(static_cast<py::ssize_t>(k)) = o.order;
+    frequency.push_back(o.frequency);
+    x.push_back(o.x);
+    y.push_back(o.y);
+    forward.push_back(o.orbit.forward);
+    backward.push_back(o.orbit.backward);
+    major.push_back(o.orbit.semi_major);
+    minor.push_back(o.orbit.semi_minor);
+    tilt.push_back(o.orbit.tilt);
+  }
+  return py::dict(py::arg("order") = order, py::arg("frequency") = RealArray(frequency),
+                  py::arg("x") = ComplexArray(x), py::arg("y") = ComplexArray(y),
+                  py::arg("forward") = RealArray(forward),
+                  py::arg("backward") = RealArray(backward),
+                  py::arg("semi_major") = RealArray(major),
+                  py::arg("semi_minor") = RealArray(minor), py::arg("tilt") = RealArray(tilt));
+}
 
 OperatorRoute RouteFrom(const std::string& name) {
   const auto route = ParseOperatorRoute(name);
@@ -127,6 +153,7 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
     h = ltp.HarmonicTransferFunction(sys)
     h.partial(-0.1 + 1j, orders=(-2, 2))      # H_z(s), shape (5, outputs, inputs)
     h.section(1j, harmonics=3)                # the operator's section −3…3
+    h.orbits(0.7, [1, -1j], x="x", y="y")     # an unbalance orbit, order by order
     h.hinf().value, h.h2().value)doc")
       .def(py::init([](const System& system, double rel_tol, int hill_harmonics, int probe_orders,
                        int threads) {
@@ -146,6 +173,28 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
           "H_z(s) for z in orders ('ZMIN:ZMAX', an int or a pair) at the complex frequency s "
           "(s = jω on the frequency axis): complex array (orders, outputs, inputs). route: "
           "modal or hill.")
+      .def(
+          "orbits",
+          [](const PyHtf& h, Real omega, const std::vector<Complex>& input, const py::object& x,
+             const py::object& y, const py::object& orders, const std::string& route) {
+            const SystemLabels& labels = h.system.system.labels();
+            const int outputs = h.system.system.outputs();
+            const int xi = ChannelFrom(x, labels.outputs, outputs, "x");
+            const int yi = ChannelFrom(y, labels.outputs, outputs, "y");
+            const auto [z0, z1] = OrdersFrom(orders);
+            const Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(
+                input.data(), static_cast<Eigen::Index>(input.size()));
+            return OrbitsDict(
+                ResponseOrbits(*h.htf, omega.value, u, xi, yi, z0, z1, RouteFrom(route)));
+          },
+          py::arg("omega"), py::arg("input"), py::kw_only(), py::arg("x") = 0, py::arg("y") = 1,
+          py::arg("orders") = py::make_tuple(-2, 2), py::arg("route") = "modal",
+          "The orbit of outputs (x, y) (names or indices) under the input Re(input e^{jωt}), one "
+          "complex weight per input (an unbalance on (fx, fy): [1, -1j], i.e. fx = cos ωt, "
+          "fy = sin ωt), order by order at ω + zΩp: dict of numpy arrays order (int64), "
+          "frequency (rad/s), x, y (complex phasors), forward, backward (radii of the circles "
+          "turning with / against the rotor), semi_major, semi_minor, tilt (rad, from x towards "
+          "y). One analysis serves every order and input.")
       .def(
           "section",
           [](const PyHtf& h, Complex s, int harmonics, const std::string& route) {

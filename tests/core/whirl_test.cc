@@ -45,5 +45,36 @@ TEST(ForwardWhirlShare, CirclesAndEllipses) {
   EXPECT_THROW(ForwardWhirlShare({{0, 7}}, Shape(1, 0), 2.0, 1.0, 1), InputError);
 }
 
+TEST(OrbitOf, CirclesEllipsesAndLines) {
+  const cd j(0, 1);
+  const double pi = std::acos(-1.0);
+  // x = cos ωt, y = sin ωt: a forward circle of radius 1.
+  Orbit o = OrbitOf(1, -j, 2.0, 1);
+  EXPECT_NEAR(o.forward, 1, 1e-15);
+  EXPECT_NEAR(o.backward, 0, 1e-15);
+  EXPECT_NEAR(o.semi_minor, 1, 1e-15);
+  // x = 3 cos ωt, y = sin ωt: axes 3 (along x) and 1; circles 2 forward, 1 backward.
+  o = OrbitOf(3, -j, 2.0, 1);
+  EXPECT_NEAR(o.semi_major, 3, 1e-15);
+  EXPECT_NEAR(o.semi_minor, 1, 1e-15);
+  EXPECT_NEAR(o.forward, 2, 1e-15);
+  EXPECT_NEAR(o.backward, 1, 1e-15);
+  EXPECT_NEAR(o.tilt, 0, 1e-15);
+  // x = y = cos(ωt + 0.4): a line at 45°, length √2 each way; forward and backward equal.
+  o = OrbitOf(std::polar(1.0, 0.4), std::polar(1.0, 0.4), -1.5, 1);
+  EXPECT_NEAR(o.semi_major, std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(o.semi_minor, 0, 1e-15);
+  EXPECT_NEAR(o.tilt, pi / 4, 1e-15);
+  EXPECT_NEAR(o.forward, o.backward, 1e-15);
+  // x = sin ωt, y = 2 cos ωt (X = −j, Y = 2): axes 2 (along y) and 1, turning from y to x
+  // (backward), radii 1.5 and 0.5.
+  o = OrbitOf(-j, 2, 1.0, 1);
+  EXPECT_NEAR(o.semi_major, 2, 1e-15);
+  EXPECT_NEAR(o.semi_minor, 1, 1e-15);
+  EXPECT_NEAR(std::abs(o.tilt), pi / 2, 1e-15);
+  EXPECT_NEAR(o.backward, 1.5, 1e-15);
+  EXPECT_NEAR(o.forward, 0.5, 1e-15);
+}
+
 }  // namespace
 }  // namespace ltp

@@ -46,3 +46,26 @@ def test_whirl_pairs_by_name_on_a_numpy_model():
     assert np.allclose(got, rotating_frame_shares(1.0, k1, k2, c, omega), atol=1e-9, rtol=0)
     with pytest.raises(ValueError, match="not a state name"):
         s.with_labels(whirl_pairs=[("x", "z")])
+
+
+def test_unbalance_orbits_equal_the_rotating_frame():
+    """ltp.HarmonicTransferFunction.orbits against the rotating frame: the force (cos ωt, sin ωt)
+    is Re((1, −j) e^{jνt}) there (ν = ω − Ω), the response Re(Q e^{jνt}); back in the fixed
+    frame order 0 is a circle |Q1 + jQ2|/2 turning at ω, order −1 one of |Q1 − jQ2|/2 at 2Ω − ω."""
+    m, k1, k2, c, Omega, omega = 1.0, 1.0, 1.5, 0.05, 0.5, 1.3
+    J = np.array([[0.0, -1.0], [1.0, 0.0]])
+    K = np.diag([k1, k2]) - m * Omega**2 * np.eye(2) + c * Omega * J
+    D = 2 * m * Omega * J + c * np.eye(2)
+    nu = omega - Omega
+    Q = np.linalg.solve(K + 1j * nu * D - nu**2 * m * np.eye(2), [1, -1j])
+    h = ltp.HarmonicTransferFunction(ltp.scene("jeffcott", c=c, Omega=Omega, k1=k1, k2=k2, m=m))
+    o = h.orbits(omega, [1, -1j], x="x", y="y", orders=(-2, 2))
+    assert o["order"].dtype == np.int64 and list(o["order"]) == [-2, -1, 0, 1, 2]
+    assert o["x"].dtype == np.complex128 and o["forward"].dtype == np.float64
+    assert np.allclose(o["frequency"], omega + 2 * Omega * o["order"], rtol=0, atol=1e-15)
+    forward = [0, 0, abs(Q[0] + 1j * Q[1]) / 2, 0, 0]
+    backward = [0, abs(Q[0] - 1j * Q[1]) / 2, 0, 0, 0]  # 2Ω − ω < 0: turning against the rotor
+    assert np.allclose(o["forward"], forward, rtol=0, atol=1e-8)
+    assert np.allclose(o["backward"], backward, rtol=0, atol=1e-8)
+    with pytest.raises(ltp.InputError):
+        h.orbits(omega, [1, -1j, 0])

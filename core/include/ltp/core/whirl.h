@@ -11,6 +11,7 @@
 // the harmonics, not the circles.
 #include <Eigen/Dense>
 #include <array>
+#include <complex>
 #include <vector>
 
 namespace ltp {
@@ -24,5 +25,17 @@ namespace ltp {
 double ForwardWhirlShare(const std::vector<std::array<int, 2>>& pairs,
                          const std::vector<Eigen::VectorXcd>& harmonics, double frequency,
                          double omega_p, int spin);
+
+/// The ellipse one harmonic traces in a plane: x(t) = Re(X e^{jωt}), y(t) = Re(Y e^{jωt}) is
+/// x + jy = A e^{jωt} + B e^{−jωt}, A = (X + jY)/2, B = conj(X − jY)/2 — two circles, one turning
+/// each way. The major axis (|A| + |B|) lies where they align, at (arg A + arg B)/2.
+struct Orbit {
+  double forward = 0, backward = 0;       ///< radii of the circles turning with / against the rotor
+  double semi_major = 0, semi_minor = 0;  ///< forward + backward, |forward − backward|
+  double tilt = 0;  ///< the major axis from x towards y (rad), (−π/2, π/2]
+};
+/// `frequency` = ω (rad/s; its sign says which circle turns which way), `spin` as above. A
+/// harmonic that stands still (ω = 0) is the point (Re X, Re Y): both radii 0.
+Orbit OrbitOf(std::complex<double> X, std::complex<double> Y, double frequency, int spin);
 
 }  // namespace ltp
