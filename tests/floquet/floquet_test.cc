@@ -186,16 +186,7 @@ TEST(Jeffcott, UnstableBandAndRealPartsFromRotatingFrame) {
 // speeds.
 std::vector<double> RotatingFrameForwardShares(double m, double k1, double k2, double c,
                                                double omega) {
-  Eigen::Matrix2d J;
-  J << 0, -1, 1, 0;
-  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
-  Eigen::Matrix2d K;
-  K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
-  K += c * omega * J;
-  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
-  A.block(0, 2, 2, 2) = I;
-  A.block(2, 0, 2, 2) = -K / m;
-  A.block(2, 2, 2, 2) = -(2 * m * omega * J + c * I) / m;
+  const Eigen::Matrix4d A = test::JeffcottRotating(m, k1, k2, c, omega).A;
   const Eigen::EigenSolver<Eigen::Matrix4d> eig(A);
   std::vector<double> shares;
   for (int k = 0; k < 4; ++k) {

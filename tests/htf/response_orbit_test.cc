@@ -13,6 +13,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/models/scene.h"
+#include "support/systems.h"
 
 namespace ltp {
 namespace {
@@ -21,14 +22,9 @@ using cd = std::complex<double>;
 
 Eigen::Vector2cd RotatingFrameResponse(double m, double k1, double k2, double c, double Omega,
                                        double nu) {
-  Eigen::Matrix2d J;
-  J << 0, -1, 1, 0;
-  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
-  Eigen::Matrix2d K;
-  K << k1 - m * Omega * Omega, 0, 0, k2 - m * Omega * Omega;
-  K += c * Omega * J;
-  const Eigen::Matrix2d D = 2 * m * Omega * J + c * I;
-  const Eigen::Matrix2cd G = K.cast<cd>() + cd(0, nu) * D.cast<cd>() - nu * nu * m * I.cast<cd>();
+  const test::JeffcottRotatingFrame f = test::JeffcottRotating(m, k1, k2, c, Omega);
+  const Eigen::Matrix2cd G =
+      f.K.cast<cd>() + cd(0, nu) * f.D.cast<cd>() - nu * nu * m * Eigen::Matrix2cd::Identity();
   return G.inverse() * Eigen::Vector2cd(1, cd(0, -1));
 }
 

@@ -107,22 +107,31 @@ inline PeriodicSystem Jeffcott(double m, double k1, double k2, double c, double 
 
 /// The same rotor in the rotating frame is time-invariant: q = R(Ωt)ᵀ p gives
 /// M_r = mI, D_r = 2mΩJ + cI, K_r = diag(k1,k2) − mΩ²I + cΩJ, J = [[0,−1],[1,0]].
+struct JeffcottRotatingFrame {
+  Eigen::Matrix2d D, K;
+  Eigen::Matrix4d A;  ///< [[0, I], [−K/m, −D/m]]
+};
+inline JeffcottRotatingFrame JeffcottRotating(double m, double k1, double k2, double c,
+                                              double omega) {
+  Eigen::Matrix2d J;
+  J << 0, -1, 1, 0;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  JeffcottRotatingFrame f;
+  f.D = 2 * m * omega * J + c * I;
+  f.K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
+  f.K += c * omega * J;
+  f.A.setZero();
+  f.A.block(0, 2, 2, 2) = I;
+  f.A.block(2, 0, 2, 2) = -f.K / m;
+  f.A.block(2, 2, 2, 2) = -f.D / m;
+  return f;
+}
+
 /// Its eigenvalues s relate to the fixed-frame Floquet exponents by λ = s ± jΩ, so
 /// Re λ = Re s exactly: an independent closed-form reference for the real parts.
 inline Eigen::VectorXcd JeffcottRotatingEigenvalues(double m, double k1, double k2, double c,
                                                     double omega) {
-  Eigen::Matrix2d J;
-  J << 0, -1, 1, 0;
-  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
-  const Eigen::Matrix2d D = 2 * m * omega * J + c * I;
-  Eigen::Matrix2d K;
-  K << k1 - m * omega * omega, 0, 0, k2 - m * omega * omega;
-  K += c * omega * J;
-  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
-  A.block(0, 2, 2, 2) = I;
-  A.block(2, 0, 2, 2) = -K / m;
-  A.block(2, 2, 2, 2) = -D / m;
-  return A.eigenvalues();
+  return JeffcottRotating(m, k1, k2, c, omega).A.eigenvalues();
 }
 
 /// Uncoupled Fourier-form blocks of one period: the exponents are the union of the blocks'.
