@@ -8,6 +8,10 @@
 
 namespace ltp {
 
+int RotorSpin(const PeriodicSystem& system) {
+  return system.rotor_speed().value_or(1.0) < 0 ? -1 : 1;
+}
+
 double ForwardWhirlShare(const std::vector<std::array<int, 2>>& pairs,
                          const std::vector<Eigen::VectorXcd>& harmonics, double frequency,
                          double omega_p, int spin) {

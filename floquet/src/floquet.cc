@@ -469,9 +469,10 @@ std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
   fine.fixed_times.erase(std::unique(fine.fixed_times.begin(), fine.fixed_times.end(),
                                      [T](double a, double b) { return b - a <= 1e-12 * T; }),
                          fine.fixed_times.end());
-  fine.integrator.rel_tol = std::max(options.integrator.rel_tol * 1e-2, 1e-15);
-  fine.integrator.abs_tol = options.integrator.abs_tol * 1e-2;
-  if (fine.integrator.steps_per_period > 0) fine.integrator.steps_per_period *= 2;
+  IntegratorOptions run = fine.integrator;  // the run's integrator (resolved), its tolerances
+  run.rel_tol = options.integrator.rel_tol;
+  run.abs_tol = options.integrator.abs_tol;
+  fine.integrator = RefinedIntegratorOptions(run);
   internal::SegmentGrid reference = internal::ComputeSegmentGrid(system, fine);
   r.rhs_evals += reference.rhs_evals;
   LogEigenvalues ref_eig = reference.ok

@@ -329,7 +329,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
 void AssignWhirl(const PeriodicSystem& system, FloquetResult& r) {
   const auto& pairs = system.labels().whirl_pairs;
   if (pairs.empty() || r.mode_fourier.empty()) return;
-  const int spin = system.rotor_speed().value_or(1.0) < 0 ? -1 : 1;
+  const int spin = RotorSpin(system);
   const double omega_p = 2 * std::numbers::pi / r.period;
   std::vector<Eigen::VectorXcd> harmonics(r.mode_fourier.size());
   for (size_t k = 0; k < r.modes.size(); ++k) {

@@ -19,7 +19,7 @@ std::vector<ResponseOrbit> ResponseOrbits(const HarmonicTransferFunction& htf, d
     if (o < 0 || o >= system.outputs())
       throw InputError("ResponseOrbits: output index " + std::to_string(o) + " is out of range");
   if (!std::isfinite(omega)) throw InputError("ResponseOrbits: the frequency must be finite");
-  const int spin = system.rotor_speed().value_or(1.0) < 0 ? -1 : 1;
+  const int spin = RotorSpin(system);
   const double omega_p = 2 * std::numbers::pi / system.period();
   const PartialFrfs H = htf.Partial(std::complex<double>(0, omega), min_order, max_order, route);
   std::vector<ResponseOrbit> out;

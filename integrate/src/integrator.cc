@@ -169,6 +169,14 @@ std::vector<IntegratorType> AllIntegrators() {
   return all;
 }
 
+IntegratorOptions RefinedIntegratorOptions(const IntegratorOptions& options) {
+  IntegratorOptions fine = options;
+  fine.rel_tol = std::max(options.rel_tol * 1e-2, 1e-15);
+  fine.abs_tol = options.abs_tol * 1e-2;
+  if (fine.steps_per_period > 0) fine.steps_per_period *= 2;
+  return fine;
+}
+
 void IntegratorOptions::Validate() const {
   if (!ParseIntegratorType(ToString(type)))
     ThrowOption("type", static_cast<int>(type), "one of the IntegratorType values");

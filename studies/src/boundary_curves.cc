@@ -175,10 +175,7 @@ std::optional<CharacteristicValue> Tracer::FromBlocks(const Vec& u, bool checked
     if (!blocks) return std::nullopt;
     const Eigen::MatrixXd& coarse = blocks->Factor(target.sigma, even);
     if (!checked) return BlockDeterminant(coarse);
-    IntegratorOptions fine = integrator_;
-    fine.rel_tol = std::max(integrator_.rel_tol * 1e-2, 1e-15);
-    fine.abs_tol = integrator_.abs_tol * 1e-2;
-    const auto refined = ComputeHalfPeriodBlocks(system, fine);
+    const auto refined = ComputeHalfPeriodBlocks(system, RefinedIntegratorOptions(integrator_));
     if (!refined) return std::nullopt;
     const double largest =
         std::max({refined->P.cwiseAbs().maxCoeff(), refined->Q.cwiseAbs().maxCoeff(),

@@ -551,5 +551,25 @@ TEST(TransitionLimits, UserExceptionsFromAPropagate) {
   }
 }
 
+// The reference run of an error estimate: a hundredth of both tolerances, rel_tol not below
+// 1e-15, and a fixed step count doubled so that a fixed-step method takes other steps (the same
+// steps would agree to round-off and estimate nothing).
+TEST(RefinedIntegratorOptions, TighterTolerancesAndOtherSteps) {
+  IntegratorOptions o;
+  o.type = IntegratorType::kMagnus4;
+  o.rel_tol = 1e-10;
+  o.abs_tol = 1e-13;
+  o.steps_per_period = 300;
+  const IntegratorOptions fine = RefinedIntegratorOptions(o);
+  EXPECT_EQ(fine.type, IntegratorType::kMagnus4);
+  EXPECT_DOUBLE_EQ(fine.rel_tol, 1e-12);
+  EXPECT_DOUBLE_EQ(fine.abs_tol, 1e-15);
+  EXPECT_EQ(fine.steps_per_period, 600);
+  o.rel_tol = 1e-14;
+  o.steps_per_period = 0;  // automatic stays automatic
+  EXPECT_DOUBLE_EQ(RefinedIntegratorOptions(o).rel_tol, 1e-15);
+  EXPECT_EQ(RefinedIntegratorOptions(o).steps_per_period, 0);
+}
+
 }  // namespace
 }  // namespace ltp

@@ -14,7 +14,13 @@
 #include <complex>
 #include <vector>
 
+#include "ltp/core/periodic_system.h"
+
 namespace ltp {
+
+/// The sense the rotor turns in the whirl planes: −1 when its rotor speed is negative, else +1
+/// (also without one).
+int RotorSpin(const PeriodicSystem& system);
 
 /// The share (0..1) of a mode's squared circle radii, over every pair and harmonic, that turns
 /// with the rotor. `harmonics[v + H]` = ξ_v (one entry per state), v = −H..H; `frequency` = Im λ

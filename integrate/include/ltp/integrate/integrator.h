@@ -67,6 +67,11 @@ struct IntegratorOptions {
   void Validate() const;
 };
 
+/// The options of the reference run an error estimate compares with: a hundredth of both
+/// tolerances (rel_tol at least 1e-15) and twice a fixed step count, so that a fixed-step method
+/// takes other steps too.
+IntegratorOptions RefinedIntegratorOptions(const IntegratorOptions& options);
+
 struct TransitionResult {
   Eigen::MatrixXd phi;  ///< Φ(t1, t0), n×n
   bool ok = false;      ///< false: integrator failed; `message` says why
