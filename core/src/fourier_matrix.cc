@@ -1,5 +1,6 @@
 #include "ltp/core/fourier_matrix.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <string>
@@ -69,6 +70,17 @@ Eigen::MatrixXd FourierMatrix::Evaluate(double t, double omega_p) const {
   Eigen::MatrixXd out(rows_, cols_);
   Evaluate(t, omega_p, out);
   return out;
+}
+
+Eigen::MatrixXcd FourierMatrix::BlockToeplitz(int harmonics) const {
+  if (harmonics < 0) throw InputError("FourierMatrix::BlockToeplitz: harmonics must be >= 0");
+  const int N = harmonics, h = std::min(max_harmonic_, 2 * N);
+  Eigen::MatrixXcd t = Eigen::MatrixXcd::Zero((2 * N + 1) * rows_, (2 * N + 1) * cols_);
+  if (coeffs_.empty()) return t;
+  for (int v = -N; v <= N; ++v)
+    for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u)
+      t.block((v + N) * rows_, (u + N) * cols_, rows_, cols_) = coeffs_[v - u + max_harmonic_];
+  return t;
 }
 
 double FourierMatrix::HermitianDefect() const {

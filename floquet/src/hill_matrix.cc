@@ -109,14 +109,10 @@ Eigen::MatrixXcd HillMatrix(const FourierMatrix& A, double omega, int harmonics,
   if (harmonics < 0) throw InputError("HillMatrix: harmonics must be >= 0");
   const int n = A.rows(), N = harmonics;
   hill_internal::CheckDenseMemory(n, N, max_bytes);
-  const int h = std::min(A.max_harmonic(), 2 * N);
-  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero((2 * N + 1) * n, (2 * N + 1) * n);
-  for (int v = -N; v <= N; ++v) {
-    for (int u = std::max(-N, v - h); u <= std::min(N, v + h); ++u)
-      H.block((v + N) * n, (u + N) * n, n, n) = A[v - u];
+  Eigen::MatrixXcd H = A.BlockToeplitz(N);
+  for (int v = -N; v <= N; ++v)
     H.block((v + N) * n, (v + N) * n, n, n).diagonal().array() -=
         std::complex<double>(0, v * omega);
-  }
   return H;
 }
 

@@ -27,7 +27,8 @@ Analyses (each runs without the GIL)
     simulate(system, freq, ...) -> SimulationResult  `ltp simulate`: time data of a test (a rig's
                                               speed offset, ramp, tacho, input and output noise)
     identify(time, input, output, ...) -> IdentifyResult  `ltp identify` on numpy arrays
-    HarmonicTransferFunction(system)      the HTF as an operator at any complex s; .hinf(), .h2()
+    HarmonicTransferFunction(system)      the HTF as an operator at any complex s; .hinf(), .h2(),
+                                          .zeros() (transmission zeros of a square system)
 
 Errors: ltp.InputError (also a ValueError) for bad input, ltp.SceneError for scene files,
 ltp.ResourceError when a computation would not fit; all derive from ltp.Error.
@@ -57,6 +58,7 @@ from ._ltp import (  # noqa: F401
     SimulationResult,
     SnapshotResult,
     System,
+    TransmissionZeros,
     __version__,
     campbell,
     chart,
@@ -80,6 +82,7 @@ __all__ = [
     "HillResult", "HinfNorm", "HillStudy", "IdentifyResult",
     "InputError", "MbcResult", "PeriodicSchurForm", "PfrfResult",
     "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
+    "TransmissionZeros",
     "campbell", "chart", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "periodic_schur", "pfrf", "scene",
     "scenes", "simulate", "snapshot",
 ]

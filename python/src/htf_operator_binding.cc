@@ -2,6 +2,7 @@
 // H2 norms, each by two routes (ltp/htf/harmonic_transfer_function.h).
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "binding.h"
@@ -135,10 +136,125 @@ routes ran (or the modal one alone, said in diagnostics) and agree.)doc")
       });
 }
 
+// One array per field of the zeros, in the result's order.
+py::array_t<Complex> ComplexZeroColumn(const TransmissionZeros& r,
+                                       Complex (*field)(const TransmissionZero&)) {
+  std::vector<Complex> v;
+  for (const TransmissionZero& z : r.zeros) v.push_back(field(z));
+  return ComplexArray(v);
+}
+
+py::array_t<double> RealZeroColumn(const TransmissionZeros& r,
+                                   double (*field)(const TransmissionZero&)) {
+  std::vector<double> v;
+  for (const TransmissionZero& z : r.zeros) v.push_back(field(z));
+  return RealArray(v);
+}
+
+void BindZerosResult(py::module_& m) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  py::class_<TransmissionZeros>(m, "TransmissionZeros", R"doc(
+The transmission zeros of a square periodic system (HarmonicTransferFunction.zeros): the s for
+which u = e^{st} p_u(t), x = e^{st} p_x(t) (p_u, p_x T-periodic) give y ≡ 0, defined modulo jΩp.
+Found as the generalized eigenvalues of the truncated harmonic pencil (route 'hill', converged
+from N to N + Δ) and, where it applies, checked by the Floquet exponents of the zero dynamics
+(check_route 'zero-dynamics' for D(t) invertible, 'relative-degree-one' for D = 0 with C(t)B(t)
+invertible). The arrays are parallel, one entry per zero.)doc")
+      .def_readonly("ok", &TransmissionZeros::ok,
+                    "the truncation converged and the check route (where it applies) agrees")
+      .def_readonly("failure", &TransmissionZeros::failure, "why ok is False ('' when ok)")
+      .def_property_readonly(
+          "zeros",
+          [](const TransmissionZeros& r) {
+            return ComplexZeroColumn(r, [](const TransmissionZero& z) { return z.value; });
+          },
+          "the zeros in the strip −Ωp/2 < Im z <= Ωp/2 (complex128, 1/s), by `route`")
+      .def_property_readonly(
+          "centred",
+          [](const TransmissionZeros& r) {
+            return ComplexZeroColumn(r, [](const TransmissionZero& z) { return z.centred; });
+          },
+          "the member z + jmΩp of each zero whose direction is centred on harmonic 0 "
+          "(complex128)")
+      .def_property_readonly(
+          "hill_values",
+          [](const TransmissionZeros& r) {
+            return ComplexZeroColumn(r, [](const TransmissionZero& z) { return z.hill_value; });
+          },
+          "the Hill route's value of each zero at N + Δ, centred branch (complex128)")
+      .def_property_readonly(
+          "error_estimates",
+          [](const TransmissionZeros& r) {
+            return RealZeroColumn(r, [](const TransmissionZero& z) { return z.error_estimate; });
+          },
+          "absolute estimate per zero (1/s): the N vs N + Δ change, or the disagreement with the "
+          "check route beyond its own estimate")
+      .def_property_readonly(
+          "truncation_changes",
+          [](const TransmissionZeros& r) {
+            return RealZeroColumn(r, [](const TransmissionZero& z) { return z.truncation_change; });
+          },
+          "|z(N) − z(N + Δ)| modulo jΩp per zero (1/s; inf: no partner at N)")
+      .def_property_readonly(
+          "centroids",
+          [](const TransmissionZeros& r) {
+            return RealZeroColumn(r, [](const TransmissionZero& z) { return z.centroid; });
+          },
+          "energy centroid of each zero's direction over the harmonics (|c| <= 1/2)")
+      .def_property_readonly(
+          "check_values",
+          [nan](const TransmissionZeros& r) {
+            std::vector<Complex> v;
+            for (const TransmissionZero& z : r.zeros) v.push_back(z.check_value.value_or(nan));
+            return ComplexArray(v);
+          },
+          "the check route's matching exponent per zero (complex128; NaN without a check)")
+      .def_property_readonly(
+          "check_error_estimates",
+          [](const TransmissionZeros& r) {
+            std::vector<double> v;
+            for (const TransmissionZero& z : r.zeros) v.push_back(OrNaN(z.check_error_estimate));
+            return RealArray(v);
+          },
+          "the check route's own estimate per zero (1/s; NaN without a check)")
+      .def_property_readonly(
+          "route", [](const TransmissionZeros& r) { return std::string(ToString(r.route)); },
+          "whose values are reported: 'hill', or the check route's name when its estimates "
+          "are the smaller ones")
+      .def_property_readonly(
+          "check_route",
+          [](const TransmissionZeros& r) -> std::optional<std::string> {
+            if (!r.check_route) return std::nullopt;
+            return std::string(ToString(*r.check_route));
+          },
+          "'zero-dynamics', 'relative-degree-one', or None when no check route applies")
+      .def_property_readonly(
+          "check_zeros", [](const TransmissionZeros& r) { return ComplexArray(r.check_zeros); },
+          "every zero the check route found, on its own branches (complex128)")
+      .def_readonly("harmonics", &TransmissionZeros::harmonics, "the truncation N")
+      .def_readonly("delta", &TransmissionZeros::delta, "Δ (the values are at N + Δ)")
+      .def_readonly("pencil_size", &TransmissionZeros::pencil_size, "rows of the pencil at N + Δ")
+      .def_readonly("infinite_eigenvalues", &TransmissionZeros::infinite_eigenvalues,
+                    "generalized eigenvalues at N + Δ taken as infinite")
+      .def_readonly("uncentred_eigenvalues", &TransmissionZeros::uncentred_eigenvalues,
+                    "finite eigenvalues at N + Δ not centred on harmonic 0")
+      .def_readonly("elapsed_s", &TransmissionZeros::elapsed_s, "wall time of the call (s)")
+      .def_readonly("diagnostics", &TransmissionZeros::diagnostics, "notes, one sentence each")
+      .def("__repr__", [](const TransmissionZeros& r) {
+        std::ostringstream s;
+        s << "<TransmissionZeros " << r.zeros.size() << " zeros, N = " << r.harmonics
+          << (r.check_route ? ", checked by " + std::string(ToString(*r.check_route)) : "")
+          << (r.ok ? "" : " (not ok: " + r.failure + ")") << ">";
+        return s.str();
+      });
+}
+
 }  // namespace
 
 void BindHtfOperator(py::module_& m) {
   BindNormResults(m);
+  BindZerosResult(m);
+  const ZerosOptions zeros;
   const NormOptions norm;
   py::class_<PyHtf>(m, "HarmonicTransferFunction", R"doc(
 The harmonic transfer function of a periodic system as an operator: for an input
@@ -226,6 +342,31 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
           py::kw_only(), py::arg("rel_tol") = norm.rel_tol,
           py::arg("max_lyapunov_states") = norm.max_lyapunov_states,
           "‖G‖₂ by two routes (an H2Norm); runs without the GIL.")
+      .def(
+          "zeros",
+          [](const PyHtf& h, double tol, int harmonics, int max_harmonics, int max_pencil_size,
+             bool check, double rel_tol) {
+            ZerosOptions o;
+            o.tol = tol;
+            o.harmonics = harmonics;
+            o.max_harmonics = max_harmonics;
+            o.max_pencil_size = max_pencil_size;
+            o.check = check;
+            o.floquet.integrator.rel_tol = rel_tol;
+            o.floquet.threads = AnalysisThreads(h.system, 0);
+            o.Validate();
+            return WithoutGil(h.system, [&] { return h.htf->Zeros(o); });
+          },
+          py::kw_only(), py::arg("tol") = zeros.tol, py::arg("harmonics") = zeros.harmonics,
+          py::arg("max_harmonics") = zeros.max_harmonics,
+          py::arg("max_pencil_size") = zeros.max_pencil_size, py::arg("check") = zeros.check,
+          py::arg("rel_tol") = zeros.floquet.integrator.rel_tol,
+          "The transmission zeros of a square system (a TransmissionZeros): the generalized "
+          "eigenvalues of the harmonic pencil at truncation N (0 = automatic, grown until every "
+          "zero moves by less than tol · max(|z|, Ωp) from N to N + Δ), checked by the zero "
+          "dynamics' Floquet exponents (at integrator tolerance rel_tol) where D(t) is "
+          "invertible or D = 0 with C(t)B(t) invertible. Raises InputError for a system with "
+          "more inputs than outputs or the reverse. Runs without the GIL.")
       .def_property_readonly(
           "exponents",
           [](const PyHtf& h) {

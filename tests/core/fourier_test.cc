@@ -69,6 +69,35 @@ TEST(FourierMatrix, HermitianDefectMeasuresAsymmetry) {
   EXPECT_EQ(f.HarmonicNorms().size(), 3u);
 }
 
+TEST(FourierMatrix, BlockToeplitzMultipliesHarmonics) {
+  // M(t) (2×3, harmonics ±1) times x(t) (3 rows, harmonics ±1) has harmonics ±2: at N = 2 the
+  // harmonic matrix maps x's coefficients to those of M x exactly. Reference: the product
+  // evaluated pointwise, at times where e^{jwΩt} of w = −2..2 are independent.
+  const double period = 1.3, omega = 2 * kPi / period;
+  FourierMatrix m(2, 3, 1), x(3, 1, 1);
+  m.SetHarmonic(0, (Eigen::MatrixXcd(2, 3) << 1, -2, 0.5, 0.3, 0, 4).finished());
+  m.SetHarmonic(
+      1, (Eigen::MatrixXcd(2, 3) << cd(0.2, 1), 0, cd(0, -0.7), 1.5, cd(-1, 1), 0.1).finished());
+  x.SetHarmonic(0, (Eigen::MatrixXcd(3, 1) << 0.4, -1, 2).finished());
+  x.SetHarmonic(1, (Eigen::MatrixXcd(3, 1) << cd(1, 0.5), cd(0, 2), -0.3).finished());
+  const int N = 2;
+  const Eigen::MatrixXcd t = m.BlockToeplitz(N);
+  ASSERT_EQ(t.rows(), 5 * 2);
+  ASSERT_EQ(t.cols(), 5 * 3);
+  Eigen::VectorXcd xs = Eigen::VectorXcd::Zero(5 * 3);
+  for (int u = -1; u <= 1; ++u) xs.segment((u + N) * 3, 3) = x[u];
+  const Eigen::VectorXcd ys = t * xs;
+  for (double time : {0.0, 0.11, 0.5, 0.77, 1.01}) {
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(2);
+    for (int v = -N; v <= N; ++v)
+      y += ys.segment((v + N) * 2, 2) * std::polar(1.0, v * omega * time);
+    const Eigen::VectorXd expected = m.Evaluate(time, omega) * x.Evaluate(time, omega);
+    EXPECT_LT((y - expected.cast<cd>()).norm(), 1e-14) << time;
+  }
+  EXPECT_EQ(FourierMatrix().BlockToeplitz(3).size(), 0);
+  EXPECT_THROW(m.BlockToeplitz(-1), InputError);
+}
+
 // ---------------------------------------------------------------------------------------------
 // FitFourier
 

@@ -19,34 +19,10 @@ namespace {
 using cd = std::complex<double>;
 constexpr double kPi = std::numbers::pi;
 
-// The oscillator z'' + c z' + k z = u, y = z, in coordinates x = R(Ωt) z rotating at Ω:
-// A(t) = R A0 Rᵀ + ΩJ, B(t) = R B0, C(t) = C0 Rᵀ (J = [[0, −1], [1, 0]]). The matrices are
-// periodic with harmonics up to 2, but y depends on u exactly as through
-// G(s) = 1/(s² + cs + k): H_0 = G, every other H_z = 0,
-// ‖G‖∞ = 1/(c √(k − c²/4)) (c² < 2k), ‖G‖₂² = 1/(2ck).
-PeriodicSystem RotatingOscillator(double k, double c, double rate) {
-  const Eigen::Matrix2d a0 = (Eigen::Matrix2d() << 0, 1, -k, -c).finished();
-  const Eigen::Vector2d b0(0, 1);
-  const Eigen::RowVector2d c0(1, 0);
-  auto rotation = [rate](double t) {
-    const double th = rate * t;
-    return (Eigen::Matrix2d() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th))
-        .finished();
-  };
-  PeriodicSystem::Functions f;
-  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
-    const Eigen::Matrix2d r = rotation(t);
-    out = r * a0 * r.transpose() + rate * (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
-  };
-  f.B = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = rotation(t) * b0; };
-  f.C = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = c0 * rotation(t).transpose(); };
-  return PeriodicSystem::FromFunctions(2 * kPi / rate, 2, 1, 1, f);
-}
-
 constexpr double kK = 2, kC = 0.1, kRate = 0.7;
 
 TEST(HarmonicTransferFunction, RotatingOscillatorIsItsTransferFunctionOffTheAxis) {
-  const HarmonicTransferFunction htf(RotatingOscillator(kK, kC, kRate));
+  const HarmonicTransferFunction htf(test::RotatingOscillator(kK, kC, kRate));
   for (const cd s : {cd(0, 1.3), cd(-0.4, 0.9), cd(0.3, -2.1)}) {
     const cd g = 1.0 / (s * s + kC * s + kK);
     for (const OperatorRoute route : {OperatorRoute::kModal, OperatorRoute::kHill}) {
@@ -75,7 +51,7 @@ TEST(HarmonicTransferFunction, SectionBlocksAreShiftedPartialFunctions) {
 }
 
 TEST(HarmonicTransferFunction, NormsOfTheRotatingOscillatorMatchTheClosedForms) {
-  const HarmonicTransferFunction htf(RotatingOscillator(kK, kC, kRate));
+  const HarmonicTransferFunction htf(test::RotatingOscillator(kK, kC, kRate));
   const double hinf = 1 / (kC * std::sqrt(kK - kC * kC / 4)), h2 = 1 / std::sqrt(2 * kC * kK);
   const HinfNorm inf = htf.Hinf();
   ASSERT_TRUE(inf.ok) << inf.failure;

@@ -156,3 +156,65 @@ def test_h2_of_an_output_far_from_the_input_matches_scipy():
     assert abs(r.value - reference) < 1e-9 * reference
     assert abs(r.value - reference) <= r.error_estimate + 1e-12 * reference
     assert any("Lyapunov route resolves" in d for d in r.diagnostics)
+
+
+def test_zeros_of_an_lti_system_match_scipy():
+    # A 3-state SISO system with D = 0.25 as a periodic one (T = 1.3): its zeros are those of
+    # C(sI − A)⁻¹B + D. Reference: scipy.signal.ss2zpk. Constant coefficients put every zero's
+    # direction on harmonic 0, so `centred` is the zero itself and `zeros` its strip
+    # representative.
+    scipy_signal = pytest.importorskip("scipy.signal")
+    a = np.array([[-0.3, 2.0, 0.1], [-2.0, -0.3, 0.4], [0.2, 0.0, -0.9]])
+    b = np.array([[1.0], [0.5], [-1.0]])
+    c = np.array([[0.7, -1.2, 0.4]])
+    d = np.array([[0.25]])
+    period = 1.3
+    h = ltp.HarmonicTransferFunction(ltp.System.from_fourier(period, a, B=b, C=c, D=d))
+    r = h.zeros()
+    assert r.ok, r.failure
+    assert r.route == "hill" and r.check_route == "zero-dynamics"
+    for name in ("zeros", "centred", "hill_values", "check_values"):
+        assert getattr(r, name).dtype == np.complex128 and getattr(r, name).shape == (3,)
+    for name in ("error_estimates", "truncation_changes", "centroids", "check_error_estimates"):
+        assert getattr(r, name).dtype == np.float64 and getattr(r, name).shape == (3,)
+    reference = scipy_signal.ss2zpk(a, b, c, d)[0]
+    omega = 2 * math.pi / period
+    for z in reference:
+        assert np.min(np.abs(r.centred - z)) < 1e-10
+        strip = complex(z.real, math.remainder(z.imag, omega))
+        assert np.min(np.abs(r.zeros - strip)) < 1e-10
+    assert np.all(np.abs(r.zeros.imag) <= omega / 2)
+    assert np.all(r.error_estimates < 1e-8)
+    assert np.max(np.abs(r.check_values - r.centred)) < 1e-8
+
+
+def test_zeros_of_a_mimo_lti_system_match_the_rosenbrock_pencil():
+    # 2 inputs, 2 outputs, 4 states, D = 0 with CB invertible: two zeros, checked by the
+    # relative-degree-one route. Reference: the finite generalized eigenvalues of the Rosenbrock
+    # pencil [[A, B], [C, 0]] − s diag(I, 0) by scipy.linalg.eig.
+    scipy_linalg = pytest.importorskip("scipy.linalg")
+    a = np.array([[-0.5, 1.0, 0.0, 0.2], [-1.0, -0.5, 0.3, 0.0], [0.0, 0.1, -1.2, 2.0],
+                  [0.4, 0.0, -2.0, -1.2]])
+    b = np.array([[1.0, 0.0], [0.0, 0.5], [0.3, 1.0], [0.0, -0.4]])
+    c = np.array([[1.0, 0.2, 0.0, 0.5], [0.0, 1.0, -0.3, 0.0]])
+    pencil = np.block([[a, b], [c, np.zeros((2, 2))]])
+    e = np.diag([1.0, 1.0, 1.0, 1.0, 0.0, 0.0])
+    values = scipy_linalg.eig(pencil, e, right=False)
+    reference = values[np.isfinite(values) & (np.abs(values) < 1e8)]
+    assert len(reference) == 2
+    h = ltp.HarmonicTransferFunction(ltp.System.from_fourier(2.0, a, B=b, C=c))
+    r = h.zeros()
+    assert r.ok, r.failure
+    assert r.check_route == "relative-degree-one" and r.zeros.shape == (2,)
+    for z in reference:
+        assert np.min(np.abs(r.centred - z)) < 1e-9
+
+
+def test_zeros_refuse_non_square_systems():
+    a = np.array([[0.0, 1.0], [-2.0, -0.1]])
+    system = ltp.System.from_fourier(2.0, a, B=np.array([[0.0], [1.0]]), C=np.eye(2))
+    h = ltp.HarmonicTransferFunction(system)
+    with pytest.raises(ltp.InputError, match="square"):
+        h.zeros()
+    with pytest.raises(ltp.InputError):
+        ltp.HarmonicTransferFunction(ltp.scene("mathieu", a=A, q=Q, c=C)).zeros(tol=0)

@@ -215,4 +215,29 @@ inline PeriodicSystem Reducible4(const Eigen::Vector4d& lambda) {
   return PeriodicSystem::FromFunctions(2 * kPi, 4, 0, 0, f);
 }
 
+/// The oscillator z'' + c z' + k z = u, y = c0 [z; z'] + d u, in coordinates x = R(Ωt) z rotating
+/// at Ω = rate: A(t) = R A0 Rᵀ + ΩJ, B(t) = R B0, C(t) = c0 Rᵀ, D = d (J = [[0, −1], [1, 0]]).
+/// The matrices are periodic with harmonics up to 2, but y depends on u exactly as through the
+/// LTI G(s) = (c0₀ + c0₁ s)/(s² + cs + k) + d: H_0 = G, every other H_z = 0. With the default
+/// output y = z, ‖G‖∞ = 1/(c √(k − c²/4)) (c² < 2k) and ‖G‖₂² = 1/(2ck).
+inline PeriodicSystem RotatingOscillator(double k, double c, double rate,
+                                         const Eigen::RowVector2d& c0 = {1, 0}, double d = 0) {
+  const Eigen::Matrix2d a0 = (Eigen::Matrix2d() << 0, 1, -k, -c).finished();
+  const Eigen::Vector2d b0(0, 1);
+  auto rotation = [rate](double t) {
+    const double th = rate * t;
+    return (Eigen::Matrix2d() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th))
+        .finished();
+  };
+  PeriodicSystem::Functions f;
+  f.A = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) {
+    const Eigen::Matrix2d r = rotation(t);
+    out = r * a0 * r.transpose() + rate * (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
+  };
+  f.B = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = rotation(t) * b0; };
+  f.C = [=](double t, Eigen::Ref<Eigen::MatrixXd> out) { out = c0 * rotation(t).transpose(); };
+  if (d != 0) f.D = [d](double, Eigen::Ref<Eigen::MatrixXd> out) { out.setConstant(d); };
+  return PeriodicSystem::FromFunctions(2 * kPi / rate, 2, 1, 1, f);
+}
+
 }  // namespace ltp::test

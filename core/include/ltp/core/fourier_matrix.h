@@ -35,6 +35,11 @@ class FourierMatrix {
   double HermitianDefect() const;
   /// Frobenius norm of each harmonic, index w + max_harmonic.
   std::vector<double> HarmonicNorms() const;
+  /// The harmonic (block-Toeplitz) matrix at truncation N: block (v, u) = M_{v−u} for
+  /// v, u = −N..N, size (2N+1)·rows × (2N+1)·cols. It maps the harmonics −N..N of a signal
+  /// x(t) to those of M(t) x(t), dropping what lands beyond ±N. Hill's matrix is this of A minus
+  /// blockdiag(j v Ωp I).
+  Eigen::MatrixXcd BlockToeplitz(int harmonics) const;
 
  private:
   int rows_ = 0, cols_ = 0, max_harmonic_ = 0;

@@ -13,6 +13,9 @@
 //   H2  the Floquet modal form integrated in closed form over frequency (Parseval), and the
 //       periodic solution of the Lyapunov differential equation P' = AP + PAᵀ + BBᵀ,
 //       ‖G‖₂² = (1/T) ∫_0^T tr(C P Cᵀ) dt.
+// The transmission zeros of a square system (Zeros) are the generalized eigenvalues of the
+// truncated harmonic Rosenbrock pencil, checked where it applies by the Floquet exponents of the
+// zero dynamics (docs/htf-operator.md, "Zeros").
 #include <Eigen/Dense>
 #include <complex>
 #include <optional>
@@ -103,6 +106,90 @@ struct H2Norm {
   std::vector<std::string> diagnostics;
 };
 
+/// The routes to the transmission zeros (docs/htf-operator.md, "Zeros").
+enum class ZeroRoute {
+  /// Generalized eigenvalues of the truncated harmonic pencil [[𝒜 − 𝒩 − sI, 𝓑], [𝒞, 𝒟]]
+  /// (LAPACK zggev), converged from N to N + Δ.
+  kHill,
+  /// Floquet exponents of the zero dynamics x' = (A − B D⁻¹ C) x: D(t) invertible for all t.
+  kZeroDynamics,
+  /// Floquet exponents of x' = (A − B (CB)⁻¹ (CA + C')) x without the m exponents 0 of the
+  /// directions that C(t) sees: D = 0 with C(t)B(t) invertible for all t (relative degree one).
+  kRelativeDegreeOne,
+};
+std::string_view ToString(ZeroRoute route);
+
+struct ZerosOptions {
+  /// Truncation N of the pencil (harmonics −N…N); 0 = automatic: from the Hill route's N (or
+  /// the largest that fits max_pencil_size), grown to N + Δ until every zero moves by less than
+  /// tol · max(|z|, Ωp) from N to N + Δ.
+  int harmonics = 0;
+  /// Δ of the truncation check (0 = automatic: max(2, N/2)).
+  int delta = 0;
+  double tol = 1e-9;
+  int max_harmonics = 64;
+  /// Largest pencil solved (rows (2N+1)(n+m), dense complex QZ with eigenvectors: ~ rows³,
+  /// 693 and 1029 rows took 22 s together on a shared 2-core machine; the limit ~1 min).
+  int max_pencil_size = 1500;
+  /// Run the check route where it applies (D(t) invertible, or D = 0 with C(t)B(t) invertible).
+  bool check = true;
+  /// The check route's Floquet analysis of the zero dynamics (mode shapes are computed).
+  FloquetOptions floquet;
+  /// @throws InputError naming the field and the violated constraint.
+  void Validate() const;
+};
+
+/// One transmission zero: u = e^{zt} p_u(t), x = e^{zt} p_x(t) with p_u, p_x T-periodic give
+/// y ≡ 0. Defined modulo jΩp.
+struct TransmissionZero {
+  /// In the fundamental strip −Ωp/2 < Im z <= Ωp/2: the reported route's value (the Hill
+  /// route's at N + Δ, or the check route's when its estimates are the smaller ones).
+  std::complex<double> value;
+  /// The member z + jmΩp of the family whose direction (p_x, p_u) has its Fourier energy
+  /// centred on harmonic 0 (an LTI system in rotating coordinates: its G(s)'s own zero).
+  std::complex<double> centred;
+  /// The Hill route's value at N + Δ (on the centred branch), whichever route is reported.
+  std::complex<double> hill_value;
+  /// Energy centroid of that direction over the harmonics (|centroid| <= 1/2 but for ties).
+  double centroid = 0;
+  /// |z(N) − z(N + Δ)| modulo jΩp (1/s), times (N + Δ)/Δ when a coefficient's Fourier series
+  /// decays algebraically; +inf when the zero has no partner at the other truncation.
+  double truncation_change = 0;
+  /// Absolute (1/s): the reported route's own estimate (truncation_change, or the check route's),
+  /// or the disagreement between the routes beyond the other route's estimate, if larger.
+  double error_estimate = 0;
+  /// The check route's matching exponent (its own branch) and estimate; empty without a check.
+  std::optional<std::complex<double>> check_value;
+  std::optional<double> check_error_estimate;
+};
+
+struct TransmissionZeros {
+  /// Where a check route applies: both routes found the same number of zeros and each agrees
+  /// within the estimates (the Hill route's truncation need not have met tol then: the check
+  /// route's values are reported). Without one: the Hill route's truncation converged.
+  bool ok = false;
+  std::string failure;  ///< why ok is false; empty when ok
+  /// By |Im centred| (positive first), then Re descending. Empty: no finite zeros.
+  std::vector<TransmissionZero> zeros;
+  /// Whose values are reported: kHill, or the check route when its largest estimate is the
+  /// smaller (as H2Norm reports its better route).
+  ZeroRoute route = ZeroRoute::kHill;
+  /// Empty when no check route applies or it was switched off (diagnostics say why).
+  std::optional<ZeroRoute> check_route;
+  /// Every zero the check route found (its exponents, its branches), in its order.
+  std::vector<std::complex<double>> check_zeros;
+  int harmonics = 0;    ///< N
+  int delta = 0;        ///< Δ (the reported values are at N + Δ)
+  int pencil_size = 0;  ///< rows of the pencil at N + Δ
+  /// Generalized eigenvalues at N + Δ taken as infinite (|s| beyond 1e4 × the pencil's norm).
+  int infinite_eigenvalues = 0;
+  /// Finite eigenvalues at N + Δ not centred on harmonic 0 (other members of the families,
+  /// and eigenvalues of the truncation edge).
+  int uncentred_eigenvalues = 0;
+  double elapsed_s = 0;
+  std::vector<std::string> diagnostics;
+};
+
 /// The harmonic transfer function of one system: set up once (a Floquet decomposition and the
 /// Hill route's truncation), then evaluated anywhere. Evaluation is const and thread-safe.
 class HarmonicTransferFunction {
@@ -121,12 +208,18 @@ class HarmonicTransferFunction {
 
   HinfNorm Hinf(const NormOptions& options = {}) const;
   H2Norm H2(const NormOptions& options = {}) const;
+  /// The transmission zeros of a square system (inputs = outputs), by the Hill route and,
+  /// where it applies, the zero dynamics' Floquet exponents.
+  /// @throws InputError for a non-square system or invalid options.
+  TransmissionZeros Zeros(const ZerosOptions& options = {}) const;
 
   const PeriodicSystem& system() const { return system_; }
   const FloquetResult& floquet() const { return floquet_; }
   /// Empty when the Floquet analysis failed (the modal route then gives NaN).
   const std::optional<ModalModel>& modal() const { return modal_; }
   int hill_harmonics() const { return hill_.harmonics(); }
+  /// The Fourier coefficients of A, B, C, D that the Hill route uses.
+  const SystemFourier& coefficients() const { return hill_.coefficients(); }
   /// The modal model is reliable and the Hill route's truncation converged.
   bool ok() const;
   std::vector<std::string> diagnostics() const;
@@ -149,6 +242,15 @@ PeriodicSystem HamiltonianSystem(const PeriodicSystem& system, double gamma);
 /// The Lyapunov differential equation as a linear system of n² + 2 states [vec P; J; 1]:
 /// P' = AP + PAᵀ + BBᵀ·1, J' = tr(C P Cᵀ).
 PeriodicSystem LyapunovSystem(const PeriodicSystem& system);
+/// The zero dynamics of a system with D(t) invertible: x' = (A − B D⁻¹ C) x.
+PeriodicSystem ZeroDynamicsSystem(const PeriodicSystem& system);
+/// The closed loop u = −(CB)⁻¹(CA + C') x of a system with D = 0 and C(t)B(t) invertible:
+/// x' = (A − B (CB)⁻¹ (CA + C')) x, which keeps C x constant; `c_dot` is C'(t).
+PeriodicSystem RelativeDegreeOneSystem(const PeriodicSystem& system, const FourierMatrix& c_dot);
+/// The truncated harmonic Rosenbrock pencil at N: M = [[𝒜 − 𝒩, 𝓑], [𝒞, 𝒟]] (Hill's matrix and
+/// the block-Toeplitz harmonic matrices of B, C, D), the zeros being where M − sE is singular,
+/// E = diag(I, 0). Rows and columns: the state's harmonics −N…N, then the input's (output's).
+Eigen::MatrixXcd HarmonicPencil(const SystemFourier& coefficients, double omega, int harmonics);
 }  // namespace internal
 
 }  // namespace ltp

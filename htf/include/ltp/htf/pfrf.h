@@ -177,6 +177,8 @@ class HtfSolver {
   int delta() const;
   int coefficient_harmonics() const { return ha_; }  ///< H_A used (after capping)
   double fourier_tail() const { return fourier_tail_; }
+  /// The Fourier coefficients of A, B, C, D (exact for a Fourier-form system, else the fit).
+  const SystemFourier& coefficients() const { return fourier_; }
   /// The automatic truncation reached its target (always true for a fixed N).
   bool truncation_converged() const { return truncation_converged_; }
   const std::vector<std::string>& diagnostics() const { return diagnostics_; }
