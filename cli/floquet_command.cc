@@ -491,7 +491,7 @@ Command AddFloquetCommand(CLI::App& app) {
   AddSceneArgs(cmd, args.scene);
   cmd->add_option("--integrator", args.integrator,
                   "auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm | "
-                  "taylor (Fourier-form A(t) only) "
+                  "taylor | magnus-filon (these two: Fourier-form A(t) only) "
                   "(auto: the work-precision study's cheapest for the system; the output says "
                   "which and why)")
       ->capture_default_str();

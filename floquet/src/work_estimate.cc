@@ -82,6 +82,16 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
     w.fewest_evaluations = nodes * integrator.steps_per_period;
     w.evaluations = 3.5 * w.fewest_evaluations;
     s << integrator.steps_per_period << " fixed steps per period, " << nodes << " evaluations each";
+  } else if (integrator.type == IntegratorType::kMagnusFilon) {
+    // Products, not evaluations: the exponential and one product per step (no A(t) is
+    // evaluated); the doubling loop, the refined run and the mode samples about 3.5 passes.
+    const double steps = integrator.steps_per_period > 0
+                             ? integrator.steps_per_period
+                             : MagnusFilonSteps(traits, integrator.rel_tol);
+    w.fewest_evaluations = kMagnusFilonProductsPerStep * std::max(8.0, traits.decay_spread / 2);
+    w.evaluations = 3.5 * kMagnusFilonProductsPerStep * steps;
+    s << "about " << std::lround(steps) << " Magnus–Filon steps per period, "
+      << kMagnusFilonProductsPerStep << " products each";
   } else if (integrator.type == IntegratorType::kExpm) {
     w.fewest_evaluations = pieces;
     w.evaluations = kProductsPerPiece * pieces;

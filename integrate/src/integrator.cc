@@ -24,7 +24,7 @@ struct NamedType {
   std::string_view name;
 };
 
-constexpr std::array<NamedType, 10> kNames = {{
+constexpr std::array<NamedType, 11> kNames = {{
     {IntegratorType::kDopri5, "dopri5"},
     {IntegratorType::kRkf78, "rkf78"},
     {IntegratorType::kBulirschStoer, "bs"},
@@ -34,6 +34,7 @@ constexpr std::array<NamedType, 10> kNames = {{
     {IntegratorType::kMagnus6, "magnus6"},
     {IntegratorType::kExpm, "expm"},
     {IntegratorType::kTaylor, "taylor"},
+    {IntegratorType::kMagnusFilon, "magnus-filon"},
     {IntegratorType::kAuto, "auto"},
 }};
 
@@ -51,7 +52,7 @@ constexpr long kNonFiniteRefinements = 64;
 
 bool IsFixedStep(IntegratorType type) {
   return type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6 ||
-         type == IntegratorType::kExpm;
+         type == IntegratorType::kExpm || type == IntegratorType::kMagnusFilon;
 }
 
 // ||Φ_a − Φ_b|| / ||Φ_a|| (Frobenius), 0 when both vanish (e.g. total underflow).
@@ -62,17 +63,14 @@ double RelativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return scale > 0 ? diff / scale : std::numeric_limits<double>::infinity();
 }
 
-TransitionResult FixedStepTransition(const PeriodicSystem& system,
-                                     const std::vector<double>& points,
-                                     const IntegratorOptions& options) {
+// The fixed steps or the automatic resolution loop of `integrator` (FixedStepIntegrator or
+// MagnusFilonIntegrator) over the restart points.
+template <typename Integrator>
+TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& integrator,
+                                   const std::vector<double>& points,
+                                   const IntegratorOptions& options) {
   TransitionResult result;
-  internal::FixedStepIntegrator integrator(system, options.type);
-  const bool exact = options.type == IntegratorType::kExpm &&
-                     system.form() == PeriodicSystem::Form::kPiecewiseConstant;
-  if (exact) {
-    result.phi = integrator.RunPiecewiseConstant(points);
-    result.ok = true;
-  } else if (options.steps_per_period > 0) {
+  if (options.steps_per_period > 0) {
     result.phi = integrator.Run(points, options.steps_per_period);
     result.steps_per_period = options.steps_per_period;
     result.ok = true;
@@ -136,7 +134,33 @@ TransitionResult FixedStepTransition(const PeriodicSystem& system,
   }
   result.steps = integrator.steps();
   result.rhs_evals = integrator.rhs_evals();
-  if (result.ok && options.type == IntegratorType::kExpm && !exact)
+  return result;
+}
+
+TransitionResult FixedStepTransition(const PeriodicSystem& system,
+                                     const std::vector<double>& points,
+                                     const IntegratorOptions& options) {
+  if (options.type == IntegratorType::kMagnusFilon) {
+    internal::MagnusFilonIntegrator integrator(system);
+    if (!integrator.unsuitable().empty()) {
+      TransitionResult declined;
+      declined.message = "magnus-filon does not apply: " + integrator.unsuitable();
+      return declined;
+    }
+    return ResolveFixedSteps(system, integrator, points, options);
+  }
+  internal::FixedStepIntegrator integrator(system, options.type);
+  if (options.type == IntegratorType::kExpm &&
+      system.form() == PeriodicSystem::Form::kPiecewiseConstant) {
+    TransitionResult result;
+    result.phi = integrator.RunPiecewiseConstant(points);
+    result.ok = true;
+    result.steps = integrator.steps();
+    result.rhs_evals = integrator.rhs_evals();
+    return result;
+  }
+  TransitionResult result = ResolveFixedSteps(system, integrator, points, options);
+  if (result.ok && options.type == IntegratorType::kExpm)
     result.message =
         "expm on a non-piecewise-constant system: exponential midpoint rule, 2nd order";
   return result;
@@ -297,6 +321,7 @@ TransitionResult StateTransition(const PeriodicSystem& system, double t0, double
     case IntegratorType::kMagnus4:
     case IntegratorType::kMagnus6:
     case IntegratorType::kExpm:
+    case IntegratorType::kMagnusFilon:
       result = FixedStepTransition(system, points, options);
       break;
     case IntegratorType::kTaylor:

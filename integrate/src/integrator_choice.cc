@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "integrator_internal.h"
 #include "ltp/core/error.h"
 #include "ltp/integrate/detail/state_balancing.h"
 
@@ -33,6 +34,9 @@ constexpr int kTaylorMaxStates = 2;
 // blade-coordinate twin (periodic part 0.2 % of ρ) it took 3.4× Bulirsch–Stoer's time (5.7 s, 1.7
 // s) (docs/model-sizes.md).
 constexpr double kFastOscillation = 200;
+// MeasureSystemTraits weighs Magnus–Filon at the loosest tolerance anyone asks for, so that the
+// eigenbasis is known whenever a choice at a tighter one could want it.
+constexpr double kLoosestFilonTolerance = 1e-3;
 
 // Is A(t) the same at five interior points of every piece between breakpoints? The points sit
 // at fractions k·φ mod 1 of the piece (φ the golden ratio): no two differ by a simple fraction,
@@ -101,6 +105,7 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
   }
   t.hill_stiffness = re / system.omega();
   t.oscillation = T * radius;
+  if (eig.size() > 0) t.decay_spread = T * (eig.real().maxCoeff() - eig.real().minCoeff());
   const Eigen::VectorXd scale = internal::BalancingScales(internal::MagnitudeOfA(system));
   if (const FourierMatrix* fa = system.fourier_A()) {
     double sum = 0;
@@ -112,6 +117,11 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
       t.variation =
           std::max(t.variation, T * internal::BalancedNorm(Eigen::MatrixXd(x - mean), scale));
   }
+  // The eigenbasis costs an eigen-decomposition with vectors: looked for only when it could
+  // decide (assumed present, would Magnus–Filon pay?).
+  t.mean_eigenbasis = true;
+  t.mean_eigenbasis = MagnusFilonPays(t, kLoosestFilonTolerance) &&
+                      internal::MagnusFilonIntegrator(system).unsuitable().empty();
   return t;
 }
 
@@ -134,6 +144,13 @@ IntegratorChoice ChooseIntegrator(const SystemTraits& t, double rel_tol) {
                MessageNumber(t.variation, 3) +
                ", balanced): Magnus 6 steps are exact for the mean, so a few suffice where an "
                "explicit method resolves every oscillation (docs/model-sizes.md)";
+  } else if (MagnusFilonPays(t, rel_tol)) {
+    c.type = IntegratorType::kMagnusFilon;
+    c.reason =
+        "fast modes (T·ρ(Ā) = " + MessageNumber(t.oscillation, 3) +
+        ") around a small periodic part (T·max‖A(t) − Ā‖ = " + MessageNumber(t.variation, 3) +
+        ", balanced): Magnus–Filon steps follow the periodic part only, where an "
+        "explicit method resolves every oscillation (docs/magnus-filon.md)";
   } else if (TaylorSeriesPay(t)) {
     c.type = IntegratorType::kTaylor;
     c.reason = "A(t) is a Fourier series of " + std::to_string(t.states) +
@@ -156,6 +173,16 @@ bool MagnusOverTheMeanPays(const SystemTraits& traits, double rel_tol) {
   return traits.oscillation > kFastOscillation && traits.variation <= rel_tol * traits.oscillation;
 }
 
+double MagnusFilonSteps(const SystemTraits& traits, double rel_tol) {
+  return std::max(
+      {8.0, 100 * traits.variation * std::pow(1e-10 / rel_tol, 0.25), traits.decay_spread / 2});
+}
+
+bool MagnusFilonPays(const SystemTraits& traits, double rel_tol) {
+  if (!traits.fourier_form || traits.oscillation <= kFastOscillation) return false;
+  return MagnusFilonSteps(traits, rel_tol) < traits.oscillation / 4 && traits.mean_eigenbasis;
+}
+
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol) {
   return ChooseIntegrator(MeasureSystemTraits(system), rel_tol);
 }
@@ -167,6 +194,10 @@ IntegratorOptions ResolveIntegrator(const PeriodicSystem& system, IntegratorOpti
     throw InputError(
         "integrator 'taylor' needs A(t) as a Fourier series (a Fourier-form scene or system); "
         "this system's A(t) is not one: use bs, rkf78 or auto");
+  if (options.type == IntegratorType::kMagnusFilon && system.fourier_A() == nullptr)
+    throw InputError(
+        "integrator 'magnus-filon' needs A(t) as a Fourier series (a Fourier-form scene or "
+        "system); this system's A(t) is not one: use bs, rkf78 or auto");
   if (options.type != IntegratorType::kAuto) return options;
   const IntegratorChoice c = measured ? ChooseIntegrator(*measured, options.rel_tol)
                                       : ChooseIntegrator(system, options.rel_tol);

@@ -298,6 +298,7 @@ Floquet analysis by the monodromy matrix: `ltp floquet SCENE --json` as a functi
 the same options and defaults.
 
   integrator    auto | dopri5 | rkf78 | bs | cvode | cvode-adams | magnus4 | magnus6 | expm | taylor
+                | magnus-filon (taylor and magnus-filon: Fourier-form A(t) only)
                 (auto: the work-precision study's cheapest for the system; the result's
                 integrator and diagnostics say which and why)
   tol           relative tolerance (the exponents inherit about this error)

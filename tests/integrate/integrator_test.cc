@@ -104,7 +104,7 @@ PeriodicSystem RandomFourier(double period, FourierMatrix* coefficients = nullpt
 // ---------------------------------------------------------------- names and options
 
 TEST(IntegratorNames, RoundTrip) {
-  EXPECT_EQ(AllIntegrators().size(), 9u);
+  EXPECT_EQ(AllIntegrators().size(), 10u);
   for (IntegratorType t : AllIntegrators()) {
     auto parsed = ParseIntegratorType(ToString(t));
     ASSERT_TRUE(parsed.has_value()) << ToString(t);
@@ -117,7 +117,8 @@ TEST(IntegratorNames, RoundTrip) {
   EXPECT_FALSE(ParseIntegratorType("").has_value());
   // The list the CLI's and Python's "unknown integrator" messages quote.
   EXPECT_EQ(IntegratorNames(),
-            "auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor");
+            "auto, dopri5, rkf78, bs, cvode, cvode-adams, magnus4, magnus6, expm, taylor, "
+            "magnus-filon");
 }
 
 void ExpectInvalid(const IntegratorOptions& o, const std::string& field) {
@@ -190,14 +191,14 @@ std::string TestName(const ::testing::TestParamInfo<IntegratorType>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Integrator, IntegratorP, ::testing::ValuesIn(AllIntegrators()), TestName);
 
-// Every integrator that takes A(t) with jumps (Meissner): all but kTaylor, which needs a
-// Fourier series (its own tests: taylor_integrator_test.cc).
+// Every integrator that takes A(t) with jumps (Meissner): all but kTaylor and kMagnusFilon,
+// which need a Fourier series (their own tests: taylor_integrator_test.cc, below).
 class JumpsP : public ::testing::TestWithParam<IntegratorType> {};
 
 std::vector<IntegratorType> IntegratorsForJumps() {
   std::vector<IntegratorType> types;
   for (IntegratorType t : AllIntegrators())
-    if (t != IntegratorType::kTaylor) types.push_back(t);
+    if (t != IntegratorType::kTaylor && t != IntegratorType::kMagnusFilon) types.push_back(t);
   return types;
 }
 
@@ -455,8 +456,13 @@ TEST(TransitionFixedStep, RoundOffPlateauStopsTheDoubling) {
 }
 
 // Observed order log2(err(N)/err(2N)) of a fixed-step Magnus method on the Mathieu system.
-double ObservedOrder(IntegratorType type, int steps) {
-  const PeriodicSystem sys = Mathieu(1.3, 0.6);
+// `fourier`: the same system as a Fourier series (A_{±1} = [[0, 0], [q, 0]] at Ωp = 2).
+double ObservedOrder(IntegratorType type, int steps, bool fourier = false) {
+  FourierMatrix series(2, 2, 1);
+  series.SetHarmonic(0, (Eigen::Matrix2cd() << 0, 1, -1.3, 0).finished());
+  series.SetHarmonic(1, (Eigen::Matrix2cd() << 0, 0, 0.6, 0).finished());
+  const PeriodicSystem sys =
+      fourier ? PeriodicSystem::FromFourier(kPi, std::move(series)) : Mathieu(1.3, 0.6);
   IntegratorOptions ref;
   ref.type = IntegratorType::kRkf78;  // reference: rkf78 at rel_tol 1e-13
   ref.rel_tol = 1e-13;
@@ -482,6 +488,130 @@ TEST(MagnusOrder, Magnus6IsSixthOrder) {
 
 TEST(MagnusOrder, ExpmMidpointIsSecondOrder) {
   EXPECT_NEAR(ObservedOrder(IntegratorType::kExpm, 64), 2, 0.2);
+}
+
+TEST(MagnusOrder, MagnusFilonIsFourthOrder) {
+  // Ω1 + Ω2 exact: local error O(h^5) for a smooth A(t) as for Magnus 4.
+  EXPECT_NEAR(ObservedOrder(IntegratorType::kMagnusFilon, 16, true), 4, 0.5);
+}
+
+// ---------------------------------------------------------------- Magnus–Filon
+
+// Axis-wise damped oscillators x'' + c x' + k_x x = 0, y'' + c y' + k_y y = 0 (z = (x, y, x', y'),
+// velocities scaled)
+// seen from axes turning at Ω: w = R(Ωt) z with R = blockdiag(r, r), r the plane rotation, so
+// A(t) = R A0 Rᵀ + Ω blockdiag(J, J) — harmonics 0 and ±2, the periodic part (k_x − k_y)/2 — and
+// Φ(2π/Ω, 0) = e^{A0 T}, the damped oscillator's closed form per axis. The mean's eigenvalues
+// −c/2 ± jω_d ± jΩ differ by exactly 2jΩ: the second harmonic meets them in resonance.
+struct TurningOscillators {
+  PeriodicSystem system;
+  Eigen::Matrix4d monodromy;
+};
+
+TurningOscillators MakeTurningOscillators(double kx, double ky, double c, double rate) {
+  // Velocities over w0 = √((k_x + k_y)/2) as states: entries of A about w0, not w0², so that
+  // round-off (ε‖A‖T) stays below the tolerances tested, as in the analyses' balanced states.
+  const double w0 = std::sqrt((kx + ky) / 2);
+  Eigen::Matrix4d a0 = Eigen::Matrix4d::Zero();
+  a0.topRightCorner<2, 2>() = w0 * Eigen::Matrix2d::Identity();
+  a0(2, 0) = -kx / w0;
+  a0(3, 1) = -ky / w0;
+  a0(2, 2) = a0(3, 3) = -c;
+  const double period = 2 * kPi / rate;
+  auto a_of = [&](double t) {
+    const double cs = std::cos(rate * t), sn = std::sin(rate * t);
+    Eigen::Matrix4d r = Eigen::Matrix4d::Zero(), j = Eigen::Matrix4d::Zero();
+    for (int b = 0; b < 4; b += 2) {
+      r.block<2, 2>(b, b) << cs, -sn, sn, cs;
+      j.block<2, 2>(b, b) << 0, -rate, rate, 0;
+    }
+    return Eigen::Matrix4d(r * a0 * r.transpose() + j);
+  };
+  // Harmonics 0..2 from 8 samples: exact, as aliases start at harmonic 6.
+  FourierMatrix a(4, 4, 2);
+  for (int w = 0; w <= 2; ++w) {
+    Eigen::MatrixXcd sum = Eigen::MatrixXcd::Zero(4, 4);
+    for (int s = 0; s < 8; ++s)
+      sum += a_of(s * period / 8).cast<std::complex<double>>() *
+             std::polar(1.0 / 8, -w * 2 * kPi * s / 8);
+    if (w == 0) sum = sum.real().cast<std::complex<double>>();
+    a.SetHarmonic(w, sum);
+  }
+  auto axis = [&](double k) {  // e^{A T} of x'' + c x' + k x = 0
+    const double sigma = c / 2, wd = std::sqrt(k - sigma * sigma), cs = std::cos(wd * period),
+                 sn = std::sin(wd * period), e = std::exp(-sigma * period);
+    return Eigen::Matrix2d{{e * (cs + sigma / wd * sn), e * sn / wd},
+                           {-e * k / wd * sn, e * (cs - sigma / wd * sn)}};
+  };
+  Eigen::Matrix4d phi = Eigen::Matrix4d::Zero();
+  const Eigen::Matrix2d px = axis(kx), py = axis(ky);
+  const Eigen::Vector2d unit(1, 1 / w0);  // (x, x') → (x, x'/w0)
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      phi(2 * i, 2 * j) = unit(i) * px(i, j) / unit(j);
+      phi(2 * i + 1, 2 * j + 1) = unit(i) * py(i, j) / unit(j);
+    }
+  return {PeriodicSystem::FromFourier(period, std::move(a)), phi};
+}
+
+TEST(MagnusFilon, FastTurningOscillatorsMatchTheClosedFormInFewSteps) {
+  // 300 rad/s against Ω = 1: 300 oscillations per period; periodic part δk = 0.9 (1e-5 of k).
+  const double k = 300.0 * 300.0, delta = 1e-5;
+  const TurningOscillators t = MakeTurningOscillators(k * (1 + delta), k * (1 - delta), 0.6, 1);
+  const TransitionResult r =
+      StateTransition(t.system, 0, t.system.period(), With(IntegratorType::kMagnusFilon));
+  ASSERT_TRUE(r.ok) << r.message;
+  const double err = RelErr(r.phi, t.monodromy);
+  EXPECT_LT(err, 1e-9);
+  ASSERT_TRUE(r.error_estimate.has_value());
+  EXPECT_LE(err, *r.error_estimate + 1e-12);  // 1e-12: round-off, which doubling cannot see
+  // The steps follow the periodic part, not the 300 oscillations: rkf78 at the same tolerance
+  // does its arithmetic many times over (both counters count n×n products).
+  EXPECT_LE(r.steps_per_period, 512);
+  const TransitionResult explicit_run =
+      StateTransition(t.system, 0, t.system.period(), With(IntegratorType::kRkf78));
+  ASSERT_TRUE(explicit_run.ok);
+  // rkf78's global error over 300 oscillations is above its tolerance (2e-8 measured).
+  EXPECT_LT(RelErr(explicit_run.phi, t.monodromy), 1e-7);
+  EXPECT_LT(10 * r.rhs_evals, explicit_run.rhs_evals)
+      << r.rhs_evals << " products against " << explicit_run.rhs_evals;
+}
+
+TEST(MagnusFilon, StrongVariationStillMeetsTheClosedFormAndAnotherIntegrator) {
+  // Slow modes and a 20 % anisotropy: more steps, the same closed form to the tolerance.
+  const TurningOscillators t = MakeTurningOscillators(4.4, 3.6, 0.05, 1);
+  IntegratorOptions o = With(IntegratorType::kMagnusFilon);
+  o.rel_tol = 1e-11;
+  const TransitionResult r = StateTransition(t.system, 0, t.system.period(), o);
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_LT(RelErr(r.phi, t.monodromy), 1e-10);
+  // Over half a period from t = 0.3 (phases of the harmonics at a step start that is not 0):
+  // rkf78 at 1e-13 as the reference.
+  IntegratorOptions ref = With(IntegratorType::kRkf78);
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-16;
+  const TransitionResult half = StateTransition(t.system, 0.3, 0.3 + t.system.period() / 2, o);
+  const TransitionResult want = StateTransition(t.system, 0.3, 0.3 + t.system.period() / 2, ref);
+  ASSERT_TRUE(half.ok && want.ok);
+  EXPECT_LT(RelErr(half.phi, want.phi), 1e-10);
+}
+
+TEST(MagnusFilon, DeclinesAMeanWithoutAWellConditionedEigenbasis) {
+  // A_0 = [[0, 1], [0, 0]] is a Jordan block (a free rigid-body state): no eigenbasis at all.
+  FourierMatrix a(2, 2, 1);
+  a.SetHarmonic(0, (Eigen::Matrix2cd() << 0, 1, 0, 0).finished());
+  a.SetHarmonic(1, (Eigen::Matrix2cd() << 0, 0, -0.15, 0).finished());
+  const PeriodicSystem sys = PeriodicSystem::FromFourier(2 * kPi, std::move(a));
+  TransitionResult r;
+  ASSERT_NO_THROW(r = StateTransition(sys, 0, 2 * kPi, With(IntegratorType::kMagnusFilon)));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.message.find("magnus-filon does not apply"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("eigenvector condition"), std::string::npos) << r.message;
+}
+
+TEST(MagnusFilon, NeedsAFourierSeries) {
+  EXPECT_THROW(StateTransition(Meissner(1, 0.3, 0.1), 0, 1, With(IntegratorType::kMagnusFilon)),
+               InputError);
 }
 
 TEST(TransitionStiff, BdfTakesFarFewerStepsThanDopri5) {
@@ -546,7 +676,8 @@ TEST(TransitionLimits, UserExceptionsFromAPropagate) {
   };
   const PeriodicSystem sys = PeriodicSystem::FromFunctions(1, 2, 0, 0, std::move(f));
   for (IntegratorType type : AllIntegrators()) {
-    if (type == IntegratorType::kTaylor) continue;  // refuses this A(t) before calling it
+    // These refuse an A(t) that is not a Fourier series before calling it.
+    if (type == IntegratorType::kTaylor || type == IntegratorType::kMagnusFilon) continue;
     EXPECT_THROW(StateTransition(sys, 0, 1, With(type)), InputError) << ToString(type);
   }
 }

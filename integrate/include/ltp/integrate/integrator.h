@@ -29,6 +29,10 @@ enum class IntegratorType {
   /// (docs/taylor-integrator.md): a few long steps per period, the cheapest for small smooth
   /// Fourier systems at tight tolerances (stability maps). Fourier-form systems only.
   kTaylor,
+  /// Fixed-step Magnus in the interaction picture of the period mean Ā = VΛV⁻¹, its first two
+  /// terms integrated exactly (Filon): the error follows h‖A(t) − Ā‖, not the fastest mode of Ā
+  /// (docs/magnus-filon.md). Fourier-form systems whose Ā has a well-conditioned eigenbasis.
+  kMagnusFilon,
   /// The study's cheapest for the system at hand (ltp/integrate/integrator_choice.h); analyses
   /// report the integrator actually used and why.
   kAuto,

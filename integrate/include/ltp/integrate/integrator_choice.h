@@ -32,6 +32,12 @@ struct SystemTraits {
   /// the bound Σ_{w≠0} ‖A_w‖): how far the periodic part alone moves the solution per period.
   /// Magnus steps are exact for Ā, so only this part sets their number.
   double variation = 0;
+  /// T · (max Re λ − min Re λ) over the eigenvalues λ of Ā: Magnus–Filon keeps h times this
+  /// spread below 2, so it sets its fewest steps.
+  double decay_spread = 0;
+  /// Ā has an eigenbasis of condition ≤ 1e7 (measured only for a Fourier series whose other
+  /// traits make Magnus–Filon worth weighing): the interaction picture applies.
+  bool mean_eigenbasis = false;
 };
 SystemTraits MeasureSystemTraits(const PeriodicSystem& system);
 
@@ -47,6 +53,16 @@ bool TaylorSeriesPay(const SystemTraits& traits);
 /// reach the tolerance in a few where an explicit method resolves every oscillation.
 bool MagnusOverTheMeanPays(const SystemTraits& traits, double rel_tol);
 
+/// Magnus–Filon steps pay: fast oscillation (T·ρ(Ā) > 200) around a periodic part whose own
+/// steps, about 100 · variation · (1e-10/rel_tol)^{1/4} per period (and T·spread/2), stay below
+/// T·ρ(Ā)/4 — an explicit method spends about 100 evaluations per radian of the fastest mode,
+/// a Magnus–Filon step about 20 products (docs/magnus-filon.md) — and Ā has an eigenbasis.
+bool MagnusFilonPays(const SystemTraits& traits, double rel_tol);
+/// The Magnus–Filon steps per period that rule expects (typical, within a few times).
+double MagnusFilonSteps(const SystemTraits& traits, double rel_tol);
+/// Real n×n products of arithmetic in one Magnus–Filon step (its exponential and one product).
+inline constexpr double kMagnusFilonProductsPerStep = 20;
+
 struct IntegratorChoice {
   IntegratorType type = IntegratorType::kRkf78;
   std::string reason;  ///< one sentence: the trait and the study result behind the choice
@@ -54,7 +70,9 @@ struct IntegratorChoice {
 
 /// The integrator the study found cheapest for systems like this one at this tolerance:
 /// constant pieces → expm (exact); stiff (T·max|Re eig A| > 500) → magnus6 (no stability
-/// limit); a Fourier series of ≤ 2 states → taylor (TaylorSeriesPay); else Bulirsch–Stoer.
+/// limit); fast modes over a small periodic part → magnus6 (MagnusOverTheMeanPays) or
+/// magnus-filon (MagnusFilonPays); a Fourier series of ≤ 2 states → taylor (TaylorSeriesPay);
+/// else Bulirsch–Stoer.
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol);
 IntegratorChoice ChooseIntegrator(const SystemTraits& traits, double rel_tol);
 

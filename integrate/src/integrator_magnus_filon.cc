@@ -1,0 +1,271 @@
+// kMagnusFilon (docs/magnus-filon.md): Magnus in the interaction picture of the period mean.
+// With Ā = A_0 = VΛV⁻¹ and z = V⁻¹x, a step [t0, t0 + h] is z(t0 + h) = e^{Λh} exp(Ω) z(t0) for
+// y' = B(s) y, B(s) = e^{−Λs} Q(t0 + s) e^{Λs}, Q(t) = Σ_m Q_m e^{jmΩt}, Q_m = V⁻¹A_mV. The
+// entries of B are exponentials e^{(λ_j − λ_i + jmΩ)s}, so the first two Magnus terms are exact
+// sums of exponential integrals (Filon quadrature): the error is a power of h‖Q‖, whatever the
+// fastest mode of Ā — the step need not resolve its oscillations.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
+
+#include "integrator_internal.h"
+#include "ltp/core/error.h"
+#include "ltp/integrate/detail/matrix_product.h"
+#include "ltp/integrate/integrator_choice.h"
+#include "oscillatory_integrals.h"
+
+namespace ltp::internal {
+
+namespace {
+
+// Entries with |(λ_j − λ_i + jmΩ)h| below this are summed one by one with the stable weights;
+// above it the weights split into products, losing at most ε/kResonant relative.
+constexpr double kResonant = 0.25;
+// Steps keep h·(max Re λ − min Re λ) below this: B's entries grow by at most e^2 over a step.
+constexpr double kDecaySpreadPerStep = 2;
+// Eigenvector matrices worse conditioned than this (Frobenius estimate) make the transformation's
+// round-off, ε·cond, larger than the tolerances this method is for: it declines.
+constexpr double kMaxCondition = 1e7;
+
+using Matrix = Eigen::MatrixXcd;
+
+}  // namespace
+
+// The mean's eigen-decomposition and the harmonics in its eigenbasis, shared by every transition
+// of one system on this thread, with the generators of the step lengths already used.
+struct MagnusFilonIntegrator::Split {
+  Eigen::VectorXcd lambda;
+  Matrix v, v_inv;
+  std::vector<Matrix> q;  // Q_m at m + harmonics; Q_0 = V⁻¹A_0V − Λ, the decomposition's residue
+  int harmonics = 0;
+  double omega = 0;
+  double max_step = 0;  // from the decay spread; infinity when every Re λ is equal
+  double condition = 0;
+  std::string unsuitable;
+  std::vector<Eigen::MatrixXcd> key;  // A's coefficients, to recognise the system
+
+  struct Generators {
+    double h = 0;
+    std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
+  };
+  std::vector<Generators> generators;  // most recent last
+
+  Matrix Divisor(int m) const;  // D_m(i, j) = λ_j − λ_i + jmΩ
+  const Generators& For(double h);
+};
+
+namespace {
+
+std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& system,
+                                                        const FourierMatrix& a) {
+  auto split = std::make_shared<MagnusFilonIntegrator::Split>();
+  const int n = system.states(), H = a.max_harmonic();
+  split->harmonics = H;
+  split->omega = system.omega();
+  for (int m = -H; m <= H; ++m) split->key.push_back(a[m]);
+  const Eigen::MatrixXd mean = a[0].real();
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(mean);
+  if (eig.info() != Eigen::Success) {
+    split->unsuitable = "the eigen-decomposition of the mean A_0 failed";
+    return split;
+  }
+  split->lambda = eig.eigenvalues();
+  split->v = eig.eigenvectors();
+  Eigen::PartialPivLU<Matrix> lu(split->v);
+  split->v_inv = lu.inverse();
+  split->condition = split->v.norm() * split->v_inv.norm();
+  if (!(split->condition <= kMaxCondition)) {
+    std::ostringstream s;
+    s << "the mean A_0 is not diagonalisable in a well-conditioned basis (eigenvector "
+         "condition "
+      << MessageNumber(split->condition, 2) << " > " << MessageNumber(kMaxCondition, 2)
+      << "; a rigid-body or repeated mode?)";
+    split->unsuitable = s.str();
+    return split;
+  }
+  for (int m = -H; m <= H; ++m) {
+    Matrix am(n, n), qm(n, n);
+    MultiplyInto(a[m], split->v, am);
+    MultiplyInto(split->v_inv, am, qm);
+    if (m == 0) qm.diagonal() -= split->lambda;
+    split->q.push_back(std::move(qm));
+  }
+  const double spread = split->lambda.real().maxCoeff() - split->lambda.real().minCoeff();
+  split->max_step =
+      spread > 0 ? kDecaySpreadPerStep / spread : std::numeric_limits<double>::infinity();
+  return split;
+}
+
+// The split of `system`'s A on this thread: recomputed only for another series.
+std::shared_ptr<MagnusFilonIntegrator::Split> SplitOf(const PeriodicSystem& system) {
+  const FourierMatrix* a = system.fourier_A();
+  if (a == nullptr) {
+    auto none = std::make_shared<MagnusFilonIntegrator::Split>();
+    none->unsuitable = "A(t) is not a Fourier series";
+    return none;
+  }
+  thread_local std::vector<std::shared_ptr<MagnusFilonIntegrator::Split>> memo;
+  const int H = a->max_harmonic();
+  for (const auto& s : memo) {
+    if (static_cast<int>(s->key.size()) != 2 * H + 1 || s->omega != system.omega()) continue;
+    bool same = true;
+    for (int m = -H; m <= H && same; ++m)
+      same = s->key[m + H].rows() == (*a)[m].rows() && s->key[m + H] == (*a)[m];
+    if (same) return s;
+  }
+  auto split = MakeSplit(system, *a);
+  if (memo.size() >= 2) memo.erase(memo.begin());
+  memo.push_back(split);
+  return split;
+}
+
+// Σ_j of the second Magnus term's weights one path at a time, for the paths the product form
+// skips: ½ Q_m(i, j) Q_m'(j, k) [F(a, b) − F(b, a)], a = D_m(i, j), b = D_m'(j, k).
+Complex PathWeight(Complex a, Complex b, double h) {
+  return 0.5 * (TriangleIntegral(a, b, h) - TriangleIntegral(b, a, h));
+}
+
+}  // namespace
+
+Matrix MagnusFilonIntegrator::Split::Divisor(int m) const {
+  const int n = static_cast<int>(lambda.size());
+  Matrix d(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) d(i, j) = lambda(j) - lambda(i) + Complex(0, m * omega);
+  return d;
+}
+
+// Ω = Σ_m e^{jmΩt0} G1_m + Σ_p e^{jpΩt0} G2_p: the weights depend on h only.
+// G1_m = h Q_m ⊙ φ1(D_m h). For G2, with F(a, b) = ∫∫_{s2<s1} e^{a s1 + b s2} and s = a + b,
+//   F(a, b) − F(b, a) = h φ1(sh)(1/b − 1/a) − h φ1(ah)/b + h φ1(bh)/a,
+// so over the paths j whose a and b are not resonant the sums are matrix products of Q, Q ⊘ D
+// and Q ⊙ φ1(Dh); the resonant paths (every diagonal entry once h|mΩ| < kResonant) one by one.
+const MagnusFilonIntegrator::Split::Generators& MagnusFilonIntegrator::Split::For(double h) {
+  for (const Generators& g : generators)
+    if (g.h == h) return g;
+  const int n = static_cast<int>(lambda.size()), H = harmonics;
+  Generators g;
+  g.h = h;
+  std::vector<Matrix> d, x, qr, yr;
+  std::vector<Eigen::Matrix<bool, -1, -1>> regular;
+  for (int m = -H; m <= H; ++m) {
+    d.push_back(Divisor(m));
+    const Matrix& dm = d.back();
+    const Matrix& qm = q[m + H];
+    Matrix g1(n, n), xm = Matrix::Zero(n, n), qrm = Matrix::Zero(n, n), yrm = Matrix::Zero(n, n);
+    Eigen::Matrix<bool, -1, -1> reg(n, n);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Complex phi = Phi1(dm(i, j) * h);
+        g1(i, j) = h * qm(i, j) * phi;
+        reg(i, j) = std::abs(dm(i, j)) * h >= kResonant;
+        if (reg(i, j)) {
+          xm(i, j) = qm(i, j) / dm(i, j);
+          qrm(i, j) = qm(i, j);
+          yrm(i, j) = qm(i, j) * phi;
+        }
+      }
+    g.first.push_back(std::move(g1));
+    x.push_back(std::move(xm));
+    qr.push_back(std::move(qrm));
+    yr.push_back(std::move(yrm));
+    regular.push_back(std::move(reg));
+  }
+  std::vector<Matrix> cross(4 * H + 1, Matrix::Zero(n, n)), rest = cross;
+  Matrix product(n, n);
+  for (int m = -H; m <= H; ++m)
+    for (int mp = -H; mp <= H; ++mp) {
+      if (m == 0 || mp == 0) continue;  // Q_0 is round-off: its second-order terms are below it
+      const int p = m + mp + 2 * H, a = m + H, b = mp + H;
+      MultiplyInto(qr[a], x[b], product);
+      cross[p] += product;
+      MultiplyInto(x[a], qr[b], product);
+      cross[p] -= product;
+      MultiplyInto(x[a], yr[b], product);
+      rest[p] += product;
+      MultiplyInto(yr[a], x[b], product);
+      rest[p] -= product;
+    }
+  for (int p = -2 * H; p <= 2 * H; ++p) {
+    const Matrix dp = Divisor(p);
+    Matrix g2 = 0.5 * h * rest[p + 2 * H];
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < n; ++i) g2(i, k) += 0.5 * h * Phi1(dp(i, k) * h) * cross[p + 2 * H](i, k);
+    g.second.push_back(std::move(g2));
+  }
+  // The resonant paths: a resonant (any b), then a regular with b resonant.
+  for (int m = -H; m <= H; ++m)
+    for (int mp = -H; mp <= H; ++mp) {
+      if (m == 0 || mp == 0) continue;
+      const int a = m + H, b = mp + H;
+      Matrix& g2 = g.second[m + mp + 2 * H];
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          if (regular[a](i, j)) continue;
+          for (int k = 0; k < n; ++k)
+            g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
+        }
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j) {
+          if (regular[b](j, k)) continue;
+          for (int i = 0; i < n; ++i)
+            if (regular[a](i, j))
+              g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
+        }
+    }
+  if (generators.size() >= 8) generators.erase(generators.begin());
+  generators.push_back(std::move(g));
+  return generators.back();
+}
+
+MagnusFilonIntegrator::MagnusFilonIntegrator(const PeriodicSystem& system)
+    : system_(system), split_(SplitOf(system)) {}
+
+const std::string& MagnusFilonIntegrator::unsuitable() const { return split_->unsuitable; }
+
+Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, int steps_per_period,
+                                           long refine) {
+  Split& s = *split_;
+  const int n = system_.states(), H = s.harmonics;
+  Matrix z = Matrix::Identity(n, n), next(n, n), w(n, n);
+  last_pass_steps_ = 0;
+  const double period = system_.period();
+  for (size_t p = 0; p + 1 < points.size(); ++p) {
+    const double t0 = points[p], length = points[p + 1] - t0;
+    long base = StepsOnPiece(steps_per_period, length, period);
+    if (std::isfinite(s.max_step))
+      base = std::max(base, static_cast<long>(std::ceil(length / s.max_step)));
+    const long steps = refine * base;
+    const double h = length / steps;
+    const auto& g = s.For(h);
+    const Eigen::VectorXcd decay = (s.lambda * h).array().exp();
+    for (long k = 0; k < steps; ++k) {
+      const double t = t0 + k * h;  // not a running sum: no drift over many steps
+      w = g.first[H];
+      for (int m = 1; m <= H; ++m) {
+        const Complex phase = std::polar(1.0, m * s.omega * t);
+        w += phase * g.first[H + m] + std::conj(phase) * g.first[H - m];
+      }
+      for (int q = -2 * H; q <= 2 * H; ++q)
+        w += std::polar(1.0, q * s.omega * t) * g.second[q + 2 * H];
+      const Matrix step = w.exp();
+      MultiplyInto(step, z, next);
+      z = decay.asDiagonal() * next;
+    }
+    last_pass_steps_ += steps;
+  }
+  steps_ += last_pass_steps_;
+  rhs_evals_ += static_cast<long>(kMagnusFilonProductsPerStep) * last_pass_steps_;
+  Matrix vz(n, n), phi(n, n);
+  MultiplyInto(s.v, z, vz);
+  MultiplyInto(vz, s.v_inv, phi);
+  return phi.real();
+}
+
+}  // namespace ltp::internal
