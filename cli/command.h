@@ -3,6 +3,8 @@
 // its options (bound to state it owns) and returns what to run when it was chosen. Commands
 // parse and write; the numbers come from the library.
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,6 +26,22 @@ inline std::string& FailureReason() {
 /// PfrfResult), prefixed by `what`.
 inline void SetFailureFrom(const std::string& what, const std::string& failure) {
   FailureReason() = what + ": " + (failure.empty() ? "it failed its own checks" : failure);
+}
+
+/// A flag's finite number > 0 (or >= 0 with `or_zero`). CLI11's PositiveNumber and
+/// NonNegativeNumber (the same checks) say "not in range 0.000000 to" the 309 digits of DBL_MAX;
+/// this says "--tol: must be a finite number > 0, got -1".
+inline CLI::Validator NumberAboveZero(bool or_zero = false) {
+  return CLI::Validator(
+      [or_zero](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return "'" + text + "' is not a number";
+        if (std::isfinite(x) && (or_zero ? x >= 0 : x > 0)) return {};
+        return std::string("must be a finite number ") + (or_zero ? ">= 0" : "> 0") + ", got " +
+               text;
+      },
+      or_zero ? "NONNEGATIVE" : "POSITIVE");
 }
 
 Command AddScenesCommand(CLI::App& app);

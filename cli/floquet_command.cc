@@ -500,7 +500,7 @@ Command AddFloquetCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tol", args.options.integrator.rel_tol, "relative tolerance")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(NumberAboveZero());
   cmd->add_option("--steps", args.options.integrator.steps_per_period,
                   "fixed-step methods: steps per period (0 = automatic, at most 1e8)")
       ->capture_default_str()
@@ -531,12 +531,12 @@ Command AddFloquetCommand(CLI::App& app) {
                   "analyse only the modes whose eigenvalue of the mean A(t) is below this many Hz "
                   "(|λ|/2π), checked against twice the cut-off; 0 = every mode")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberAboveZero(true));
   cmd->add_option("--max-work", args.options.max_work_seconds,
                   "refuse an analysis estimated to need more CPU seconds than this even at its "
                   "fastest (0 = no limit)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberAboveZero(true));
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_flag("--keep-going", args.keep_going,
                 "exit 0 even when the analysis failed its own checks (the output still says so; "

@@ -282,7 +282,7 @@ Command AddHillCommand(CLI::App& app) {
                   "refuse a study estimated to need more CPU seconds than this even at its "
                   "fastest (0 = no limit)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberAboveZero(true));
   cmd->add_flag("--json", args.json, "one JSON object on stdout");
   cmd->add_option("--csv", args.csv, "write the study table to CSV");
   cmd->add_option("--plot", args.plot, "chart of error and estimates vs N (FILE.svg or FILE.png)");

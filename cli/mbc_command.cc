@@ -358,13 +358,13 @@ Command AddMbcCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tol", args.tol, "relative tolerance of the Floquet integrations")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(NumberAboveZero());
   cmd->add_option("--modes-below", args.modes_below_hz,
                   "Floquet part: only the modes whose MBC eigenvalue is below this many Hz "
                   "(|λ|/2π), checked against twice the cut-off, as ltp floquet --modes-below; 0 = "
                   "every mode")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberAboveZero(true));
   return {cmd, [] { return RunMbc(args); }};
 }
 

@@ -341,10 +341,10 @@ Command AddPfrfCommand(CLI::App& app) {
   cmd->add_option("--check-every", args.check_every,
                   "run the check routes on every k-th frequency (1 = all)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(NumberAboveZero());
   cmd->add_option("--htf-harmonics", args.htf_harmonics, "HTF truncation N (0 = automatic)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberAboveZero(true));
   cmd->add_option("--plot-threshold", args.plot_threshold,
                   "plot the orders with max |H_z| above this fraction of the largest")
       ->capture_default_str();

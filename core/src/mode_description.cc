@@ -87,12 +87,9 @@ std::vector<double> MultibladeEnergies(const std::vector<std::complex<double>>& 
 }  // namespace
 
 void ModeDescriptionOptions::Validate() const {
-  if (!(min_share >= 0 && min_share <= 1))
-    throw InputError("ModeDescriptionOptions::min_share = " + std::to_string(min_share) +
-                     ". Violated constraint: in [0, 1]");
-  if (max_families < 1)
-    throw InputError("ModeDescriptionOptions::max_families = " + std::to_string(max_families) +
-                     ". Violated constraint: >= 1");
+  const OptionCheck check("ModeDescriptionOptions");
+  if (!(min_share >= 0 && min_share <= 1)) check.Fail("min_share", min_share, "in [0, 1]");
+  if (max_families < 1) check.Fail("max_families", max_families, ">= 1");
 }
 
 ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::VectorXcd& shape,

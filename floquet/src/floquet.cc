@@ -109,40 +109,40 @@ StabilityVerdict ClassifyStability(bool ok, double max_real_exponent, std::optio
 
 void FloquetOptions::Validate() const {
   integrator.Validate();
-  auto fail = [](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << "FloquetOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
-    throw InputError(s.str());
-  };
-  if (segments < 0) fail("segments", segments, "segments >= 0 (0 = automatic)");
-  if (!(max_factor_condition > 10)) fail("max_factor_condition", max_factor_condition, "> 10");
-  if (max_segments < 1) fail("max_segments", max_segments, "max_segments >= 1");
-  if (!(max_period_scale > 0)) fail("max_period_scale", max_period_scale, "max_period_scale > 0");
+  const OptionCheck check("FloquetOptions");
+  if (segments < 0) check.Fail("segments", segments, "segments >= 0 (0 = automatic)");
+  if (!(max_factor_condition > 10))
+    check.Fail("max_factor_condition", max_factor_condition, "> 10");
+  if (max_segments < 1) check.Fail("max_segments", max_segments, "max_segments >= 1");
+  if (!(max_period_scale > 0))
+    check.Fail("max_period_scale", max_period_scale, "max_period_scale > 0");
   if (!(max_work_seconds >= 0))
-    fail("max_work_seconds", max_work_seconds, "max_work_seconds >= 0 (0 = no limit)");
+    check.Fail("max_work_seconds", max_work_seconds, "max_work_seconds >= 0 (0 = no limit)");
   if (!(announce_work_seconds >= 0))
-    fail("announce_work_seconds", announce_work_seconds, "announce_work_seconds >= 0");
+    check.Fail("announce_work_seconds", announce_work_seconds, "announce_work_seconds >= 0");
   if (segments > max_segments)
-    fail("segments", segments, "segments <= max_segments (" + std::to_string(max_segments) + ")");
+    check.Fail("segments", segments,
+               "segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (initial_segments < 0 || initial_segments > max_segments)
-    fail("initial_segments", initial_segments,
-         "0 <= initial_segments <= max_segments (" + std::to_string(max_segments) + ")");
+    check.Fail("initial_segments", initial_segments,
+               "0 <= initial_segments <= max_segments (" + std::to_string(max_segments) + ")");
   if (mode_samples != 0 && (mode_samples < 4 || (mode_samples & (mode_samples - 1)) != 0))
-    fail("mode_samples", mode_samples, "0 or a power of two >= 4");
-  if (threads < 0) fail("threads", threads, "threads >= 0 (0 = all cores)");
+    check.Fail("mode_samples", mode_samples, "0 or a power of two >= 4");
+  if (threads < 0) check.Fail("threads", threads, "threads >= 0 (0 = all cores)");
   if (!(modes_below >= 0) || !std::isfinite(modes_below))
-    fail("modes_below", modes_below, "a finite modes_below >= 0 (rad/s; 0 = every mode)");
+    check.Fail("modes_below", modes_below, "a finite modes_below >= 0 (rad/s; 0 = every mode)");
   // The refined run doubles a fixed step count; past the integrators' cap it would fail after
   // the first run's work instead of before any.
   if (estimate_error && error_estimate_method == ErrorEstimateMethod::kRefinedRun &&
       integrator.steps_per_period > 50000000)
-    fail("integrator.steps_per_period", integrator.steps_per_period,
-         "<= 5e7 with the refined-run error estimate, which doubles the steps (at most 1e8 per "
-         "period); or the local-error estimate, or none");
+    check.Fail(
+        "integrator.steps_per_period", integrator.steps_per_period,
+        "<= 5e7 with the refined-run error estimate, which doubles the steps (at most 1e8 per "
+        "period); or the local-error estimate, or none");
   if (error_estimate_method != ErrorEstimateMethod::kRefinedRun &&
       error_estimate_method != ErrorEstimateMethod::kLocalErrors)
-    fail("error_estimate_method", static_cast<int>(error_estimate_method),
-         "one of the ErrorEstimateMethod values");
+    check.Fail("error_estimate_method", static_cast<int>(error_estimate_method),
+               "one of the ErrorEstimateMethod values");
 }
 
 FloquetMode MakeFloquetMode(std::complex<double> log_multiplier, int branch, double period) {

@@ -599,24 +599,22 @@ std::optional<HillSelectionRule> ParseHillSelectionRule(std::string_view name) {
 }
 
 void HillOptions::Validate() const {
-  auto fail = [](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << "HillOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
-    throw InputError(s.str());
-  };
-  if (harmonics < 0) fail("harmonics", harmonics, "harmonics >= 0");
+  const OptionCheck check("HillOptions");
+  if (harmonics < 0) check.Fail("harmonics", harmonics, "harmonics >= 0");
   if (!(ambiguity_threshold >= 0 && ambiguity_threshold < 1))
-    fail("ambiguity_threshold", ambiguity_threshold, "0 <= ambiguity_threshold < 1");
+    check.Fail("ambiguity_threshold", ambiguity_threshold, "0 <= ambiguity_threshold < 1");
   if (delta_harmonics < -1)
-    fail("delta_harmonics", delta_harmonics, ">= -1 (0 = automatic, -1 = off)");
-  if (koopman_max_size < 0) fail("koopman_max_size", koopman_max_size, "koopman_max_size >= 0");
+    check.Fail("delta_harmonics", delta_harmonics, ">= -1 (0 = automatic, -1 = off)");
+  if (koopman_max_size < 0)
+    check.Fail("koopman_max_size", koopman_max_size, "koopman_max_size >= 0");
   if (!(max_dense_bytes > 0) || !std::isfinite(max_dense_bytes))
-    fail("max_dense_bytes", max_dense_bytes, "finite and > 0");
-  if (!(max_work_seconds >= 0)) fail("max_work_seconds", max_work_seconds, ">= 0");
-  if (!(announce_work_seconds >= 0)) fail("announce_work_seconds", announce_work_seconds, ">= 0");
+    check.Fail("max_dense_bytes", max_dense_bytes, "finite and > 0");
+  if (!(max_work_seconds >= 0)) check.Fail("max_work_seconds", max_work_seconds, ">= 0");
+  if (!(announce_work_seconds >= 0))
+    check.Fail("announce_work_seconds", announce_work_seconds, ">= 0");
   for (const auto& e : expected)
     if (!std::isfinite(e.real()) || !std::isfinite(e.imag()))
-      fail("expected", e.real() + e.imag(), "every expected exponent finite");
+      check.Fail("expected", e.real() + e.imag(), "every expected exponent finite");
 }
 
 namespace {

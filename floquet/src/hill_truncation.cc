@@ -278,12 +278,8 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
                            const FloquetResult& reference, HillOptions options, HillResult* last) {
   const auto start = std::chrono::steady_clock::now();
   options.Validate();
-  if (max_harmonics < 1) {
-    std::ostringstream s;
-    s << "HillConvergenceStudy: max_harmonics = " << max_harmonics
-      << ". Violated constraint: max_harmonics >= 1";
-    throw InputError(s.str());
-  }
+  if (max_harmonics < 1)
+    OptionCheck("HillConvergenceStudy").Fail("max_harmonics", max_harmonics, "max_harmonics >= 1");
   // Fail up front (not after hours of smaller truncations) when the largest one cannot fit.
   const int largest = max_harmonics + std::max(options.delta_harmonics, (max_harmonics + 1) / 2);
   const HillSolver largest_solver =

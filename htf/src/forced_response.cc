@@ -78,17 +78,18 @@ bool IsPowerOfTwo(int x) { return x > 0 && (x & (x - 1)) == 0; }
 }  // namespace
 
 void ShootingOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("shooting options: " + what); };
-  if (!(rel_tol > 0) || !(abs_tol > 0)) fail("rel_tol and abs_tol must be positive");
+  const OptionCheck check("ShootingOptions");
+  if (!(rel_tol > 0)) check.Fail("rel_tol", rel_tol, "> 0");
+  if (!(abs_tol > 0)) check.Fail("abs_tol", abs_tol, "> 0");
   if (samples != 0 && (!IsPowerOfTwo(samples) || samples < 8))
-    fail("samples must be 0 or a power of two >= 8");
+    check.Fail("samples", samples, "0 or a power of two >= 8");
   if (!IsPowerOfTwo(max_samples) || max_samples < 8)
-    fail("max_samples must be a power of two >= 8");
-  if (!(sample_tol > 0)) fail("sample_tol must be positive");
-  if (max_steps < 1) fail("max_steps must be >= 1");
-  if (!(settle_tol > 0 && settle_tol < 1)) fail("settle_tol must be in (0, 1)");
-  if (record_periods < 1) fail("record_periods must be >= 1");
-  if (!(max_settle_periods > 0)) fail("max_settle_periods must be positive");
+    check.Fail("max_samples", max_samples, "a power of two >= 8");
+  if (!(sample_tol > 0)) check.Fail("sample_tol", sample_tol, "> 0");
+  if (max_steps < 1) check.Fail("max_steps", max_steps, ">= 1");
+  if (!(settle_tol > 0 && settle_tol < 1)) check.Fail("settle_tol", settle_tol, "in (0, 1)");
+  if (record_periods < 1) check.Fail("record_periods", record_periods, ">= 1");
+  if (!(max_settle_periods > 0)) check.Fail("max_settle_periods", max_settle_periods, "> 0");
   integrator.Validate();
 }
 

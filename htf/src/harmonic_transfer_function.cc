@@ -45,19 +45,20 @@ void HtfOperatorOptions::Validate() const {
   floquet.Validate();
   modal.Validate();
   hill.Validate();
-  if (probe_orders < 0) throw InputError("htf operator options: probe_orders must be >= 0");
+  if (probe_orders < 0)
+    OptionCheck("HtfOperatorOptions").Fail("probe_orders", probe_orders, ">= 0");
 }
 
 void NormOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("norm options: " + what); };
-  if (!(rel_tol > 0 && rel_tol < 0.1)) fail("rel_tol must be in (0, 0.1)");
-  if (grid_points < 2) fail("grid_points must be >= 2");
-  if (max_section_harmonics < 1) fail("max_section_harmonics must be >= 1");
+  const OptionCheck check("NormOptions");
+  if (!(rel_tol > 0 && rel_tol < 0.1)) check.Fail("rel_tol", rel_tol, "in (0, 0.1)");
+  if (grid_points < 2) check.Fail("grid_points", grid_points, ">= 2");
+  if (max_section_harmonics < 1) check.Fail("max_section_harmonics", max_section_harmonics, ">= 1");
   if (!(hamiltonian_rel_tol > 0 && hamiltonian_rel_tol < 1e-3))
-    fail("hamiltonian_rel_tol must be in (0, 1e-3)");
-  if (max_bisections < 1) fail("max_bisections must be >= 1");
-  if (max_lyapunov_states < 0) fail("max_lyapunov_states must be >= 0");
-  if (threads < 0) fail("threads must be >= 0 (0 = all cores)");
+    check.Fail("hamiltonian_rel_tol", hamiltonian_rel_tol, "in (0, 1e-3)");
+  if (max_bisections < 1) check.Fail("max_bisections", max_bisections, ">= 1");
+  if (max_lyapunov_states < 0) check.Fail("max_lyapunov_states", max_lyapunov_states, ">= 0");
+  if (threads < 0) check.Fail("threads", threads, ">= 0 (0 = all cores)");
 }
 
 HarmonicTransferFunction::HarmonicTransferFunction(const PeriodicSystem& system,

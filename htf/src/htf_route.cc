@@ -30,12 +30,13 @@ cd Entry(const FourierMatrix& f, int w, int i, int j) {
 }  // namespace
 
 void HtfOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("htf options: " + what); };
-  if (harmonics < 0) fail("harmonics must be >= 0 (0 = automatic)");
-  if (delta < 0) fail("delta must be >= 0 (0 = automatic)");
-  if (!(tol > 0) || !std::isfinite(tol)) fail("tol must be a positive number");
-  if (max_harmonics < 1) fail("max_harmonics must be >= 1");
-  if (max_dense_size < 0) fail("max_dense_size must be >= 0 (0 = never reduce densely)");
+  const OptionCheck check("HtfOptions");
+  if (harmonics < 0) check.Fail("harmonics", harmonics, ">= 0 (0 = automatic)");
+  if (delta < 0) check.Fail("delta", delta, ">= 0 (0 = automatic)");
+  if (!(tol > 0) || !std::isfinite(tol)) check.Fail("tol", tol, "finite and > 0");
+  if (max_harmonics < 1) check.Fail("max_harmonics", max_harmonics, ">= 1");
+  if (max_dense_size < 0)
+    check.Fail("max_dense_size", max_dense_size, ">= 0 (0 = never reduce densely)");
 }
 
 HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)

@@ -378,21 +378,15 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
 }  // namespace
 
 void IdentifyOptions::Validate() const {
-  if (input < 0)
-    throw InputError("IdentifyOptions::input = " + std::to_string(input) +
-                     ". Violated constraint: >= 0");
-  if (output < 0)
-    throw InputError("IdentifyOptions::output = " + std::to_string(output) +
-                     ". Violated constraint: >= 0");
+  const OptionCheck check("IdentifyOptions");
+  if (input < 0) check.Fail("input", input, ">= 0");
+  if (output < 0) check.Fail("output", output, ">= 0");
   for (const auto& [delay, name] :
        {std::pair{input_delay, "input_delay"}, {output_delay, "output_delay"}})
-    if (!std::isfinite(delay))
-      throw InputError(std::string("IdentifyOptions::") + name + " = " + MessageNumber(delay, 3) +
-                       ". Violated constraint: finite");
+    if (!std::isfinite(delay)) check.Fail(name, delay, "finite");
   if (min_order > max_order || max_order - min_order > 200)
-    throw InputError("IdentifyOptions::orders " + std::to_string(min_order) + ".." +
-                     std::to_string(max_order) +
-                     ". Violated constraint: min_order <= max_order, at most 201 orders");
+    check.Fail("min_order..max_order", std::to_string(min_order) + ".." + std::to_string(max_order),
+               "min_order <= max_order, at most 201 orders");
 }
 
 IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& options) {

@@ -87,12 +87,14 @@ bool SelectPfrfRoutes(std::string_view name, PfrfOptions* options) {
 }
 
 void ModalOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("modal options: " + what); };
-  if (!(tail_tol > 0) || !std::isfinite(tail_tol)) fail("tail_tol must be a positive number");
+  const OptionCheck check("ModalOptions");
+  if (!(tail_tol > 0) || !std::isfinite(tail_tol))
+    check.Fail("tail_tol", tail_tol, "finite and > 0");
   if (!IsPowerOfTwo(max_samples) || max_samples < 4)
-    fail("max_samples must be a power of two >= 4");
-  if (!(max_condition >= 1)) fail("max_condition must be >= 1");
-  if (!(max_tail >= tail_tol)) fail("max_tail must be >= tail_tol");
+    check.Fail("max_samples", max_samples, "a power of two >= 4");
+  if (!(max_condition >= 1)) check.Fail("max_condition", max_condition, ">= 1");
+  if (!(max_tail >= tail_tol))
+    check.Fail("max_tail", max_tail, "max_tail >= tail_tol (" + MessageNumber(tail_tol) + ")");
   integrator.Validate();
 }
 

@@ -96,21 +96,28 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
 }  // namespace
 
 void PfrfOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("pfrf: " + what); };
-  if (frequencies_hz.empty()) fail("no frequencies to evaluate");
+  const OptionCheck check("PfrfOptions");
+  if (frequencies_hz.empty()) check.Fail("frequencies_hz", "{}", "at least one frequency");
   // As the CLI's grids: a million frequencies is hours of work at the slower routes.
   if (frequencies_hz.size() > 1000000)
-    fail(std::to_string(frequencies_hz.size()) + " frequencies: at most a million per call");
+    check.Fail("frequencies_hz.size()", frequencies_hz.size(), "at most a million per call");
   for (double f : frequencies_hz)
     if (!std::isfinite(f) || std::abs(f) > 1e15)
-      fail("frequencies must be finite numbers of at most 1e15 Hz (got " + MessageNumber(f) +
-           "; beyond, ω·t has no correct digit over a period)");
-  if (min_order > max_order) fail("min_order must be <= max_order");
-  if (std::max(std::abs(min_order), std::abs(max_order)) > 1000) fail("orders beyond ±1000");
-  if (input < 0 || output < 0) fail("input and output indices must be >= 0");
-  if (check_every < 1) fail("check_every must be >= 1");
-  if (!(peak_threshold >= 0 && peak_threshold < 1)) fail("peak_threshold must be in [0, 1)");
-  if (max_peaks_per_order < 0) fail("max_peaks_per_order must be >= 0");
+      check.Fail("frequencies_hz", f,
+                 "finite and at most 1e15 Hz in magnitude (beyond, ω·t has no correct digit over "
+                 "a period)");
+  if (min_order > max_order)
+    check.Fail("min_order", min_order,
+               "min_order <= max_order (" + std::to_string(max_order) + ")");
+  if (std::max(std::abs(min_order), std::abs(max_order)) > 1000)
+    check.Fail("min_order..max_order", std::to_string(min_order) + ".." + std::to_string(max_order),
+               "orders within ±1000");
+  if (input < 0) check.Fail("input", input, ">= 0");
+  if (output < 0) check.Fail("output", output, ">= 0");
+  if (check_every < 1) check.Fail("check_every", check_every, ">= 1");
+  if (!(peak_threshold >= 0 && peak_threshold < 1))
+    check.Fail("peak_threshold", peak_threshold, "in [0, 1)");
+  if (max_peaks_per_order < 0) check.Fail("max_peaks_per_order", max_peaks_per_order, ">= 0");
   floquet.Validate();
   modal.Validate();
   htf.Validate();

@@ -86,11 +86,10 @@ DelayedClock Delayed(const std::vector<double>& time, const std::vector<double>&
 }  // namespace internal
 
 void TachoOptions::Validate() const {
+  const OptionCheck check("TachoOptions");
   if (pulses_per_period < 1 || pulses_per_period > 10000)
-    throw InputError("TachoOptions::pulses_per_period = " + std::to_string(pulses_per_period) +
-                     ". Violated constraint: 1 ... 10000");
-  if (!std::isfinite(pulse_angle))
-    throw InputError("TachoOptions::pulse_angle is not finite. Violated constraint: finite");
+    check.Fail("pulses_per_period", pulses_per_period, "in 1..10000");
+  if (!std::isfinite(pulse_angle)) check.Fail("pulse_angle", pulse_angle, "finite");
 }
 
 RotorAngle AngleFromTacho(const std::vector<double>& time, const Eigen::VectorXd& signal,

@@ -285,34 +285,29 @@ std::uint64_t RecordSeed(const SimulateOptions& options, size_t k) {
 }  // namespace
 
 void SimulateOptions::Validate() const {
-  auto fail = [](const std::string& field, const std::string& value,
-                 const std::string& constraint) {
-    throw InputError("SimulateOptions::" + field + " = " + value +
-                     ". Violated constraint: " + constraint);
-  };
-  if (input < 0) fail("input", std::to_string(input), ">= 0");
-  if (frequencies_hz.empty()) fail("frequencies_hz", "{}", "at least one frequency");
+  const OptionCheck check("SimulateOptions");
+  if (input < 0) check.Fail("input", input, ">= 0");
+  if (frequencies_hz.empty()) check.Fail("frequencies_hz", "{}", "at least one frequency");
   for (double f : frequencies_hz)
-    if (!(f > 0) || !std::isfinite(f))
-      fail("frequencies_hz", MessageNumber(f, 10), "finite and > 0");
+    if (!(f > 0) || !std::isfinite(f)) check.Fail("frequencies_hz", f, "finite and > 0");
   if (!(amplitude > 0) || !std::isfinite(amplitude))
-    fail("amplitude", MessageNumber(amplitude, 10), "finite and > 0");
-  if (periods < 1 || periods > 100000) fail("periods", std::to_string(periods), "in 1..100000");
+    check.Fail("amplitude", amplitude, "finite and > 0");
+  if (periods < 1 || periods > 100000) check.Fail("periods", periods, "in 1..100000");
   if (samples_per_period < 4 || samples_per_period > 100000)
-    fail("samples_per_period", std::to_string(samples_per_period), "in 4..100000");
-  if (!(settle_tol > 0 && settle_tol < 1))
-    fail("settle_tol", MessageNumber(settle_tol, 10), "in (0, 1)");
-  if (std::isnan(noise_snr_db)) fail("noise_snr_db", "nan", "a number (+inf = no noise)");
+    check.Fail("samples_per_period", samples_per_period, "in 4..100000");
+  if (!(settle_tol > 0 && settle_tol < 1)) check.Fail("settle_tol", settle_tol, "in (0, 1)");
+  if (std::isnan(noise_snr_db))
+    check.Fail("noise_snr_db", noise_snr_db, "a number (+inf = no noise)");
   if (std::isnan(input_noise_snr_db))
-    fail("input_noise_snr_db", "nan", "a number (+inf = no noise)");
+    check.Fail("input_noise_snr_db", input_noise_snr_db, "a number (+inf = no noise)");
   if (!(std::abs(speed_offset) <= 0.5))
-    fail("speed_offset", MessageNumber(speed_offset, 10), "within ±0.5 (relative)");
+    check.Fail("speed_offset", speed_offset, "within ±0.5 (relative)");
   if (!(std::abs(speed_ramp) <= 0.5))
-    fail("speed_ramp", MessageNumber(speed_ramp, 10), "within ±0.5 (relative, over a record)");
-  if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", MessageNumber(rel_tol, 10), "in (0, 0.01)");
-  if (records < 1 || records > 10000) fail("records", std::to_string(records), "in 1..10000");
+    check.Fail("speed_ramp", speed_ramp, "within ±0.5 (relative, over a record)");
+  if (!(rel_tol > 0 && rel_tol < 1e-2)) check.Fail("rel_tol", rel_tol, "in (0, 0.01)");
+  if (records < 1 || records > 10000) check.Fail("records", records, "in 1..10000");
   if (!(cubic_stiffness >= 0) || !std::isfinite(cubic_stiffness))  // a softening spring escapes
-    fail("cubic_stiffness", MessageNumber(cubic_stiffness, 10), "finite and >= 0 (hardening)");
+    check.Fail("cubic_stiffness", cubic_stiffness, "finite and >= 0 (hardening)");
 }
 
 SimulationResult SimulateStepSine(const PeriodicSystem& system, const SimulateOptions& options) {

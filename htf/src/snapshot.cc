@@ -34,16 +34,20 @@ Eigen::MatrixXcd FrozenFrf(const LtiSystem& s, double omega) {
 }
 
 void SnapshotOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("snapshot: " + what); };
-  if (frequencies_hz.empty()) fail("no frequencies to evaluate");
+  const OptionCheck check("SnapshotOptions");
+  if (frequencies_hz.empty()) check.Fail("frequencies_hz", "{}", "at least one frequency");
   for (double f : frequencies_hz)
-    if (!std::isfinite(f)) fail("frequencies must be finite numbers");
-  if (time.has_value() == angle_deg.has_value()) fail("give exactly one of --time and --angle");
-  if (time && !std::isfinite(*time)) fail("time must be a finite number");
-  if (angle_deg && !std::isfinite(*angle_deg)) fail("angle must be a finite number");
-  if (input < 0 || output < 0) fail("input and output indices must be >= 0");
-  if (min_order > max_order) fail("min_order must be <= max_order");
-  if (check_points < 1) fail("check_points must be >= 1");
+    if (!std::isfinite(f)) check.Fail("frequencies_hz", f, "finite");
+  if (time.has_value() == angle_deg.has_value())
+    check.Fail("time, angle_deg", time ? "both set" : "both unset", "exactly one of them set");
+  if (time && !std::isfinite(*time)) check.Fail("time", *time, "finite");
+  if (angle_deg && !std::isfinite(*angle_deg)) check.Fail("angle_deg", *angle_deg, "finite");
+  if (input < 0) check.Fail("input", input, ">= 0");
+  if (output < 0) check.Fail("output", output, ">= 0");
+  if (min_order > max_order)
+    check.Fail("min_order", min_order,
+               "min_order <= max_order (" + std::to_string(max_order) + ")");
+  if (check_points < 1) check.Fail("check_points", check_points, ">= 1");
   floquet.Validate();
   modal.Validate();
   htf.Validate();

@@ -44,12 +44,6 @@ constexpr int kAutoMaxSteps = 1 << 20;
 // Doublings tried while the result is not finite (too-long steps) before reporting overflow.
 constexpr long kNonFiniteRefinements = 64;
 
-[[noreturn]] void ThrowOption(const char* field, double value, const char* constraint) {
-  std::ostringstream s;
-  s << "IntegratorOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
-  throw InputError(s.str());
-}
-
 bool IsFixedStep(IntegratorType type) {
   return type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6 ||
          type == IntegratorType::kExpm || type == IntegratorType::kMagnusFilon;
@@ -202,19 +196,20 @@ IntegratorOptions RefinedIntegratorOptions(const IntegratorOptions& options) {
 }
 
 void IntegratorOptions::Validate() const {
+  const OptionCheck check("IntegratorOptions");
   if (!ParseIntegratorType(ToString(type)))
-    ThrowOption("type", static_cast<int>(type), "one of the IntegratorType values");
+    check.Fail("type", static_cast<int>(type), "one of the IntegratorType values");
   // Below ~1e-15 no integrator in double precision can deliver the tolerance (eps = 2.2e-16
   // per operation, accumulated over the steps): refuse it rather than fail at run time.
   if (!(rel_tol >= 1e-15 && rel_tol < 1))
-    ThrowOption("rel_tol", rel_tol, "1e-15 <= rel_tol < 1 (double precision delivers no more)");
+    check.Fail("rel_tol", rel_tol, "1e-15 <= rel_tol < 1 (double precision delivers no more)");
   if (!(abs_tol >= 0 && std::isfinite(abs_tol)))
-    ThrowOption("abs_tol", abs_tol, "0 <= abs_tol < inf");
+    check.Fail("abs_tol", abs_tol, "0 <= abs_tol < inf");
   // 10^8 steps per period is hours of fixed steps already; the refined run doubles the count,
   // which must stay an int.
   if (steps_per_period < 0 || steps_per_period > 100000000)
-    ThrowOption("steps_per_period", steps_per_period, "0 <= steps_per_period <= 1e8");
-  if (max_steps <= 0) ThrowOption("max_steps", static_cast<double>(max_steps), "max_steps > 0");
+    check.Fail("steps_per_period", steps_per_period, "0 <= steps_per_period <= 1e8");
+  if (max_steps <= 0) check.Fail("max_steps", max_steps, "max_steps > 0");
 }
 
 namespace internal {

@@ -358,21 +358,16 @@ Crossing Tracer::Solve(const Line& line, double guess, double reach, double wind
 }  // namespace
 
 void BoundaryCurveOptions::Validate() const {
-  auto fail = [](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << "BoundaryCurveOptions::" << field << " = " << value
-      << ". Violated constraint: " << constraint;
-    throw InputError(s.str());
-  };
-  if (!(rel_tol > 0 && rel_tol < 1e-2)) fail("rel_tol", rel_tol, "0 < rel_tol < 0.01");
-  if (!(min_step > 0)) fail("min_step", min_step, "> 0");
-  if (!(initial_step >= min_step)) fail("initial_step", initial_step, ">= min_step");
+  const OptionCheck check("BoundaryCurveOptions");
+  if (!(rel_tol > 0 && rel_tol < 1e-2)) check.Fail("rel_tol", rel_tol, "0 < rel_tol < 0.01");
+  if (!(min_step > 0)) check.Fail("min_step", min_step, "> 0");
+  if (!(initial_step >= min_step)) check.Fail("initial_step", initial_step, ">= min_step");
   if (!(max_step >= initial_step && max_step <= 0.5))
-    fail("max_step", max_step, "initial_step <= max_step <= 0.5");
+    check.Fail("max_step", max_step, "initial_step <= max_step <= 0.5");
   if (!(max_displacement > 0 && max_displacement < 1))
-    fail("max_displacement", max_displacement, "0 < max_displacement < 1");
-  if (!(max_turn > 0 && max_turn < 1.5)) fail("max_turn", max_turn, "0 < max_turn < 1.5");
-  if (max_points < 2) fail("max_points", max_points, ">= 2");
+    check.Fail("max_displacement", max_displacement, "0 < max_displacement < 1");
+  if (!(max_turn > 0 && max_turn < 1.5)) check.Fail("max_turn", max_turn, "0 < max_turn < 1.5");
+  if (max_points < 2) check.Fail("max_points", max_points, ">= 2");
 }
 
 }  // namespace ltp

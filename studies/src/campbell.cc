@@ -294,15 +294,13 @@ std::vector<std::pair<double, double>> WeaklyDamped(const std::vector<SweepPoint
 }  // namespace
 
 void CampbellOptions::Validate() const {
+  const OptionCheck check("CampbellOptions");
   if (max_per_rev < 0 || max_per_rev > 100)
-    throw InputError("CampbellOptions::max_per_rev = " + std::to_string(max_per_rev) +
-                     ". Violated constraint: in 0..100 (0 = automatic)");
+    check.Fail("max_per_rev", max_per_rev, "in 0..100 (0 = automatic)");
   if (!(max_damping_ratio > 0 && max_damping_ratio <= 1))
-    throw InputError("CampbellOptions::max_damping_ratio = " + MessageNumber(max_damping_ratio) +
-                     ". Violated constraint: in (0, 1]");
+    check.Fail("max_damping_ratio", max_damping_ratio, "in (0, 1]");
   if (!(weak_damping_ratio >= 0 && weak_damping_ratio < 1))
-    throw InputError("CampbellOptions::weak_damping_ratio = " + MessageNumber(weak_damping_ratio) +
-                     ". Violated constraint: in [0, 1)");
+    check.Fail("weak_damping_ratio", weak_damping_ratio, "in [0, 1)");
   description.Validate();
 }
 

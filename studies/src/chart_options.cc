@@ -1,6 +1,5 @@
 #include "ltp/studies/chart_options.h"
 
-#include <sstream>
 #include <string>
 
 #include "ltp/core/error.h"
@@ -9,17 +8,13 @@
 namespace ltp {
 
 void ChartOptions::Validate() const {
-  auto fail = [](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << "ChartOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
-    throw InputError(s.str());
-  };
-  if (!(tol > 0 && tol < 1)) fail("tol", tol, "0 < tol < 1");
-  if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
+  const OptionCheck check("ChartOptions");
+  if (!(tol > 0 && tol < 1)) check.Fail("tol", tol, "0 < tol < 1");
+  if (threads < 0) check.Fail("threads", threads, ">= 0 (0 = all cores)");
   if (check_every && *check_every < 0)
-    fail("check_every", *check_every, ">= 0 (0 = none; empty = automatic)");
+    check.Fail("check_every", *check_every, ">= 0 (0 = none; empty = automatic)");
   if (!(refine_tol > 0 && refine_tol < 1e-2))
-    fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
+    check.Fail("refine_tol", refine_tol, "0 < refine_tol < 0.01");
   campbell.Validate();
   curve.Validate();
 }

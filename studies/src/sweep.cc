@@ -187,19 +187,15 @@ SweepAxis SweepAxis::Parse(const std::string& spec) {
 }
 
 void SweepOptions::Validate() const {
-  auto fail = [](const std::string& field, double value, const std::string& constraint) {
-    std::ostringstream s;
-    s << "SweepOptions::" << field << " = " << value << ". Violated constraint: " << constraint;
-    throw InputError(s.str());
-  };
+  const OptionCheck check("SweepOptions");
   floquet.Validate();
   hill.Validate();
-  if (!(hill_tol > 0)) fail("hill_tol", hill_tol, "> 0");
-  if (hill_max_harmonics < 1) fail("hill_max_harmonics", hill_max_harmonics, ">= 1");
-  if (check_every < 0) fail("check_every", check_every, ">= 0");
+  if (!(hill_tol > 0)) check.Fail("hill_tol", hill_tol, "> 0");
+  if (hill_max_harmonics < 1) check.Fail("hill_max_harmonics", hill_max_harmonics, ">= 1");
+  if (check_every < 0) check.Fail("check_every", check_every, ">= 0");
   if (!(marginal_log_multiplier >= 0))
-    fail("marginal_log_multiplier", marginal_log_multiplier, ">= 0");
-  if (threads < 0) fail("threads", threads, ">= 0 (0 = all cores)");
+    check.Fail("marginal_log_multiplier", marginal_log_multiplier, ">= 0");
+  if (threads < 0) check.Fail("threads", threads, ">= 0 (0 = all cores)");
 }
 
 size_t SweepGrid::size() const {

@@ -45,6 +45,15 @@ TEST(ExitCodes, ImpossibleToleranceIsRefusedUpFront) {
   EXPECT_EQ(Lines(r.err), 1);
   EXPECT_NE(r.err.find("double precision"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
+  // CLI11's own range check used to name its bound as the 309 digits of DBL_MAX.
+  const auto negative = RunLtp("floquet mathieu --tol -1");
+  EXPECT_EQ(negative.code, 2);
+  EXPECT_EQ(negative.err,
+            "ltp: error: --tol: must be a finite number > 0, got -1 (see `ltp --help`)\n");
+  const auto work = RunLtp("hill mathieu --max-work -0.5");
+  EXPECT_EQ(work.code, 2);
+  EXPECT_NE(work.err.find("--max-work: must be a finite number >= 0, got -0.5"), std::string::npos)
+      << work.err;
 }
 
 TEST(ExitCodes, SnapshotTimesAreFiniteAndReducedModuloThePeriod) {
