@@ -106,6 +106,8 @@ void SampledTurbineModesBelow(benchmark::State& state) {
 BENCHMARK(SampledTurbineModesBelow)
     ->Args({64, 300})
     ->Args({64, 0})
+    ->Args({124, 0})
+    ->Args({252, 0})
     ->Args({124, 300})
     ->Args({252, 300})
     ->Args({504, 300})
