@@ -126,6 +126,137 @@ void FactorNear(BandedShiftInvert& op, cd shift, double scale) {
   }
 }
 
+// What the structured solver's stages share: the problem, the banded shift-invert operator
+// and the pool of converged pairs.
+struct StructuredSearch {
+  StructuredSearch(const FourierMatrix& a, double omega_p, int harmonics)
+      : A(a),
+        omega(omega_p),
+        n(a.rows()),
+        N(harmonics),
+        scale(HillNormEstimate(a, omega_p, harmonics)),
+        real(IsReal(a)),
+        op(a, omega_p, harmonics),
+        pool(scale) {}
+
+  // A converged pair, and its mirror pair for a real system.
+  void Add(cd mu, const Eigen::VectorXcd& x, double res) {
+    pool.Add(mu, x, res);
+    if (real && std::abs(mu.imag()) > 1e-12 * scale) pool.Add(std::conj(mu), Mirror(x, n, N), res);
+  }
+
+  const FourierMatrix& A;
+  const double omega;
+  const int n, N;
+  const double scale;
+  const bool real;
+  BandedShiftInvert op;
+  Pool pool;
+};
+
+struct Cluster {
+  cd center;
+  int count;
+};
+
+// Shifts closer than Ωp/4 share one factorisation; a real system's spectrum is symmetric
+// under (μ, x) ↦ (conj μ, mirrored conj x), so only Im σ >= 0 is searched there.
+std::vector<Cluster> ClusterShifts(const std::vector<cd>& shifts, bool real, double omega) {
+  std::vector<Cluster> clusters;
+  for (cd s : shifts) {
+    if (real && s.imag() < 0) s = std::conj(s);
+    bool merged = false;
+    for (Cluster& c : clusters)
+      if (std::abs(c.center - s) <= 0.25 * omega) {
+        c.center = (c.center * double(c.count) + s) / double(c.count + 1);
+        ++c.count;
+        merged = true;
+        break;
+      }
+    if (!merged) clusters.push_back({s, 1});
+  }
+  return clusters;
+}
+
+// Deterministic start on the central block: the wanted eigenvectors are centred there.
+Eigen::VectorXcd CentralStart(int n, int N, int dim) {
+  Eigen::VectorXcd start0 = Eigen::VectorXcd::Zero(dim);
+  for (int i = 0; i < n; ++i) start0(N * n + i) = cd(1.0 + 0.1 * i, 0.3 - 0.05 * i);
+  if (N > 0)
+    for (int i = 0; i < n; ++i) {
+      start0((N - 1) * n + i) = 0.1;
+      start0((N + 1) * n + i) = 0.1;
+    }
+  return start0;
+}
+
+// Arnoldi around one cluster's centre, restarted from the unconverged Ritz vectors; the
+// converged pairs go to the pool. Returns how many of the wanted pairs did not converge.
+int SearchCluster(StructuredSearch& s, const Cluster& c, const Eigen::VectorXcd& start0,
+                  std::vector<cd>& mu, std::vector<Eigen::VectorXcd>& x) {
+  const int dim = s.op.size();
+  const int want = std::min(dim, 2 * c.count + 2);
+  const int m = std::min(dim, 3 * want + 20);
+  FactorNear(s.op, c.center, s.scale);
+  Eigen::VectorXcd start = start0;
+  int missing = 0;
+  for (int restart = 0; restart <= kMaxRestarts; ++restart) {
+    Arnoldi(s.op, c.center, start, m, mu, x);
+    Eigen::VectorXcd next = Eigen::VectorXcd::Zero(dim);
+    missing = 0;
+    for (int i = 0; i < std::min<int>(want, static_cast<int>(mu.size())); ++i) {
+      const double res = RelativeResidual(s.A, s.omega, s.N, s.scale, mu[i], x[i]);
+      if (res <= kTol || (restart == kMaxRestarts && res <= kLooseTol)) {
+        s.Add(mu[i], x[i], res);
+      } else {
+        next += x[i].normalized();
+        ++missing;
+      }
+    }
+    if (missing == 0) break;
+    start = next;
+  }
+  return missing;
+}
+
+// The block shifts k that move a pair of centroid c onto block 0: round(c), and for a centroid
+// near a half-integer also its tie partner on the other side.
+std::vector<int> RecentringShifts(double c) {
+  std::vector<int> ks;
+  if (std::lround(c) != 0) ks.push_back(static_cast<int>(std::lround(c)));
+  if (0.5 - std::abs(std::remainder(c, 1.0)) < 0.1) {
+    const int other = c > std::lround(c) ? static_cast<int>(std::lround(c)) + 1
+                                         : static_cast<int>(std::lround(c)) - 1;
+    if (other != 0 || ks.empty()) ks.push_back(other);
+  }
+  return ks;
+}
+
+// Re-centre every pair on block 0 (and add the tie partner of pairs near a half-integer
+// centroid), refined by inverse iteration: the shift may have found a shifted copy λ + jmΩp.
+void RecentrePairs(StructuredSearch& s) {
+  const FourierMatrix& A = s.A;
+  const double omega = s.omega, scale = s.scale;
+  const int n = s.n, N = s.N;
+  const size_t found = s.pool.values.size();
+  for (size_t i = 0; i < found; ++i) {
+    for (int k : RecentringShifts(Centroid(s.pool.vectors[i], n, N))) {
+      // y_v = x_{v+k} is an eigenvector for μ + jkΩp, with centroid c − k.
+      cd m2 = s.pool.values[i] + cd(0, k * omega);
+      Eigen::VectorXcd y = ShiftBlocks(s.pool.vectors[i], n, N, k);
+      if (y.norm() == 0) continue;
+      FactorNear(s.op, m2 + cd(1, 1) * (1e-9 * scale), scale);
+      for (int it = 0; it < 3; ++it) {
+        s.op.Solve(y);
+        y.normalize();
+        m2 = y.dot(HillMultiply(A, omega, N, y));  // Rayleigh quotient (y normalised)
+      }
+      const double res = RelativeResidual(A, omega, N, scale, m2, y);
+      if (res <= kLooseTol) s.Add(m2, y, res);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<double> BlockEnergies(const Eigen::VectorXcd& x, int n, int harmonics) {
@@ -156,75 +287,16 @@ Eigenpairs SolveDense(const FourierMatrix& A, double omega, int harmonics) {
 
 Eigenpairs SolveStructured(const FourierMatrix& A, double omega, int harmonics,
                            const std::vector<cd>& shifts) {
-  const int n = A.rows(), N = harmonics;
-  const double scale = HillNormEstimate(A, omega, N);
-  const bool real = IsReal(A);
-  BandedShiftInvert op(A, omega, N);
-  const int dim = op.size();
-  Pool pool(scale);
+  StructuredSearch search(A, omega, harmonics);
+  const int dim = search.op.size();
   Eigenpairs out;
 
-  // Shifts closer than Ωp/4 share one factorisation; a real system's spectrum is symmetric
-  // under (μ, x) ↦ (conj μ, mirrored conj x), so only Im σ >= 0 is searched there.
-  struct Cluster {
-    cd center;
-    int count;
-  };
-  std::vector<Cluster> clusters;
-  for (cd s : shifts) {
-    if (real && s.imag() < 0) s = std::conj(s);
-    bool merged = false;
-    for (Cluster& c : clusters)
-      if (std::abs(c.center - s) <= 0.25 * omega) {
-        c.center = (c.center * double(c.count) + s) / double(c.count + 1);
-        ++c.count;
-        merged = true;
-        break;
-      }
-    if (!merged) clusters.push_back({s, 1});
-  }
-
-  auto add = [&](cd mu, const Eigen::VectorXcd& x, double res) {
-    pool.Add(mu, x, res);
-    if (real && std::abs(mu.imag()) > 1e-12 * scale) pool.Add(std::conj(mu), Mirror(x, n, N), res);
-  };
-
-  // Deterministic start on the central block: the wanted eigenvectors are centred there.
-  Eigen::VectorXcd start0 = Eigen::VectorXcd::Zero(dim);
-  for (int i = 0; i < n; ++i) start0(N * n + i) = cd(1.0 + 0.1 * i, 0.3 - 0.05 * i);
-  if (N > 0)
-    for (int i = 0; i < n; ++i) {
-      start0((N - 1) * n + i) = 0.1;
-      start0((N + 1) * n + i) = 0.1;
-    }
-
+  const Eigen::VectorXcd start0 = CentralStart(search.n, search.N, dim);
   int unconverged = 0;
   std::vector<cd> mu;
   std::vector<Eigen::VectorXcd> x;
-  for (const Cluster& c : clusters) {
-    const int want = std::min(dim, 2 * c.count + 2);
-    const int m = std::min(dim, 3 * want + 20);
-    FactorNear(op, c.center, scale);
-    Eigen::VectorXcd start = start0;
-    int missing = 0;
-    for (int restart = 0; restart <= kMaxRestarts; ++restart) {
-      Arnoldi(op, c.center, start, m, mu, x);
-      Eigen::VectorXcd next = Eigen::VectorXcd::Zero(dim);
-      missing = 0;
-      for (int i = 0; i < std::min<int>(want, static_cast<int>(mu.size())); ++i) {
-        const double res = RelativeResidual(A, omega, N, scale, mu[i], x[i]);
-        if (res <= kTol || (restart == kMaxRestarts && res <= kLooseTol)) {
-          add(mu[i], x[i], res);
-        } else {
-          next += x[i].normalized();
-          ++missing;
-        }
-      }
-      if (missing == 0) break;
-      start = next;
-    }
-    unconverged += missing;
-  }
+  for (const Cluster& c : ClusterShifts(shifts, search.real, omega))
+    unconverged += SearchCluster(search, c, start0, mu, x);
   if (unconverged > 0) {
     std::ostringstream s;
     s << "structured solver: " << unconverged
@@ -233,35 +305,9 @@ Eigenpairs SolveStructured(const FourierMatrix& A, double omega, int harmonics,
          "dense solver or fail)";
     out.notes.push_back(s.str());
   }
+  RecentrePairs(search);
 
-  // Re-centre every pair on block 0 (and add the tie partner of pairs near a half-integer
-  // centroid), refined by inverse iteration: the shift may have found a shifted copy λ + jmΩp.
-  const size_t found = pool.values.size();
-  for (size_t i = 0; i < found; ++i) {
-    const double c = Centroid(pool.vectors[i], n, N);
-    std::vector<int> ks;
-    if (std::lround(c) != 0) ks.push_back(static_cast<int>(std::lround(c)));
-    if (0.5 - std::abs(std::remainder(c, 1.0)) < 0.1) {
-      const int other = c > std::lround(c) ? static_cast<int>(std::lround(c)) + 1
-                                           : static_cast<int>(std::lround(c)) - 1;
-      if (other != 0 || ks.empty()) ks.push_back(other);
-    }
-    for (int k : ks) {
-      // y_v = x_{v+k} is an eigenvector for μ + jkΩp, with centroid c − k.
-      cd m2 = pool.values[i] + cd(0, k * omega);
-      Eigen::VectorXcd y = ShiftBlocks(pool.vectors[i], n, N, k);
-      if (y.norm() == 0) continue;
-      FactorNear(op, m2 + cd(1, 1) * (1e-9 * scale), scale);
-      for (int it = 0; it < 3; ++it) {
-        op.Solve(y);
-        y.normalize();
-        m2 = y.dot(HillMultiply(A, omega, N, y));  // Rayleigh quotient (y normalised)
-      }
-      const double res = RelativeResidual(A, omega, N, scale, m2, y);
-      if (res <= kLooseTol) add(m2, y, res);
-    }
-  }
-
+  const Pool& pool = search.pool;
   out.values = pool.values;
   out.residual = pool.residuals;
   out.vectors.resize(dim, static_cast<Eigen::Index>(pool.vectors.size()));

@@ -272,15 +272,9 @@ void OrderColumnsLike(const std::vector<cd>& final_order, bool have_ref, double 
   }
 }
 
-// HillConvergenceStudy; `last` (when given) receives the analysis at max_harmonics, the
-// study's last row, so a caller that wants its modes need not solve it again.
-HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
-                           const FloquetResult& reference, HillOptions options, HillResult* last) {
-  const auto start = std::chrono::steady_clock::now();
-  options.Validate();
-  if (max_harmonics < 1)
-    OptionCheck("HillConvergenceStudy").Fail("max_harmonics", max_harmonics, "max_harmonics >= 1");
-  // Fail up front (not after hours of smaller truncations) when the largest one cannot fit.
+// Fail up front (not after hours of smaller truncations) when the largest one cannot fit.
+void CheckLargestTruncationFits(const PeriodicSystem& system, int max_harmonics,
+                                const HillOptions& options) {
   const int largest = max_harmonics + std::max(options.delta_harmonics, (max_harmonics + 1) / 2);
   const HillSolver largest_solver =
       options.solver == HillSolver::kAuto
@@ -293,27 +287,59 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
   else if (const FourierMatrix* fa = system.fourier_A())
     hill_internal::CheckBandMemory(system.states(), hill_internal::BlockBandwidth(*fa, largest),
                                    largest);
-  HillStudy study;
-  for (const FloquetMode& m : reference.modes) study.reference.push_back(m.exponent);
-  const bool have_ref = !study.reference.empty();
+}
 
-  // One full analysis per N: each row reports the estimate AnalyzeHill reports at that N (the
-  // N vs N+Δ change with its tail factor, the edge and Liouville checks), not a bare change.
-  const std::vector<int> rows = StudyHarmonics(max_harmonics);
-  const std::vector<double> work = WeighTheStudy(system, rows, options, study.diagnostics);
+std::vector<cd> ExponentsOf(const HillResult& r) {
+  std::vector<cd> v;
+  for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
+  return v;
+}
+
+// The study's row for the analysis `r` at N; with a reference, its exponents matched to it.
+HillStudyRow RowOf(const HillResult& r, int N, const std::vector<cd>& reference) {
+  const double omega = 2 * std::numbers::pi / r.period;
+  HillStudyRow row;
+  row.harmonics = N;
+  row.matrix_size = r.matrix_size;
+  row.apriori_bound = r.apriori_bound;
+  row.elapsed_s = r.elapsed_s;
+  row.selection_margin = 1;
+  for (const HillModeInfo& i : r.info) {
+    row.selection_margin = std::min(row.selection_margin, i.selection_margin);
+    row.tail_weight = std::max(row.tail_weight, i.tail_weight);
+    row.ambiguous = row.ambiguous || i.ambiguous;
+  }
+  row.truncation_estimate = r.truncation_estimate;
+  row.error_estimate = r.error_estimate;
+  row.exponents = ExponentsOf(r);
+  if (!reference.empty()) {
+    // One matching gives both: Hill's exponent for each reference one and its distance.
+    const std::vector<int> match = MatchExponentIndices(reference, row.exponents, omega);
+    std::vector<cd> matched;
+    for (size_t k = 0; k < match.size(); ++k) {
+      const bool none = match[k] < 0;
+      matched.push_back(none ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                             : row.exponents[static_cast<size_t>(match[k])]);
+      row.errors.push_back(none ? std::numeric_limits<double>::infinity()
+                                : ExponentDistance(reference[k], matched.back(), omega));
+    }
+    row.exponents = std::move(matched);
+    double worst = 0;
+    for (double e : row.errors) worst = std::max(worst, e);
+    row.max_error = worst;
+  }
+  return row;
+}
+
+// One full analysis per N in `rows` (`work` their weights for the progress), a row each in
+// `study`. Returns the exponents of the analysis at max_harmonics, in its order; `last` (when
+// given) receives that analysis.
+std::vector<cd> AnalyzeTruncations(const PeriodicSystem& system, const std::vector<int>& rows,
+                                   const std::vector<double>& work, const HillOptions& options,
+                                   HillStudy* study, HillResult* last) {
   double total_work = 0, done_work = 0;
   for (double w : work) total_work += w;
-  // The study was weighed as a whole: its solves neither announce nor refuse one by one.
-  options.announce_work_seconds = std::numeric_limits<double>::infinity();
-  options.on_long_work = nullptr;
-  options.max_work_seconds = 0;
-  auto exponents = [](const HillResult& r) {
-    std::vector<cd> v;
-    for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
-    return v;
-  };
-
-  std::vector<cd> final_order;  // the exponents of the analysis at max_harmonics, in its order
+  std::vector<cd> final_order;
   for (size_t i = 0; i < rows.size(); ++i) {
     const int N = rows[i];
     HillOptions o = options;
@@ -322,53 +348,24 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     HillResult r = AnalyzeHill(system, o);
     done_work += work[i];
     if (options.progress) options.progress(done_work, total_work);
-    const double omega = 2 * std::numbers::pi / r.period;
-    HillStudyRow row;
-    row.harmonics = N;
-    row.matrix_size = r.matrix_size;
-    row.apriori_bound = r.apriori_bound;
-    row.elapsed_s = r.elapsed_s;
-    row.selection_margin = 1;
-    for (const HillModeInfo& i : r.info) {
-      row.selection_margin = std::min(row.selection_margin, i.selection_margin);
-      row.tail_weight = std::max(row.tail_weight, i.tail_weight);
-      row.ambiguous = row.ambiguous || i.ambiguous;
+    if (study->rows.empty()) {
+      study->decay = r.decay;
+      if (!r.fourier_fit.empty()) study->diagnostics.push_back(r.fourier_fit);
     }
-    row.truncation_estimate = r.truncation_estimate;
-    row.error_estimate = r.error_estimate;
-    row.exponents = exponents(r);
-    if (have_ref) {
-      // One matching gives both: Hill's exponent for each reference one and its distance.
-      const std::vector<int> match = MatchExponentIndices(study.reference, row.exponents, omega);
-      std::vector<cd> matched;
-      for (size_t k = 0; k < match.size(); ++k) {
-        const bool none = match[k] < 0;
-        matched.push_back(none ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
-                               : row.exponents[static_cast<size_t>(match[k])]);
-        row.errors.push_back(none ? std::numeric_limits<double>::infinity()
-                                  : ExponentDistance(study.reference[k], matched.back(), omega));
-      }
-      row.exponents = std::move(matched);
-      double worst = 0;
-      for (double e : row.errors) worst = std::max(worst, e);
-      row.max_error = worst;
-    }
-    if (study.rows.empty()) {
-      study.decay = r.decay;
-      if (!r.fourier_fit.empty()) study.diagnostics.push_back(r.fourier_fit);
-    }
-    study.rows.push_back(row);
-    if (N == rows.back()) final_order = exponents(r);
+    study->rows.push_back(RowOf(r, N, study->reference));
+    if (N == rows.back()) final_order = ExponentsOf(r);
     if (last && N == rows.back()) *last = std::move(r);
   }
+  return final_order;
+}
 
-  OrderColumnsLike(final_order, have_ref, system.omega(), study);
-
-  // Convergence law from the points clearly above round-off.
+// Convergence law from the points clearly above round-off: exponential or algebraic in N,
+// whichever line fits log error better.
+void FitConvergenceLaw(bool have_ref, HillStudy* study) {
   double scale = 1;
-  for (const cd& l : study.reference) scale = std::max(scale, std::abs(l));
+  for (const cd& l : study->reference) scale = std::max(scale, std::abs(l));
   std::vector<double> n_lin, n_log, y;
-  for (const HillStudyRow& row : study.rows) {
+  for (const HillStudyRow& row : study->rows) {
     const std::optional<double> e = have_ref ? row.max_error : row.truncation_estimate;
     if (e && *e > 1e-12 * scale && std::isfinite(*e)) {
       n_lin.push_back(row.harmonics);
@@ -376,25 +373,52 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
       y.push_back(std::log(*e));
     }
   }
-  if (y.size() >= 3) {
-    const Line ex = FitLine(n_lin, y), al = FitLine(n_log, y);
-    if (ex.rss <= al.rss) {
-      study.rate_kind = HillConvergence::kExponential;
-      study.rate = -ex.beta;
-    } else {
-      study.rate_kind = HillConvergence::kAlgebraic;
-      study.rate = -al.beta;
-    }
-    if (!(study.rate > 0)) {  // no law of convergence: the error does not fall with N
-      study.rate_kind.reset();
-      study.rate = 0;
-      study.diagnostics.push_back(
-          "the error does not fall with N over the truncations above round-off: no convergence "
-          "rate (the selected eigenvalues are not converging; see the rows)");
-    }
-  } else {
-    study.diagnostics.push_back("too few points above round-off to fit a convergence rate");
+  if (y.size() < 3) {
+    study->diagnostics.push_back("too few points above round-off to fit a convergence rate");
+    return;
   }
+  const Line ex = FitLine(n_lin, y), al = FitLine(n_log, y);
+  if (ex.rss <= al.rss) {
+    study->rate_kind = HillConvergence::kExponential;
+    study->rate = -ex.beta;
+  } else {
+    study->rate_kind = HillConvergence::kAlgebraic;
+    study->rate = -al.beta;
+  }
+  if (!(study->rate > 0)) {  // no law of convergence: the error does not fall with N
+    study->rate_kind.reset();
+    study->rate = 0;
+    study->diagnostics.push_back(
+        "the error does not fall with N over the truncations above round-off: no convergence "
+        "rate (the selected eigenvalues are not converging; see the rows)");
+  }
+}
+
+// HillConvergenceStudy; `last` (when given) receives the analysis at max_harmonics, the
+// study's last row, so a caller that wants its modes need not solve it again.
+HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
+                           const FloquetResult& reference, HillOptions options, HillResult* last) {
+  const auto start = std::chrono::steady_clock::now();
+  options.Validate();
+  if (max_harmonics < 1)
+    OptionCheck("HillConvergenceStudy").Fail("max_harmonics", max_harmonics, "max_harmonics >= 1");
+  CheckLargestTruncationFits(system, max_harmonics, options);
+  HillStudy study;
+  for (const FloquetMode& m : reference.modes) study.reference.push_back(m.exponent);
+  const bool have_ref = !study.reference.empty();
+
+  // One full analysis per N: each row reports the estimate AnalyzeHill reports at that N (the
+  // N vs N+Δ change with its tail factor, the edge and Liouville checks), not a bare change.
+  const std::vector<int> rows = StudyHarmonics(max_harmonics);
+  const std::vector<double> work = WeighTheStudy(system, rows, options, study.diagnostics);
+  // The study was weighed as a whole: its solves neither announce nor refuse one by one.
+  options.announce_work_seconds = std::numeric_limits<double>::infinity();
+  options.on_long_work = nullptr;
+  options.max_work_seconds = 0;
+  const std::vector<cd> final_order = AnalyzeTruncations(system, rows, work, options, &study, last);
+
+  OrderColumnsLike(final_order, have_ref, system.omega(), study);
+  FitConvergenceLaw(have_ref, &study);
   if (study.decay.kind == FourierDecay::kAlgebraic) {
     std::ostringstream s;
     s << "A(t) is discontinuous (coefficients decay like |w|^-" << study.decay.rate

@@ -253,21 +253,17 @@ double ModalCheckDisagreement(const PfrfResult& r, double limit) {
   return worst;
 }
 
-// The sweep itself, on a given Floquet decomposition (and modal model, when one was built):
-// route choice, primary and check routes, error estimates, resonances. ComputePartialFrf
-// validates and decomposes; the automatic choice's fallback comes back here with both.
-PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
-                       std::chrono::steady_clock::time_point start, FloquetResult floquet,
-                       std::optional<ModalModel> modal) {
+// The result's frame: the grid, the orders, zeroed values and estimates, the decomposition.
+PfrfResult EmptySweep(const PeriodicSystem& system, const PfrfOptions& options,
+                      FloquetResult floquet, std::optional<ModalModel> modal) {
   PfrfResult r;
   const int F = static_cast<int>(options.frequencies_hz.size());
   const int zmin = options.min_order, zmax = options.max_order, Z = zmax - zmin + 1;
-  const int in = options.input, out = options.output;
   r.frequencies_hz = options.frequencies_hz;
   r.min_order = zmin;
   r.max_order = zmax;
-  r.input = in;
-  r.output = out;
+  r.input = options.input;
+  r.output = options.output;
   r.period = system.period();
   r.fp_hz = 1.0 / system.period();
   r.values.assign(F, std::vector<cd>(Z, cd(0)));
@@ -276,41 +272,63 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
   r.floquet = std::move(floquet);
   r.modal = std::move(modal);
   if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
+  return r;
+}
 
-  // Which routes run where.
+// Which routes run where: the primary on every frequency, the checks on every check_every-th
+// and the last.
+struct SweepPlan {
+  PfrfRoute primary = PfrfRoute::kModal;
+  std::vector<PfrfRoute> routes;  // the primary first
+  std::vector<int> check_points;
+  bool any_checks() const { return routes.size() > 1; }
+};
+
+SweepPlan PlanSweep(const PeriodicSystem& system, const PfrfOptions& options, PfrfResult& r) {
+  const int F = static_cast<int>(options.frequencies_hz.size());
   const RouteChoice choice = ChooseRoutes(system, options, r);
-  const PfrfRoute primary_route = choice.primary;
+  SweepPlan plan;
+  plan.primary = choice.primary;
   r.route_choice = choice.reason;
   if (options.primary == PfrfRoute::kAuto) r.diagnostics.push_back("route auto → " + choice.reason);
-  std::vector<PfrfRoute> routes = {primary_route};
+  plan.routes = {plan.primary};
   for (PfrfRoute c : choice.checks)
-    if (std::find(routes.begin(), routes.end(), c) == routes.end()) routes.push_back(c);
-  std::vector<int> check_points;
-  for (int i = 0; i < F; i += options.check_every) check_points.push_back(i);
-  if (check_points.back() != F - 1) check_points.push_back(F - 1);
-  const bool any_checks = routes.size() > 1;
-  const int total = F + static_cast<int>((routes.size() - 1) * check_points.size());
+    if (std::find(plan.routes.begin(), plan.routes.end(), c) == plan.routes.end())
+      plan.routes.push_back(c);
+  for (int i = 0; i < F; i += options.check_every) plan.check_points.push_back(i);
+  if (plan.check_points.back() != F - 1) plan.check_points.push_back(F - 1);
+  return plan;
+}
+
+// Every route of the plan over its points, one progress tick per point.
+void RunPlannedRoutes(const PeriodicSystem& system, const PfrfOptions& options,
+                      const SweepPlan& plan, PfrfResult& r) {
+  const int F = static_cast<int>(options.frequencies_hz.size());
+  const int total = F + static_cast<int>((plan.routes.size() - 1) * plan.check_points.size());
   int done = 0;
   auto tick = [&] {
     ++done;
     if (options.progress) options.progress(done, total);
   };
-
   std::vector<int> all(F);
   for (int i = 0; i < F; ++i) all[i] = i;
-  for (PfrfRoute route : routes) {
-    const bool primary = route == primary_route;
+  for (PfrfRoute route : plan.routes) {
+    const bool primary = route == plan.primary;
     std::vector<internal::RoutePoint> at;
-    RouteRun run = RunRoute(route, primary ? all : check_points, system, options, tick, r, at);
+    RouteRun run = RunRoute(route, primary ? all : plan.check_points, system, options, tick, r, at);
     if (primary)
       AdoptPrimary(at, run, r);
     else
       MergeCheck(at, run, r);
     r.routes.push_back(std::move(run));
   }
+}
 
-  // Error estimate between check points: the larger of the neighbours' absolute error and
-  // their relative error times |H| here.
+// Every point's error estimate beyond the check points' deviations: between check points, at
+// exact resonances, the modal tail; and the largest |H_z| per order.
+void CompleteErrorEstimates(const PeriodicSystem& system, const SweepPlan& plan, PfrfResult& r) {
+  const int F = static_cast<int>(r.values.size());
+  const int Z = r.max_order - r.min_order + 1;
   r.order_max.assign(Z, 0.0);
   double global_max = 0;
   for (int i = 0; i < F; ++i)
@@ -318,9 +336,11 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       r.order_max[z] = std::max(r.order_max[z], std::abs(r.values[i][z]));
       global_max = std::max(global_max, std::abs(r.values[i][z]));
     }
-  if (any_checks) EstimateBetweenCheckPoints(check_points, r);
+  // Error estimate between check points: the larger of the neighbours' absolute error and
+  // their relative error times |H| here.
+  if (plan.any_checks()) EstimateBetweenCheckPoints(plan.check_points, r);
   if (r.floquet.ok) FlagExactResonances(system, r);
-  if (r.modal && primary_route == PfrfRoute::kModal) {
+  if (r.modal && plan.primary == PfrfRoute::kModal) {
     // The modal tail bounds what the primary's Fourier truncation can add anywhere.
     for (int i = 0; i < F; ++i)
       for (int z = 0; z < Z; ++z)
@@ -328,7 +348,10 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
             std::max(r.error_estimate[i][z], r.modal->tail * std::abs(r.values[i][z]));
   }
   r.max_relative_disagreement = global_max > 0 ? r.max_disagreement / global_max : 0;
+}
 
+// Failures of the primary, an unreliable modal primary, and an unstable or marginal system.
+void ReportSweepCaveats(PfrfRoute primary_route, PfrfResult& r) {
   r.ok = r.routes.front().failures == 0;
   if (!r.ok) {
     r.failure = "primary route " + std::string(ToString(primary_route)) + " failed at " +
@@ -348,35 +371,57 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
     r.diagnostics.push_back(
         "stability undecided (marginal): |max Re λ| is within the error estimate, so the "
         "formal periodic solution H_z describes may not be reached from rest");
+}
+
+PfrfResult SweepWithoutModal(const PeriodicSystem& system, const PfrfOptions& options,
+                             std::chrono::steady_clock::time_point start, double worst,
+                             double limit, PfrfResult r);
+
+// The sweep itself, on a given Floquet decomposition (and modal model, when one was built):
+// route choice, primary and check routes, error estimates, resonances. ComputePartialFrf
+// validates and decomposes; the automatic choice's fallback comes back here with both.
+PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
+                       std::chrono::steady_clock::time_point start, FloquetResult floquet,
+                       std::optional<ModalModel> modal) {
+  PfrfResult r = EmptySweep(system, options, std::move(floquet), std::move(modal));
+  const SweepPlan plan = PlanSweep(system, options, r);
+  RunPlannedRoutes(system, options, plan, r);
+  CompleteErrorEstimates(system, plan, r);
+  ReportSweepCaveats(plan.primary, r);
   r.resonances = FindResonances(r, r.modal ? &*r.modal : nullptr, options.peak_threshold,
                                 options.max_peaks_per_order);
-  if (options.primary == PfrfRoute::kAuto && primary_route == PfrfRoute::kModal && any_checks) {
+  if (options.primary == PfrfRoute::kAuto && plan.primary == PfrfRoute::kModal &&
+      plan.any_checks()) {
     // The evidence that decides the automatic choice: the modal values against the check
     // route at the check points, relative to the largest response there.
     const double limit = ModalAgreementLimit(options);
     const double worst = ModalCheckDisagreement(r, limit);
-    if (worst > 0) {
-      // Redo the sweep from the same decomposition and modal model (now the check).
-      PfrfOptions again = options;
-      again.primary = HasJumps(system) ? PfrfRoute::kShooting : PfrfRoute::kHtf;
-      again.checks = {PfrfRoute::kModal};
-      std::ostringstream s;
-      s << ToString(again.primary) << " checked by modal: the modal route was tried first and "
-        << "disagreed with its check by " << worst << " of the largest |H_z| (limit " << limit
-        << "), so it is UNRELIABLE here";
-      r.modal->reliable = false;  // the failed check is the model's verdict, not a footnote
-      r.modal->diagnostics.push_back("modal: UNRELIABLE — " + s.str());
-      PfrfResult fallback =
-          SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
-      fallback.route_choice = s.str();
-      fallback.modal_cross_check_failed = true;
-      fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
-      fallback.elapsed_s = SecondsSince(start);
-      return fallback;
-    }
+    if (worst > 0) return SweepWithoutModal(system, options, start, worst, limit, std::move(r));
   }
   r.elapsed_s = SecondsSince(start);
   return r;
+}
+
+// Redo the sweep from the same decomposition and modal model (now the check), after the modal
+// primary of `r` disagreed with its check by `worst` (beyond `limit`).
+PfrfResult SweepWithoutModal(const PeriodicSystem& system, const PfrfOptions& options,
+                             std::chrono::steady_clock::time_point start, double worst,
+                             double limit, PfrfResult r) {
+  PfrfOptions again = options;
+  again.primary = HasJumps(system) ? PfrfRoute::kShooting : PfrfRoute::kHtf;
+  again.checks = {PfrfRoute::kModal};
+  std::ostringstream s;
+  s << ToString(again.primary) << " checked by modal: the modal route was tried first and "
+    << "disagreed with its check by " << worst << " of the largest |H_z| (limit " << limit
+    << "), so it is UNRELIABLE here";
+  r.modal->reliable = false;  // the failed check is the model's verdict, not a footnote
+  r.modal->diagnostics.push_back("modal: UNRELIABLE — " + s.str());
+  PfrfResult fallback = SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
+  fallback.route_choice = s.str();
+  fallback.modal_cross_check_failed = true;
+  fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
+  fallback.elapsed_s = SecondsSince(start);
+  return fallback;
 }
 
 }  // namespace

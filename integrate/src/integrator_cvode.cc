@@ -176,6 +176,116 @@ int PrecSolve(double, N_Vector, N_Vector, N_Vector r, N_Vector z, double gamma, 
   return 0;
 }
 
+// The callbacks' buffers sized for n states.
+void SizeUserData(const PeriodicSystem& system, UserData& data) {
+  const int n = system.states();
+  data.system = &system;
+  data.n = n;
+  data.a.resize(n, n);
+  data.a_jac.setZero(n, n);
+  data.work.resize(n, n);
+  data.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+}
+
+// The SUNDIALS objects of one integration, members in creation order (destroyed in reverse).
+struct CvodeSession {
+  Owned<SUNContext, ContextDeleter> ctx;
+  Owned<N_Vector, VectorDeleter> y;  // vec(Φ) over the current piece
+  Owned<SUNLinearSolver, LinearSolverDeleter> linear;
+  Owned<SUNNonlinearSolver, NonlinearSolverDeleter> fixed_point;
+  Owned<void*, CvodeDeleter> mem;
+  void* cv() const { return mem.get(); }
+};
+
+CvodeSession OpenSession(int n, bool bdf) {
+  CvodeSession s;
+  SUNContext raw_ctx = nullptr;
+  Check(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
+  s.ctx.reset(raw_ctx);
+  s.y.reset(
+      CheckPtr(N_VNew_Serial(static_cast<sunindextype>(n) * n, s.ctx.get()), "N_VNew_Serial"));
+  s.mem.reset(CheckPtr(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, s.ctx.get()), "CVodeCreate"));
+  Check(CVodeSetErrHandlerFn(s.cv(), SilentErrorHandler, nullptr), "CVodeSetErrHandlerFn");
+  return s;
+}
+
+// The first piece: CVODE initialised at a, tolerances, the nonlinear (and linear) solver.
+void InitCvode(CvodeSession& s, UserData& data, double a, bool bdf,
+               const IntegratorOptions& options) {
+  void* cv = s.cv();
+  Check(CVodeInit(cv, Rhs, a, s.y.get()), "CVodeInit");
+  Check(CVodeSetUserData(cv, &data), "CVodeSetUserData");
+  const double rel_tol = std::max(kCvodeToleranceScale * options.rel_tol, kCvodeMinRelTol);
+  Check(CVodeSStolerances(cv, rel_tol, kCvodeToleranceScale * options.abs_tol),
+        "CVodeSStolerances");
+  if (bdf) {
+    s.linear.reset(
+        CheckPtr(SUNLinSol_SPGMR(s.y.get(), SUN_PREC_LEFT, 5, s.ctx.get()), "SUNLinSol_SPGMR"));
+    Check(CVodeSetLinearSolver(cv, s.linear.get(), nullptr), "CVodeSetLinearSolver");
+    Check(CVodeSetJacTimes(cv, nullptr, JacTimes), "CVodeSetJacTimes");
+    Check(CVodeSetPreconditioner(cv, PrecSetup, PrecSolve), "CVodeSetPreconditioner");
+  } else {
+    s.fixed_point.reset(
+        CheckPtr(SUNNonlinSol_FixedPoint(s.y.get(), 0, s.ctx.get()), "SUNNonlinSol_FixedPoint"));
+    Check(CVodeSetNonlinearSolver(cv, s.fixed_point.get()), "CVodeSetNonlinearSolver");
+  }
+  Check(CVodeSetMaxNumSteps(cv, options.max_steps), "CVodeSetMaxNumSteps");
+}
+
+// Φ = I at a, CVODE (re)started there with a stop time at b and an initial step.
+void StartPiece(CvodeSession& s, UserData& data, size_t p, double a, double b, bool bdf,
+                const IntegratorOptions& options) {
+  void* cv = s.cv();
+  AsMatrix(s.y.get(), data.n).setIdentity();
+  data.window = PieceWindow(a, b);
+  data.a_time = std::nan("");  // A may differ at the same t on the other side of a jump
+  data.not_finite = false;
+  if (p == 0) {
+    InitCvode(s, data, a, bdf, options);
+  } else {
+    // A may jump at a: restart from order 1 with the history forgotten.
+    Check(CVodeReInit(cv, a, s.y.get()), "CVodeReInit");
+  }
+  Check(CVodeSetStopTime(cv, b), "CVodeSetStopTime");
+  // Error constant 1, not BDF1's 1/2: on stiff systems the first step is bounded by the
+  // fast modes, and the longer start cost CVODE steps (TransitionStiff test).
+  const double h0 = InitialStep(data.A(0.5 * (a + b)).lpNorm<Eigen::Infinity>(), b - a,
+                                kCvodeToleranceScale * options.rel_tol, 1, 1.0);
+  Check(CVodeSetInitStep(cv, h0), "CVodeSetInitStep");
+}
+
+// One internal step per call: we see every accepted state, so an overflowing Φ stops the
+// integration at once (Adams' fixed-point solver otherwise went on with inf up to
+// max_steps), and the step budget holds over the whole interval. `steps`: those of the earlier
+// pieces; result.steps counts on from them.
+void StepToStopTime(CvodeSession& s, UserData& data, double a, double b, long steps,
+                    const IntegratorOptions& options, TransitionResult& result) {
+  void* cv = s.cv();
+  const auto phi = AsMatrix(s.y.get(), data.n);
+  double t_reached = a;
+  while (true) {
+    const int flag = CVode(cv, b, s.y.get(), &t_reached, CV_ONE_STEP);
+    if (data.error) std::rethrow_exception(data.error);
+    if (data.not_finite || !phi.allFinite()) throw CvodeFailure{kNotFiniteMessage};
+    long piece_steps = 0;
+    Check(CVodeGetNumSteps(cv, &piece_steps), "CVodeGetNumSteps");
+    result.steps = steps + piece_steps;
+    if (flag < 0) {
+      std::ostringstream msg;
+      msg << ToString(options.type) << ": CVode failed with " << FlagName(flag)
+          << " at t = " << t_reached;
+      throw CvodeFailure{msg.str()};
+    }
+    if (flag == CV_TSTOP_RETURN || t_reached >= b) break;
+    if (result.steps >= options.max_steps) {
+      std::ostringstream msg;
+      msg << ToString(options.type) << ": max_steps = " << options.max_steps
+          << " reached at t = " << t_reached << " (CV_TOO_MUCH_WORK)";
+      throw CvodeFailure{msg.str()};
+    }
+  }
+}
+
 }  // namespace
 
 TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector<double>& points,
@@ -184,91 +294,18 @@ TransitionResult CvodeTransition(const PeriodicSystem& system, const std::vector
   const bool bdf = options.type == IntegratorType::kCvodeBdf;
   TransitionResult result;
   result.phi = Eigen::MatrixXd::Identity(n, n);
-
   UserData data;
-  data.system = &system;
-  data.n = n;
-  data.a.resize(n, n);
-  data.a_jac.setZero(n, n);
-  data.work.resize(n, n);
-  data.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+  SizeUserData(system, data);
 
   try {
-    SUNContext raw_ctx = nullptr;
-    Check(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
-    Owned<SUNContext, ContextDeleter> ctx(raw_ctx);
-    Owned<N_Vector, VectorDeleter> y(
-        CheckPtr(N_VNew_Serial(static_cast<sunindextype>(n) * n, ctx.get()), "N_VNew_Serial"));
-    Owned<SUNLinearSolver, LinearSolverDeleter> linear;
-    Owned<SUNNonlinearSolver, NonlinearSolverDeleter> fixed_point;
-    Owned<void*, CvodeDeleter> mem(
-        CheckPtr(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx.get()), "CVodeCreate"));
-    void* cv = mem.get();
-    Check(CVodeSetErrHandlerFn(cv, SilentErrorHandler, nullptr), "CVodeSetErrHandlerFn");
-
-    auto phi = AsMatrix(y.get(), n);
+    CvodeSession session = OpenSession(n, bdf);
+    const auto phi = AsMatrix(session.y.get(), n);
     Eigen::MatrixXd product(n, n);
     long steps = 0;
     for (size_t p = 0; p + 1 < points.size(); ++p) {
       const double a = points[p], b = points[p + 1];
-      phi.setIdentity();
-      data.window = PieceWindow(a, b);
-      data.a_time = std::nan("");  // A may differ at the same t on the other side of a jump
-      data.not_finite = false;
-      if (p == 0) {
-        Check(CVodeInit(cv, Rhs, a, y.get()), "CVodeInit");
-        Check(CVodeSetUserData(cv, &data), "CVodeSetUserData");
-        const double rel_tol = std::max(kCvodeToleranceScale * options.rel_tol, kCvodeMinRelTol);
-        Check(CVodeSStolerances(cv, rel_tol, kCvodeToleranceScale * options.abs_tol),
-              "CVodeSStolerances");
-        if (bdf) {
-          linear.reset(
-              CheckPtr(SUNLinSol_SPGMR(y.get(), SUN_PREC_LEFT, 5, ctx.get()), "SUNLinSol_SPGMR"));
-          Check(CVodeSetLinearSolver(cv, linear.get(), nullptr), "CVodeSetLinearSolver");
-          Check(CVodeSetJacTimes(cv, nullptr, JacTimes), "CVodeSetJacTimes");
-          Check(CVodeSetPreconditioner(cv, PrecSetup, PrecSolve), "CVodeSetPreconditioner");
-        } else {
-          fixed_point.reset(
-              CheckPtr(SUNNonlinSol_FixedPoint(y.get(), 0, ctx.get()), "SUNNonlinSol_FixedPoint"));
-          Check(CVodeSetNonlinearSolver(cv, fixed_point.get()), "CVodeSetNonlinearSolver");
-        }
-        Check(CVodeSetMaxNumSteps(cv, options.max_steps), "CVodeSetMaxNumSteps");
-      } else {
-        // A may jump at a: restart from order 1 with the history forgotten.
-        Check(CVodeReInit(cv, a, y.get()), "CVodeReInit");
-      }
-      Check(CVodeSetStopTime(cv, b), "CVodeSetStopTime");
-      // Error constant 1, not BDF1's 1/2: on stiff systems the first step is bounded by the
-      // fast modes, and the longer start cost CVODE steps (TransitionStiff test).
-      const double h0 = InitialStep(data.A(0.5 * (a + b)).lpNorm<Eigen::Infinity>(), b - a,
-                                    kCvodeToleranceScale * options.rel_tol, 1, 1.0);
-      Check(CVodeSetInitStep(cv, h0), "CVodeSetInitStep");
-
-      // One internal step per call: we see every accepted state, so an overflowing Φ stops the
-      // integration at once (Adams' fixed-point solver otherwise went on with inf up to
-      // max_steps), and the step budget holds over the whole interval.
-      double t_reached = a;
-      while (true) {
-        const int flag = CVode(cv, b, y.get(), &t_reached, CV_ONE_STEP);
-        if (data.error) std::rethrow_exception(data.error);
-        if (data.not_finite || !phi.allFinite()) throw CvodeFailure{kNotFiniteMessage};
-        long piece_steps = 0;
-        Check(CVodeGetNumSteps(cv, &piece_steps), "CVodeGetNumSteps");
-        result.steps = steps + piece_steps;
-        if (flag < 0) {
-          std::ostringstream s;
-          s << ToString(options.type) << ": CVode failed with " << FlagName(flag)
-            << " at t = " << t_reached;
-          throw CvodeFailure{s.str()};
-        }
-        if (flag == CV_TSTOP_RETURN || t_reached >= b) break;
-        if (result.steps >= options.max_steps) {
-          std::ostringstream s;
-          s << ToString(options.type) << ": max_steps = " << options.max_steps
-            << " reached at t = " << t_reached << " (CV_TOO_MUCH_WORK)";
-          throw CvodeFailure{s.str()};
-        }
-      }
+      StartPiece(session, data, p, a, b, bdf, options);
+      StepToStopTime(session, data, a, b, steps, options, result);
       steps = result.steps;
       product.noalias() = phi * result.phi;
       result.phi.swap(product);

@@ -295,125 +295,194 @@ void SolveInto(const Y& y, const State& rhs, Square& lu, std::vector<lapack_int>
 // an output point that is not a jump it keeps its step size and order, so splitting a period
 // into many factors costs little more than integrating it in one go.
 template <class State, int N, class Controlled>
-std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicSystem& system,
-                                  const std::vector<Piece>& pieces,
-                                  const IntegratorOptions& options) {
-  const int n = system.states();
-  std::vector<TransitionResult> results;
-  TransitionResult result;
-  result.phi = Eigen::MatrixXd::Identity(n, n);
-  State x;
-  if constexpr (N == Eigen::Dynamic) x.resize(static_cast<size_t>(n) * n);
-  Eigen::Map<Eigen::Matrix<double, N, N>> piece_phi(x.data(), n, n);
-  Eigen::MatrixXd product(n, n);
+class PieceIntegration {
+ public:
+  PieceIntegration(Controlled& stepper, int order, const PeriodicSystem& system,
+                   const std::vector<Piece>& pieces, const IntegratorOptions& options)
+      : stepper_(stepper),
+        order_(order),
+        options_(options),
+        pieces_(pieces),
+        n_(system.states()),
+        x_(StateOfSize(n_)),
+        piece_phi_(x_.data(), n_, n_),
+        product_(n_, n_),
+        pivots_(carry_ ? n_ : 0),
+        rhs_(system, &rhs_evals_) {
+    result_.phi = Eigen::MatrixXd::Identity(n_, n_);
+    if (carry_) {
+      carried_.setZero(n_, n_);
+      result_.local_error_effect.setZero(n_, n_);
+    }
+    // Repeated stage times: Runge–Kutta tableaus (rkf78, dopri5), not Bulirsch–Stoer's substeps.
+    rhs_.CacheStages(options.type != IntegratorType::kBulirschStoer);
+  }
+  PieceIntegration(const PieceIntegration&) = delete;  // piece_phi_ points into x_
+  PieceIntegration& operator=(const PieceIntegration&) = delete;
+
+  std::vector<TransitionResult> Run() {
+    for (const Piece& piece : pieces_) {
+      StartPiece(piece);
+      if (!IntegratePiece(piece.t0, piece.t1)) return std::move(results_);
+      if (carry_) CarryPieceErrors();
+      product_.noalias() = piece_phi_ * result_.phi;
+      result_.phi.swap(product_);
+      if (piece.output) CloseFactor();
+    }
+    return std::move(results_);
+  }
+
+ private:
+  static constexpr bool kHasLocalError = requires(Controlled & s) { s.local_error(); };
+  static constexpr bool kHasReset = requires(Controlled & s) { s.reset(); };
+
+  static State StateOfSize(int n) {
+    State x;
+    if constexpr (N == Eigen::Dynamic) x.resize(static_cast<size_t>(n) * n);
+    return x;
+  }
+
   // Local-error propagation (docs/local-error-estimate.md): within a piece, the step ending at
   // t_i with local error l_i moves Φ(b, a) by Φ(b, t_i) l_i = Y_b Y_i⁻¹ l_i (Y = piece_phi), so
   // G = Σ Y_i⁻¹ l_i and the piece's effect is Y_b G; across pieces δF ← P δF + (Y_b G) F.
-  bool carry = false;
-  if constexpr (requires { stepper.local_error(); }) carry = options.carry_local_errors;
-  using Square = Eigen::Matrix<double, N, N>;
-  Square carried, solved, lu;
-  std::vector<lapack_int> pivots(carry ? n : 0);
-  if (carry) {
-    carried.setZero(n, n);
-    result.local_error_effect.setZero(n, n);
+  static bool CarriesLocalErrors(const IntegratorOptions& options) {
+    bool carry = false;
+    if constexpr (kHasLocalError) carry = options.carry_local_errors;
+    return carry;
   }
-  long rhs_evals = 0;
-  MatrixRhs<State, N> rhs(system, &rhs_evals);
-  // Repeated stage times: Runge–Kutta tableaus (rkf78, dopri5), not Bulirsch–Stoer's substeps.
-  rhs.CacheStages(options.type != IntegratorType::kBulirschStoer);
-  // dopri5 keeps the derivative of its last stage (FSAL); Φ restarts at I on every piece, so
-  // that derivative is stale there even without a jump.
-  const bool fsal = options.type == IntegratorType::kDopri5;
-  long attempts = 0;
-  double dt = 0;
-  auto fail = [&](std::string message, bool keep_partial) {
-    if (keep_partial) {
-      product.noalias() = piece_phi * result.phi;  // Φ(t, t0) so far, for diagnostics
-      result.phi.swap(product);
-    } else {
-      result.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
-    }
-    result.message = std::move(message);
-    result.rhs_evals = rhs_evals;
-    results.push_back(std::move(result));
-    return results;
-  };
 
-  for (const Piece& piece : pieces) {
+  // Φ restarts at I; the step size too after a jump (or before the first step).
+  void StartPiece(const Piece& piece) {
     const double a = piece.t0, b = piece.t1;
-    piece_phi.setIdentity();
-    rhs.SetPiece(a, b);
-    if (piece.restart || dt <= 0) {
-      if constexpr (requires { stepper.reset(); }) stepper.reset();
-      dt = InitialStep(rhs.NormA(0.5 * (a + b)), b - a, options.rel_tol, order,
-                       TaylorErrorConstant(order));
-    } else if (fsal) {
-      if constexpr (requires { stepper.reset(); }) stepper.reset();
+    piece_phi_.setIdentity();
+    rhs_.SetPiece(a, b);
+    if (piece.restart || dt_ <= 0) {
+      if constexpr (kHasReset) stepper_.reset();
+      dt_ = InitialStep(rhs_.NormA(0.5 * (a + b)), b - a, options_.rel_tol, order_,
+                        TaylorErrorConstant(order_));
+    } else if (fsal_) {
+      if constexpr (kHasReset) stepper_.reset();
     }
+  }
+
+  // Steps from a to b, landing exactly on b; false after a failure (recorded by Fail).
+  bool IntegratePiece(double a, double b) {
     double t = a;
     while (t < b) {
-      if (attempts >= options.max_steps) {
+      if (attempts_ >= options_.max_steps) {
         std::ostringstream s;
-        s << ToString(options.type) << ": max_steps = " << options.max_steps
-          << " reached at t = " << t << " (interval [" << pieces.front().t0 << ", "
-          << pieces.back().t1 << "]); the system may be stiff: try cvode";
-        return fail(s.str(), true);
+        s << ToString(options_.type) << ": max_steps = " << options_.max_steps
+          << " reached at t = " << t << " (interval [" << pieces_.front().t0 << ", "
+          << pieces_.back().t1 << "]); the system may be stiff: try cvode";
+        return Fail(s.str(), true);
       }
-      ++attempts;
-      const bool last = dt >= b - t;
-      const double proposal = dt;
-      double h = last ? b - t : dt;
-      const double before = t;
-      if (Accepted(stepper.try_step(std::ref(rhs), x, t, h))) {
-        ++result.steps;
-        if (options.on_advance) options.on_advance((last ? b : t) - before);
-        if (last) {
-          t = b;  // land exactly on the restart point
-          // The landing step was cut short; its successor may be as long as the step the
-          // controller wanted before the cut.
-          h = std::max(h, proposal);
-        }
-        if (!AllFinite(x)) return fail(kNotFiniteMessage, false);
-        if constexpr (requires { stepper.local_error(); }) {
-          if (carry) {
-            SolveInto(piece_phi, stepper.local_error(), lu, pivots, solved);
-            carried += stepper.previous_row_scale() * solved;
-          }
-        }
-      } else if (!BelowOverflow(x)) {
-        // A rejected step of a state near the double range: the error estimate itself
-        // overflows (inf − inf), so every smaller step is rejected too (seen with
-        // Bulirsch–Stoer's extrapolation). Report the overflow instead of spinning.
-        return fail(kNotFiniteMessage, false);
-      }
-      dt = h;  // the controller's proposal (larger after success, smaller after a rejection)
-      if (t < b && t + dt == t) {
+      ++attempts_;
+      if (!TryStep(t, b)) return false;
+      if (t < b && t + dt_ == t) {
         std::ostringstream s;
-        s << ToString(options.type) << ": step size underflow at t = " << t;
-        return fail(s.str(), false);
+        s << ToString(options_.type) << ": step size underflow at t = " << t;
+        return Fail(s.str(), false);
       }
     }
-    if (carry) {
-      product.noalias() = piece_phi * result.local_error_effect;
-      solved.noalias() = piece_phi * carried;
-      product.noalias() += solved * result.phi;
-      result.local_error_effect.swap(product);
-      carried.setZero(n, n);
-    }
-    product.noalias() = piece_phi * result.phi;
-    result.phi.swap(product);
-    if (piece.output) {
-      result.ok = true;
-      result.rhs_evals = rhs_evals;
-      rhs_evals = 0;
-      results.push_back(std::move(result));
-      result = TransitionResult{};
-      result.phi = Eigen::MatrixXd::Identity(n, n);
-      if (carry) result.local_error_effect.setZero(n, n);
-    }
+    return true;
   }
-  return results;
+
+  // One attempted step from t (advanced when accepted); dt_ becomes the controller's proposal.
+  // False after a failure (recorded by Fail).
+  bool TryStep(double& t, double b) {
+    const bool last = dt_ >= b - t;
+    const double proposal = dt_;
+    double h = last ? b - t : dt_;
+    const double before = t;
+    if (Accepted(stepper_.try_step(std::ref(rhs_), x_, t, h))) {
+      ++result_.steps;
+      if (options_.on_advance) options_.on_advance((last ? b : t) - before);
+      if (last) {
+        t = b;  // land exactly on the restart point
+        // The landing step was cut short; its successor may be as long as the step the
+        // controller wanted before the cut.
+        h = std::max(h, proposal);
+      }
+      if (!AllFinite(x_)) return Fail(kNotFiniteMessage, false);
+      if constexpr (kHasLocalError) {
+        if (carry_) {
+          SolveInto(piece_phi_, stepper_.local_error(), lu_, pivots_, solved_);
+          carried_ += stepper_.previous_row_scale() * solved_;
+        }
+      }
+    } else if (!BelowOverflow(x_)) {
+      // A rejected step of a state near the double range: the error estimate itself
+      // overflows (inf − inf), so every smaller step is rejected too (seen with
+      // Bulirsch–Stoer's extrapolation). Report the overflow instead of spinning.
+      return Fail(kNotFiniteMessage, false);
+    }
+    dt_ = h;  // the controller's proposal (larger after success, smaller after a rejection)
+    return true;
+  }
+
+  // The piece's carried local errors into the factor's: δF ← P δF + (Y_b G) F.
+  void CarryPieceErrors() {
+    product_.noalias() = piece_phi_ * result_.local_error_effect;
+    solved_.noalias() = piece_phi_ * carried_;
+    product_.noalias() += solved_ * result_.phi;
+    result_.local_error_effect.swap(product_);
+    carried_.setZero(n_, n_);
+  }
+
+  // The factor ends at an output point: reported, and the next one starts at I.
+  void CloseFactor() {
+    result_.ok = true;
+    result_.rhs_evals = rhs_evals_;
+    rhs_evals_ = 0;
+    results_.push_back(std::move(result_));
+    result_ = TransitionResult{};
+    result_.phi = Eigen::MatrixXd::Identity(n_, n_);
+    if (carry_) result_.local_error_effect.setZero(n_, n_);
+  }
+
+  // The failed factor as the last result: Φ so far (for diagnostics) or NaN.
+  bool Fail(std::string message, bool keep_partial) {
+    if (keep_partial) {
+      product_.noalias() = piece_phi_ * result_.phi;  // Φ(t, t0) so far, for diagnostics
+      result_.phi.swap(product_);
+    } else {
+      result_.phi.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    result_.message = std::move(message);
+    result_.rhs_evals = rhs_evals_;
+    results_.push_back(std::move(result_));
+    return false;
+  }
+
+  using Square = Eigen::Matrix<double, N, N>;
+  Controlled& stepper_;
+  const int order_;
+  const IntegratorOptions& options_;
+  const std::vector<Piece>& pieces_;
+  const int n_;
+  State x_;
+  Eigen::Map<Square> piece_phi_;  // Φ over the current piece: x_ as a matrix
+  Eigen::MatrixXd product_;
+  std::vector<TransitionResult> results_;
+  TransitionResult result_;  // the factor being accumulated
+  const bool carry_ = CarriesLocalErrors(options_);
+  Square carried_, solved_, lu_;
+  std::vector<lapack_int> pivots_;
+  long rhs_evals_ = 0;
+  MatrixRhs<State, N> rhs_;
+  // dopri5 keeps the derivative of its last stage (FSAL); Φ restarts at I on every piece, so
+  // that derivative is stale there even without a jump.
+  const bool fsal_ = options_.type == IntegratorType::kDopri5;
+  long attempts_ = 0;
+  double dt_ = 0;
+};
+
+template <class State, int N, class Controlled>
+std::vector<TransitionResult> Run(Controlled stepper, int order, const PeriodicSystem& system,
+                                  const std::vector<Piece>& pieces,
+                                  const IntegratorOptions& options) {
+  PieceIntegration<State, N, Controlled> integration(stepper, order, system, pieces, options);
+  return integration.Run();
 }
 
 template <class State, int N>
