@@ -249,46 +249,22 @@ invertible). The arrays are parallel, one entry per zero.)doc")
       });
 }
 
-}  // namespace
+using HtfClass = py::class_<PyHtf>;
 
-void BindHtfOperator(py::module_& m) {
-  BindNormResults(m);
-  BindZerosResult(m);
-  const ZerosOptions zeros;
-  const NormOptions norm;
-  py::class_<PyHtf>(m, "HarmonicTransferFunction", R"doc(
-The harmonic transfer function of a periodic system as an operator: for an input
-u(t) = Σ_u U_u e^{(s + juΩp)t} the output is y(t) = Σ_v Y_v e^{(s + jvΩp)t}, Y_v = Σ_u 𝓗_{v,u}(s) U_u,
-𝓗_{v,u}(s) = H_{v−u}(s + juΩp). Set up once (a Floquet decomposition and the Hill route's
-truncation; runs without the GIL), then evaluated at any complex s, MIMO.
-
-  rel_tol         integrator tolerance of the Floquet decomposition
-  hill_harmonics  truncation N of the Hill route (0 = automatic)
-  probe_orders    the Hill truncation is chosen for orders −probe_orders…probe_orders
-
-    h = ltp.HarmonicTransferFunction(sys)
-    h.partial(-0.1 + 1j, orders=(-2, 2))      # H_z(s), shape (5, outputs, inputs)
-    h.section(1j, harmonics=3)                # the operator's section −3…3
-    h.orbits(0.7, [1, -1j], x="x", y="y")     # an unbalance orbit, order by order
-    h.hinf().value, h.h2().value)doc")
-      .def(py::init([](const System& system, double rel_tol, int hill_harmonics, int probe_orders,
-                       int threads) {
-             return MakeHtf(system, rel_tol, hill_harmonics, probe_orders, threads);
-           }),
-           py::arg("system"), py::kw_only(), py::arg("rel_tol") = IntegratorOptions{}.rel_tol,
-           py::arg("hill_harmonics") = 0, py::arg("probe_orders") = 4, py::arg("threads") = 0)
-      .def(
-          "partial",
-          [](const PyHtf& h, Complex s, const py::object& orders, const std::string& route) {
-            const auto [z0, z1] = OrdersFrom(orders);
-            const PartialFrfs H = h.htf->Partial(s, z0, z1, RouteFrom(route));
-            return ComplexStack(H, h.system.system.outputs(), h.system.system.inputs());
-          },
-          py::arg("s"), py::kw_only(), py::arg("orders") = py::make_tuple(-2, 2),
-          py::arg("route") = "modal",
-          "H_z(s) for z in orders ('ZMIN:ZMAX', an int or a pair) at the complex frequency s "
-          "(s = jω on the frequency axis): complex array (orders, outputs, inputs). route: "
-          "modal or hill.")
+// Evaluations of the operator: H_z(s), response orbits, sections.
+void AddEvaluations(HtfClass& htf) {
+  htf.def(
+         "partial",
+         [](const PyHtf& h, Complex s, const py::object& orders, const std::string& route) {
+           const auto [z0, z1] = OrdersFrom(orders);
+           const PartialFrfs H = h.htf->Partial(s, z0, z1, RouteFrom(route));
+           return ComplexStack(H, h.system.system.outputs(), h.system.system.inputs());
+         },
+         py::arg("s"), py::kw_only(), py::arg("orders") = py::make_tuple(-2, 2),
+         py::arg("route") = "modal",
+         "H_z(s) for z in orders ('ZMIN:ZMAX', an int or a pair) at the complex frequency s "
+         "(s = jω on the frequency axis): complex array (orders, outputs, inputs). route: "
+         "modal or hill.")
       .def(
           "orbits",
           [](const PyHtf& h, Real omega, const std::vector<Complex>& input, const py::object& x,
@@ -318,19 +294,25 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
           },
           py::arg("s"), py::kw_only(), py::arg("harmonics") = 2, py::arg("route") = "modal",
           "The operator's section with input and output harmonics −K…K: complex array "
-          "((2K+1)·outputs, (2K+1)·inputs), block (v, u) = H_{v−u}(s + juΩp).")
-      .def(
-          "hinf",
-          [](const PyHtf& h, double rel_tol, int grid_points, int max_section_harmonics,
-             int threads) {
-            const NormOptions o =
-                NormOptionsFrom(h.system, rel_tol, grid_points, max_section_harmonics, 0, threads);
-            return WithoutGil(h.system, [&] { return h.htf->Hinf(o); });
-          },
-          py::kw_only(), py::arg("rel_tol") = norm.rel_tol,
-          py::arg("grid_points") = norm.grid_points,
-          py::arg("max_section_harmonics") = norm.max_section_harmonics, py::arg("threads") = 0,
-          "‖G‖∞ by two routes (an HinfNorm); runs without the GIL.")
+          "((2K+1)·outputs, (2K+1)·inputs), block (v, u) = H_{v−u}(s + juΩp).");
+}
+
+// The norms and the transmission zeros (each runs without the GIL).
+void AddNormsAndZeros(HtfClass& htf) {
+  const ZerosOptions zeros;
+  const NormOptions norm;
+  htf.def(
+         "hinf",
+         [](const PyHtf& h, double rel_tol, int grid_points, int max_section_harmonics,
+            int threads) {
+           const NormOptions o =
+               NormOptionsFrom(h.system, rel_tol, grid_points, max_section_harmonics, 0, threads);
+           return WithoutGil(h.system, [&] { return h.htf->Hinf(o); });
+         },
+         py::kw_only(), py::arg("rel_tol") = norm.rel_tol,
+         py::arg("grid_points") = norm.grid_points,
+         py::arg("max_section_harmonics") = norm.max_section_harmonics, py::arg("threads") = 0,
+         "‖G‖∞ by two routes (an HinfNorm); runs without the GIL.")
       .def(
           "h2",
           [norm](const PyHtf& h, double rel_tol, int max_lyapunov_states) {
@@ -366,15 +348,18 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
           "zero moves by less than tol · max(|z|, Ωp) from N to N + Δ), checked by the zero "
           "dynamics' Floquet exponents (at integrator tolerance rel_tol) where D(t) is "
           "invertible or D = 0 with C(t)B(t) invertible. Raises InputError for a system with "
-          "more inputs than outputs or the reverse. Runs without the GIL.")
-      .def_property_readonly(
-          "exponents",
-          [](const PyHtf& h) {
-            std::vector<Complex> e;
-            for (const FloquetMode& mode : h.htf->floquet().modes) e.push_back(mode.exponent);
-            return ComplexArray(e);
-          },
-          "the Floquet exponents λ_k of the decomposition (1/s)")
+          "more inputs than outputs or the reverse. Runs without the GIL.");
+}
+
+void AddProperties(HtfClass& htf) {
+  htf.def_property_readonly(
+         "exponents",
+         [](const PyHtf& h) {
+           std::vector<Complex> e;
+           for (const FloquetMode& mode : h.htf->floquet().modes) e.push_back(mode.exponent);
+           return ComplexArray(e);
+         },
+         "the Floquet exponents λ_k of the decomposition (1/s)")
       .def_property_readonly(
           "omega_p", [](const PyHtf& h) { return h.system.system.omega(); },
           "the fundamental Ωp = 2π/T (rad/s)")
@@ -392,6 +377,37 @@ truncation; runs without the GIL), then evaluated at any complex s, MIMO.
                " states, " + std::to_string(h.system.system.inputs()) + " inputs, " +
                std::to_string(h.system.system.outputs()) + " outputs>";
       });
+}
+
+}  // namespace
+
+void BindHtfOperator(py::module_& m) {
+  BindNormResults(m);
+  BindZerosResult(m);
+  HtfClass htf(m, "HarmonicTransferFunction", R"doc(
+The harmonic transfer function of a periodic system as an operator: for an input
+u(t) = Σ_u U_u e^{(s + juΩp)t} the output is y(t) = Σ_v Y_v e^{(s + jvΩp)t}, Y_v = Σ_u 𝓗_{v,u}(s) U_u,
+𝓗_{v,u}(s) = H_{v−u}(s + juΩp). Set up once (a Floquet decomposition and the Hill route's
+truncation; runs without the GIL), then evaluated at any complex s, MIMO.
+
+  rel_tol         integrator tolerance of the Floquet decomposition
+  hill_harmonics  truncation N of the Hill route (0 = automatic)
+  probe_orders    the Hill truncation is chosen for orders −probe_orders…probe_orders
+
+    h = ltp.HarmonicTransferFunction(sys)
+    h.partial(-0.1 + 1j, orders=(-2, 2))      # H_z(s), shape (5, outputs, inputs)
+    h.section(1j, harmonics=3)                # the operator's section −3…3
+    h.orbits(0.7, [1, -1j], x="x", y="y")     # an unbalance orbit, order by order
+    h.hinf().value, h.h2().value)doc");
+  htf.def(py::init([](const System& system, double rel_tol, int hill_harmonics, int probe_orders,
+                      int threads) {
+            return MakeHtf(system, rel_tol, hill_harmonics, probe_orders, threads);
+          }),
+          py::arg("system"), py::kw_only(), py::arg("rel_tol") = IntegratorOptions{}.rel_tol,
+          py::arg("hill_harmonics") = 0, py::arg("probe_orders") = 4, py::arg("threads") = 0);
+  AddEvaluations(htf);
+  AddNormsAndZeros(htf);
+  AddProperties(htf);
 }
 
 }  // namespace ltp::python
