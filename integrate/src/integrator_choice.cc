@@ -68,6 +68,12 @@ bool ConstantBetweenBreakpoints(const PeriodicSystem& system) {
   return true;
 }
 
+// The traits part of MagnusFilonPays: all but the eigenbasis.
+bool FilonStepsPay(const SystemTraits& traits, double rel_tol) {
+  return traits.fourier_form && traits.oscillation > kFastOscillation &&
+         MagnusFilonSteps(traits, rel_tol) < traits.oscillation / 4;
+}
+
 }  // namespace
 
 SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
@@ -118,9 +124,8 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
           std::max(t.variation, T * internal::BalancedNorm(Eigen::MatrixXd(x - mean), scale));
   }
   // The eigenbasis costs an eigen-decomposition with vectors: looked for only when it could
-  // decide (assumed present, would Magnus–Filon pay?).
-  t.mean_eigenbasis = true;
-  t.mean_eigenbasis = MagnusFilonPays(t, kLoosestFilonTolerance) &&
+  // decide.
+  t.mean_eigenbasis = FilonStepsPay(t, kLoosestFilonTolerance) &&
                       internal::MagnusFilonIntegrator(system).unsuitable().empty();
   return t;
 }
@@ -179,8 +184,7 @@ double MagnusFilonSteps(const SystemTraits& traits, double rel_tol) {
 }
 
 bool MagnusFilonPays(const SystemTraits& traits, double rel_tol) {
-  if (!traits.fourier_form || traits.oscillation <= kFastOscillation) return false;
-  return MagnusFilonSteps(traits, rel_tol) < traits.oscillation / 4 && traits.mean_eigenbasis;
+  return FilonStepsPay(traits, rel_tol) && traits.mean_eigenbasis;
 }
 
 IntegratorChoice ChooseIntegrator(const PeriodicSystem& system, double rel_tol) {

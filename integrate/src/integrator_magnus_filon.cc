@@ -48,7 +48,6 @@ struct MagnusFilonIntegrator::Split {
   int harmonics = 0;
   double omega = 0;
   double max_step = 0;  // from the decay spread; infinity when every Re λ is equal
-  double condition = 0;
   std::string unsuitable;
   std::vector<Eigen::MatrixXcd> key;  // A's coefficients, to recognise the system
 
@@ -81,12 +80,12 @@ std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& sy
   split->v = eig.eigenvectors();
   Eigen::PartialPivLU<Matrix> lu(split->v);
   split->v_inv = lu.inverse();
-  split->condition = split->v.norm() * split->v_inv.norm();
-  if (!(split->condition <= kMaxCondition)) {
+  const double condition = split->v.norm() * split->v_inv.norm();
+  if (!(condition <= kMaxCondition)) {
     std::ostringstream s;
     s << "the mean A_0 is not diagonalisable in a well-conditioned basis (eigenvector "
          "condition "
-      << MessageNumber(split->condition, 2) << " > " << MessageNumber(kMaxCondition, 2)
+      << MessageNumber(condition, 2) << " > " << MessageNumber(kMaxCondition, 2)
       << "; a rigid-body or repeated mode?)";
     split->unsuitable = s.str();
     return split;
