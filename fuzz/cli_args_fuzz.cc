@@ -6,8 +6,8 @@
 // The harness bounds the work, not the parsing: the fuzzer should find inputs the CLI handles
 // badly, not legitimate long analyses (a 10^6-point chart is allowed and shows progress). So
 // charts stop after a few points (--stop-after, as Ctrl-C would), frequency lists and sweeps
-// above a few hundred points, truncations above 48 harmonics and parameters above 1e4 are
-// skipped, and so are
+// above a few hundred points, truncations above 48 harmonics, parameters above 1e4, more than
+// 1e5 fixed steps per period and tolerances below 1e-12 are skipped, and so are
 // arguments that would write outside the working directory or start gnuplot.
 #include <unistd.h>
 
@@ -83,6 +83,13 @@ bool TooMuchWork(const std::vector<std::string>& args) {
           if (f1 - f0 > 5) return true;  // every grid line of the band: thousands of lines
         }
       }
+      // Fixed-step runs and tight tolerances: honest work proportional to the steps asked for
+      // (flap, magnus6: 1e7 steps per period 7 s plain, minutes sanitized; expm at 1e-13 3 s
+      // plain) — announced by the CLI's work estimate, not a finding.
+      if (const std::string* v = ValueOf(args, i, "--steps", scratch))
+        if (std::atof(v->c_str()) > 1e5) return true;
+      if (const std::string* v = ValueOf(args, i, "--tol", scratch))
+        if (std::atof(v->c_str()) < 1e-12) return true;
       if (const std::string* v = ValueOf(args, i, "--records", scratch))
         if (std::atof(v->c_str()) > 12) return true;
       for (const char* h : {"--harmonics", "--max-harmonics", "--htf-harmonics"})

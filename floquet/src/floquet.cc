@@ -277,11 +277,10 @@ void WeighTheWork(const PeriodicSystem& system, std::optional<SystemTraits>& tra
   constexpr double kLinearAlgebraPerSegment = 100;
   const double linear_algebra = kLinearAlgebraPerSegment * std::max(segments, 1);
   // Fixed steps set the count themselves, whatever the system (3 nodes, 3.5 passes at most).
-  const double most =
-      (std::max(MostEvaluations(period_scale, pieces, segments, options.integrator.rel_tol),
-                10.5 * options.integrator.steps_per_period) +
-       linear_algebra) *
-      per_evaluation;
+  const double most = (std::max(MostEvaluations(period_scale, pieces, segments, options.integrator),
+                                10.5 * options.integrator.steps_per_period) +
+                       linear_algebra) *
+                      per_evaluation;
   const double limit = options.max_work_seconds > 0 ? options.max_work_seconds : HUGE_VAL;
   if (most <= std::min(limit, options.announce_work_seconds)) return;
   if (!traits) traits = MeasureSystemTraits(system);

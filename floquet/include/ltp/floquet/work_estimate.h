@@ -37,6 +37,7 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
 /// More evaluations than any integrator needs for a system with T·max‖A(t)‖ = `period_scale`
 /// (which bounds T·ρ and the e-folds), `pieces` and `segments`: what decides whether an
 /// analysis is small enough to skip the traits and the estimate.
-double MostEvaluations(double period_scale, double pieces, int segments, double rel_tol);
+double MostEvaluations(double period_scale, double pieces, int segments,
+                       const IntegratorOptions& integrator);
 
 }  // namespace ltp
