@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "integrator_internal.h"
+#include "ltp/integrate/detail/matrix_exponential.h"
 #include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
@@ -38,7 +38,8 @@ class ExponentialMemo {
     Entry& e = entries_[next_];
     next_ = (next_ + 1) % entries_.size();
     e.omega = omega;
-    e.exp = omega.exp();
+    e.exp.resize(omega.rows(), omega.cols());
+    ExpInto(omega, e.exp);
     return e.exp;
   }
 
@@ -71,8 +72,9 @@ void FixedStepIntegrator::StepGenerator(double t, double h) {
       system_.EvalA(t + (0.5 - d) * h, a1_);
       system_.EvalA(t + (0.5 + d) * h, a2_);
       rhs_evals_ += 2;
-      comm_.noalias() = a2_ * a1_;
-      comm_.noalias() -= a1_ * a2_;
+      MultiplyInto(a2_, a1_, comm_);
+      MultiplyInto(a1_, a2_, tmp_);
+      comm_ -= tmp_;
       omega_ = (0.5 * h) * (a1_ + a2_) + (std::sqrt(3.0) / 12 * h * h) * comm_;
       break;
     }
@@ -89,18 +91,21 @@ void FixedStepIntegrator::StepGenerator(double t, double h) {
       rhs_evals_ += 3;
       b2_ = (std::sqrt(15.0) * h / 3) * (a3_ - a1_);
       b3_ = (10 * h / 3) * (a3_ - 2 * a2_ + a1_);
-      a2_ *= h;                     // B1
-      comm_.noalias() = a2_ * b2_;  // [B1, B2]
-      comm_.noalias() -= b2_ * a2_;
+      a2_ *= h;                       // B1
+      MultiplyInto(a2_, b2_, comm_);  // [B1, B2]
+      MultiplyInto(b2_, a2_, step_);
+      comm_ -= step_;
       // Right operand R = B2 − (1/60) [B1, 2 B3 + [B1, B2]], into step_.
       tmp_ = 2 * b3_ + comm_;
-      step_.noalias() = a2_ * tmp_;
-      step_.noalias() -= tmp_ * a2_;
+      MultiplyInto(a2_, tmp_, step_);
+      MultiplyInto(tmp_, a2_, omega_);
+      step_ -= omega_;
       step_ = b2_ - step_ / 60;
       // Left operand L = −20 B1 − B3 + [B1, B2], into tmp_; then Ω.
       tmp_ = comm_ - 20 * a2_ - b3_;
-      omega_.noalias() = tmp_ * step_;
-      omega_.noalias() -= step_ * tmp_;
+      MultiplyInto(tmp_, step_, omega_);
+      MultiplyInto(step_, tmp_, a1_);  // a1_ is free again
+      omega_ -= a1_;
       omega_ = a2_ + b3_ / 12 + omega_ / 240;
       break;
     }
@@ -124,7 +129,7 @@ Eigen::MatrixXd FixedStepIntegrator::Run(const std::vector<double>& points, int 
     const double h = length / steps;
     for (long k = 0; k < steps; ++k) {
       StepGenerator(a + k * h, h);  // a + k h, not a running sum: no drift over many steps
-      step_ = omega_.exp();
+      ExpInto(omega_, step_);
       MultiplyInto(step_, phi_, next_);
       phi_.swap(next_);
     }
@@ -145,7 +150,7 @@ Eigen::MatrixXd FixedStepIntegrator::RunPiecewiseConstant(const std::vector<doub
       thread_local ExponentialMemo memo;
       MultiplyInto(memo.Exp(omega_), phi_, next_);
     } else {
-      step_ = omega_.exp();
+      ExpInto(omega_, step_);
       MultiplyInto(step_, phi_, next_);
     }
     phi_.swap(next_);

@@ -9,13 +9,14 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numbers>
 #include <sstream>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "integrator_internal.h"
 #include "ltp/core/error.h"
+#include "ltp/integrate/detail/matrix_exponential.h"
 #include "ltp/integrate/detail/matrix_product.h"
 #include "ltp/integrate/integrator_choice.h"
 #include "oscillatory_integrals.h"
@@ -34,13 +35,23 @@ constexpr double kDecaySpreadPerStep = 2;
 // Eigenvector matrices worse conditioned than this (Frobenius estimate) make the transformation's
 // round-off, ε·cond, larger than the tolerances this method is for: it declines.
 constexpr double kMaxCondition = 1e7;
+// Step lengths this close share generators (and the piece is stepped by the cached length): the
+// pieces of a segment grid differ in their last bits (1.4e-14 relative on a 6 s period), and
+// steps of h(1 + 1e-13) end a piece 1e-13 of its length late — a few ulps of the grid's own
+// times, as if the grid had been rounded once more.
+constexpr double kSameStep = 1e-13;
+// Splits (systems) and step lengths kept: the analysis, its refined run and the other models of
+// a sampled set, with the doubling loop's last lengths; (2H + 1) + (4H + 1) n×n complex matrices
+// per length (60 MB at n = 250, H = 1 for four).
+constexpr size_t kSplitsKept = 3;
+constexpr size_t kGeneratorsKept = 4;
 
 using Matrix = Eigen::MatrixXcd;
 
 }  // namespace
 
 // The mean's eigen-decomposition and the harmonics in its eigenbasis, shared by every transition
-// of one system on this thread, with the generators of the step lengths already used.
+// of one system on every thread, with the generators of the step lengths already used.
 struct MagnusFilonIntegrator::Split {
   Eigen::VectorXcd lambda;
   Matrix v, v_inv;
@@ -55,10 +66,12 @@ struct MagnusFilonIntegrator::Split {
     double h = 0;
     std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
   };
-  std::vector<Generators> generators;  // most recent last
+  std::mutex mutex;  // guards `generators`: one thread forms a step length's, the others wait
+  std::vector<std::shared_ptr<const Generators>> generators;  // most recent last
 
   Matrix Divisor(int m) const;  // D_m(i, j) = λ_j − λ_i + jmΩ
-  const Generators& For(double h);
+  std::shared_ptr<const Generators> For(double h);
+  Generators Form(double h) const;
 };
 
 namespace {
@@ -103,7 +116,8 @@ std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& sy
   return split;
 }
 
-// The split of `system`'s A on this thread: recomputed only for another series.
+// The split of `system`'s A: recomputed only for another series. Shared by the threads (the
+// segments' transitions run in parallel), formed by the first that asks.
 std::shared_ptr<MagnusFilonIntegrator::Split> SplitOf(const PeriodicSystem& system) {
   const FourierMatrix* a = system.fourier_A();
   if (a == nullptr) {
@@ -111,7 +125,9 @@ std::shared_ptr<MagnusFilonIntegrator::Split> SplitOf(const PeriodicSystem& syst
     none->unsuitable = "A(t) is not a Fourier series";
     return none;
   }
-  thread_local std::vector<std::shared_ptr<MagnusFilonIntegrator::Split>> memo;
+  static std::mutex memo_mutex;
+  static std::vector<std::shared_ptr<MagnusFilonIntegrator::Split>> memo;
+  const std::lock_guard<std::mutex> lock(memo_mutex);
   const int H = a->max_harmonic();
   for (const auto& s : memo) {
     if (static_cast<int>(s->key.size()) != 2 * H + 1 || s->omega != system.omega()) continue;
@@ -121,7 +137,7 @@ std::shared_ptr<MagnusFilonIntegrator::Split> SplitOf(const PeriodicSystem& syst
     if (same) return s;
   }
   auto split = MakeSplit(system, *a);
-  if (memo.size() >= 2) memo.erase(memo.begin());
+  if (memo.size() >= kSplitsKept) memo.erase(memo.begin());
   memo.push_back(split);
   return split;
 }
@@ -147,9 +163,17 @@ Matrix MagnusFilonIntegrator::Split::Divisor(int m) const {
 //   F(a, b) − F(b, a) = h φ1(sh)(1/b − 1/a) − h φ1(ah)/b + h φ1(bh)/a,
 // so over the paths j whose a and b are not resonant the sums are matrix products of Q, Q ⊘ D
 // and Q ⊙ φ1(Dh); the resonant paths (every diagonal entry once h|mΩ| < kResonant) one by one.
-const MagnusFilonIntegrator::Split::Generators& MagnusFilonIntegrator::Split::For(double h) {
-  for (const Generators& g : generators)
-    if (g.h == h) return g;
+std::shared_ptr<const MagnusFilonIntegrator::Split::Generators> MagnusFilonIntegrator::Split::For(
+    double h) {
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& g : generators)
+    if (std::abs(g->h - h) <= kSameStep * h) return g;
+  if (generators.size() >= kGeneratorsKept) generators.erase(generators.begin());
+  generators.push_back(std::make_shared<const Generators>(Form(h)));
+  return generators.back();
+}
+
+MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
   Generators g;
   g.h = h;
@@ -220,9 +244,7 @@ const MagnusFilonIntegrator::Split::Generators& MagnusFilonIntegrator::Split::Fo
               g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
         }
     }
-  if (generators.size() >= 8) generators.erase(generators.begin());
-  generators.push_back(std::move(g));
-  return generators.back();
+  return g;
 }
 
 MagnusFilonIntegrator::MagnusFilonIntegrator(const PeriodicSystem& system)
@@ -234,7 +256,7 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
                                            long refine) {
   Split& s = *split_;
   const int n = system_.states(), H = s.harmonics;
-  Matrix z = Matrix::Identity(n, n), next(n, n), w(n, n);
+  Matrix z = Matrix::Identity(n, n), next(n, n), w(n, n), step(n, n);
   last_pass_steps_ = 0;
   const double period = system_.period();
   for (size_t p = 0; p + 1 < points.size(); ++p) {
@@ -243,8 +265,9 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
     if (std::isfinite(s.max_step))
       base = std::max(base, static_cast<long>(std::ceil(length / s.max_step)));
     const long steps = refine * base;
-    const double h = length / steps;
-    const auto& g = s.For(h);
+    const std::shared_ptr<const Split::Generators> generators = s.For(length / steps);
+    const Split::Generators& g = *generators;
+    const double h = g.h;
     const Eigen::VectorXcd decay = (s.lambda * h).array().exp();
     for (long k = 0; k < steps; ++k) {
       const double t = t0 + k * h;  // not a running sum: no drift over many steps
@@ -255,7 +278,7 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
       }
       for (int q = -2 * H; q <= 2 * H; ++q)
         w += std::polar(1.0, q * s.omega * t) * g.second[q + 2 * H];
-      const Matrix step = w.exp();
+      ExpInto(w, step);
       MultiplyInto(step, z, next);
       z = decay.asDiagonal() * next;
     }
