@@ -32,6 +32,7 @@ struct SimulateArgs {
   double input_noise_db = SimulateOptions{}.input_noise_snr_db;
   double speed_offset_pct = 0, speed_ramp_pct = 0;
   double cubic = 0;
+  double max_transient = SimulateOptions{}.max_settle_periods;
   bool tacho = false;
   std::uint64_t seed = SimulateOptions{}.seed;
   int records = SimulateOptions{}.records;
@@ -93,6 +94,7 @@ int RunSimulate(const SimulateArgs& args) {
   o.speed_ramp = args.speed_ramp_pct / 100;
   o.tacho = args.tacho;
   o.cubic_stiffness = args.cubic;
+  o.max_settle_periods = args.max_transient;
   o.seed = args.seed;
   const SimulationResult r =
       kind == "step-sine" ? SimulateStepSine(l.system, o) : SimulateMultisine(l.system, o);
@@ -192,6 +194,10 @@ Command AddSimulateCommand(CLI::App& app) {
                 "step-sine: write a once-per-period tacho column aux:tacho (for identify --tacho)");
   cmd->add_option("--cubic", args.cubic,
                   "K3: a hardening cubic spring between output 0 and the input (force u − K3·y³)");
+  cmd->add_option("--max-transient", args.max_transient,
+                  "refuse a transient (before the records) longer than this many periods")
+      ->check(NumberAboveZero())
+      ->capture_default_str();
   cmd->add_option("--seed", args.seed, "noise (and multisine phase) generator seed")
       ->capture_default_str();
   cmd->add_option("--out", args.out,

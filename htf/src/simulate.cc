@@ -145,9 +145,11 @@ RecordPlan PlanRecords(const PeriodicSystem& system, const SimulateOptions& opti
   if (total > 1e8)
     throw InputError(MessageNumber(total, 10) +
                      " samples in all: more than 10^8 (split the test or sample slower)");
-  if (settle_periods > 100000)
+  if (settle_periods > options.max_settle_periods)
     throw InputError("the transient needs " + MessageNumber(settle_periods, 10) +
-                     " periods to decay: too lightly damped to simulate");
+                     " periods to decay, more than SimulateOptions::max_settle_periods = " +
+                     MessageNumber(options.max_settle_periods, 10) +
+                     " (ltp: --max-transient PERIODS): too lightly damped to simulate");
   r.settle_time = settle_periods * T;
   return {r.settle_time, options.periods * T, options.periods * options.samples_per_period};
 }
@@ -296,6 +298,7 @@ void SimulateOptions::Validate() const {
   if (samples_per_period < 4 || samples_per_period > 100000)
     check.Fail("samples_per_period", samples_per_period, "in 4..100000");
   if (!(settle_tol > 0 && settle_tol < 1)) check.Fail("settle_tol", settle_tol, "in (0, 1)");
+  if (!(max_settle_periods >= 1)) check.Fail("max_settle_periods", max_settle_periods, ">= 1");
   if (std::isnan(noise_snr_db))
     check.Fail("noise_snr_db", noise_snr_db, "a number (+inf = no noise)");
   if (std::isnan(input_noise_snr_db))

@@ -56,6 +56,28 @@ TEST(ExitCodes, ImpossibleToleranceIsRefusedUpFront) {
       << work.err;
 }
 
+// A lightly damped system's transient (Mathieu a = 1, c = 0.2: slowest exponent −2.17e-4 1/s by
+// `ltp floquet`, so ln(cond Ξ / 1e-10)/2.17e-4 ≈ 1.06e5 s ≈ 33 900 periods of π) is weighed
+// before any integration: refused under --max-transient with the count, run above it (the
+// fuzzer's timeout: 2.7 s plain, beyond 20 s under the sanitizers).
+TEST(ExitCodes, ALongTransientIsRefusedBeforeTheSimulation) {
+  const std::string sim =
+      "simulate mathieu --set a=1 --set c=0.2 --excitation sine:0.1 --periods 4 "
+      "--samples-per-period 16 --out " +
+      ::testing::TempDir() + "ltp-transient.csv";
+  const auto refused = RunLtp(sim + " --max-transient 2000");
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_EQ(Lines(refused.err), 1);
+  EXPECT_NE(refused.err.find("periods to decay, more than SimulateOptions::max_settle_periods = "
+                             "2000 (ltp: --max-transient PERIODS)"),
+            std::string::npos)
+      << refused.err;
+  const auto bad = RunLtp(sim + " --max-transient 0");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--max-transient: must be a finite number > 0"), std::string::npos)
+      << bad.err;
+}
+
 TEST(ExitCodes, SnapshotTimesAreFiniteAndReducedModuloThePeriod) {
   for (const char* at : {"nan", "inf", "-inf"}) {
     const auto r = RunLtp(std::string("info mathieu --at ") + at);

@@ -27,6 +27,9 @@ struct SimulateOptions {
   /// The transient is integrated for ln(cond Ξ / settle_tol) / |max Re λ|, rounded up to whole
   /// periods, before recording (the system must be asymptotically stable).
   double settle_tol = 1e-10;
+  /// A transient longer than this many periods is refused before any work (a lightly damped
+  /// system: slowest exponent −2e-4 1/s on a period of π takes 34 000 periods per record).
+  double max_settle_periods = 100000;
   /// Output noise: white Gaussian, per output, with rms = rms(clean output) · 10^(−snr_db/20);
   /// +inf = none. Each record draws from its own stream of the seed (seeds K and K + 1 share
   /// no record's noise).
