@@ -65,9 +65,9 @@ struct OrbitSweepOptions {
   /// value's error estimate (cheap: both routes reuse the one set-up).
   bool check = true;
   /// The largest disagreement of the routes, relative to the sweep's largest semi-major axis,
-  /// for which the sweep is ok. The routes agree to 1e-9 and better on the built-in rotors
-  /// (response_orbit_test.cc); a truncation of the Hill route too short for the orders asked
-  /// shows up far above this.
+  /// for which the sweep is ok. Measured on unbalance orbits (orders −2…2 or −3…3): 3e-14
+  /// (jeffcott), 4e-14 (rotor, tower-rotor); a truncation of the Hill route too short for the
+  /// orders asked shows up far above this.
   double max_relative_disagreement = 1e-6;
   /// Radii below this fraction of the sweep's largest semi-major axis are round-off: the floor
   /// of every value's uncertainty when its sense is judged (the check's estimate can be
