@@ -130,8 +130,8 @@ TEST(ResponseOrbitSweep, IsotropicRotorUnbalanceIsAForwardCircle) {
 }
 
 TEST(ResponseOrbitSweep, ADisagreementBeyondTheLimitFailsTheSweep) {
-  const HarmonicTransferFunction htf(LoadScene("jeffcott").build(
-      {{"m", 1}, {"k1", 1}, {"k2", 1.5}, {"c", 0.05}, {"Omega", 0.5}}));
+  const HarmonicTransferFunction htf(
+      LoadScene("jeffcott").build({{"m", 1}, {"k1", 1}, {"k2", 1.5}, {"c", 0.05}, {"Omega", 0.5}}));
   OrbitSweepOptions options;
   options.max_relative_disagreement = 1e-300;  // below any round-off: the check must fail it
   const OrbitSweep r = ResponseOrbitSweep(htf, {0.7}, UnbalanceInput(2, 0, 1, 1), 0, 1, options);
