@@ -7,6 +7,7 @@
 #include <string>
 
 #include "ltp/core/error.h"
+#include "ltp/integrate/threads.h"
 
 namespace ltp {
 
@@ -85,6 +86,9 @@ void OrbitSweepOptions::Validate() const {
         "OrbitSweepOptions::max_relative_disagreement must be > 0. Violated constraint: > 0");
   if (!(negligible >= 0 && negligible < 1))
     throw InputError("OrbitSweepOptions::negligible must be in [0, 1)");
+  if (threads < 0)
+    throw InputError("OrbitSweepOptions::threads = " + std::to_string(threads) +
+                     ". Violated constraint: threads >= 0");
 }
 
 namespace {
@@ -141,11 +145,39 @@ void JudgeSweep(const OrbitSweepOptions& options, OrbitSweep& r) {
 
 }  // namespace
 
+namespace {
+
+// The primary's values at every frequency and, with a check route, that route's too: on all
+// threads (evaluation of the HTF is const and thread-safe), the first frequency alone before
+// them so that invalid arguments throw outside the threads.
+void EvaluateSweep(const HarmonicTransferFunction& htf, const Eigen::VectorXcd& input, int x_output,
+                   int y_output, const OrbitSweepOptions& options, OrbitSweep& r,
+                   std::vector<std::vector<ResponseOrbit>>& check) {
+  const int count = static_cast<int>(r.omegas.size());
+  r.orbits.resize(r.omegas.size());
+  if (r.check_route) check.resize(r.omegas.size());
+  const auto evaluate = [&](int i) {
+    const double w = r.omegas[static_cast<size_t>(i)];
+    r.orbits[static_cast<size_t>(i)] = ResponseOrbits(
+        htf, w, input, x_output, y_output, options.min_order, options.max_order, r.route);
+    if (r.check_route)
+      check[static_cast<size_t>(i)] = ResponseOrbits(
+          htf, w, input, x_output, y_output, options.min_order, options.max_order, *r.check_route);
+  };
+  evaluate(0);
+#pragma omp parallel for schedule(dynamic) num_threads(ThreadsFor(options.threads))
+  for (int i = 1; i < count; ++i) evaluate(i);
+}
+
+}  // namespace
+
 OrbitSweep ResponseOrbitSweep(const HarmonicTransferFunction& htf,
                               const std::vector<double>& omegas, const Eigen::VectorXcd& input,
                               int x_output, int y_output, const OrbitSweepOptions& options) {
   options.Validate();
   if (omegas.empty()) throw InputError("ResponseOrbitSweep: no frequencies");
+  for (double w : omegas)
+    if (!std::isfinite(w)) throw InputError("ResponseOrbitSweep: every frequency must be finite");
   OrbitSweep r;
   r.omegas = omegas;
   r.min_order = options.min_order;
@@ -160,27 +192,25 @@ OrbitSweep ResponseOrbitSweep(const HarmonicTransferFunction& htf,
     r.diagnostics.push_back(
         "unchecked: the Floquet decomposition failed, so there is no modal "
         "route to check the hill route with");
+  std::vector<std::vector<ResponseOrbit>> check;
+  EvaluateSweep(htf, input, x_output, y_output, options, r, check);
   r.ok = true;
-  for (double omega : omegas) {
-    r.orbits.push_back(ResponseOrbits(htf, omega, input, x_output, y_output, options.min_order,
-                                      options.max_order, r.route));
-    const std::vector<ResponseOrbit>& primary = r.orbits.back();
+  for (size_t i = 0; i < omegas.size(); ++i) {
+    const std::vector<ResponseOrbit>& primary = r.orbits[i];
     if (!AllFinite(primary) && r.ok) {
       r.ok = false;
       r.failure = "the " + std::string(ToString(r.route)) + " route gave no finite values at " +
-                  std::to_string(omega) + " rad/s";
+                  std::to_string(omegas[i]) + " rad/s";
       r.diagnostics.push_back(r.failure);
     }
     for (const ResponseOrbit& o : primary)
       if (std::isfinite(o.orbit.semi_major))
         r.max_semi_major = std::max(r.max_semi_major, o.orbit.semi_major);
     if (!r.check_route) continue;
-    const std::vector<ResponseOrbit> check =
-        ResponseOrbits(htf, omega, input, x_output, y_output, options.min_order, options.max_order,
-                       *r.check_route);
     std::vector<double>& estimate = r.error_estimate.emplace_back();
     for (size_t k = 0; k < primary.size(); ++k) {
-      estimate.push_back(std::abs(primary[k].x - check[k].x) + std::abs(primary[k].y - check[k].y));
+      estimate.push_back(std::abs(primary[k].x - check[i][k].x) +
+                         std::abs(primary[k].y - check[i][k].y));
       r.max_disagreement = std::max(r.max_disagreement, estimate.back());  // NaN: not taken
     }
   }

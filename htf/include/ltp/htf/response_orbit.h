@@ -73,6 +73,8 @@ struct OrbitSweepOptions {
   /// of every value's uncertainty when its sense is judged (the check's estimate can be
   /// smaller, or absent).
   double negligible = 1e-12;
+  /// OpenMP threads over the frequencies; 0 = all cores.
+  int threads = 0;
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
