@@ -123,6 +123,29 @@ TEST(OrbitCli, IsotropicRotorUnbalanceIsAForwardCircle) {
               2 * j["frequencies"][1]["orders"][2]["forward"].get<double>(), 1e-12);
 }
 
+// tests/data/gyroscopic-rotor.yaml: Id θ'' + c θ' + Ip Ω φ' + k θ = M_θ, Id φ'' − Ip Ω θ' + c φ' +
+// k φ = M_φ. With z = θ + jφ: Id z'' + (c − j Ip Ω) z' + k z = M_θ + j M_φ, so the unbalance
+// moment e^{jωt} gives z = e^{jωt}/(k − Id ω² + Ip Ω ω + jcω) (closed form): a forward circle
+// that the gyroscopic term stiffens (Ip Ω ω > 0), no backward circle. A YAML scene, a rotor speed
+// from the file.
+TEST(OrbitCli, GyroscopicRotorForwardCircleIsStiffenedBySpin) {
+  const double Id = 1, Ip = 0.5, k = 100, c = 0.5, Omega = 5;
+  const auto r = RunLtp("orbit " + test::Src("tests/data/gyroscopic-rotor.yaml") +
+                        " --set c=0.5 --unbalance M_theta,M_phi --freq 0.5,0.795774715459477,1.5"
+                        " --orders 0 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["frequencies"].size(), 3u);
+  for (const json& f : j["frequencies"]) {
+    const double w = kTwoPi * f["f_exc_hz"].get<double>();
+    const double radius = 1 / std::abs(cd(k - Id * w * w + Ip * Omega * w, c * w));
+    const json& o = f["orders"][0];
+    EXPECT_NEAR(o["forward"].get<double>(), radius, 1e-10 * radius) << w;
+    EXPECT_NEAR(o["backward"].get<double>(), 0, 1e-12 * radius) << w;
+    EXPECT_EQ(o["whirl"], "FW");
+  }
+}
+
 TEST(OrbitCli, TableCsvAndPlot) {
   const std::string csv = Tmp("orbit.csv"), plot = Tmp("orbit.svg");
   const auto r = RunLtp(
