@@ -114,6 +114,11 @@ TEST(OrbitCli, IsotropicRotorUnbalanceIsAForwardCircle) {
   const auto same = RunLtp("orbit " + scene + " --input fx=1,fy=-1j" + freq);
   ASSERT_EQ(same.code, 0) << same.err;
   EXPECT_EQ(json::parse(same.out)["frequencies"], j["frequencies"]);
+  for (const char* spelling : {"fx=1+0j,fy=-j", "fx=1-0j,fy=0-1j", "fy=-1j,fx=1e0"}) {
+    const auto again = RunLtp("orbit " + scene + " --input " + spelling + freq);
+    ASSERT_EQ(again.code, 0) << spelling << ": " << again.err;
+    EXPECT_EQ(json::parse(again.out)["frequencies"], j["frequencies"]) << spelling;
+  }
   const auto twice = RunLtp("orbit " + scene + " --input fy=2@-90,fx=2" + freq);
   ASSERT_EQ(twice.code, 0) << twice.err;
   const json t = json::parse(twice.out);
