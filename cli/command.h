@@ -49,6 +49,7 @@ Command AddInfoCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddHillCommand(CLI::App& app);
 Command AddPfrfCommand(CLI::App&app), AddSnapshotCommand(CLI::App&app);
+Command AddOrbitCommand(CLI::App& app);
 Command AddChartCommand(CLI::App& app);
 Command AddMbcCommand(CLI::App& app);
 Command AddCampbellCommand(CLI::App& app);

@@ -75,6 +75,10 @@ void ResolveOptions(FloquetArgs& args) {
   }
   if (args.method != "monodromy" && args.method != "hill" && args.method != "both")
     throw InputError("--method must be monodromy, hill or both, got '" + args.method + "'");
+  // The mode shapes and the plot come from the monodromy route; Hill alone would skip them.
+  if (args.method == "hill" && (!args.modes_csv.empty() || !args.plot.empty()))
+    throw InputError(std::string(args.modes_csv.empty() ? "--plot" : "--modes-csv") +
+                     " needs the monodromy route: use --method monodromy or both");
   if (args.harmonics != "auto") {
     try {
       size_t used = 0;

@@ -28,9 +28,9 @@ int RunLtp(int argc, char** argv) {
 
   const std::vector<Command> commands = {
       AddScenesCommand(app),   AddInfoCommand(app),     AddFloquetCommand(app),
-      AddHillCommand(app),     AddPfrfCommand(app),     AddSnapshotCommand(app),
-      AddChartCommand(app),    AddMbcCommand(app),      AddCampbellCommand(app),
-      AddSimulateCommand(app), AddIdentifyCommand(app),
+      AddHillCommand(app),     AddPfrfCommand(app),     AddOrbitCommand(app),
+      AddSnapshotCommand(app), AddChartCommand(app),    AddMbcCommand(app),
+      AddCampbellCommand(app), AddSimulateCommand(app), AddIdentifyCommand(app),
   };
   // Subcommands inherit the footer; it explains SCENE, so only those that take one keep it.
   for (const auto& c : commands)

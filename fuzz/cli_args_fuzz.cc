@@ -54,7 +54,7 @@ bool TooMuchWork(const std::vector<std::string>& args) {
       return true;
     try {
       if (const std::string* v = ValueOf(args, i, "--freq", scratch))
-        if (ltp::ParseFrequencyRange(*v, "--freq").size() > kMaxPoints) return true;
+        if (ltp::ParseFrequencyList(*v, "--freq").size() > kMaxPoints) return true;
       for (const char* sweep : {"--sweep", "--sweep2"})
         if (const std::string* v = ValueOf(args, i, sweep, scratch)) {
           const ltp::SweepAxis a = ltp::SweepAxis::Parse(*v);

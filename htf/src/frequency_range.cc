@@ -62,6 +62,20 @@ std::vector<double> ParseFrequencyRange(const std::string& text, const std::stri
   return f;
 }
 
+std::vector<double> ParseFrequencyList(const std::string& text, const std::string& option) {
+  std::vector<double> f;
+  for (const std::string& item : Split(text, ',')) {
+    if (item.empty()) throw InputError(option + ": an empty item in '" + text + "'");
+    const std::vector<double> part = item.find(':') == std::string::npos
+                                         ? std::vector<double>{ParseNumber(item, option)}
+                                         : ParseFrequencyRange(item, option);
+    if (f.size() + part.size() > 1000000)
+      throw InputError(option + ": more than a million frequencies in '" + text + "'");
+    f.insert(f.end(), part.begin(), part.end());
+  }
+  return f;
+}
+
 std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& option) {
   const auto parts = Split(text, ':');
   if (parts.size() == 1) {

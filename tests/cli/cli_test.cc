@@ -85,6 +85,10 @@ TEST(Cli, ModesCsvColumnsNameModeAndState) {
   // mode forward, the upper backward; the shares in floquet_test.cc against the rotating frame).
   EXPECT_NE(r.out.find("; forward whirl 96.1%"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("; backward whirl 99.4%"), std::string::npos) << r.out;
+  // Hill's route alone has no mode shapes to write: refused, not silently skipped.
+  const Outcome hill = Ltp("floquet jeffcott --method hill --modes-csv " + csv);
+  EXPECT_EQ(hill.code, 2);
+  EXPECT_NE(hill.err.find("--modes-csv needs the monodromy route"), std::string::npos) << hill.err;
 }
 
 TEST(Cli, InfoMathieu) {

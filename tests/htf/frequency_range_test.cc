@@ -36,6 +36,27 @@ TEST(FrequencyRange, MessagesNameTheArgumentAsTheCallerSpellsIt) {
   EXPECT_THROW(ParseFrequencyRange("0:1e7:1", "freq"), InputError);  // over a million
 }
 
+// `ltp orbit --freq`: single frequencies and ranges, comma-separated, in the order given; a range
+// item is exactly ParseFrequencyRange's grid (the reference above).
+TEST(FrequencyList, ItemsAreFrequenciesOrRangesInOrder) {
+  EXPECT_EQ(ParseFrequencyList("0.2", "--freq"), std::vector<double>{0.2});
+  EXPECT_EQ(ParseFrequencyList("0.3,0.1", "--freq"), (std::vector<double>{0.3, 0.1}));
+  std::vector<double> want = ParseFrequencyRange("0:1:0.1", "--freq");
+  want.push_back(1.5);
+  EXPECT_EQ(ParseFrequencyList("0:1:0.1,1.5", "--freq"), want);
+  try {
+    ParseFrequencyList("0.1,,0.2", "--freq");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--freq: an empty item in '0.1,,0.2'");
+  }
+  EXPECT_THROW(ParseFrequencyList("0.1,x", "--freq"), InputError);
+  EXPECT_THROW(ParseFrequencyList("nan", "--freq"), InputError);
+  EXPECT_THROW(ParseFrequencyList("1:0:0.1", "--freq"), InputError);
+  EXPECT_THROW(ParseFrequencyList("", "--freq"), InputError);
+  EXPECT_THROW(ParseFrequencyList("0:1e6:1,2", "--freq"), InputError);  // over a million
+}
+
 TEST(OrderRange, PairsAndSingleOrders) {
   EXPECT_EQ(ParseOrderRange("-4:4", "--orders"), std::make_pair(-4, 4));
   EXPECT_EQ(ParseOrderRange("2", "orders"), std::make_pair(2, 2));

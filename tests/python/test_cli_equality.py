@@ -255,3 +255,21 @@ def test_hill_study_equals_cli(ltp_cli):
     assert j["convergence"]["kind"] == s.convergence["kind"] and same(j["convergence"]["rate"], s.convergence["rate"])
     assert same(j["koopman_discrepancy"], s.last.koopman_discrepancy)
     assert j["ok"] == s.last.ok and j["diagnostics"] == s.diagnostics
+
+
+def test_orbit(ltp_cli):
+    """`ltp orbit --unbalance` equals HarmonicTransferFunction.orbits with the weights (1, -1j)
+    at ω = 2π·f (the CLI takes Hz, Python rad/s), order by order."""
+    j = ltp_cli("orbit", "jeffcott", "--set", "c=0.05", "--set", "Omega=0.5", "--unbalance",
+                "fx,fy", "--freq", "0.1,0.25", "--orders", "-2:2")
+    h = ltp.HarmonicTransferFunction(ltp.scene("jeffcott", c=0.05, Omega=0.5))
+    for f in j["frequencies"]:
+        o = h.orbits(2 * np.pi * f["f_exc_hz"], [1, -1j], x="x", y="y", orders=(-2, 2))
+        for k, v in enumerate(f["orders"]):
+            assert v["z"] == o["order"][k]
+            # the CLI prints Hz: the frequency back in rad/s to rounding
+            assert abs(v["f_resp_hz"] * 2 * np.pi - o["frequency"][k]) < 1e-15
+            assert same(v["x"]["re"], o["x"][k].real) and same(v["x"]["im"], o["x"][k].imag), k
+            assert same(v["y"]["re"], o["y"][k].real) and same(v["y"]["im"], o["y"][k].imag), k
+            for key in ("forward", "backward", "semi_major", "semi_minor"):
+                assert same(v[key], o[key][k]), (key, k)

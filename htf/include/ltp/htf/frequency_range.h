@@ -13,6 +13,11 @@ namespace ltp {
 /// @throws InputError (not three finite numbers, F1 < F0, DF <= 0, over a million points).
 std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option);
 
+/// Comma-separated items, each one frequency "F" or a range "F0:F1:DF" (as above), in the order
+/// given: "0.2", "0.1,0.25,0.4", "0:1:0.1,1.5". @throws InputError (an empty item, a bad number or
+/// range, over a million points in all).
+std::vector<double> ParseFrequencyList(const std::string& text, const std::string& option);
+
 /// "F0:F1" (Hz) → (F0, F1) with 0 <= F0 < F1. @throws InputError.
 std::pair<double, double> ParseFrequencyBand(const std::string& text, const std::string& option);
 
