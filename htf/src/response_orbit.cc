@@ -192,6 +192,17 @@ OrbitSweep ResponseOrbitSweep(const HarmonicTransferFunction& htf,
     r.diagnostics.push_back(
         "unchecked: the Floquet decomposition failed, so there is no modal "
         "route to check the hill route with");
+  // The orbits are the input's periodic response; without asymptotic stability no rig
+  // settles on it (a disturbance grows, or does not decay, beside it).
+  const FloquetResult& floquet = htf.floquet();
+  if (floquet.ok && floquet.verdict != StabilityVerdict::kStable)
+    r.diagnostics.push_back(
+        "the system is " + std::string(ToString(floquet.verdict)) +
+        " (max Re λ = " + MessageNumber(floquet.max_real_exponent, 6) +
+        " 1/s): these orbits are the input's periodic response, not a steady state a rig "
+        "settles on — any disturbance " +
+        (floquet.verdict == StabilityVerdict::kUnstable ? "grows" : "may not decay") +
+        " beside it");
   std::vector<std::vector<ResponseOrbit>> check;
   EvaluateSweep(htf, input, x_output, y_output, options, r, check);
   r.ok = true;

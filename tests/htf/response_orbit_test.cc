@@ -129,6 +129,28 @@ TEST(ResponseOrbitSweep, IsotropicRotorUnbalanceIsAForwardCircle) {
   }
 }
 
+// The default Jeffcott rotor (m = 1, k = 1 and 1.5, c = 0, Ω = 1.1 inside the anisotropy's
+// instability band 1 < Ω² < 1.5) is unstable by `ltp floquet` (max Re λ = 0.111 1/s): its orbits
+// are formal periodic solutions, and the sweep says so; the damped rotor of the test above says
+// nothing.
+TEST(ResponseOrbitSweep, AnUnstableRotorsOrbitsAreNamedAsNoSteadyState) {
+  auto says_unsteady = [](const OrbitSweep& r) {
+    for (const std::string& d : r.diagnostics)
+      if (d.find("not a steady state") != std::string::npos) return true;
+    return false;
+  };
+  const HarmonicTransferFunction unstable(
+      LoadScene("jeffcott").build({{"m", 1}, {"k1", 1}, {"k2", 1.5}, {"c", 0}, {"Omega", 1.1}}));
+  const OrbitSweep u =
+      ResponseOrbitSweep(unstable, {0.6}, UnbalanceInput(2, 0, 1, +1), 0, 1, OrbitSweepOptions{});
+  EXPECT_TRUE(says_unsteady(u));
+  const HarmonicTransferFunction stable(
+      LoadScene("jeffcott").build({{"m", 2}, {"k1", 3}, {"k2", 3}, {"c", 0.1}, {"Omega", 0.8}}));
+  const OrbitSweep s =
+      ResponseOrbitSweep(stable, {0.6}, UnbalanceInput(2, 0, 1, +1), 0, 1, OrbitSweepOptions{});
+  EXPECT_FALSE(says_unsteady(s));
+}
+
 TEST(ResponseOrbitSweep, ADisagreementBeyondTheLimitFailsTheSweep) {
   const HarmonicTransferFunction htf(
       LoadScene("jeffcott").build({{"m", 1}, {"k1", 1}, {"k2", 1.5}, {"c", 0.05}, {"Omega", 0.5}}));
