@@ -64,7 +64,7 @@ struct MagnusFilonIntegrator::Split {
 
   struct Generators {
     double h = 0;
-    std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
+    std::vector<Matrix> terms;  // G_q = G1_q + G2_q at q + 2H (G1_q = 0 for |q| > H)
   };
   std::mutex mutex;  // guards `generators`: one thread forms a step length's, the others wait
   std::vector<std::shared_ptr<const Generators>> generators;  // most recent last
@@ -158,7 +158,7 @@ Matrix MagnusFilonIntegrator::Split::Divisor(int m) const {
   return d;
 }
 
-// Ω = Σ_m e^{jmΩt0} G1_m + Σ_p e^{jpΩt0} G2_p: the weights depend on h only.
+// Ω = Σ_q e^{jqΩt0} (G1_q + G2_q): the weights depend on h only.
 // G1_m = h Q_m ⊙ φ1(D_m h). For G2, with F(a, b) = ∫∫_{s2<s1} e^{a s1 + b s2} and s = a + b,
 //   F(a, b) − F(b, a) = h φ1(sh)(1/b − 1/a) − h φ1(ah)/b + h φ1(bh)/a,
 // so over the paths j whose a and b are not resonant the sums are matrix products of Q, Q ⊘ D
@@ -175,8 +175,7 @@ std::shared_ptr<const MagnusFilonIntegrator::Split::Generators> MagnusFilonInteg
 
 MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
-  Generators g;
-  g.h = h;
+  std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
   std::vector<Matrix> d, x, qr, yr;
   std::vector<Eigen::Matrix<bool, -1, -1>> regular;
   for (int m = -H; m <= H; ++m) {
@@ -196,7 +195,7 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
           yrm(i, j) = qm(i, j) * phi;
         }
       }
-    g.first.push_back(std::move(g1));
+    first.push_back(std::move(g1));
     x.push_back(std::move(xm));
     qr.push_back(std::move(qrm));
     yr.push_back(std::move(yrm));
@@ -222,14 +221,14 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
     Matrix g2 = 0.5 * h * rest[p + 2 * H];
     for (int k = 0; k < n; ++k)
       for (int i = 0; i < n; ++i) g2(i, k) += 0.5 * h * Phi1(dp(i, k) * h) * cross[p + 2 * H](i, k);
-    g.second.push_back(std::move(g2));
+    second.push_back(std::move(g2));
   }
   // The resonant paths: a resonant (any b), then a regular with b resonant.
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp) {
       if (m == 0 || mp == 0) continue;
       const int a = m + H, b = mp + H;
-      Matrix& g2 = g.second[m + mp + 2 * H];
+      Matrix& g2 = second[m + mp + 2 * H];
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           if (regular[a](i, j)) continue;
@@ -244,7 +243,9 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
               g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
         }
     }
-  return g;
+  // One matrix per frequency: a step's Ω is then 4H + 1 scaled sums, not 6H + 2.
+  for (int m = -H; m <= H; ++m) second[m + 2 * H] += first[m + H];
+  return Generators{h, std::move(second)};
 }
 
 MagnusFilonIntegrator::MagnusFilonIntegrator(const PeriodicSystem& system)
@@ -271,13 +272,11 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
     const Eigen::VectorXcd decay = (s.lambda * h).array().exp();
     for (long k = 0; k < steps; ++k) {
       const double t = t0 + k * h;  // not a running sum: no drift over many steps
-      w = g.first[H];
-      for (int m = 1; m <= H; ++m) {
-        const Complex phase = std::polar(1.0, m * s.omega * t);
-        w += phase * g.first[H + m] + std::conj(phase) * g.first[H - m];
+      w = g.terms[2 * H];
+      for (int q = 1; q <= 2 * H; ++q) {
+        const Complex phase = std::polar(1.0, q * s.omega * t);
+        w += phase * g.terms[2 * H + q] + std::conj(phase) * g.terms[2 * H - q];
       }
-      for (int q = -2 * H; q <= 2 * H; ++q)
-        w += std::polar(1.0, q * s.omega * t) * g.second[q + 2 * H];
       ExpInto(w, step);
       MultiplyInto(step, z, next);
       z = decay.asDiagonal() * next;
