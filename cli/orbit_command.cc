@@ -445,13 +445,26 @@ void PlotRadii(const OrbitSweep& r, const std::string& title, const std::string&
   if (shown.empty()) {
     p << "plot NaN title 'no order moves'\n";
   } else {
+    // A circle that stays below its uncertainty at every frequency gets no line (nor a key).
+    const auto above = [&](size_t k, bool forward) {
+      for (size_t f = 0; f < r.orbits.size(); ++f) {
+        const Orbit& o = r.orbits[f][k].orbit;
+        if ((forward ? o.forward : o.backward) > r.uncertainty[f][k]) return true;
+      }
+      return false;
+    };
     p << "plot ";
+    const char* separator = "";
     for (size_t q = 0; q < shown.size(); ++q) {
       const size_t k = shown[q];
       const int z = r.orbits[0][k].order;
-      p << (q ? ", " : "") << "$R" << k << " using 1:2 with lines lw 2 lc " << q + 1
-        << " title 'z = " << z << " forward', $R" << k << " using 1:3 with lines lw 2 dt 2 lc "
-        << q + 1 << " title 'z = " << z << " backward'";
+      for (const bool forward : {true, false}) {
+        if (!above(k, forward)) continue;
+        p << separator << "$R" << k << " using 1:" << (forward ? 2 : 3) << " with lines lw 2"
+          << (forward ? "" : " dt 2") << " lc " << q + 1 << " title 'z = " << z
+          << (forward ? " forward'" : " backward'");
+        separator = ", ";
+      }
     }
     p << "\n";
   }
