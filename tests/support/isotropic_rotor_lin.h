@@ -34,9 +34,11 @@
 namespace ltp::test {
 
 struct IsotropicRotorLin {
-  Eigen::MatrixXd a_mbc;                        ///< constant A in MBC coordinates
-  std::vector<std::complex<double>> exponents;  ///< eig(a_mbc): exact (without gravity)
-  std::vector<LinFile> files;                   ///< one per azimuth, blade coordinates
+  Eigen::MatrixXd a_mbc;  ///< constant A in MBC coordinates
+  /// eig(a_mbc): exact (without gravity) up to Eigen's eig, which does not balance: uncertain by
+  /// ε‖A‖₂κ (7e-9 for the 0.05–100 Hz sets of model_size_benchmark, which use LAPACK's dgeev)
+  std::vector<std::complex<double>> exponents;
+  std::vector<LinFile> files;  ///< one per azimuth, blade coordinates
 };
 
 /// Natural frequencies (rad/s) are drawn uniformly from [lowest, highest], or log-uniformly
