@@ -3,7 +3,9 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "binding.h"
 #include "ltp/core/error.h"
@@ -43,6 +45,51 @@ py::dict OrbitsDict(const std::vector<ResponseOrbit>& orbits) {
                   py::arg("backward") = RealArray(backward),
                   py::arg("semi_major") = RealArray(major),
                   py::arg("semi_minor") = RealArray(minor), py::arg("tilt") = RealArray(tilt));
+}
+
+// ResponseOrbitSweep as a dict: per-frequency × per-order arrays, the routes, the verdict.
+py::dict OrbitSweepDict(const OrbitSweep& r) {
+  const py::ssize_t nf = static_cast<py::ssize_t>(r.orbits.size());
+  const py::ssize_t nz = static_cast<py::ssize_t>(r.max_order - r.min_order + 1);
+  auto grid = [&](auto value) {
+    using T = decltype(value(r.orbits[0][0], 0, 0));
+    py::array_t<T> a({nf, nz});
+    for (py::ssize_t i = 0; i < nf; ++i)
+      for (py::ssize_t k = 0; k < nz; ++k)
+        a.mutable_at(i, k) = value(r.orbits[i][k], static_cast<size_t>(i), static_cast<size_t>(k));
+    return a;
+  };
+  py::list sense;
+  for (const auto& row : r.sense) {
+    py::list names;
+    for (OrbitSense s : row) names.append(std::string(ToString(s)));
+    sense.append(names);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  py::array_t<std::int64_t> order(nz);
+  for (py::ssize_t k = 0; k < nz; ++k) order.mutable_at(k) = r.min_order + k;
+  py::dict d;
+  d["omega"] = RealArray(r.omegas);
+  d["order"] = order;
+  d["frequency"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.frequency; });
+  d["x"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.x; });
+  d["y"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.y; });
+  d["forward"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.orbit.forward; });
+  d["backward"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.orbit.backward; });
+  d["semi_major"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.orbit.semi_major; });
+  d["semi_minor"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.orbit.semi_minor; });
+  d["tilt"] = grid([](const ResponseOrbit& o, size_t, size_t) { return o.orbit.tilt; });
+  d["error_estimate"] = grid([&](const ResponseOrbit&, size_t i, size_t k) {
+    return r.error_estimate.empty() ? nan : r.error_estimate[i][k];
+  });
+  d["sense"] = sense;
+  d["route"] = std::string(ToString(r.route));
+  d["check_route"] =
+      r.check_route ? py::object(py::str(std::string(ToString(*r.check_route)))) : py::none();
+  d["ok"] = r.ok;
+  d["failure"] = r.failure;
+  d["diagnostics"] = r.diagnostics;
+  return d;
 }
 
 OperatorRoute RouteFrom(const std::string& name) {
@@ -287,6 +334,34 @@ void AddEvaluations(HtfClass& htf) {
           "frequency (rad/s), x, y (complex phasors), forward, backward (radii of the circles "
           "turning with / against the rotor), semi_major, semi_minor, tilt (rad, from x towards "
           "y). One analysis serves every order and input.")
+      .def(
+          "orbit_sweep",
+          [](const PyHtf& h, const std::vector<Real>& omegas, const std::vector<Complex>& input,
+             const py::object& x, const py::object& y, const py::object& orders,
+             const std::optional<std::string>& route) {
+            const SystemLabels& labels = h.system.system.labels();
+            const int outputs = h.system.system.outputs();
+            OrbitSweepOptions o;
+            std::tie(o.min_order, o.max_order) = OrdersFrom(orders);
+            if (route) o.route = RouteFrom(*route);
+            o.threads = 1;  // keeps every evaluation on the thread that holds the GIL
+            std::vector<double> w;
+            for (const Real& omega : omegas) w.push_back(omega.value);
+            const Eigen::VectorXcd u = Eigen::Map<const Eigen::VectorXcd>(
+                input.data(), static_cast<Eigen::Index>(input.size()));
+            return OrbitSweepDict(
+                ResponseOrbitSweep(*h.htf, w, u, ChannelFrom(x, labels.outputs, outputs, "x"),
+                                   ChannelFrom(y, labels.outputs, outputs, "y"), o));
+          },
+          py::arg("omegas"), py::arg("input"), py::kw_only(), py::arg("x") = 0, py::arg("y") = 1,
+          py::arg("orders") = py::make_tuple(-2, 2), py::arg("route") = py::none(),
+          "orbits at every frequency of omegas (rad/s) on this one set-up, each value checked by "
+          "the other route (what `ltp orbit` prints): dict with omega, order (int64), and "
+          "(frequencies, orders) arrays frequency, x, y, forward, backward, semi_major, "
+          "semi_minor, tilt, error_estimate (|ΔX| + |ΔY| between the routes; NaN unchecked); "
+          "sense (FW, BW, line or still per value, judged against its uncertainty), route and "
+          "check_route, ok (the routes agree), failure, diagnostics (e.g. an unstable system's "
+          "orbits are no steady state). route: None (modal unless unreliable), modal or hill.")
       .def(
           "section",
           [](const PyHtf& h, Complex s, int harmonics, const std::string& route) {

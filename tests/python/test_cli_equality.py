@@ -273,3 +273,20 @@ def test_orbit(ltp_cli):
             assert same(v["y"]["re"], o["y"][k].real) and same(v["y"]["im"], o["y"][k].imag), k
             for key in ("forward", "backward", "semi_major", "semi_minor"):
                 assert same(v[key], o[key][k]), (key, k)
+
+
+def test_orbit_sweep(ltp_cli):
+    """HarmonicTransferFunction.orbit_sweep is what `ltp orbit` prints: the same values, each
+    value's estimate (the two routes' difference), its sense, the routes and the verdict."""
+    j = ltp_cli("orbit", "jeffcott", "--set", "c=0.05", "--set", "Omega=0.5", "--unbalance",
+                "fx,fy", "--freq", "0.1,0.25", "--orders", "-2:2")
+    h = ltp.HarmonicTransferFunction(ltp.scene("jeffcott", c=0.05, Omega=0.5))
+    r = h.orbit_sweep([2 * np.pi * 0.1, 2 * np.pi * 0.25], [1, -1j], x="x", y="y", orders=(-2, 2))
+    assert r["ok"] == j["ok"] and r["route"] == j["route"] and r["check_route"] == j["check_route"]
+    assert r["forward"].shape == (2, 5) and r["order"].dtype == np.int64
+    for i, f in enumerate(j["frequencies"]):
+        for k, v in enumerate(f["orders"]):
+            assert v["z"] == r["order"][k]
+            for key in ("forward", "backward", "semi_major", "semi_minor", "error_estimate"):
+                assert same(v[key], r[key][i, k]), (key, i, k)
+            assert v["whirl"] == r["sense"][i][k], (i, k)
