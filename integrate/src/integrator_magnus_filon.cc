@@ -41,8 +41,8 @@ constexpr double kMaxCondition = 1e7;
 // times, as if the grid had been rounded once more.
 constexpr double kSameStep = 1e-13;
 // Splits (systems) and step lengths kept: the analysis, its refined run and the other models of
-// a sampled set, with the doubling loop's last lengths; (2H + 1) + (4H + 1) n×n complex matrices
-// per length (60 MB at n = 250, H = 1 for four).
+// a sampled set, with the doubling loop's last lengths; 4H + 1 n×n complex matrices per length
+// (20 MB per system at n = 250, H = 1).
 constexpr size_t kSplitsKept = 3;
 constexpr size_t kGeneratorsKept = 4;
 
