@@ -77,18 +77,13 @@ bool HasTilt(const Orbit& orbit, double uncertainty) {
 }
 
 void OrbitSweepOptions::Validate() const {
+  const OptionCheck check("OrbitSweepOptions");
   if (max_order < min_order)
-    throw InputError(
-        "OrbitSweepOptions::max_order = " + std::to_string(max_order) +
-        ". Violated constraint: max_order >= min_order = " + std::to_string(min_order));
+    check.Fail("max_order", max_order, "max_order >= min_order = " + std::to_string(min_order));
   if (!(max_relative_disagreement > 0))
-    throw InputError(
-        "OrbitSweepOptions::max_relative_disagreement must be > 0. Violated constraint: > 0");
-  if (!(negligible >= 0 && negligible < 1))
-    throw InputError("OrbitSweepOptions::negligible must be in [0, 1)");
-  if (threads < 0)
-    throw InputError("OrbitSweepOptions::threads = " + std::to_string(threads) +
-                     ". Violated constraint: threads >= 0");
+    check.Fail("max_relative_disagreement", max_relative_disagreement, "> 0");
+  if (!(negligible >= 0 && negligible < 1)) check.Fail("negligible", negligible, "in [0, 1)");
+  if (threads < 0) check.Fail("threads", threads, ">= 0");
 }
 
 namespace {
@@ -142,10 +137,6 @@ void JudgeSweep(const OrbitSweepOptions& options, OrbitSweep& r) {
     r.diagnostics.push_back(r.failure);
   }
 }
-
-}  // namespace
-
-namespace {
 
 // The primary's values at every frequency and, with a check route, that route's too: on all
 // threads (evaluation of the HTF is const and thread-safe), the first frequency alone before

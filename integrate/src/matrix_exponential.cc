@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <limits>
+#include <type_traits>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
@@ -21,11 +23,10 @@ namespace ltp::internal {
 namespace {
 
 // Higham (2005), Table 2.3: the largest 1-norm for which the degree-m Padé approximant of e^A
-// is accurate to the unit round-off of double precision.
+// is accurate to the unit round-off of double precision, m = 3, 5, 7, 9.
 constexpr std::array<double, 4> kTheta = {1.495585217958292e-2, 2.539398330063230e-1,
                                           9.504178996162932e-1, 2.097847961257068e0};
 constexpr double kTheta13 = 5.371920351148152e0;
-constexpr std::array<int, 4> kDegree = {3, 5, 7, 9};
 // Coefficients b_0…b_m of the degree-m numerator p(x) = Σ b_k x^k (the denominator is p(−x)).
 constexpr std::array<double, 4> kB3 = {120, 60, 12, 1};
 constexpr std::array<double, 6> kB5 = {30240, 15120, 3360, 420, 30, 1};
@@ -121,14 +122,14 @@ void Exp(const Eigen::Ref<const Mat<Scalar>>& a, Eigen::Ref<Mat<Scalar>> out) {
   Mat<Scalar> u(n, n), v(n, n);
   for (size_t i = 0; i < kTheta.size(); ++i)
     if (norm <= kTheta[i]) {
-      switch (kDegree[i]) {
-        case 3:
+      switch (i) {  // the degree m = 2i + 3
+        case 0:
           LowDegree<Scalar>(a, kB3, u, v);
           break;
-        case 5:
+        case 1:
           LowDegree<Scalar>(a, kB5, u, v);
           break;
-        case 7:
+        case 2:
           LowDegree<Scalar>(a, kB7, u, v);
           break;
         default:
