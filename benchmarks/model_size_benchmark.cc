@@ -76,17 +76,32 @@ BENCHMARK(SampledRotor)
 // log-uniformly, 10 rpm, a gravity-like 1P term of 0.2 1/s² (≈ 1 % of a first flap mode's
 // stiffness), 3 azimuths; the analysis of the modes below CUTOFF_CENTIHZ/100 Hz (0 = all),
 // model-error term included, as `ltp floquet --modes-below` runs it.
-void SampledTurbineModesBelow(benchmark::State& state) {
-  const int states = static_cast<int>(state.range(0));
-  const double cutoff_hz = state.range(1) / 100.0;
+// The turbine-like set of about `states` states (natural frequencies 0.3…630 rad/s
+// log-uniformly, 10 rpm, 3 azimuths, the 1P term `gravity`) and the directory its files are
+// written to.
+struct TurbineSet {
+  ltp::test::IsotropicRotorLin model;
+  std::string dir;
+  int states = 0;
+};
+constexpr double kTurbineSpeed = 2 * std::numbers::pi / 6;  // 10 rpm
+
+TurbineSet WriteTurbineSet(int states, double gravity, const std::string& name) {
   const int blade_dofs = (states / 2 - 2) / 3;
-  const double omega = 2 * std::numbers::pi / 6;
-  const auto model = ltp::test::MakeIsotropicRotorLin(blade_dofs, 2, ltp::test::EvenAzimuths(3),
-                                                      omega, 3, 0.2, 0.02, 0.3, 630.0, true);
-  const std::string dir = ltp::test::WriteLinDirectory(
-      model.files,
-      (std::filesystem::temp_directory_path() / ("ltp-turbine-" + std::to_string(states)))
-          .string());
+  TurbineSet t;
+  t.model = ltp::test::MakeIsotropicRotorLin(blade_dofs, 2, ltp::test::EvenAzimuths(3),
+                                             kTurbineSpeed, 3, gravity, 0.02, 0.3, 630.0, true);
+  t.dir = ltp::test::WriteLinDirectory(
+      t.model.files,
+      (std::filesystem::temp_directory_path() / (name + "-" + std::to_string(states))).string());
+  t.states = 2 * (3 * blade_dofs + 2);
+  return t;
+}
+
+void SampledTurbineModesBelow(benchmark::State& state) {
+  const double cutoff_hz = state.range(1) / 100.0;
+  const TurbineSet set = WriteTurbineSet(static_cast<int>(state.range(0)), 0.2, "ltp-turbine");
+  const std::string& dir = set.dir;
   ltp::FloquetOptions o;
   o.modes_below = 2 * std::numbers::pi * cutoff_hz;
   long evaluations = 0;
@@ -101,7 +116,7 @@ void SampledTurbineModesBelow(benchmark::State& state) {
     estimate = r.error_estimate.value_or(-1);
     kept = r.reduction ? r.reduction->kept : r.states;
   }
-  state.counters["states"] = 2 * (3 * blade_dofs + 2);
+  state.counters["states"] = set.states;
   state.counters["kept"] = kept;
   state.counters["evaluations"] = static_cast<double>(evaluations);
   state.counters["max_real"] = max_real;
@@ -140,19 +155,11 @@ std::vector<std::complex<double>> BalancedEigenvalues(Eigen::MatrixXd a) {
 }
 
 void IsotropicTurbineExact(benchmark::State& state) {
-  const int states = static_cast<int>(state.range(0));
-  const int blade_dofs = (states / 2 - 2) / 3;
-  const double omega = 2 * std::numbers::pi / 6;
-  const auto model = ltp::test::MakeIsotropicRotorLin(blade_dofs, 2, ltp::test::EvenAzimuths(3),
-                                                      omega, 3, 0.0, 0.02, 0.3, 630.0, true);
-  const std::string dir = ltp::test::WriteLinDirectory(
-      model.files,
-      (std::filesystem::temp_directory_path() / ("ltp-isotropic-" + std::to_string(states)))
-          .string());
-  const std::vector<std::complex<double>> reference = BalancedEigenvalues(model.a_mbc);
+  const TurbineSet set = WriteTurbineSet(static_cast<int>(state.range(0)), 0, "ltp-isotropic");
+  const std::vector<std::complex<double>> reference = BalancedEigenvalues(set.model.a_mbc);
   double true_error = 0, estimate = 0;
   for (auto _ : state) {
-    const ltp::LoadedScene l = ltp::LoadSceneInput({dir}, {});
+    const ltp::LoadedScene l = ltp::LoadSceneInput({set.dir}, {});
     ltp::FloquetResult r = ltp::AnalyzeFloquet(l.system, ltp::FloquetOptions{});
     ltp::IncludeModelError(l.model_alternatives, ltp::FloquetOptions{}, r);
     estimate = r.error_estimate.value_or(-1);
@@ -164,13 +171,13 @@ void IsotropicTurbineExact(benchmark::State& state) {
     for (const ltp::FloquetMode& m : r.modes) {
       double nearest = HUGE_VAL;
       for (const std::complex<double> e : reference)
-        nearest =
-            std::min(nearest, std::hypot(m.exponent.real() - e.real(),
-                                         std::remainder(m.exponent.imag() - e.imag(), omega)));
+        nearest = std::min(nearest,
+                           std::hypot(m.exponent.real() - e.real(),
+                                      std::remainder(m.exponent.imag() - e.imag(), kTurbineSpeed)));
       true_error = std::max(true_error, nearest);
     }
   }
-  state.counters["states"] = 2 * (3 * blade_dofs + 2);
+  state.counters["states"] = set.states;
   state.counters["true_error"] = true_error;
   state.counters["estimate"] = estimate;
 }
