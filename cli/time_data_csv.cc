@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 
 namespace ltp::cli {
 
@@ -102,6 +103,9 @@ bool ReadTextLine(std::istream& in, std::string& line, const std::string& where)
   // The newline was extracted (and counted) unless the file ended first.
   line.assign(buffer.data(), static_cast<size_t>(in.eof() ? read : read - 1));
   if (in.eof()) in.clear(std::ios::eofbit);
+  // Channel names end up in JSON and on terminals.
+  if (const auto problem = NotUtf8(line, "tables are text (ASCII or UTF-8)"))
+    throw InputError(where + ": " + *problem);
   return true;
 }
 

@@ -1,7 +1,9 @@
 #include "ltp/core/text.h"
 
+#include <algorithm>
 #include <cctype>
 #include <map>
+#include <sstream>
 
 namespace ltp {
 
@@ -16,6 +18,31 @@ std::string Trim(std::string_view s) {
 }
 
 namespace {
+
+// Byte offset of the first byte that breaks UTF-8, or npos.
+size_t InvalidUtf8At(std::string_view text) {
+  const auto* b = reinterpret_cast<const unsigned char*>(text.data());
+  const size_t n = text.size();
+  for (size_t i = 0; i < n;) {
+    const unsigned char c = b[i];
+    const int extra = c < 0x80           ? 0
+                      : (c >> 5) == 0x6  ? 1
+                      : (c >> 4) == 0xE  ? 2
+                      : (c >> 3) == 0x1E ? 3
+                                         : -1;
+    if (extra < 0 || (extra == 1 && c < 0xC2) || i + extra >= n + (extra == 0 ? 1 : 0)) return i;
+    for (int k = 1; k <= extra; ++k)
+      if (i + k >= n || (b[i + k] & 0xC0) != 0x80) return i;
+    // Well-formed sequences only (RFC 3629): no overlong 3- and 4-byte forms, no UTF-16
+    // surrogates U+D800…DFFF (ED A0…BF), nothing above U+10FFFF (F4 90… and F5…).
+    if (extra == 2 && ((c == 0xE0 && b[i + 1] < 0xA0) || (c == 0xED && b[i + 1] >= 0xA0))) return i;
+    if (extra == 3 &&
+        ((c == 0xF0 && b[i + 1] < 0x90) || (c == 0xF4 && b[i + 1] >= 0x90) || c > 0xF4))
+      return i;
+    i += extra + 1;
+  }
+  return std::string::npos;
+}
 
 // The line with every number replaced by '#': lines of one shape share this key.
 std::string Shape(const std::string& line) {
@@ -36,6 +63,19 @@ std::string Shape(const std::string& line) {
 }
 
 }  // namespace
+
+std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule) {
+  const size_t at = InvalidUtf8At(text);
+  if (at == std::string::npos) return std::nullopt;
+  const auto before = text.substr(0, at);
+  std::ostringstream s;
+  s << "not valid UTF-8 text (byte 0x" << std::hex
+    << static_cast<int>(static_cast<unsigned char>(text[at])) << std::dec;
+  if (text.find('\n') != std::string_view::npos)
+    s << " on line " << 1 + std::count(before.begin(), before.end(), '\n');
+  s << " at offset " << at << "); " << rule;
+  return s.str();
+}
 
 std::vector<std::string> CollapseRepeatedLines(const std::vector<std::string>& lines, int keep) {
   std::map<std::string, size_t> count;

@@ -20,6 +20,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/periodic_coefficients.h"
 #include "ltp/core/second_order.h"
+#include "ltp/core/text.h"
 #include "ltp/models/scene.h"
 
 namespace ltp {
@@ -505,33 +506,6 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
   return *system;
 }
 
-// Byte offset of the first byte that breaks UTF-8, or npos. Scene text ends up in JSON output
-// and terminals: a stray byte (0xFF in a name) is refused here with its line, not by the JSON
-// writer later with a library's message.
-size_t InvalidUtf8At(const std::string& text) {
-  const auto* b = reinterpret_cast<const unsigned char*>(text.data());
-  const size_t n = text.size();
-  for (size_t i = 0; i < n;) {
-    const unsigned char c = b[i];
-    const int extra = c < 0x80           ? 0
-                      : (c >> 5) == 0x6  ? 1
-                      : (c >> 4) == 0xE  ? 2
-                      : (c >> 3) == 0x1E ? 3
-                                         : -1;
-    if (extra < 0 || (extra == 1 && c < 0xC2) || i + extra >= n + (extra == 0 ? 1 : 0)) return i;
-    for (int k = 1; k <= extra; ++k)
-      if (i + k >= n || (b[i + k] & 0xC0) != 0x80) return i;
-    // Well-formed sequences only (RFC 3629): no overlong 3- and 4-byte forms, no UTF-16
-    // surrogates U+D800…DFFF (ED A0…BF), nothing above U+10FFFF (F4 90… and F5…).
-    if (extra == 2 && ((c == 0xE0 && b[i + 1] < 0xA0) || (c == 0xED && b[i + 1] >= 0xA0))) return i;
-    if (extra == 3 &&
-        ((c == 0xF0 && b[i + 1] < 0x90) || (c == 0xF4 && b[i + 1] >= 0x90) || c > 0xF4))
-      return i;
-    i += extra + 1;
-  }
-  return std::string::npos;
-}
-
 void CheckCoefficients(const PeriodicSystem& system, const std::string& where) {
   if (const auto problem = UnboundedCoefficients(system)) throw SceneError(where + ": " + *problem);
   if (const auto problem = NonPeriodicCoefficients(system))
@@ -539,14 +513,8 @@ void CheckCoefficients(const PeriodicSystem& system, const std::string& where) {
 }
 
 YAML::Node LoadYaml(const std::string& text, const std::string& source) {
-  if (const size_t at = InvalidUtf8At(text); at != std::string::npos) {
-    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
-    std::ostringstream s;
-    s << source << ":" << line << ": not valid UTF-8 text (byte 0x" << std::hex
-      << static_cast<int>(static_cast<unsigned char>(text[at])) << " at offset " << std::dec << at
-      << "); scene files are UTF-8";
-    throw SceneError(s.str());
-  }
+  if (const auto problem = NotUtf8(text, "scene files are UTF-8"))
+    throw SceneError(source + ": " + *problem);
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {

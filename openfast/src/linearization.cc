@@ -487,6 +487,9 @@ std::string Degrees(double rad) { return FormatNumber(rad * 180 / pi, "%.1f"); }
 }  // namespace
 
 LinFile ParseLinFile(const std::string& text, const std::string& source) {
+  // State names end up in JSON and on terminals (OpenFAST writes ASCII).
+  if (const auto problem = NotUtf8(text, "a .lin file is text (ASCII or UTF-8)"))
+    throw SceneError(source + ": " + *problem);
   return Parser(text, source).Parse();
 }
 

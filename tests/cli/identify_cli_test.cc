@@ -208,6 +208,8 @@ TEST(IdentifyCli, HostileTimeDataGetsOneClearLine) {
   expect(run([](auto&) {}, "--orders -1000:1000"), "--orders -1000:1000: at most 201 orders");
   expect(run([](auto&) {}, "--plot p.svg --plot-orders 5:9"), "lies outside the estimated orders");
   expect(RunLtp("identify /dev/zero"), "is not a regular file");
+  // A channel name in Latin-1 (0xB5 for µ): refused by the reader, not by the JSON writer.
+  expect(run([](auto& l) { l[2] += "\xB5"; }, "--json"), "not valid UTF-8 text (byte 0xb5");
 }
 
 // The identified frequencies (as measured) and H_z, |z| ≤ 2, against the rig's closed form.

@@ -221,6 +221,15 @@ TEST(OpenFastLin, MalformedFilesNameFileLineAndWhatWasExpected) {
     EXPECT_NE(m.find("expected row 2 of 2"), std::string::npos) << m;
   }
 
+  // A state name that is not UTF-8 (a Latin-1 byte) is refused with its line: it used to pass
+  // the reader and the whole analysis, and then break the JSON writer.
+  text = SmallFile();
+  text.replace(text.find("ED First"), 2,
+               "\xB0"
+               "D");
+  m = message(text);
+  EXPECT_NE(m.find("bad.lin: not valid UTF-8 text (byte 0xb0 on line 18"), std::string::npos) << m;
+
   EXPECT_THROW(ReadLinFile("/nonexistent/x.lin"), SceneError);
 }
 

@@ -118,11 +118,12 @@ inline IsotropicRotorLin MakeIsotropicRotorLin(int blade_dofs, int fixed_dofs,
     const int dof = r % nd;
     std::string what;
     if (dof < N * nb) {
-      what = "blade dof " + std::string(1, static_cast<char>('a' + dof / N)) + " of blade " +
-             std::to_string(dof % N + 1);
+      // Numbered, not lettered: a set of 250 states has more blade DOFs than the alphabet.
+      what =
+          "blade dof " + std::to_string(dof / N + 1) + " of blade " + std::to_string(dof % N + 1);
       states[r].rotating_frame = true;
     } else {
-      what = "tower dof " + std::string(1, static_cast<char>('a' + (dof - N * nb)));
+      what = "tower dof " + std::to_string(dof - N * nb + 1);
     }
     states[r].derivative_order = 2;
     states[r].description =
@@ -193,7 +194,7 @@ inline void AddBladeChannels(IsotropicRotorLin& model) {
     }
     f.output_channels.push_back(channel("ED Tower deflection, m", false));
     for (int r = 0; r < nd; ++r)
-      if (f.states[r].description.find("tower dof a") != std::string::npos) f.C(3, r) = 1;
+      if (f.states[r].description.find("tower dof 1,") != std::string::npos) f.C(3, r) = 1;
     f.inputs = 3;
     f.outputs = 4;
   }

@@ -1,5 +1,6 @@
 #pragma once
 // Small text helpers shared by the readers of scenes, sweeps and OpenFAST files.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -8,6 +9,13 @@ namespace ltp {
 
 /// `s` without leading and trailing blanks (space, tab, CR, LF).
 std::string Trim(std::string_view s);
+
+/// Where `text` stops being UTF-8 (RFC 3629: no overlong forms, surrogates or code points
+/// beyond U+10FFFF), as "not valid UTF-8 text (byte 0x.. on line .. at offset ..); `rule`"
+/// (the line when `text` has several), or empty when it is valid. Names read from files end up in
+/// JSON and on terminals: a stray byte is refused by the reader with its line, not by the JSON
+/// writer after the work.
+std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule);
 
 /// Diagnostics said once: lines that differ only in their numbers (one per segment, step or
 /// point of a failing run) are kept up to `keep` times; the rest of each such group becomes one
