@@ -17,6 +17,7 @@
 #include "ltp/core/text.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
+#include "ltp/integrate/detail/modal_basis.h"
 #include "ltp/integrate/detail/segment_grid.h"
 #include "ltp/integrate/detail/state_balancing.h"
 #include "ltp/integrate/integrator_choice.h"
@@ -690,6 +691,18 @@ Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, Floq
   return s;
 }
 
+// Integrators whose factors are exact for the mean Ā up to an error on each mode's own scale:
+// Magnus–Filon (Ā in its interaction picture), and Magnus steps over a mean that A(t) leaves by
+// less than the tolerance (each step e^{hĀ} to round-off). Their segments are limited by the
+// spread of the modes' rates, measured in Ā's modes (docs/model-sizes.md, "Segments in the
+// mean's modes"); for the others, by the factors' condition in the states.
+bool ExactForTheMean(const Setup& s) {
+  const IntegratorType type = s.options.integrator.type;
+  if (type == IntegratorType::kMagnusFilon) return true;
+  return (type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6) && s.traits &&
+         MagnusOverTheMeanPays(*s.traits, s.options.integrator.rel_tol);
+}
+
 // Step 3: each exponent's integration error, in eig's order — the carried local errors, or a
 // refined run whose grid and multipliers then replace `grid` and `eig` (zeros without an
 // estimate).
@@ -812,6 +825,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // the integrator.
   const bool constant = s.traits && s.traits->constant_pieces && !s.traits->has_jumps;
   internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n, constant);
+  if (ExactForTheMean(s))
+    grid_options.modal_basis = internal::RealModalBasis(MeanOfA(s.system), 1e7);
   grid_options.integrator.on_advance = progress.Phase("run");
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
   r.rhs_evals += grid.rhs_evals;

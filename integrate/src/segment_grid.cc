@@ -17,15 +17,19 @@ namespace {
 // σmax/σmin of a factor after diagonal balancing (LAPACK dgebal, scaling only); +inf for a
 // non-finite or singular one. Balancing matters: in [p; p'] coordinates an oscillator's factor
 // has singular values ω and 1/ω although nothing grows or decays, and the raw condition number
-// would split the period into thousands of segments for no gain in accuracy.
-double FactorCondition(const Eigen::MatrixXd& f) {
+// would split the period into thousands of segments for no gain in accuracy. With a modal
+// basis W (given with its LU), the factor is first taken into the mean's modes: W⁻¹ Φ W.
+double FactorCondition(const Eigen::MatrixXd& f, const Eigen::MatrixXd* w,
+                       const Eigen::PartialPivLU<Eigen::MatrixXd>* lu) {
   if (f.size() == 0) return 1;
   if (!f.allFinite()) return std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd b = f;
+  Eigen::MatrixXd b = w ? Eigen::MatrixXd(lu->solve(f * *w)) : f;
+  const Eigen::MatrixXd unbalanced = b;
   const lapack_int n = static_cast<lapack_int>(b.rows());
   lapack_int ilo = 0, ihi = 0;
   std::vector<double> scale(n);
-  if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0) b = f;
+  if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0)
+    b = unbalanced;
   return ConditionNumber(b);
 }
 
@@ -39,7 +43,11 @@ struct Segment {
 // Integrates the pieces listed in `todo` (sorted; chains of neighbouring pieces share one
 // integrator pass, see IntervalTransitions) and measures each factor's condition.
 void Integrate(const PeriodicSystem& system, std::vector<Segment>& pieces,
-               const std::vector<size_t>& todo, const IntegratorOptions& integrator, int threads) {
+               const std::vector<size_t>& todo, const SegmentGridOptions& options,
+               const Eigen::PartialPivLU<Eigen::MatrixXd>* modal_lu) {
+  const IntegratorOptions& integrator = options.integrator;
+  const int threads = options.threads;
+  const Eigen::MatrixXd* w = options.modal_basis ? &*options.modal_basis : nullptr;
   std::vector<std::pair<double, double>> intervals;
   for (size_t i : todo) intervals.emplace_back(pieces[i].t0, pieces[i].t1);
   std::vector<TransitionResult> results =
@@ -49,7 +57,8 @@ void Integrate(const PeriodicSystem& system, std::vector<Segment>& pieces,
   for (long j = 0; j < count; ++j) {
     Segment& p = pieces[todo[j]];
     p.tr = std::move(results[j]);
-    p.cond = p.tr.ok ? FactorCondition(p.tr.phi) : std::numeric_limits<double>::infinity();
+    p.cond =
+        p.tr.ok ? FactorCondition(p.tr.phi, w, modal_lu) : std::numeric_limits<double>::infinity();
   }
 }
 
@@ -70,8 +79,10 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
   std::vector<size_t> todo(pieces.size());
   for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   const double log_limit = std::log(options.max_factor_condition);
+  std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> modal_lu;
+  if (options.modal_basis) modal_lu.emplace(*options.modal_basis);
   for (int round = 0;; ++round) {
-    Integrate(system, pieces, todo, options.integrator, options.threads);
+    Integrate(system, pieces, todo, options, modal_lu ? &*modal_lu : nullptr);
     for (size_t i : todo) grid.rhs_evals += pieces[i].tr.rhs_evals;
     if (!options.refine) break;
     // Split every piece whose factor is too ill-conditioned into as many equal parts as its

@@ -3,6 +3,7 @@
 // is refined where a factor's condition number says it grows or decays too fast for its small
 // singular directions to survive. Segments are integrated in parallel (OpenMP).
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct SegmentGridOptions {
   double max_factor_condition = 1e3;
   int max_segments = 20000;
   int threads = 1;
+  /// When set (RealModalBasis of the mean Ā), a factor Φ's condition is measured as that of
+  /// W⁻¹ Φ W: for integrators exact for the mean the factor's error sits on each mode's own
+  /// scale, so what limits a segment is how far the modes' rates spread over it, not how
+  /// non-normal the states make Ā (docs/model-sizes.md, "Segments in the mean's modes").
+  std::optional<Eigen::MatrixXd> modal_basis;
 };
 
 struct SegmentGrid {
