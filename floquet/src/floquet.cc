@@ -691,16 +691,22 @@ Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, Floq
   return s;
 }
 
-// Integrators whose factors are exact for the mean Ā up to an error on each mode's own scale:
-// Magnus–Filon (Ā in its interaction picture), and Magnus steps over a mean that A(t) leaves by
-// less than the tolerance (each step e^{hĀ} to round-off). Their segments are limited by the
-// spread of the modes' rates, measured in Ā's modes (docs/model-sizes.md, "Segments in the
-// mean's modes"); for the others, by the factors' condition in the states.
-bool ExactForTheMean(const Setup& s) {
-  const IntegratorType type = s.options.integrator.type;
-  if (type == IntegratorType::kMagnusFilon) return true;
-  return (type == IntegratorType::kMagnus4 || type == IntegratorType::kMagnus6) && s.traits &&
-         MagnusOverTheMeanPays(*s.traits, s.options.integrator.rel_tol);
+// Integrators whose error is a backward error of each step's generator: Magnus 4/6, Magnus–Filon
+// and products of exponentials (the truncated series, or the exponential's rounding, is an
+// error in the exponent). In the mean's modes that error sits on each mode's own scale, so their
+// segments may be limited by the spread of the modes' rates instead of the states' condition
+// (docs/model-sizes.md, "Segments in the mean's modes"). The basis may add at most as many
+// digits as the condition limit: cond W ≤ 1e4.
+std::optional<Eigen::MatrixXd> ModalBasisForTheGrid(const Setup& s) {
+  switch (s.options.integrator.type) {
+    case IntegratorType::kMagnus4:
+    case IntegratorType::kMagnus6:
+    case IntegratorType::kMagnusFilon:
+    case IntegratorType::kExpm:
+      return internal::RealModalBasis(MeanOfA(s.system), 1e4);
+    default:
+      return std::nullopt;
+  }
 }
 
 // Step 3: each exponent's integration error, in eig's order — the carried local errors, or a
@@ -825,8 +831,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // the integrator.
   const bool constant = s.traits && s.traits->constant_pieces && !s.traits->has_jumps;
   internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n, constant);
-  if (ExactForTheMean(s))
-    grid_options.modal_basis = internal::RealModalBasis(MeanOfA(s.system), 1e7);
+  grid_options.modal_basis = ModalBasisForTheGrid(s);
   grid_options.integrator.on_advance = progress.Phase("run");
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
   r.rhs_evals += grid.rhs_evals;
