@@ -9,6 +9,9 @@ namespace ltp {
 /// `s` without leading and trailing blanks (space, tab, CR, LF).
 std::string Trim(std::string_view s);
 
+/// `line` with every number replaced by '#': lines that differ only in their numbers share it.
+std::string NumberShape(std::string_view line);
+
 /// Diagnostics said once: lines that differ only in their numbers (one per segment, step or
 /// point of a failing run) are kept up to `keep` times; the rest of each such group becomes one
 /// line "… and N more like the above". Order of first appearance is kept. A failing run used
