@@ -313,7 +313,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
       row.t = TimeIt([&] { r = AnalyzeFloquet(s, o); }, cfg.repeats, cfg.budget_s);
       row.ok = r.ok;
       row.error_abs = r.ok ? ExponentError(Exponents(r.modes), sc.ref_for_mono, s.omega()) : kInf;
-      if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front();
+      if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front().text;
       if (line.type == IntegratorType::kAuto)
         row.note = "picked " + std::string(ToString(r.integrator));
       // The analysis a user gets (modes, branch, error estimate by the refined run): honesty.
@@ -362,7 +362,7 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
     row.t = TimeIt([&] { r = AnalyzeFloquet(s, o); }, cfg.repeats, cfg.budget_s);
     row.ok = r.ok;
     row.error_abs = r.ok ? ExponentError(Exponents(r.modes), sc.ref_for_mono, s.omega()) : kInf;
-    if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front();
+    if (!r.ok) row.note = r.diagnostics.empty() ? "not ok" : r.diagnostics.front().text;
     FloquetOptions e = o;
     e.estimate_error = true;
     e.compute_modes = true;
@@ -370,7 +370,8 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
     row.estimate = re.ok ? re.error_estimate.value_or(-1) : -1;
     row.estimate_error =
         re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
-    if (re.ok && !re.diagnostics.empty() && row.note.empty()) row.note = re.diagnostics.front();
+    if (re.ok && !re.diagnostics.empty() && row.note.empty())
+      row.note = re.diagnostics.front().text;
     Finish(row, sc);
     rows.push_back(row);
   }
@@ -402,7 +403,7 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
       row.ok = h.ok;
       row.error_abs = h.ok ? ExponentError(Exponents(h.modes), sc.ref_for_hill, s.omega()) : kInf;
       if (!h.ok && row.note.empty())
-        row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front();
+        row.note = h.diagnostics.empty() ? "not ok" : h.diagnostics.front().text;
       // What `ltp floquet --method hill --harmonics N` reports (N vs N+Δ, Koopman–Hill).
       HillOptions e;
       e.harmonics = N;
@@ -665,7 +666,10 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
           h[z - kMinOrder](0, 0) = pr.values[f][z - kMinOrder];
         v.push_back(h);
       }
-      row.note = "picked " + pr.route_choice.substr(0, pr.route_choice.find(':'));
+      // The routes as they ran (primary first), not parsed from the route_choice sentence.
+      row.note = "picked " + std::string(ToString(pr.routes.front().route));
+      for (size_t k = 1; k < pr.routes.size(); ++k)
+        row.note += (k == 1 ? " checked by " : ", ") + std::string(ToString(pr.routes[k].route));
       add(row, v, ref_channel);  // a sweep reports one channel: compared on that channel
     }
   // Honesty of the sweep a user runs (`ltp pfrf`: automatic route and checks), here with a

@@ -40,7 +40,7 @@ json CampbellJson(const CampbellDiagram& d) {
           {"per_rev", d.per_rev},
           {"crossings", crossings},
           {"weakly_damped", weak},
-          {"diagnostics", d.diagnostics}};
+          {"diagnostics", Texts(d.diagnostics)}};
 }
 
 void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::string& axis) {
@@ -73,7 +73,7 @@ void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::strin
   }
   for (const auto& [lo, hi] : d.weakly_damped)
     out << "  weakly damped for " << axis << " in [" << Num(lo, 6) << ", " << Num(hi, 6) << "]\n";
-  for (const std::string& note : d.diagnostics) out << "  note: " << note << "\n";
+  for (const Diagnostic& note : d.diagnostics) out << "  note: " << note.text << "\n";
 }
 
 void WriteCrossingsCsv(const std::string& path, const CampbellDiagram& d, const std::string& axis) {

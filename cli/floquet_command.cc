@@ -162,7 +162,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"elapsed_s", r.elapsed_s},
           {"ok", r.ok},
           {"failure", r.failure},
-          {"diagnostics", r.diagnostics}};
+          {"diagnostics", Texts(r.diagnostics)}};
 }
 
 json HillJson(const LoadedScene& l, const HillResult& h) {
@@ -202,7 +202,7 @@ json HillJson(const LoadedScene& l, const HillResult& h) {
           {"elapsed_s", h.elapsed_s},
           {"ok", h.ok},
           {"failure", h.failure},
-          {"diagnostics", h.diagnostics}};
+          {"diagnostics", Texts(h.diagnostics)}};
 }
 
 // "; forward whirl 97%" (the share turning with the rotor, or against it when that is larger).
@@ -244,10 +244,10 @@ std::string VerdictText(StabilityVerdict verdict) {
   return "?";
 }
 
-void PrintDiagnostics(const std::vector<std::string>& diagnostics) {
+void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
   if (diagnostics.empty()) return;
   std::cout << "  diagnostics:\n";
-  for (const auto& d : diagnostics) std::cout << "    - " << d << "\n";
+  for (const Diagnostic& d : diagnostics) std::cout << "    - " << d.text << "\n";
 }
 
 void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {

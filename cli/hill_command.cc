@@ -175,11 +175,10 @@ json StudyJson(const LoadedScene& l, const HillOptions& options, const HillStudy
       {"koopman_discrepancy", JsonNumber(last.koopman_discrepancy)},
       {"ok", last.ok},
       {"elapsed_s", s.elapsed_s},
-      {"diagnostics", last.diagnostics}};
-  // The study's own diagnostics after the last solve's, each once.
-  for (const std::string& d : s.diagnostics)
-    if (std::find(last.diagnostics.begin(), last.diagnostics.end(), d) == last.diagnostics.end())
-      j["diagnostics"].push_back(d);
+      {"diagnostics", Texts(last.diagnostics)}};
+  // The study's own diagnostics after the last solve's, each kind once (as RunHillStudy).
+  for (const Diagnostic& d : s.diagnostics)
+    if (!HasCode(last.diagnostics, d.code)) j["diagnostics"].push_back(d.text);
   return j;
 }
 
@@ -235,10 +234,10 @@ void PrintStudy(const LoadedScene& l, const HillOptions& options, const HillStud
   PrintRows(run.study);
   std::cout << "\n  convergence: " << RateText(run.study) << "\n";
   PrintExponents(run.last, max_harmonics);
-  const std::vector<std::string>& diags = run.diagnostics;
+  const std::vector<Diagnostic>& diags = run.diagnostics;
   if (!diags.empty()) {
     std::cout << "  diagnostics:\n";
-    for (const auto& d : diags) std::cout << "    - " << d << "\n";
+    for (const Diagnostic& d : diags) std::cout << "    - " << d.text << "\n";
   }
 }
 

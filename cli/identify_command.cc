@@ -470,7 +470,7 @@ json IdentifiedJson(const std::string& name, const std::string& method, const Ti
               {"output_name", data.output_names[static_cast<size_t>(o.output)]},
               {"records", data.records.size()},
               {"frequencies", freqs},
-              {"diagnostics", r.diagnostics}};
+              {"diagnostics", Texts(r.diagnostics)}};
   if (speeds)
     out["measured_speed_rad_s"] = {
         {"min", speeds->min_speed}, {"max", speeds->max_speed}, {"mean", speeds->mean_speed}};
@@ -520,7 +520,7 @@ void PrintIdentified(const std::string& name, const std::string& method, bool br
       if (!model.empty()) std::cout << Num(std::abs(model[f][static_cast<size_t>(z)] - h), 2, 16);
       std::cout << "\n";
     }
-  for (const std::string& d : r.diagnostics) std::cout << "  note: " << d << "\n";
+  for (const Diagnostic& d : r.diagnostics) std::cout << "  note: " << d.text << "\n";
 }
 
 int RunIdentify(const IdentifyArgs& args) {

@@ -132,8 +132,8 @@ json FloquetJson(const SampledFloquetResult& f) {
           {"error_estimate_trig", JsonNumber(f.trig.error_estimate)},
           {"elapsed_s", f.hold.elapsed_s + f.trig.elapsed_s},
           {"modes_below", ReductionJson(f.trig.reduction)},
-          {"diagnostics_hold", f.hold.diagnostics},
-          {"diagnostics_trig", f.trig.diagnostics},
+          {"diagnostics_hold", Texts(f.hold.diagnostics)},
+          {"diagnostics_trig", Texts(f.trig.diagnostics)},
           {"notes", f.notes}};
 }
 
@@ -201,7 +201,7 @@ void PrintTable(const Mbc3Result& r) {
             << (r.max_real_part < 0 ? "STABLE" : "UNSTABLE") << " (MBC3, azimuth-averaged)\n";
   if (!r.diagnostics.empty()) {
     std::cout << "  diagnostics:\n";
-    for (const auto& d : r.diagnostics) std::cout << "    - " << d << "\n";
+    for (const Diagnostic& d : r.diagnostics) std::cout << "    - " << d.text << "\n";
   }
 }
 
@@ -219,8 +219,8 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
             << ")\n";
   if (!f.ok) {
     std::cout << "  FAILED\n";
-    for (const auto& d : f.hold.diagnostics) std::cout << "    - hold: " << d << "\n";
-    for (const auto& d : f.trig.diagnostics) std::cout << "    - trig: " << d << "\n";
+    for (const Diagnostic& d : f.hold.diagnostics) std::cout << "    - hold: " << d.text << "\n";
+    for (const Diagnostic& d : f.trig.diagnostics) std::cout << "    - trig: " << d.text << "\n";
     return;
   }
   if (f.trig.reduction) PrintReduction(*f.trig.reduction, f.trig.states);
@@ -321,7 +321,7 @@ int RunMbc(const MbcArgs& args) {
               {"rigid_body_modes", r.rigid_body_modes},
               {"max_real_part",
                r.applicable && !r.modes.empty() ? JsonNumber(r.max_real_part) : json(nullptr)},
-              {"diagnostics", r.diagnostics},
+              {"diagnostics", Texts(r.diagnostics)},
               {"notes", LinCaveats(op)}};
     if (!r.applicable) j["reason"] = r.reason;
     if (f) j["floquet"] = FloquetJson(*f);

@@ -279,8 +279,8 @@ json OrbitJson(const OrbitSweep& r, const HarmonicTransferFunction& htf, const L
           {"frequencies", OrbitsJson(r)},
           {"ok", r.ok},
           {"failure", r.failure},
-          {"diagnostics", r.diagnostics},
-          {"htf_diagnostics", htf.diagnostics()}};
+          {"diagnostics", Texts(r.diagnostics)},
+          {"htf_diagnostics", Texts(htf.diagnostics())}};
 }
 
 void PrintHeader(const OrbitSweep& r, const HarmonicTransferFunction& htf, const LoadedScene& l,
@@ -360,9 +360,9 @@ void PrintOrbits(const OrbitSweep& r, const HarmonicTransferFunction& htf, const
     for (size_t i = 0; i < r.orbits.size(); ++i) PrintTable(r, i);
   else
     PrintPeaks(r, written);
-  std::vector<std::string> notes = r.diagnostics;
+  std::vector<std::string> notes = Texts(r.diagnostics);
   if (!htf.ok())
-    for (const std::string& d : htf.diagnostics()) notes.push_back(d);
+    for (const Diagnostic& d : htf.diagnostics()) notes.push_back(d.text);
   if (!notes.empty()) {
     std::cout << "\n  notes:\n";
     for (const std::string& d : notes) std::cout << "    - " << d << "\n";

@@ -128,7 +128,7 @@ json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
                       {"max_deviation_from_primary", JsonNumber(MaxDeviation(run))},
                       {"setup_s", run.setup_s},
                       {"elapsed_s", run.elapsed_s},
-                      {"diagnostics", run.diagnostics}});
+                      {"diagnostics", Texts(run.diagnostics)}});
   for (const Resonance& p : r.resonances)
     res.push_back({{"z", p.order},
                    {"f_exc_hz", p.f_exc_hz},
@@ -182,7 +182,7 @@ json PfrfJson(const PfrfResult& r, const LoadedScene& l, const PfrfOptions& o,
           {"elapsed_s", r.elapsed_s},
           {"ok", r.ok},
           {"failure", r.failure},
-          {"diagnostics", r.diagnostics}};
+          {"diagnostics", Texts(r.diagnostics)}};
 }
 
 // The routes, their agreement and the decomposition behind them.
@@ -247,9 +247,9 @@ void PrintValues(const PfrfResult& r, bool csv_written) {
 // The notes of the sweep and its routes; one repeated for many frequencies is printed once,
 // with its count.
 void PrintNotes(const PfrfResult& r) {
-  std::vector<std::string> diags = r.diagnostics;
+  std::vector<std::string> diags = Texts(r.diagnostics);
   for (const RouteRun& run : r.routes)
-    for (const auto& d : run.diagnostics) diags.push_back(d);
+    for (const Diagnostic& d : run.diagnostics) diags.push_back(d.text);
   if (diags.empty()) return;
   std::vector<std::pair<std::string, int>> unique;
   for (const auto& d : diags) {

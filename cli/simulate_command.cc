@@ -115,7 +115,7 @@ int RunSimulate(const SimulateArgs& args) {
       (o.tacho ? ", tacho pulse rising through mid-level at phase 0" : "") +
       (o.cubic_stiffness > 0 ? ", cubic spring " + Num(o.cubic_stiffness) + " y^3 on the input"
                              : "");
-  std::vector<std::string> notes = r.diagnostics;
+  std::vector<std::string> notes = Texts(r.diagnostics);
   if (IsUffName(args.out)) {
     // UFF keeps 7 digits of the time axis: a rig's tacho makes identification independent of it.
     const double rounding = WriteTimeDataUff(args.out, r.data, comment, args.binary);

@@ -134,7 +134,7 @@ json SnapshotJson(const LoadedScene& l, const SnapshotOptions& o, const Snapshot
           {"modal_reliable", r.modal_reliable},
           {"values", vals},
           {"elapsed_s", r.elapsed_s},
-          {"diagnostics", r.diagnostics}};
+          {"diagnostics", Texts(r.diagnostics)}};
 }
 
 // One line per conjugate pair: only the exponents with Im >= 0.
@@ -186,7 +186,7 @@ void PrintSnapshot(const LoadedScene& l, const SnapshotOptions& o, const Snapsho
   PrintValues(r, o.compare, csv_written);
   if (!r.diagnostics.empty()) {
     std::cout << "\n  notes:\n";
-    for (const auto& d : r.diagnostics) std::cout << "    - " << d << "\n";
+    for (const Diagnostic& d : r.diagnostics) std::cout << "    - " << d.text << "\n";
   }
   std::cout << "\n  total " << Num(r.elapsed_s * 1e3, 4) << " ms\n";
 }

@@ -44,8 +44,9 @@ size_t InvalidUtf8At(std::string_view text) {
   return std::string::npos;
 }
 
-// The line with every number replaced by '#': lines of one shape share this key.
-std::string Shape(const std::string& line) {
+}  // namespace
+
+std::string NumberShape(std::string_view line) {
   std::string key;
   for (size_t i = 0; i < line.size();) {
     if (std::isdigit(static_cast<unsigned char>(line[i]))) {
@@ -62,8 +63,6 @@ std::string Shape(const std::string& line) {
   return key;
 }
 
-}  // namespace
-
 std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule) {
   const size_t at = InvalidUtf8At(text);
   if (at == std::string::npos) return std::nullopt;
@@ -79,11 +78,11 @@ std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule)
 
 std::vector<std::string> CollapseRepeatedLines(const std::vector<std::string>& lines, int keep) {
   std::map<std::string, size_t> count;
-  for (const std::string& l : lines) ++count[Shape(l)];
+  for (const std::string& l : lines) ++count[NumberShape(l)];
   std::map<std::string, size_t> seen;
   std::vector<std::string> out;
   for (const std::string& l : lines) {
-    const std::string key = Shape(l);
+    const std::string key = NumberShape(l);
     const size_t k = ++seen[key];
     if (k <= static_cast<size_t>(keep) || count[key] <= static_cast<size_t>(keep) + 1) {
       out.push_back(l);

@@ -10,6 +10,7 @@
 
 #include "analysis_progress.h"
 #include "floquet_modes.h"
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -225,6 +226,36 @@ Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
   return xi.completeOrthogonalDecomposition().pseudoInverse();
 }
 
+std::string_view ToString(Termination t) {
+  switch (t) {
+    case Termination::kNotRun:
+      return "not_run";
+    case Termination::kCompleted:
+      return "completed";
+    case Termination::kIntegrationFailed:
+      return "integration_failed";
+    case Termination::kEigenvaluesFailed:
+      return "eigenvalues_failed";
+    case Termination::kChecksFailed:
+      return "checks_failed";
+    case Termination::kNoModesBelowCutoff:
+      return "no_modes_below_cutoff";
+  }
+  return "unknown";
+}
+
+void FloquetResult::Fail(Termination why, std::string sentence) {
+  ok = false;
+  termination = why;
+  failure = std::move(sentence);
+}
+
+void FloquetResult::Complete() {
+  ok = true;
+  termination = Termination::kCompleted;
+  failure.clear();
+}
+
 std::string FloquetResult::BriefReport() const {
   std::ostringstream s;
   s << (ok ? "" : "FAILED: ") << "K = " << segments << ", max Re λ = " << max_real_exponent
@@ -307,7 +338,7 @@ void WeighTheWork(const PeriodicSystem& system, std::optional<SystemTraits>& tra
     s.precision(2);
     s << "work estimate before the analysis: about " << w.seconds() << " CPU s (" << w.evaluations
       << " evaluations; " << w.basis << ")";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kWorkEstimate, Severity::kNote, s.str()});
     if (options.on_long_work) options.on_long_work(w);
   }
 }
@@ -479,9 +510,9 @@ std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
                                ? MultiplierLogs(reference, options.multipliers, system.states())
                                : LogEigenvalues{};
   if (!ref_eig.ok) {
-    r.diagnostics.push_back(
-        "error estimate: the refined reference run failed; results are "
-        "from the first run and their error is unknown");
+    r.diagnostics.push_back({DiagnosticCode::kErrorEstimateFailed, Severity::kWarning,
+                             "error estimate: the refined reference run failed; results are "
+                             "from the first run and their error is unknown"});
     return std::vector<double>(eig.log_values.size(), std::numeric_limits<double>::infinity());
   }
   std::vector<double> errors = MatchExponents(ref_eig.log_values, eig.log_values, 2 * kPi);
@@ -503,8 +534,9 @@ std::vector<double> LocalErrorEstimate(const internal::SegmentGrid& grid, const 
   const LogEigenvalues moved_eig = MultiplierLogs(moved, method, r.states);
   if (!moved_eig.ok) {
     r.diagnostics.push_back(
-        "error estimate: the eigenvalues of the factors moved by their local errors failed; "
-        "the error is unknown");
+        {DiagnosticCode::kErrorEstimateFailed, Severity::kWarning,
+         "error estimate: the eigenvalues of the factors moved by their local errors failed; "
+         "the error is unknown"});
     return std::vector<double>(eig.log_values.size(), std::numeric_limits<double>::infinity());
   }
   std::vector<double> errors = MatchExponents(eig.log_values, moved_eig.log_values, 2 * kPi);
@@ -534,16 +566,18 @@ void ReportBranchTies(FloquetResult& r) {
     return s.str();
   };
   if (!strip_edge.empty())
-    r.diagnostics.push_back(
-        modes(strip_edge) + ": negative real multiplier" + (strip_edge.size() > 1 ? "s" : "") +
-        ", so the exponent sits on the strip edge: Im λ = +Ωp/2 and −Ωp/2 (mod Ωp) describe the "
-        "same solution; the non-negative one is reported");
+    r.diagnostics.push_back({DiagnosticCode::kBranchOnStripEdge, Severity::kNote,
+                             modes(strip_edge) + ": negative real multiplier" +
+                                 (strip_edge.size() > 1 ? "s" : "") +
+                                 ", so the exponent sits on the strip edge: Im λ = +Ωp/2 and −Ωp/2 "
+                                 "(mod Ωp) describe the "
+                                 "same solution; the non-negative one is reported"});
   if (!ambiguous.empty()) {
     std::ostringstream s;
     s << modes(ambiguous) << ": branch ambiguous (margin down to " << smallest_margin
       << "): the mode shape's Fourier energy is split between two neighbouring harmonics; the "
          "smaller non-negative frequency was taken";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kBranchAmbiguous, Severity::kNote, s.str()});
   }
 }
 
@@ -618,25 +652,26 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
       options.estimate_error
           ? std::max(n * T * *r.error_estimate, 1e-6 * std::max(1.0, std::abs(trace_integral)))
           : gross;
-  r.ok = std::abs(sum_log_abs - trace_integral) <= liouville_allowance;
-  if (!r.ok) {
+  if (std::abs(sum_log_abs - trace_integral) <= liouville_allowance) {
+    r.Complete();
+  } else {
     std::ostringstream s;
     s << "Liouville check failed: Σ log|ρ| = " << sum_log_abs
       << " but ∫ tr A dt = " << trace_integral << ", beyond what the error estimate allows ("
       << liouville_allowance
       << "): some exponents are wrong (too few segments, single-shot multipliers or too loose a "
          "tolerance for this system; the automatic settings avoid this)";
-    r.failure = s.str();
-    r.diagnostics.push_back(s.str());
+    r.Fail(Termination::kChecksFailed, s.str());
+    r.diagnostics.push_back({DiagnosticCode::kLiouvilleCheckFailed, Severity::kFailure, s.str()});
   }
   std::optional<double> band = r.error_estimate;
   if (r.error_estimate) band = PerModeBand(r.modes, r.max_real_exponent, *r.error_estimate);
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && r.error_estimate)
-    r.diagnostics.push_back(
-        "stability undecided (marginal): |max Re λ| is within the error "
-        "estimate (a conservative system, or one on a stability boundary)");
+    r.diagnostics.push_back({DiagnosticCode::kStabilityMarginal, Severity::kWarning,
+                             "stability undecided (marginal): |max Re λ| is within the error "
+                             "estimate (a conservative system, or one on a stability boundary)"});
   const bool decided_by_own_estimates =
       r.error_estimate && r.verdict != StabilityVerdict::kMarginal &&
       r.verdict != StabilityVerdict::kFailed &&
@@ -646,7 +681,7 @@ void SummariseAndCheck(const PeriodicSystem& system, const std::vector<cd>& log_
     s << "verdict: max Re λ is within ±" << *band
       << " 1/s — each exponent with its own estimate; the largest, " << *r.error_estimate
       << " 1/s, belongs to exponents far from the stability boundary";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kVerdictPerModeBand, Severity::kNote, s.str()});
   }
 }
 
@@ -675,15 +710,16 @@ Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, Floq
     d << "states rescaled by powers of two from 2^" << std::lround(std::log2(scale.minCoeff()))
       << " to 2^" << std::lround(std::log2(scale.maxCoeff()))
       << " (diagonal balancing of A, exact) for the integration; results are in the given states";
-    r.diagnostics.push_back(d.str());
+    r.diagnostics.push_back({DiagnosticCode::kStatesBalanced, Severity::kNote, d.str()});
   }
   std::string choice;
   if (requested.integrator.type == IntegratorType::kAuto) s.traits = MeasureSystemTraits(s.system);
   s.options.integrator =
       ResolveIntegrator(s.system, requested.integrator, &choice, s.traits ? &*s.traits : nullptr);
   if (!choice.empty())
-    r.diagnostics.push_back("integrator auto → " +
-                            std::string(ToString(s.options.integrator.type)) + ": " + choice);
+    r.diagnostics.push_back(
+        {DiagnosticCode::kIntegratorChosen, Severity::kNote,
+         "integrator auto → " + std::string(ToString(s.options.integrator.type)) + ": " + choice});
   r.states = s.system.states();
   r.period = s.system.period();
   r.integrator = s.options.integrator.type;
@@ -723,11 +759,13 @@ std::vector<double> IntegrationErrors(const Setup& s,
                                                              : ErrorEstimateMethod::kLocalErrors;
   if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
     r.diagnostics.push_back(
-        options.integrator.type == IntegratorType::kBulirschStoer
-            ? "error estimate: the carried local errors were not finite (a singular step "
-              "matrix); the refined run instead"
-            : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
-                  std::string(ToString(options.integrator.type)) + " gets the refined run instead");
+        {DiagnosticCode::kErrorEstimateFallback, Severity::kNote,
+         options.integrator.type == IntegratorType::kBulirschStoer
+             ? "error estimate: the carried local errors were not finite (a singular step "
+               "matrix); the refined run instead"
+             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
+                   std::string(ToString(options.integrator.type)) +
+                   " gets the refined run instead"});
   if (!options.estimate_error || n == 0) return std::vector<double>(n, 0.0);
   return r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
              ? LocalErrorEstimate(grid, eig, options.multipliers, r.period, r)
@@ -745,7 +783,8 @@ std::vector<double> ComputeModes(const Setup& s, const internal::SegmentGrid& gr
   modes.resize(n);
   for (int k = 0; k < n; ++k) modes[k] = MakeFloquetMode(eig.log_values[k], 0, r.period);
   if (!s.options.compute_modes || n == 0) {
-    r.diagnostics.push_back("branch: principal logarithm (modes not computed)");
+    r.diagnostics.push_back({DiagnosticCode::kModesNotComputed, Severity::kNote,
+                             "branch: principal logarithm (modes not computed)"});
     return std::vector<double>(n, 1.0);
   }
   IntegratorOptions shape_integrator = s.options.integrator;
@@ -797,7 +836,7 @@ void Finish(const Setup& s, const internal::SegmentGrid& grid, const LogEigenval
   for (std::string& line : internal::FlagRigidBodyModes(
            s.system.labels(), r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(),
            r.modes))
-    r.diagnostics.push_back(std::move(line));
+    r.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote, std::move(line)});
   const double largest_integration =
       n > 0 ? *std::max_element(integration.begin(), integration.end()) : 0.0;
   const double largest_floor = n > 0 ? *std::max_element(floors.begin(), floors.end()) : 0.0;
@@ -836,12 +875,14 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
   r.rhs_evals += grid.rhs_evals;
   // One line per failing segment would flood the reader (a NaN from t > 1 on: 19 945 lines).
-  for (auto& d : CollapseRepeatedLines(grid.diagnostics)) r.diagnostics.push_back(std::move(d));
+  for (auto& d : CollapseRepeated(grid.diagnostics)) r.diagnostics.push_back(std::move(d));
   if (options.segments == 0 && grid.ok)
-    r.diagnostics.push_back(DescribeSegmentChoice(grid, options));
+    r.diagnostics.push_back(
+        {DiagnosticCode::kSegmentsChosen, Severity::kNote, DescribeSegmentChoice(grid, options)});
   if (!grid.ok) {
-    r.failure = grid.diagnostics.empty() ? "the integration of the period failed"
-                                         : "integration failed: " + grid.diagnostics.front();
+    r.Fail(Termination::kIntegrationFailed,
+           grid.diagnostics.empty() ? "the integration of the period failed"
+                                    : "integration failed: " + grid.diagnostics.front().text);
     r.elapsed_s = SecondsSince(start);
     return r;
   }
@@ -850,15 +891,17 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   bool single_shot = false;
   LogEigenvalues eig = MultiplierLogs(grid, options.multipliers, n, &fallback, &single_shot);
   if (!fallback.empty()) {
-    r.diagnostics.push_back(fallback);
+    r.diagnostics.push_back({single_shot ? DiagnosticCode::kMultipliersSingleShot
+                                         : DiagnosticCode::kMultipliersRegrouped,
+                             single_shot ? Severity::kWarning : Severity::kNote, fallback});
     if (single_shot) {  // the refined run and the local errors use the same method
       options.multipliers = MultiplierMethod::kSingleShot;
       r.multiplier_method = MultiplierMethod::kSingleShot;
     }
   }
   if (!eig.ok) {
-    r.failure = "eigenvalues of the monodromy failed: " + eig.message;
-    r.diagnostics.push_back(r.failure);
+    r.Fail(Termination::kEigenvaluesFailed, "eigenvalues of the monodromy failed: " + eig.message);
+    r.diagnostics.push_back({DiagnosticCode::kMultipliersFailed, Severity::kFailure, r.failure});
     r.elapsed_s = SecondsSince(start);
     return r;
   }

@@ -134,8 +134,9 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
     return xi;
   }
   out.diagnostics.push_back(
-      "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
-      " segments for " + std::to_string(samples) + " samples)");
+      {DiagnosticCode::kModeSamplesPropagated, Severity::kNote,
+       "mode samples propagated within segments (K = " + std::to_string(grid.factors.size()) +
+           " segments for " + std::to_string(samples) + " samples)"});
   if (constant && ConstantSamples(system, grid, vecs, log_rho, samples, integrator, out, xi))
     return xi;
   long rhs_evals = 0;
@@ -299,7 +300,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
     s << "mode shapes under-resolved: " << worst_tail
       << " of a mode's Fourier energy lies in the upper half of the " << samples
       << " samples; raise --mode-samples";
-    out.diagnostics.push_back(s.str());
+    out.diagnostics.push_back({DiagnosticCode::kModesUnderResolved, Severity::kWarning, s.str()});
   }
   ModeMatrixCondition(good, out);
   for (int k : failed) {
@@ -308,20 +309,22 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
       << (log_rho[k].imag() < 0 ? " - " : " + ") << std::abs((log_rho[k] / T).imag())
       << "j could not be computed (cyclic eigenvector solve failed); its exponent is "
          "unaffected, its branch is the principal one and its shape is reported as zero";
-    out.diagnostics.push_back(s.str());
+    out.diagnostics.push_back({DiagnosticCode::kModeShapeFailed, Severity::kWarning, s.str()});
   }
   if (good.empty()) {
     out.diagnostics.push_back(
-        "no periodic mode shape could be computed (the solutions grow and decay over hundreds "
-        "of decades within a period): exponents and multipliers are unaffected; mode shapes, "
-        "left modes and branches are not available");
+        {DiagnosticCode::kNoModeShapes, Severity::kWarning,
+         "no periodic mode shape could be computed (the solutions grow and decay over hundreds "
+         "of decades within a period): exponents and multipliers are unaffected; mode shapes, "
+         "left modes and branches are not available"});
   } else if (!(out.condition < 1e8)) {
     std::ostringstream s;
     s << "mode matrix is ill-conditioned (cond = " << out.condition
       << "): the monodromy is (near-)defective, e.g. a double multiplier at ±1 on a stability "
          "boundary; mode shapes, left modes and branch choices are unreliable, and exponents "
          "are accurate only to about the square root of the integration error";
-    out.diagnostics.push_back(s.str());
+    out.diagnostics.push_back(
+        {DiagnosticCode::kModeMatrixIllConditioned, Severity::kWarning, s.str()});
   }
   return out;
 }

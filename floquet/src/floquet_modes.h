@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/integrate/detail/segment_grid.h"
@@ -22,7 +23,7 @@ struct ModeShapes {
   int harmonics = 0;                      ///< H
   double condition = 0;                   ///< of the mode matrix, best sample time
   long rhs_evals = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// The mode shapes of the multipliers exp(log_rho) of the factors on `grid`, at `samples`

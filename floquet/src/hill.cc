@@ -88,17 +88,17 @@ FloquetMode MakeMode(cd mu, double T, double omega, bool tie) {
 // exponents and the dense matrix fits.
 Eigenpairs Solve(const FourierMatrix& A, double omega, int N, const HillOptions& o,
                  const std::vector<cd>& shifts, HillSolver& solver_used,
-                 std::vector<std::string>& diagnostics) {
+                 std::vector<Diagnostic>& diagnostics) {
   if (o.solver == HillSolver::kDense) {
     hill_internal::CheckDenseMemory(A.rows(), N, o.max_dense_bytes);
     solver_used = HillSolver::kDense;
     Eigenpairs p = hill_internal::SolveDense(A, omega, N);
-    for (const std::string& s : p.notes) diagnostics.push_back(s);
+    diagnostics.insert(diagnostics.end(), p.notes.begin(), p.notes.end());
     return p;
   }
   solver_used = HillSolver::kStructured;
   Eigenpairs p = hill_internal::SolveStructured(A, omega, N, shifts);
-  for (const std::string& s : p.notes) diagnostics.push_back(s);
+  diagnostics.insert(diagnostics.end(), p.notes.begin(), p.notes.end());
   return p;
 }
 
@@ -129,8 +129,9 @@ Solved SolveAndSelect(const FourierMatrix& A, double omega, int N, const HillOpt
       static_cast<int>(sel.chosen.size()) < n) {
     const double bytes = std::pow((2.0 * N + 1) * n, 2) * sizeof(cd);
     if (bytes <= o.max_dense_bytes) {
-      r.diagnostics.push_back("structured solver found " + std::to_string(sel.chosen.size()) +
-                              " of " + std::to_string(n) + " exponents; fell back to dense");
+      r.diagnostics.push_back({DiagnosticCode::kHillSolverFellBack, Severity::kNote,
+                               "structured solver found " + std::to_string(sel.chosen.size()) +
+                                   " of " + std::to_string(n) + " exponents; fell back to dense"});
       HillOptions dense = o;
       dense.solver = HillSolver::kDense;
       pairs = Solve(A, omega, N, dense, shifts, r.solver, r.diagnostics);
@@ -139,7 +140,7 @@ Solved SolveAndSelect(const FourierMatrix& A, double omega, int N, const HillOpt
         sel = hill_internal::SelectPhysical(pairs, n, N, omega, o.selection, o.ambiguity_threshold);
     }
   }
-  for (const std::string& s : sel.diagnostics) r.diagnostics.push_back(s);
+  r.diagnostics.insert(r.diagnostics.end(), sel.diagnostics.begin(), sel.diagnostics.end());
   r.eigenvalues = pairs.values;
   return {std::move(pairs), std::move(sel)};
 }
@@ -211,7 +212,8 @@ std::vector<double> CollectModes(const FourierMatrix& A, double omega, double T,
     std::ostringstream s;
     s << "eigenvectors reach the truncation edge (tail weight " << worst_tail
       << " on blocks ±N): raise N";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back(
+        {DiagnosticCode::kEigenvectorsAtTruncationEdge, Severity::kWarning, s.str()});
   }
 
   return EigenvalueConditions(xi0, order);
@@ -295,7 +297,8 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
           << " to N + Δ = " << N + r.delta_harmonics
           << "): eigenvalues of the truncation edge, not Floquet exponents; no error bound "
              "(raise N, or use the monodromy route)";
-        r.diagnostics.push_back(s.str());
+        r.diagnostics.push_back(
+            {DiagnosticCode::kBranchesMoveWithTruncation, Severity::kFailure, s.str()});
         change = std::numeric_limits<double>::infinity();
         r.ok = false;
         r.failure = s.str();
@@ -323,14 +326,17 @@ bool EstimateTruncation(const FourierMatrix& A, const FourierFit* fit, double T,
                  : q < 0.9 ? change / (1 - q)
                            : std::numeric_limits<double>::infinity();
         if (q >= 0.9)
-          r.diagnostics.push_back("truncation not converging: the change from N + Δ to N + 2Δ is " +
-                                  std::to_string(q) + " of the one from N to N + Δ (raise N)");
+          r.diagnostics.push_back(
+              {DiagnosticCode::kTruncationNotConverged, Severity::kWarning,
+               "truncation not converging: the change from N + Δ to N + 2Δ is " +
+                   std::to_string(q) + " of the one from N to N + Δ (raise N)"});
       }
       r.truncation_estimate = change;
     } catch (const ResourceError&) {
       r.delta_harmonics = 0;
       r.diagnostics.push_back(
-          "N + Δ estimate skipped: the larger truncation does not fit in memory");
+          {DiagnosticCode::kTruncationLimited, Severity::kWarning,
+           "N + Δ estimate skipped: the larger truncation does not fit in memory"});
     }
   }
 
@@ -350,7 +356,7 @@ void CheckResolution(const FourierMatrix& A, double omega, int N, bool rate_chec
       s << "N·Ωp = " << N * omega << " 1/s is below the spread of the frozen eigenvalues of A(t) ("
         << spread << " 1/s): the truncation cannot resolve the solutions yet, so the N vs N+Δ "
         << "change is no error bound (raise N to at least " << std::ceil(spread / omega) << ")";
-      r.diagnostics.push_back(s.str());
+      r.diagnostics.push_back({DiagnosticCode::kTruncationUnresolved, Severity::kWarning, s.str()});
       r.truncation_estimate = std::numeric_limits<double>::infinity();
     }
   }
@@ -367,8 +373,9 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
     if (!phi.allFinite()) {  // Eigen's eigensolver reads past its arrays on inf/NaN input
       r.apriori_phi_bound = std::numeric_limits<double>::infinity();
       r.diagnostics.push_back(
-          "Koopman–Hill check skipped: its transition matrix overflows (multipliers beyond "
-          "the range of doubles); no a-priori exponent bound");
+          {DiagnosticCode::kKoopmanHillSkipped, Severity::kNote,
+           "Koopman–Hill check skipped: its transition matrix overflows (multipliers beyond "
+           "the range of doubles); no a-priori exponent bound"});
       return kh_own;
     }
     // The bound holds in exact arithmetic; the computed expm adds round-off ~ eps ||H T|| ||Φ||.
@@ -405,8 +412,9 @@ double KoopmanHillCheck(const FourierMatrix& A, double omega, double T, int N, c
     r.apriori_bound = worst + gap + 4 * std::numeric_limits<double>::epsilon() * norm_h;
   } else if (o.koopman_check && r.ok) {
     r.diagnostics.push_back(
-        "Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
-        std::to_string(o.koopman_max_size) + "); no a-priori exponent bound");
+        {DiagnosticCode::kKoopmanHillSkipped, Severity::kNote,
+         "Koopman–Hill check skipped (Hill matrix larger than koopman_max_size = " +
+             std::to_string(o.koopman_max_size) + "); no a-priori exponent bound"});
   }
   return kh_own;
 }
@@ -426,9 +434,9 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
   if (r.koopman_discrepancy &&
       *r.koopman_discrepancy > kh_own + r.truncation_estimate.value_or(0.0)) {
     estimate = std::max(estimate.value_or(0.0), *r.koopman_discrepancy);
-    r.diagnostics.push_back(
-        "Koopman–Hill disagrees with the selected exponents beyond its own "
-        "truncation bound: the selection may have picked a wrong eigenvalue");
+    r.diagnostics.push_back({DiagnosticCode::kKoopmanHillDisagrees, Severity::kWarning,
+                             "Koopman–Hill disagrees with the selected exponents beyond its own "
+                             "truncation bound: the selection may have picked a wrong eigenvalue"});
   }
   // Liouville: Σ Re λ_k = (1/T) ∫ tr A = Re tr A_0 for the true exponents, whatever the
   // truncation. A selection that picked spurious eigenvalues (or missed a mode, as on stiff
@@ -450,7 +458,7 @@ void FinishEstimate(const FourierMatrix& A, const std::vector<double>& kappa, do
       s << "Liouville check failed: Σ Re λ = " << sum << " 1/s but the mean of tr A(t) is " << trace
         << " 1/s, so the selected eigenvalues are not all Floquet exponents (raise N, or use the "
            "monodromy route); no error bound";
-      r.diagnostics.push_back(s.str());
+      r.diagnostics.push_back({DiagnosticCode::kLiouvilleCheckFailed, Severity::kFailure, s.str()});
       r.failure = s.str();
       // Errors of the other exponents can cancel part of the deficit (dense stiff.yaml: deficit
       // 973, error 1018), so a failed check leaves no finite bound, and the result is not ok.
@@ -494,11 +502,12 @@ HillResult AnalyzeFixed(const FourierMatrix& A, const FourierFit* fit, double T,
   r.harmonics = N;
   r.matrix_size = (2 * N + 1) * A.rows();
   r.period = T;
-  r.selection_rule = std::string(ToString(o.selection));
+  r.selection = o.selection;
+  r.selection_rule = std::string(ToString(r.selection));
   const Solved solved = SolveAndSelect(A, omega, N, o, r);
   if (!solved.pairs.ok) {
     r.failure = solved.pairs.notes.empty() ? "the eigenvalues of the Hill matrix were not found"
-                                           : solved.pairs.notes.front();
+                                           : solved.pairs.notes.front().text;
     r.elapsed_s = SecondsSince(start);
     return r;
   }
@@ -548,7 +557,7 @@ void FitErrorEstimate(const PeriodicSystem& system, const HillOptions& options,
   s << "Fourier fit of A(t) not converged: its error moves the exponents by about "
     << r.fourier_fit_error << " 1/s whatever N (" << fit.samples << " vs " << coarse.samples
     << " samples); included in the error estimate";
-  r.diagnostics.push_back(s.str());
+  r.diagnostics.push_back({DiagnosticCode::kFourierFitNotConverged, Severity::kWarning, s.str()});
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;
 }
@@ -667,7 +676,7 @@ WorkEstimate StructuredHillWork(int n, int N, const HillOptions& o, double secon
   return w;
 }
 
-void WeighTheWork(int n, int N, const HillOptions& o, std::vector<std::string>& notes) {
+void WeighTheWork(int n, int N, const HillOptions& o, std::vector<Diagnostic>& notes) {
   const bool dense = o.solver == HillSolver::kDense;
   if (dense) hill_internal::CheckDenseMemory(n, N, o.max_dense_bytes);  // memory first
   // Well under a second anywhere below these sizes; nothing to weigh when neither limit is on
@@ -706,7 +715,7 @@ WorkEstimate HillWork(int n, int N, const HillOptions& o, double seconds_per_cub
 }
 
 void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOptions& o,
-                   const char* advice, std::vector<std::string>& notes) {
+                   const char* advice, std::vector<Diagnostic>& notes) {
   if (o.max_work_seconds > 0 && w.fewest_seconds() > o.max_work_seconds) {
     std::ostringstream s;
     s.precision(3);
@@ -719,7 +728,7 @@ void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOpti
     std::ostringstream s;
     s.precision(2);
     s << "work estimate before the analysis: about " << w.seconds() << " CPU s (" << w.basis << ")";
-    notes.push_back(s.str());
+    notes.push_back({DiagnosticCode::kWorkEstimate, Severity::kNote, s.str()});
     if (o.on_long_work) o.on_long_work(w);
   }
 }
@@ -769,19 +778,20 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   requested.Validate();
   const auto start = std::chrono::steady_clock::now();
   const double T = system.period();
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> notes;
   HillOptions options = requested;
   HillCoefficients coefficients = CoefficientsOf(system, options.fourier);
   const FourierMatrix& A = coefficients.A;
   const std::optional<FourierFit>& fit = coefficients.fit;
   const std::string& fit_note = coefficients.note;
-  if (fit) notes.push_back(fit_note);
+  if (fit) notes.push_back({DiagnosticCode::kFourierFitted, Severity::kNote, fit_note});
 
   if (options.solver == HillSolver::kAuto) {  // needs H_A: after the fit
     const HillSolverChoice c =
         ChooseHillSolver(MeasureSystemTraits(system), options.harmonics, A.max_harmonic());
     options.solver = c.solver;
-    notes.push_back("solver auto → " + std::string(ToString(c.solver)) + ": " + c.reason);
+    notes.push_back({DiagnosticCode::kHillSolverChosen, Severity::kNote,
+                     "solver auto → " + std::string(ToString(c.solver)) + ": " + c.reason});
   }
   WeighTheWork(A.rows(), options.harmonics, options, notes);
   HillResult r = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, options);
@@ -801,14 +811,17 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
                                     .fewest_seconds() <= options.max_work_seconds;
     if (!affordable) {
       notes.push_back(
-          "structured solver's exponents failed their checks; the dense solver would take longer "
-          "than max_work_seconds, so the result stays as it is");
+          {DiagnosticCode::kHillFallbackTooCostly, Severity::kWarning,
+           "structured solver's exponents failed their checks; the dense solver would take longer "
+           "than max_work_seconds, so the result stays as it is"});
     } else {
       WeighTheWork(A.rows(), options.harmonics, dense, notes);  // announced when long
       HillResult d = AnalyzeFixed(A, fit ? &*fit : nullptr, T, options.harmonics, dense);
-      notes.push_back("structured solver's exponents failed their checks (" +
-                      (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back()) +
-                      "); replaced by the dense solver's");
+      notes.push_back(
+          {DiagnosticCode::kHillSolverFellBack, Severity::kWarning,
+           "structured solver's exponents failed their checks (" +
+               (r.diagnostics.empty() ? std::string("see below") : r.diagnostics.back().text) +
+               "); replaced by the dense solver's"});
       d.dense_fallback = true;
       r = std::move(d);
     }
@@ -817,7 +830,7 @@ HillResult AnalyzeHill(const PeriodicSystem& system, const HillOptions& requeste
   // The rigid rotation of a free angle (rigid_body.h): left out of max Re λ and the verdict,
   // as the monodromy route does.
   for (std::string& line : internal::FlagRigidBodyModes(system.labels(), r.mode_shapes, r.modes))
-    r.diagnostics.push_back(std::move(line));
+    r.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote, std::move(line)});
   r.max_real_exponent = internal::MaxRealExponent(r.modes);
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate);
   r.stable = r.verdict == StabilityVerdict::kStable;

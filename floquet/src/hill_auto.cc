@@ -16,7 +16,9 @@ HillResult AnalyzeHillAuto(const PeriodicSystem& system, HillOptions options, do
   // Time reported is the whole call: every truncation tried, not only the last.
   auto finish = [&](HillResult r, bool met, const std::string& why) {
     r.tolerance_met = met;
-    r.diagnostics.push_back(why);
+    r.diagnostics.push_back(
+        {met ? DiagnosticCode::kHarmonicsChosen : DiagnosticCode::kToleranceNotReached,
+         met ? Severity::kNote : Severity::kWarning, why});
     r.elapsed_s = SecondsSince(start_time);
     return r;
   };

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/floquet/hill.h"
 #include "ltp/floquet/work_estimate.h"
@@ -19,7 +20,7 @@ struct Eigenpairs {
   Eigen::MatrixXcd vectors;      ///< column i belongs to values[i]
   std::vector<double> residual;  ///< relative residual per pair
   bool ok = false;
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> notes;
 };
 
 /// Block bandwidth of the Hill matrix: harmonics of A that actually couple blocks.
@@ -44,7 +45,7 @@ WorkEstimate HillWork(int n, int N, const HillOptions& o, double seconds_per_cub
 /// its fewest seconds exceed o.max_work_seconds (the message ends with `advice`); a line in
 /// `notes` and o.on_long_work when its estimate exceeds o.announce_work_seconds.
 void WeighHillWork(const WorkEstimate& w, const std::string& job, const HillOptions& o,
-                   const char* advice, std::vector<std::string>& notes);
+                   const char* advice, std::vector<Diagnostic>& notes);
 
 /// Throws ResourceError when the dense (2N+1)n matrix would exceed max_bytes.
 void CheckDenseMemory(int n, int harmonics, double max_bytes);
@@ -82,7 +83,7 @@ std::vector<double> BlockEnergies(const Eigen::VectorXcd& x, int n, int harmonic
 struct Selection {
   std::vector<int> chosen;         ///< indices into the eigenpairs, one per physical exponent
   std::vector<HillModeInfo> info;  ///< parallel to chosen
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
   int passed = 0;  ///< how many chosen met the rule's pass condition
 };
 

@@ -187,7 +187,8 @@ void ReportShortfalls(int states, HillSelectionRule rule, Selection* sel) {
     std::ostringstream s;
     s << "only " << sel->chosen.size() << " of " << states
       << " exponent families were found among the Hill eigenvalues";
-    sel->diagnostics.push_back(s.str());
+    sel->diagnostics.push_back(
+        {DiagnosticCode::kExponentFamiliesMissing, Severity::kWarning, s.str()});
   }
   if (sel->passed < static_cast<int>(sel->chosen.size())) {
     std::ostringstream s;
@@ -197,7 +198,7 @@ void ReportShortfalls(int states, HillSelectionRule rule, Selection* sel) {
     if (rule == HillSelectionRule::kCentralWeight) s << " (block 0 the heaviest)";
     if (rule == HillSelectionRule::kStrip) s << " (|Im λ| <= Ωp/2)";
     s << "; the others are the best-scoring members of their family: raise N";
-    sel->diagnostics.push_back(s.str());
+    sel->diagnostics.push_back({DiagnosticCode::kSelectionRuleFailed, Severity::kWarning, s.str()});
   }
 }
 
@@ -221,7 +222,7 @@ void ReportTies(const std::vector<Candidate>& cands, double ambiguity_threshold,
     << "): a tie between λ and λ ± jΩp, which are the same exponent modulo jΩp (a negative "
        "real multiplier puts it on the strip edge Im λ = ±Ωp/2); the one with the larger "
        "Im λ is reported";
-  sel->diagnostics.push_back(s.str());
+  sel->diagnostics.push_back({DiagnosticCode::kBranchAmbiguous, Severity::kNote, s.str()});
 }
 
 }  // namespace

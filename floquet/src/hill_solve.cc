@@ -277,7 +277,8 @@ Eigenpairs SolveDense(const FourierMatrix& A, double omega, int harmonics) {
   const lapack_int info = LAPACKE_zgeev(LAPACK_COL_MAJOR, 'N', 'V', dim, H.data(), dim, w.data(),
                                         nullptr, 1, out.vectors.data(), dim);
   if (info != 0) {
-    out.notes.push_back("LAPACK zgeev failed (info = " + std::to_string(info) + ")");
+    out.notes.push_back({DiagnosticCode::kHillSolverFailed, Severity::kFailure,
+                         "LAPACK zgeev failed (info = " + std::to_string(info) + ")"});
     return out;
   }
   out.values = std::move(w);
@@ -303,7 +304,7 @@ Eigenpairs SolveStructured(const FourierMatrix& A, double omega, int harmonics,
       << " of the Ritz pairs asked for around the shifts did not converge and were left out "
          "(exponents are chosen among converged pairs only; too few of them fall back to the "
          "dense solver or fail)";
-    out.notes.push_back(s.str());
+    out.notes.push_back({DiagnosticCode::kRitzPairsUnconverged, Severity::kWarning, s.str()});
   }
   RecentrePairs(search);
 

@@ -111,7 +111,7 @@ std::vector<int> StudyHarmonics(int max_harmonics) {
 // announce_work_seconds (a note in `notes` and on_long_work). Returns each truncation's
 // estimated seconds (the progress's weights).
 std::vector<double> WeighTheStudy(const PeriodicSystem& system, const std::vector<int>& rows,
-                                  const HillOptions& options, std::vector<std::string>& notes) {
+                                  const HillOptions& options, std::vector<Diagnostic>& notes) {
   const int n = system.states();
   std::vector<double> seconds;
   if (n * (2.0 * rows.back() + 1) < 300) {  // well under a second: weights by size³ only
@@ -350,7 +350,9 @@ std::vector<cd> AnalyzeTruncations(const PeriodicSystem& system, const std::vect
     if (options.progress) options.progress(done_work, total_work);
     if (study->rows.empty()) {
       study->decay = r.decay;
-      if (!r.fourier_fit.empty()) study->diagnostics.push_back(r.fourier_fit);
+      if (!r.fourier_fit.empty())
+        study->diagnostics.push_back(
+            {DiagnosticCode::kFourierFitted, Severity::kNote, r.fourier_fit});
     }
     study->rows.push_back(RowOf(r, N, study->reference));
     if (N == rows.back()) final_order = ExponentsOf(r);
@@ -374,7 +376,8 @@ void FitConvergenceLaw(bool have_ref, HillStudy* study) {
     }
   }
   if (y.size() < 3) {
-    study->diagnostics.push_back("too few points above round-off to fit a convergence rate");
+    study->diagnostics.push_back({DiagnosticCode::kConvergenceRateUnknown, Severity::kNote,
+                                  "too few points above round-off to fit a convergence rate"});
     return;
   }
   const Line ex = FitLine(n_lin, y), al = FitLine(n_log, y);
@@ -389,8 +392,9 @@ void FitConvergenceLaw(bool have_ref, HillStudy* study) {
     study->rate_kind.reset();
     study->rate = 0;
     study->diagnostics.push_back(
-        "the error does not fall with N over the truncations above round-off: no convergence "
-        "rate (the selected eigenvalues are not converging; see the rows)");
+        {DiagnosticCode::kConvergenceRateUnknown, Severity::kWarning,
+         "the error does not fall with N over the truncations above round-off: no convergence "
+         "rate (the selected eigenvalues are not converging; see the rows)"});
   }
 }
 
@@ -423,7 +427,8 @@ HillStudy StudyTruncations(const PeriodicSystem& system, int max_harmonics,
     std::ostringstream s;
     s << "A(t) is discontinuous (coefficients decay like |w|^-" << study.decay.rate
       << "): expect algebraic convergence of the exponents, and no exponential a-priori bound";
-    study.diagnostics.push_back(s.str());
+    study.diagnostics.push_back(
+        {DiagnosticCode::kDiscontinuousCoefficients, Severity::kNote, s.str()});
   }
   study.elapsed_s = SecondsSince(start);
   return study;
@@ -454,9 +459,9 @@ HillStudyRun RunHillStudy(const PeriodicSystem& system, int max_harmonics,
   HillStudyRun run;
   run.study = StudyTruncations(system, max_harmonics, monodromy, options, &run.last);
   run.diagnostics = run.last.diagnostics;
-  for (const std::string& d : run.study.diagnostics)
-    if (std::find(run.diagnostics.begin(), run.diagnostics.end(), d) == run.diagnostics.end())
-      run.diagnostics.push_back(d);
+  // The study's own lines, less the kinds the last analysis said already (the fit of A).
+  for (const Diagnostic& d : run.study.diagnostics)
+    if (!HasCode(run.diagnostics, d.code)) run.diagnostics.push_back(d);
   return run;
 }
 

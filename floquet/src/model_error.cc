@@ -131,7 +131,7 @@ std::string SamplingErrorLine(double term, size_t alternatives) {
 // verdict uses; says so when it is narrower than the largest.
 double SamplingBand(const std::vector<double>& e, double integration, double max_real,
                     double estimate, std::vector<FloquetMode>& modes,
-                    std::vector<std::string>& diagnostics) {
+                    std::vector<Diagnostic>& diagnostics) {
   for (size_t k = 0; k < modes.size(); ++k)
     modes[k].error_estimate = e[k] + modes[k].error_estimate.value_or(integration);
   const double band = PerModeBand(modes, max_real, estimate);
@@ -139,7 +139,7 @@ double SamplingBand(const std::vector<double>& e, double integration, double max
     std::ostringstream v;
     v << "verdict: max Re λ is within ±" << band
       << " 1/s — each exponent with its own sampling error, not the largest one";
-    diagnostics.push_back(v.str());
+    diagnostics.push_back({DiagnosticCode::kVerdictPerModeBand, Severity::kNote, v.str()});
   }
   return band;
 }
@@ -156,7 +156,8 @@ void ApplySamplingErrors(const std::vector<double>& e, double integration, size_
   const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
   r.model_error = term;
   r.error_estimate = integration + term;
-  r.diagnostics.push_back(SamplingErrorLine(term, alternatives));
+  r.diagnostics.push_back({DiagnosticCode::kModelErrorIncluded, Severity::kNote,
+                           SamplingErrorLine(term, alternatives)});
   // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
   const double band =
       SamplingBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
@@ -164,7 +165,7 @@ void ApplySamplingErrors(const std::vector<double>& e, double integration, size_
   r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
   r.stable = r.verdict == StabilityVerdict::kStable;
   if (r.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
-    r.diagnostics.push_back(kUndecided);
+    r.diagnostics.push_back({DiagnosticCode::kStabilityMarginal, Severity::kWarning, kUndecided});
 }
 
 }  // namespace

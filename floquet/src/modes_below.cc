@@ -119,7 +119,7 @@ void Classify(const ModalReduction& m, FloquetResult& r) {
          "left out have mean eigenvalues up to Re λ = "
       << reach - m.periodic_part << " 1/s, and the periodic part (" << m.periodic_part
       << ") may move them past 0 — raise the cut-off or analyse every mode";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kStabilityMarginal, Severity::kWarning, s.str()});
   }
   r.stable = r.verdict == StabilityVerdict::kStable;
 }
@@ -210,7 +210,7 @@ void TakeFromProjection(const FloquetResult& numbers, const SpectralSplit& used,
     r.mode_descriptions = DescribeModeShapes(labels, r.mode_samples.front());
   for (std::string& line : FlagRigidBodyModes(
            labels, r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(), r.modes))
-    r.diagnostics.push_back(std::move(line));
+    r.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote, std::move(line)});
 }
 
 std::string SummaryLine(const ModalReduction& m, int states, bool checked, double decoupling) {
@@ -236,8 +236,8 @@ FloquetResult Failed(std::string why, const PeriodicSystem& system,
   FloquetResult r;
   r.states = system.states();
   r.period = system.period();
-  r.failure = std::move(why);
-  r.diagnostics.push_back(r.failure);
+  r.Fail(Termination::kNoModesBelowCutoff, std::move(why));
+  r.diagnostics.push_back({DiagnosticCode::kNoModesBelowCutoff, Severity::kFailure, r.failure});
   r.elapsed_s = SecondsSince(start);
   return r;
 }
@@ -269,7 +269,8 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
     FloquetResult full = AnalyzeFloquet(given, every);
     full.diagnostics.insert(
         full.diagnostics.begin(),
-        "every mode of the mean A(t) is below " + Hz(m.cutoff) + ": all analysed, none left out");
+        {DiagnosticCode::kAllModesBelowCutoff, Severity::kNote,
+         "every mode of the mean A(t) is below " + Hz(m.cutoff) + ": all analysed, none left out"});
     full.elapsed_s = SecondsSince(start);
     return full;
   }
@@ -302,11 +303,14 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
   FloquetResult r;
   r.states = system.states();
   r.period = system.period();
-  r.ok = (first.ok || !checked) && numbers.ok && std::isfinite(m.truncation_change);
-  r.failure = checked && !first.ok ? "the analysis at the cut-off failed: " + first.failure
-              : !numbers.ok        ? numbers.failure
-              : r.ok               ? ""
-                                   : "the analyses at the two cut-offs found different modes";
+  if (checked && !first.ok)
+    r.Fail(first.termination, "the analysis at the cut-off failed: " + first.failure);
+  else if (!numbers.ok)
+    r.Fail(numbers.termination, numbers.failure);
+  else if (!std::isfinite(m.truncation_change))
+    r.Fail(Termination::kChecksFailed, "the analyses at the two cut-offs found different modes");
+  else
+    r.Complete();
   TakeFromProjection(numbers, used, scale, given.labels(), std::move(modes), columns, r);
   AssignWhirl(given, r);
   if (numbers.error_estimate) {
@@ -315,9 +319,11 @@ FloquetResult AnalyzeModesBelow(const PeriodicSystem& given, const FloquetOption
     r.error_estimate =
         std::max(largest, *numbers.error_estimate + m.truncation_change + 2 * m.tail);
   }
-  r.diagnostics.push_back(SummaryLine(m, r.states, checked, low.coupling));
-  for (const std::string& d : numbers.diagnostics) r.diagnostics.push_back(d);
-  if (!r.failure.empty() && r.failure != numbers.failure) r.diagnostics.push_back(r.failure);
+  r.diagnostics.push_back({DiagnosticCode::kModesBelowSummary, Severity::kNote,
+                           SummaryLine(m, r.states, checked, low.coupling)});
+  r.diagnostics.insert(r.diagnostics.end(), numbers.diagnostics.begin(), numbers.diagnostics.end());
+  if (!r.failure.empty() && r.failure != numbers.failure)
+    r.diagnostics.push_back({DiagnosticCode::kCutoffsDisagree, Severity::kFailure, r.failure});
   r.rhs_evals = first.rhs_evals + numbers.rhs_evals;
   r.reduction = m;
   Classify(m, r);

@@ -105,17 +105,20 @@ IdentifyResult IdentifyBroadbandOnAngle(const TimeData& data, const IdentifyOpti
     result.frequencies.push_back(std::move(f));
   }
   result.diagnostics.push_back(
-      "broadband on the measured angle: one least-squares fit of " + std::to_string(K * Z) +
-      " H_z over the " + std::to_string(data.records.size()) + " records (mean speed " +
-      MessageNumber(turned / elapsed, 7) +
-      " rad/s; 2π/T = " + MessageNumber(2 * std::numbers::pi / data.period, 7) + ")");
+      {DiagnosticCode::kBroadbandFit, Severity::kNote,
+       "broadband on the measured angle: one least-squares fit of " + std::to_string(K * Z) +
+           " H_z over the " + std::to_string(data.records.size()) + " records (mean speed " +
+           MessageNumber(turned / elapsed, 7) +
+           " rad/s; 2π/T = " + MessageNumber(2 * std::numbers::pi / data.period, 7) + ")"});
   if (undetermined > 0)
-    result.diagnostics.push_back(std::to_string(undetermined) +
-                                 " H_z are not determined by these records (their lines "
-                                 "coincide in every record): record more records with new "
-                                 "phases; they are left out (NaN)");
+    result.diagnostics.push_back({DiagnosticCode::kLinesUnderDetermined, Severity::kWarning,
+                                  std::to_string(undetermined) +
+                                      " H_z are not determined by these records (their lines "
+                                      "coincide in every record): record more records with new "
+                                      "phases; they are left out (NaN)"});
   if (fit.dof == 0)
-    result.diagnostics.push_back("as many unknowns as samples: the bounds are unknown (∞)");
+    result.diagnostics.push_back({DiagnosticCode::kNoNoiseEstimate, Severity::kWarning,
+                                  "as many unknowns as samples: the bounds are unknown (∞)"});
   return result;
 }
 

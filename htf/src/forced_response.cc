@@ -192,7 +192,8 @@ bool ForcedResponseSolver::Integrate(double omega, const Eigen::MatrixXcd& y0, d
       dt = std::min(dt, b - a);
       while (t < b) {
         if (++attempts > options_.max_steps) {
-          diagnostics_.push_back("forced response: max_steps reached");
+          diagnostics_.push_back({DiagnosticCode::kForcedResponseFailed, Severity::kFailure,
+                                  "forced response: max_steps reached"});
           return false;
         }
         const bool last = dt >= b - t;
@@ -202,14 +203,16 @@ bool ForcedResponseSolver::Integrate(double omega, const Eigen::MatrixXcd& y0, d
         }
         dt = h;
         if (t < b && t + dt == t) {
-          diagnostics_.push_back("forced response: step size underflow");
+          diagnostics_.push_back({DiagnosticCode::kForcedResponseFailed, Severity::kFailure,
+                                  "forced response: step size underflow"});
           return false;
         }
       }
     }
     for (double v : x)
       if (!std::isfinite(v)) {
-        diagnostics_.push_back("forced response: solution not finite (overflow?)");
+        diagnostics_.push_back({DiagnosticCode::kForcedResponseFailed, Severity::kFailure,
+                                "forced response: solution not finite (overflow?)"});
         return false;
       }
   }
@@ -259,7 +262,8 @@ PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_
             StateTransition(system_, T * s / S, T * (s + 1) / S, options_.integrator);
         rhs_evals_ += tr.rhs_evals;
         if (!tr.ok) {
-          diagnostics_.push_back("shooting: state transition failed: " + tr.message);
+          diagnostics_.push_back({DiagnosticCode::kForcedResponseFailed, Severity::kFailure,
+                                  "shooting: state transition failed: " + tr.message});
           phi_.clear();
           return failed;
         }
@@ -273,7 +277,9 @@ PartialFrfs ForcedResponseSolver::Shooting(double omega, int min_order, int max_
         Eigen::MatrixXcd::Identity(n_, n_) - phi_[S].cast<cd>() * std::polar(1.0, -omega * T);
     Eigen::PartialPivLU<Eigen::MatrixXcd> lu(M);
     if (!(lu.rcond() > 1e-14)) {
-      diagnostics_.push_back("shooting: I − Φ e^{−jωT} is singular (excitation on a Floquet line)");
+      diagnostics_.push_back(
+          {DiagnosticCode::kShootingSingular, Severity::kWarning,
+           "shooting: I − Φ e^{−jωT} is singular (excitation on a Floquet line)"});
       return failed;
     }
     const Eigen::MatrixXcd y0 = lu.solve(yp[S]);
@@ -305,7 +311,7 @@ PartialFrfs ForcedResponseSolver::TimeSimulation(double omega, int min_order, in
     std::ostringstream s;
     s << "time: the transient does not decay within " << options_.max_settle_periods
       << " periods (settling time " << settle_time << " s): no steady state to project";
-    diagnostics_.push_back(s.str());
+    diagnostics_.push_back({DiagnosticCode::kNoSteadyState, Severity::kFailure, s.str()});
     return failed;
   }
   const int settle_periods = static_cast<int>(std::ceil(settle_time / T));

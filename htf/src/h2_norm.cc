@@ -105,10 +105,11 @@ H2Norm CompareWithLyapunov(const PeriodicSystem& system, H2Norm r, double modal_
                other = lyapunov_better ? modal_error : own;
   r.error_estimate = std::max(chosen, disagreement - other) + 1e-15 * r.value;
   if (own > 1e-3 * value)
-    r.diagnostics.push_back("H2: the Lyapunov route resolves this norm only to " +
-                            MessageNumber(own / std::max(value, 1e-300), 2) +
-                            " (relative; an output carried by P's small entries): the modal "
-                            "value is checked only that far");
+    r.diagnostics.push_back({DiagnosticCode::kNormUnresolved, Severity::kWarning,
+                             "H2: the Lyapunov route resolves this norm only to " +
+                                 MessageNumber(own / std::max(value, 1e-300), 2) +
+                                 " (relative; an output carried by P's small entries): the modal "
+                                 "value is checked only that far"});
   const double allowed = 10 * (own + modal_error) + options.rel_tol * value;
   r.ok = disagreement <= allowed;
   if (!r.ok) {
@@ -117,7 +118,7 @@ H2Norm CompareWithLyapunov(const PeriodicSystem& system, H2Norm r, double modal_
       << ") routes disagree by " << disagreement << ", more than their estimates allow (" << allowed
       << ")";
     r.failure = s.str();
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kRoutesDisagree, Severity::kFailure, s.str()});
   }
   return r;
 }
@@ -173,10 +174,11 @@ H2Norm HarmonicTransferFunction::H2(const NormOptions& options) const {
   if (floquet_.verdict == StabilityVerdict::kUnstable || internal::MaxFeedthrough(system_) > 0) {
     r.ok = true;
     r.value = r.modal_value = std::numeric_limits<double>::infinity();
-    r.diagnostics.push_back(floquet_.verdict == StabilityVerdict::kUnstable
-                                ? "the system is unstable: its H2 norm is infinite"
-                                : "the system has a direct feedthrough D(t) ≠ 0: its H2 norm is "
-                                  "infinite");
+    r.diagnostics.push_back({DiagnosticCode::kNormInfinite, Severity::kNote,
+                             floquet_.verdict == StabilityVerdict::kUnstable
+                                 ? "the system is unstable: its H2 norm is infinite"
+                                 : "the system has a direct feedthrough D(t) ≠ 0: its H2 norm is "
+                                   "infinite"});
     return finish(r);
   }
   if (floquet_.verdict != StabilityVerdict::kStable) {
@@ -193,7 +195,7 @@ H2Norm HarmonicTransferFunction::H2(const NormOptions& options) const {
     std::ostringstream s;
     s << "H2: the Lyapunov route was skipped (" << system_.states() << " states, more than "
       << options.max_lyapunov_states << "); the modal value is unchecked";
-    r.diagnostics.push_back(s.str());
+    r.diagnostics.push_back({DiagnosticCode::kCheckRouteUnavailable, Severity::kNote, s.str()});
     r.value = r.modal_value;
     r.error_estimate = modal_error;
     r.ok = true;

@@ -99,8 +99,8 @@ bool HarmonicTransferFunction::ok() const {
   return modal_ && modal_->reliable && hill_.truncation_converged();
 }
 
-std::vector<std::string> HarmonicTransferFunction::diagnostics() const {
-  std::vector<std::string> d = floquet_.diagnostics;
+std::vector<Diagnostic> HarmonicTransferFunction::diagnostics() const {
+  std::vector<Diagnostic> d = floquet_.diagnostics;
   if (modal_) d.insert(d.end(), modal_->diagnostics.begin(), modal_->diagnostics.end());
   d.insert(d.end(), hill_.diagnostics().begin(), hill_.diagnostics().end());
   return d;

@@ -146,8 +146,9 @@ void SearchFrequencies(const HarmonicTransferFunction& htf, const NormOptions& o
   Peak peak = SearchSection(htf, route, K, options, &r.search_points);
   for (bool converged = false; !converged;) {
     if (K >= options.max_section_harmonics) {
-      r.diagnostics.push_back("H∞ search: the section reached max_section_harmonics = " +
-                              std::to_string(K) + " before the peak stopped growing");
+      r.diagnostics.push_back({DiagnosticCode::kTruncationLimited, Severity::kWarning,
+                               "H∞ search: the section reached max_section_harmonics = " +
+                                   std::to_string(K) + " before the peak stopped growing"});
       break;
     }
     const int next = std::min(2 * K, options.max_section_harmonics);
@@ -235,7 +236,9 @@ HinfNorm HarmonicTransferFunction::Hinf(const NormOptions& options) const {
   auto finish = [&](HinfNorm out) -> HinfNorm {
     out.elapsed_s = SecondsSince(start);
     if (!out.ok && out.failure.empty()) out.failure = "H∞ norm not computed";
-    if (!out.ok) out.diagnostics.push_back(out.failure);
+    if (!out.ok)
+      out.diagnostics.push_back(
+          {DiagnosticCode::kNormNotComputed, Severity::kFailure, out.failure});
     return out;
   };
   if (!floquet_.ok) {
@@ -245,7 +248,8 @@ HinfNorm HarmonicTransferFunction::Hinf(const NormOptions& options) const {
   if (floquet_.verdict == StabilityVerdict::kUnstable) {
     r.ok = true;
     r.value = r.lower = r.upper = std::numeric_limits<double>::infinity();
-    r.diagnostics.push_back("the system is unstable: its H∞ norm is infinite");
+    r.diagnostics.push_back({DiagnosticCode::kNormInfinite, Severity::kNote,
+                             "the system is unstable: its H∞ norm is infinite"});
     return finish(r);
   }
   if (floquet_.verdict != StabilityVerdict::kStable) {

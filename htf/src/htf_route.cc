@@ -57,7 +57,7 @@ HtfSolver::HtfSolver(const PeriodicSystem& system, const HtfOptions& options)
     std::ostringstream s;
     s << "htf: Fourier fit of the coefficients not converged (tail " << fourier_tail_ << ", decay "
       << ToString(fourier_.A.decay) << "): the truncated HTF carries that error";
-    diagnostics_.push_back(s.str());
+    diagnostics_.push_back({DiagnosticCode::kFourierFitNotConverged, Severity::kWarning, s.str()});
   }
   harmonics_ = options.harmonics > 0 ? options.harmonics : 8;
 }
@@ -110,7 +110,7 @@ int HtfSolver::ChooseTruncation(int min_order, int max_order,
       std::ostringstream s;
       s << "htf: truncation stopped at N = " << harmonics_
         << ": the next would not fit in memory (more than 2 GiB of band matrix)";
-      diagnostics_.push_back(s.str());
+      diagnostics_.push_back({DiagnosticCode::kTruncationLimited, Severity::kWarning, s.str()});
       truncation_converged_ = false;
       break;
     }
@@ -135,7 +135,8 @@ int HtfSolver::ChooseTruncation(int min_order, int max_order,
       std::ostringstream s;
       s << "htf: truncation N = " << N << " (max_harmonics) still changes H_z by " << change / scale
         << " (relative) against N + " << delta();
-      diagnostics_.push_back(s.str());
+      diagnostics_.push_back(
+          {DiagnosticCode::kTruncationNotConverged, Severity::kWarning, s.str()});
       truncation_converged_ = false;
       break;
     }

@@ -159,28 +159,31 @@ double InputPhaseMove(const std::vector<double>& time, const Eigen::VectorXd& u,
 
 // What a record's data say about themselves, one line each where something is wrong.
 void RecordNotes(const TimeRecord& rec, const IdentifyOptions& o, double omega, double dt,
-                 const std::string& where, std::vector<std::string>& notes) {
+                 const std::string& where, std::vector<Diagnostic>& notes) {
   long gaps = 0, first = 0;
   for (size_t i = 1; i < rec.time.size(); ++i)
     if (rec.time[i] - rec.time[i - 1] > 1.5 * dt && gaps++ == 0) first = static_cast<long>(i);
   if (gaps > 0)
-    notes.push_back(where + ": " + std::to_string(gaps) + " gap(s) in t, the first at sample " +
-                    std::to_string(first + 1) +
-                    " (t = " + MessageNumber(rec.time[static_cast<size_t>(first)], 10) +
-                    " s); the fit uses the times as written");
+    notes.push_back({DiagnosticCode::kRecordGaps, Severity::kWarning,
+                     where + ": " + std::to_string(gaps) + " gap(s) in t, the first at sample " +
+                         std::to_string(first + 1) +
+                         " (t = " + MessageNumber(rec.time[static_cast<size_t>(first)], 10) +
+                         " s); the fit uses the times as written"});
   for (const auto& [channel, name] :
        {std::pair{rec.inputs.col(o.input), "input"}, {rec.outputs.col(o.output), "output"}}) {
     const Eigen::VectorXd x = channel;
     if (const long runs = ClippedRuns(x); runs >= 2)
-      notes.push_back(where + ": the " + name + " sits at its extreme value in " +
-                      std::to_string(runs) +
-                      " runs of 3 or more samples: clipped? A clipped record biases H_z");
+      notes.push_back({DiagnosticCode::kRecordClipped, Severity::kWarning,
+                       where + ": the " + name + " sits at its extreme value in " +
+                           std::to_string(runs) +
+                           " runs of 3 or more samples: clipped? A clipped record biases H_z"});
   }
   if (const double move = InputPhaseMove(rec.time, rec.inputs.col(o.input), omega); move > 0)
-    notes.push_back(where + ": the input's phase moves by " +
-                    MessageNumber(move * 180 / std::numbers::pi, 3) +
-                    "° within the record: samples dropped while the times went on, or the "
-                    "shaker's frequency drifts — H_z is biased by as much");
+    notes.push_back({DiagnosticCode::kInputPhaseMoves, Severity::kWarning,
+                     where + ": the input's phase moves by " +
+                         MessageNumber(move * 180 / std::numbers::pi, 3) +
+                         "° within the record: samples dropped while the times went on, or the "
+                         "shaker's frequency drifts — H_z is biased by as much"});
 }
 
 // Lines beyond the requested ones that stand out of the noise, over all records (said once).
@@ -313,7 +316,7 @@ void TallyExtraLines(const TimeRecord& rec, const IdentifyOptions& o, const Eige
 }
 
 IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const IdentifyOptions& o,
-                                   size_t index, std::vector<std::string>& diagnostics,
+                                   size_t index, std::vector<Diagnostic>& diagnostics,
                                    ExtraLines& extra) {
   const std::string where = "record " + std::to_string(index + 1);
   const double dt = SamplingStep(rec);
@@ -358,17 +361,18 @@ IdentifiedFrequency IdentifyRecord(const TimeRecord& rec, double T, const Identi
   out.noise = std::sqrt(fit.noise_variance);
   FillEstimates(fit, e, rec, o, speed, out);
   if (fit.dof == 0)
-    diagnostics.push_back(where +
-                          ": as many lines as samples: the noise (and the bounds) cannot "
-                          "be estimated; record longer");
+    diagnostics.push_back({DiagnosticCode::kNoNoiseEstimate, Severity::kWarning,
+                           where + ": as many lines as samples: the noise (and the bounds) cannot "
+                                   "be estimated; record longer"});
   if (!out.separable) {
     const double halves = 2 * omega / speed;
     diagnostics.push_back(
-        where + ": " + MessageNumber(out.excitation_hz, 8) + " Hz" +
-        (std::abs(halves - std::round(halves)) < 1e-6
-             ? " is a multiple of Ωp/2: H_z and the mirror of another order share each line, "
-               "one record cannot separate them"
-             : ": two of its response lines coincide; those H_z are left out (NaN)"));
+        {DiagnosticCode::kLinesNotSeparable, Severity::kWarning,
+         where + ": " + MessageNumber(out.excitation_hz, 8) + " Hz" +
+             (std::abs(halves - std::round(halves)) < 1e-6
+                  ? " is a multiple of Ωp/2: H_z and the mirror of another order share each line, "
+                    "one record cannot separate them"
+                  : ": two of its response lines coincide; those H_z are left out (NaN)")});
   }
   TallyExtraLines(rec, o, y, lines, fit, e, theta, speed, extra);
   RecordNotes(rec, o, omega, dt, where, diagnostics);
@@ -402,44 +406,50 @@ IdentifyResult IdentifyStepSine(const TimeData& data, const IdentifyOptions& opt
     std::string orders;
     for (int m : extra.synchronous)
       orders += (orders.empty() ? "" : ", ") + std::to_string(m) + "×";
-    r.diagnostics.push_back("synchronous response at " + orders +
-                            " the system's frequency 1/T (unbalance, misalignment): fitted as "
-                            "lines of their own and kept out of the noise and the bounds");
+    r.diagnostics.push_back({DiagnosticCode::kSynchronousResponse, Severity::kNote,
+                             "synchronous response at " + orders +
+                                 " the system's frequency 1/T (unbalance, misalignment): fitted as "
+                                 "lines of their own and kept out of the noise and the bounds"});
   }
   if (extra.harmonic_records > 0)
-    r.diagnostics.push_back(std::to_string(extra.harmonic_records) + " of " +
-                            std::to_string(data.records.size()) +
-                            " records respond at 2 or 3 times the excitation frequency above the "
-                            "noise: the system is not linear at this amplitude (or the output "
-                            "clips); H_z is its linear part at best and the bounds do not cover "
-                            "what the nonlinearity changes — excite less");
+    r.diagnostics.push_back(
+        {DiagnosticCode::kNonlinearResponse, Severity::kWarning,
+         std::to_string(extra.harmonic_records) + " of " + std::to_string(data.records.size()) +
+             " records respond at 2 or 3 times the excitation frequency above the "
+             "noise: the system is not linear at this amplitude (or the output "
+             "clips); H_z is its linear part at best and the bounds do not cover "
+             "what the nonlinearity changes — excite less"});
   if (extra.off_speed > 0)
     r.diagnostics.push_back(
-        "in " + std::to_string(extra.off_speed) + " of " + std::to_string(data.records.size()) +
-        " records the response's lines sit at a speed up to " +
-        MessageNumber(100 * extra.largest_offset, 3) +
-        " % off 2π/T (fitted from the data): the rotor did not turn at the model's speed, and "
-        "H_z (z ≠ 0) is biased by the phase it gained — measure its angle (a tacho or an "
-        "encoder channel) or give the period it turned at");
+        {DiagnosticCode::kSpeedOffModel, Severity::kWarning,
+         "in " + std::to_string(extra.off_speed) + " of " + std::to_string(data.records.size()) +
+             " records the response's lines sit at a speed up to " +
+             MessageNumber(100 * extra.largest_offset, 3) +
+             " % off 2π/T (fitted from the data): the rotor did not turn at the model's speed, and "
+             "H_z (z ≠ 0) is biased by the phase it gained — measure its angle (a tacho or an "
+             "encoder channel) or give the period it turned at"});
   if (extra.moved > 0)
-    r.diagnostics.push_back(std::to_string(extra.moved) + " of " +
-                            std::to_string(data.records.size()) +
-                            " records excite at another frequency than the file says (by up to " +
-                            MessageNumber(extra.largest_move, 3) +
-                            " Hz): each input's own frequency is used and reported");
+    r.diagnostics.push_back(
+        {DiagnosticCode::kExcitationFrequencyMoved, Severity::kNote,
+         std::to_string(extra.moved) + " of " + std::to_string(data.records.size()) +
+             " records excite at another frequency than the file says (by up to " +
+             MessageNumber(extra.largest_move, 3) +
+             " Hz): each input's own frequency is used and reported"});
   if (extra.speed_change > 1e-3)
-    r.diagnostics.push_back("the speed changes by up to " +
-                            MessageNumber(100 * extra.speed_change, 2) +
-                            " % within a record: H_z moves with it, and each estimate is the "
-                            "average over its record's speeds");
+    r.diagnostics.push_back({DiagnosticCode::kSpeedChanges, Severity::kNote,
+                             "the speed changes by up to " +
+                                 MessageNumber(100 * extra.speed_change, 2) +
+                                 " % within a record: H_z moves with it, and each estimate is the "
+                                 "average over its record's speeds"});
   double offset = 0;
   for (const IdentifiedFrequency& f : r.frequencies)
     offset = std::max(offset, std::abs(f.speed * data.period / (2 * std::numbers::pi) - 1));
   if (offset > 1e-6)
-    r.diagnostics.push_back("the measured speed differs from the model's 2π/T by up to " +
-                            MessageNumber(100 * offset, 3) +
-                            " %: H_z is the rig's at its own speed (each record's in "
-                            "`speed`); compare with the model at that speed");
+    r.diagnostics.push_back({DiagnosticCode::kSpeedOffModel, Severity::kNote,
+                             "the measured speed differs from the model's 2π/T by up to " +
+                                 MessageNumber(100 * offset, 3) +
+                                 " %: H_z is the rig's at its own speed (each record's in "
+                                 "`speed`); compare with the model at that speed"});
   std::stable_sort(r.frequencies.begin(), r.frequencies.end(),
                    [](const auto& a, const auto& b) { return a.excitation_hz < b.excitation_hz; });
   return r;
@@ -528,17 +538,19 @@ IdentifyResult OnMeasuredAngle(const TimeData& data, const IdentifyOptions& o,
   for (const IdentifiedFrequency& f : r.frequencies)
     offset = std::max(offset, std::abs(f.speed * data.period / kTwoPi - 1));
   if (offset > 1e-6)
-    r.diagnostics.push_back("the measured speed differs from the model's 2π/T by " +
-                            MessageNumber(100 * offset, 3) +
-                            " %: H_z is the rig's at its own speed; compare with the model at "
-                            "that speed");
+    r.diagnostics.push_back({DiagnosticCode::kSpeedOffModel, Severity::kNote,
+                             "the measured speed differs from the model's 2π/T by " +
+                                 MessageNumber(100 * offset, 3) +
+                                 " %: H_z is the rig's at its own speed; compare with the model at "
+                                 "that speed"});
   double change = 0;
   for (const TimeRecord& rec : data.records)
     change = std::max(change, SpeedChange(rec.time, rec.angle));
   if (change > 1e-3)
-    r.diagnostics.push_back("the speed changes by up to " + MessageNumber(100 * change, 2) +
-                            " % within a record: H_z moves with it, and each estimate is the "
-                            "average over the records' speeds");
+    r.diagnostics.push_back({DiagnosticCode::kSpeedChanges, Severity::kNote,
+                             "the speed changes by up to " + MessageNumber(100 * change, 2) +
+                                 " % within a record: H_z moves with it, and each estimate is the "
+                                 "average over the records' speeds"});
   return r;
 }
 
@@ -693,21 +705,25 @@ IdentifyResult BroadbandEstimates(const TimeData& data, const IdentifyOptions& o
     r.frequencies.push_back(std::move(f));
   }
   if (solved.under > 0)
-    r.diagnostics.push_back(std::to_string(solved.under) + " of " + std::to_string(solved.lines) +
-                            " response lines are under-determined (more unknown H_z than the " +
-                            std::to_string(s.u.size()) + " records give equations): record at " +
-                            "least " + std::to_string(solved.missing) +
-                            " more records with new phases; their H_z are left out (NaN)");
+    r.diagnostics.push_back(
+        {DiagnosticCode::kLinesUnderDetermined, Severity::kWarning,
+         std::to_string(solved.under) + " of " + std::to_string(solved.lines) +
+             " response lines are under-determined (more unknown H_z than the " +
+             std::to_string(s.u.size()) + " records give equations): record at " + "least " +
+             std::to_string(solved.missing) +
+             " more records with new phases; their H_z are left out (NaN)"});
   if (!biased.empty())
     r.diagnostics.push_back(
-        std::to_string(biased.size()) + " estimates come from response lines whose residual is " +
-        "over " + MessageNumber(kBiasRatio, 3) + "× the pooled noise: orders outside " +
-        std::to_string(o.min_order) + ".." + std::to_string(o.max_order) +
-        " (or nonlinearity) feed them; their bounds use their own residual — widen --orders");
+        {DiagnosticCode::kResidualBias, Severity::kWarning,
+         std::to_string(biased.size()) + " estimates come from response lines whose residual is " +
+             "over " + MessageNumber(kBiasRatio, 3) + "× the pooled noise: orders outside " +
+             std::to_string(o.min_order) + ".." + std::to_string(o.max_order) +
+             " (or nonlinearity) feed them; their bounds use their own residual — widen --orders"});
   if (solved.dof == 0)
     r.diagnostics.push_back(
-        "no response line has more records than unknowns: the noise cannot be estimated and "
-        "the bounds are unknown (∞); record more records than orders");
+        {DiagnosticCode::kNoNoiseEstimate, Severity::kWarning,
+         "no response line has more records than unknowns: the noise cannot be estimated and "
+         "the bounds are unknown (∞); record more records than orders"});
   return r;
 }
 

@@ -162,8 +162,9 @@ ModalSpectra ResolveSpectra(const PeriodicSystem& system, const FloquetResult& f
     const int f =
         r->tail > 10 * std::max(options.tail_tol, noise) && 4 * S <= options.max_samples ? 4 : 2;
     if (!RefineModeSamples(system, options, f, r, &xi)) {
-      r->diagnostics.push_back("modal: propagating mode samples failed; kept " + std::to_string(S) +
-                               " samples");
+      r->diagnostics.push_back(
+          {DiagnosticCode::kModalSamplesFailed, Severity::kWarning,
+           "modal: propagating mode samples failed; kept " + std::to_string(S) + " samples"});
       return spectra;
     }
   }
@@ -207,7 +208,9 @@ void KeepSignificantHarmonics(const ModalSpectra& spectra, ModalModel* r) {
 // Unresolved spectra and an ill-conditioned mode matrix, in words.
 void DiagnoseModalModel(const FloquetResult& floquet, const ModalOptions& options, ModalModel* r) {
   std::ostringstream s;
-  if (!floquet.ok) r->diagnostics.push_back("modal: the Floquet analysis failed");
+  if (!floquet.ok)
+    r->diagnostics.push_back(
+        {DiagnosticCode::kFloquetFailed, Severity::kFailure, "modal: the Floquet analysis failed"});
   if (r->tail > options.tail_tol) {
     s << "modal: Fourier series of CΞ and Ξ⁻¹B not resolved with " << r->samples
       << " samples (upper-half amplitude " << r->tail << " > " << options.tail_tol << ")"
@@ -215,7 +218,8 @@ void DiagnoseModalModel(const FloquetResult& floquet, const ModalOptions& option
               ? ", the noise level of the integrated mode samples (harmonics below it dropped)"
               : "")
       << (r->tail > options.max_tail ? ": UNRELIABLE" : "");
-    r->diagnostics.push_back(s.str());
+    r->diagnostics.push_back(
+        {DiagnosticCode::kModalSpectrumUnresolved, Severity::kWarning, s.str()});
     s.str("");
   }
   if (r->condition > options.max_condition) {
@@ -224,7 +228,8 @@ void DiagnoseModalModel(const FloquetResult& floquet, const ModalOptions& option
       << "): either the modes differ widely in scale (harmless) or the monodromy is "
          "(near-)defective, e.g. close to a stability boundary, where the modal terms lose "
          "accuracy; only a cross-check against another route tells which";
-    r->diagnostics.push_back(s.str());
+    r->diagnostics.push_back(
+        {DiagnosticCode::kModeMatrixIllConditioned, Severity::kWarning, s.str()});
   }
 }
 

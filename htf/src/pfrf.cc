@@ -27,6 +27,7 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 struct RouteChoice {
   PfrfRoute primary = PfrfRoute::kModal;
   std::vector<PfrfRoute> checks;
+  RouteReason kind = RouteReason::kAsRequested;
   std::string reason;
 };
 
@@ -59,19 +60,23 @@ RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, Pfr
   std::string why;
   if (o.primary != PfrfRoute::kAuto) {
     c.primary = o.primary;
+    c.kind = RouteReason::kAsRequested;
     why = "as requested";
   } else if (!r.floquet.ok) {
     c.primary = fallback;
+    c.kind = RouteReason::kNoDecomposition;
     why = std::string("no Floquet decomposition, and ") + shape;
   } else {
     r.modal = BuildModalModel(system, r.floquet, o.modal);
     if (r.modal->reliable) {
       c.primary = PfrfRoute::kModal;
+      c.kind = RouteReason::kModalResolved;
       why =
           "the Floquet decomposition is needed anyway and its mode shapes are resolved: "
           "cheapest per frequency; kept only if the check agrees";
     } else {
       c.primary = fallback;
+      c.kind = RouteReason::kModalUnreliable;
       why = std::string("the modal model reports itself unreliable, and ") + shape;
     }
   }
@@ -230,7 +235,7 @@ void FlagExactResonances(const PeriodicSystem& system, PfrfResult& r) {
       msg << "resonance: the excitation at " << r.frequencies_hz[i] << " Hz is within " << d
           << " 1/s of the Floquet exponent of mode " << k + 1 << " (exponent error " << dl
           << " 1/s): H_z is unbounded there and the values are not meaningful";
-      r.diagnostics.push_back(msg.str());
+      r.diagnostics.push_back({DiagnosticCode::kResonance, Severity::kWarning, msg.str()});
       break;
     }
   }
@@ -271,7 +276,9 @@ PfrfResult EmptySweep(const PeriodicSystem& system, const PfrfOptions& options,
   r.checked.assign(F, false);
   r.floquet = std::move(floquet);
   r.modal = std::move(modal);
-  if (!r.floquet.ok) r.diagnostics.push_back("Floquet analysis failed: resonances unattributed");
+  if (!r.floquet.ok)
+    r.diagnostics.push_back({DiagnosticCode::kFloquetFailed, Severity::kWarning,
+                             "Floquet analysis failed: resonances unattributed"});
   return r;
 }
 
@@ -289,8 +296,11 @@ SweepPlan PlanSweep(const PeriodicSystem& system, const PfrfOptions& options, Pf
   const RouteChoice choice = ChooseRoutes(system, options, r);
   SweepPlan plan;
   plan.primary = choice.primary;
+  r.route_reason = choice.kind;
   r.route_choice = choice.reason;
-  if (options.primary == PfrfRoute::kAuto) r.diagnostics.push_back("route auto → " + choice.reason);
+  if (options.primary == PfrfRoute::kAuto)
+    r.diagnostics.push_back(
+        {DiagnosticCode::kRoutesChosen, Severity::kNote, "route auto → " + choice.reason});
   plan.routes = {plan.primary};
   for (PfrfRoute c : choice.checks)
     if (std::find(plan.routes.begin(), plan.routes.end(), c) == plan.routes.end())
@@ -356,21 +366,23 @@ void ReportSweepCaveats(PfrfRoute primary_route, PfrfResult& r) {
   if (!r.ok) {
     r.failure = "primary route " + std::string(ToString(primary_route)) + " failed at " +
                 std::to_string(r.routes.front().failures) + " frequencies";
-    r.diagnostics.push_back(r.failure);
+    r.diagnostics.push_back({DiagnosticCode::kRouteFailed, Severity::kFailure, r.failure});
   }
   if (r.modal && !r.modal->reliable && primary_route == PfrfRoute::kModal)
-    r.diagnostics.push_back(
-        "the modal route reports itself unreliable (see its diagnostics); "
-        "compare with --route htf or shooting");
+    r.diagnostics.push_back({DiagnosticCode::kModalUnreliable, Severity::kWarning,
+                             "the modal route reports itself unreliable (see its diagnostics); "
+                             "compare with --route htf or shooting"});
   if (r.floquet.ok && r.floquet.verdict == StabilityVerdict::kUnstable)
     r.diagnostics.push_back(
-        "the system is unstable (max Re λ = " + std::to_string(r.floquet.max_real_exponent) +
-        " 1/s): H_z describes the formal periodic solution, which is not "
-        "reached from rest");
+        {DiagnosticCode::kSystemUnstable, Severity::kWarning,
+         "the system is unstable (max Re λ = " + std::to_string(r.floquet.max_real_exponent) +
+             " 1/s): H_z describes the formal periodic solution, which is not "
+             "reached from rest"});
   else if (r.floquet.ok && r.floquet.verdict == StabilityVerdict::kMarginal)
     r.diagnostics.push_back(
-        "stability undecided (marginal): |max Re λ| is within the error estimate, so the "
-        "formal periodic solution H_z describes may not be reached from rest");
+        {DiagnosticCode::kStabilityMarginal, Severity::kWarning,
+         "stability undecided (marginal): |max Re λ| is within the error estimate, so the "
+         "formal periodic solution H_z describes may not be reached from rest"});
 }
 
 PfrfResult SweepWithoutModal(const PeriodicSystem& system, const PfrfOptions& options,
@@ -415,11 +427,15 @@ PfrfResult SweepWithoutModal(const PeriodicSystem& system, const PfrfOptions& op
     << "disagreed with its check by " << worst << " of the largest |H_z| (limit " << limit
     << "), so it is UNRELIABLE here";
   r.modal->reliable = false;  // the failed check is the model's verdict, not a footnote
-  r.modal->diagnostics.push_back("modal: UNRELIABLE — " + s.str());
+  r.modal->diagnostics.push_back(
+      {DiagnosticCode::kModalUnreliable, Severity::kWarning, "modal: UNRELIABLE — " + s.str()});
   PfrfResult fallback = SweepRoutes(system, again, start, std::move(r.floquet), std::move(r.modal));
+  fallback.route_reason = RouteReason::kModalCheckFailed;
   fallback.route_choice = s.str();
   fallback.modal_cross_check_failed = true;
-  fallback.diagnostics.insert(fallback.diagnostics.begin(), "route auto → " + s.str());
+  fallback.diagnostics.insert(
+      fallback.diagnostics.begin(),
+      {DiagnosticCode::kRoutesDisagree, Severity::kWarning, "route auto → " + s.str()});
   fallback.elapsed_s = SecondsSince(start);
   return fallback;
 }

@@ -73,7 +73,8 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives, const Pf
   r.model_error = term;
   double peak = 0;
   for (double m : r.order_max) peak = std::max(peak, m);
-  r.diagnostics.push_back(ModelErrorLine(term, peak, alternatives.size()));
+  r.diagnostics.push_back({DiagnosticCode::kModelErrorIncluded, Severity::kNote,
+                           ModelErrorLine(term, peak, alternatives.size())});
   IncludeModelError(analysed, r.floquet);
   r.elapsed_s += SecondsSince(start);  // the reported time is the whole sweep's
 }

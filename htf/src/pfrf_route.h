@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/htf/pfrf.h"
 
@@ -35,7 +36,7 @@ class PfrfRouteSolver {
   /// Whether Evaluate may run on several threads at once.
   virtual bool concurrent() const { return false; }
   /// After the points ran: the route's diagnostics (and its entries in the result).
-  virtual std::vector<std::string> Finish(const std::vector<RoutePoint>& points) = 0;
+  virtual std::vector<Diagnostic> Finish(const std::vector<RoutePoint>& points) = 0;
 };
 
 /// Sets route `route` up for the sweep in `options` (PfrfRoute::kAuto is not a route). May

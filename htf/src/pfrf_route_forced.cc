@@ -24,7 +24,7 @@ class ForcedResponseRoute : public PfrfRouteSolver {
     s << "time: settling time " << settle_ << " s = ln(cond Ξ / " << options.shooting.settle_tol
       << ") / |max Re λ| (slowest Floquet exponent " << result.floquet.max_real_exponent
       << " 1/s), then " << options.shooting.record_periods << " periods projected";
-    setup_diagnostics_.push_back(s.str());
+    setup_diagnostics_.push_back({DiagnosticCode::kSettlingTime, Severity::kNote, s.str()});
   }
 
   RoutePoint Evaluate(double omega) override {
@@ -42,8 +42,8 @@ class ForcedResponseRoute : public PfrfRouteSolver {
     p.assumed_error = tol * LargestFinite(p.values);
     return p;
   }
-  std::vector<std::string> Finish(const std::vector<RoutePoint>&) override {
-    std::vector<std::string> d = setup_diagnostics_;
+  std::vector<Diagnostic> Finish(const std::vector<RoutePoint>&) override {
+    std::vector<Diagnostic> d = setup_diagnostics_;
     const std::string name(ToString(route_));
     std::ostringstream s;
     s << name << ": " << solver_.samples() << " samples per period, RKF78 rel tol "
@@ -52,7 +52,10 @@ class ForcedResponseRoute : public PfrfRouteSolver {
       << (solver_.sample_tail() > options_.shooting.sample_tol
               ? " (NOT resolved: raise max_samples)"
               : "");
-    d.push_back(s.str());
+    d.push_back({DiagnosticCode::kRouteSummary,
+                 solver_.sample_tail() > options_.shooting.sample_tol ? Severity::kWarning
+                                                                      : Severity::kNote,
+                 s.str()});
     // The solver serves this route only: everything it noticed is this route's.
     for (const auto& m : solver_.diagnostics()) d.push_back(m);
     return d;
@@ -63,7 +66,7 @@ class ForcedResponseRoute : public PfrfRouteSolver {
   const PfrfOptions& options_;
   ForcedResponseSolver solver_;
   double settle_ = 0;
-  std::vector<std::string> setup_diagnostics_;
+  std::vector<Diagnostic> setup_diagnostics_;
 };
 
 }  // namespace

@@ -43,8 +43,8 @@ class HtfRoute : public PfrfRouteSolver {
     return p;
   }
   bool concurrent() const override { return true; }  // each frequency an independent solve
-  std::vector<std::string> Finish(const std::vector<RoutePoint>& points) override {
-    std::vector<std::string> d = solver_.diagnostics();
+  std::vector<Diagnostic> Finish(const std::vector<RoutePoint>& points) override {
+    std::vector<Diagnostic> d = solver_.diagnostics();
     double worst = 0;
     for (const RoutePoint& p : points) worst = std::max(worst, p.measured_error);
     result_.htf_truncation_change = worst;
@@ -54,7 +54,7 @@ class HtfRoute : public PfrfRouteSolver {
       << (reduced_ ? "Hill matrices reduced once to Hessenberg form, a Hessenberg solve per point"
                    : "banded solve per point")
       << "), check against N + " << solver_.delta() << ": max change " << worst;
-    d.push_back(s.str());
+    d.push_back({DiagnosticCode::kRouteSummary, Severity::kNote, s.str()});
     return d;
   }
 

@@ -31,8 +31,10 @@ class ModalRoute : public PfrfRouteSolver {
     return p;
   }
   bool concurrent() const override { return true; }  // the model is const
-  std::vector<std::string> Finish(const std::vector<RoutePoint>&) override {
-    if (!model_) return {"modal: no Floquet decomposition"};
+  std::vector<Diagnostic> Finish(const std::vector<RoutePoint>&) override {
+    if (!model_)
+      return {
+          {DiagnosticCode::kFloquetFailed, Severity::kFailure, "modal: no Floquet decomposition"}};
     return model_->diagnostics;
   }
 

@@ -90,19 +90,24 @@ namespace {
 
 // The route of the reported values, and why.
 OperatorRoute ChooseOrbitRoute(const HarmonicTransferFunction& htf,
-                               const OrbitSweepOptions& options, std::string* why) {
+                               const OrbitSweepOptions& options, RouteReason* reason,
+                               std::string* why) {
   if (options.route) {
+    *reason = RouteReason::kAsRequested;
     *why = "as requested";
     return *options.route;
   }
   if (!htf.modal()) {
+    *reason = RouteReason::kNoDecomposition;
     *why = "automatic: the Floquet decomposition failed, so there is no modal model";
     return OperatorRoute::kHill;
   }
   if (!htf.modal()->reliable) {
+    *reason = RouteReason::kModalUnreliable;
     *why = "automatic: the modal model reports itself unreliable";
     return OperatorRoute::kHill;
   }
+  *reason = RouteReason::kModalResolved;
   *why = "automatic: one Floquet decomposition, then sums of modal terms";
   return OperatorRoute::kModal;
 }
@@ -134,7 +139,7 @@ void JudgeSweep(const OrbitSweepOptions& options, OrbitSweep& r) {
       << " routes disagree by " << r.max_relative_disagreement
       << " of the largest semi-major axis (limit " << options.max_relative_disagreement << ")";
     r.failure = s.str();
-    r.diagnostics.push_back(r.failure);
+    r.diagnostics.push_back({DiagnosticCode::kRoutesDisagree, Severity::kFailure, r.failure});
   }
 }
 
@@ -174,26 +179,27 @@ OrbitSweep ResponseOrbitSweep(const HarmonicTransferFunction& htf,
   r.min_order = options.min_order;
   r.max_order = options.max_order;
   r.spin = RotorSpin(htf.system());
-  r.route = ChooseOrbitRoute(htf, options, &r.route_choice);
+  r.route = ChooseOrbitRoute(htf, options, &r.route_reason, &r.route_choice);
   if (options.check && r.route == OperatorRoute::kModal)
     r.check_route = OperatorRoute::kHill;
   else if (options.check && htf.modal())
     r.check_route = OperatorRoute::kModal;
   else if (options.check)
-    r.diagnostics.push_back(
-        "unchecked: the Floquet decomposition failed, so there is no modal "
-        "route to check the hill route with");
+    r.diagnostics.push_back({DiagnosticCode::kCheckRouteUnavailable, Severity::kWarning,
+                             "unchecked: the Floquet decomposition failed, so there is no modal "
+                             "route to check the hill route with"});
   // The orbits are the input's periodic response; without asymptotic stability no rig
   // settles on it (a disturbance grows, or does not decay, beside it).
   const FloquetResult& floquet = htf.floquet();
   if (floquet.ok && floquet.verdict != StabilityVerdict::kStable)
     r.diagnostics.push_back(
-        "the system is " + std::string(ToString(floquet.verdict)) +
-        " (max Re λ = " + MessageNumber(floquet.max_real_exponent, 6) +
-        " 1/s): these orbits are the input's periodic response, not a steady state a rig "
-        "settles on — any disturbance " +
-        (floquet.verdict == StabilityVerdict::kUnstable ? "grows" : "may not decay") +
-        " beside it");
+        {DiagnosticCode::kSystemUnstable, Severity::kWarning,
+         "the system is " + std::string(ToString(floquet.verdict)) +
+             " (max Re λ = " + MessageNumber(floquet.max_real_exponent, 6) +
+             " 1/s): these orbits are the input's periodic response, not a steady state a rig "
+             "settles on — any disturbance " +
+             (floquet.verdict == StabilityVerdict::kUnstable ? "grows" : "may not decay") +
+             " beside it"});
   std::vector<std::vector<ResponseOrbit>> check;
   EvaluateSweep(htf, input, x_output, y_output, options, r, check);
   r.ok = true;
@@ -203,7 +209,7 @@ OrbitSweep ResponseOrbitSweep(const HarmonicTransferFunction& htf,
       r.ok = false;
       r.failure = "the " + std::string(ToString(r.route)) + " route gave no finite values at " +
                   std::to_string(omegas[i]) + " rad/s";
-      r.diagnostics.push_back(r.failure);
+      r.diagnostics.push_back({DiagnosticCode::kNonFiniteValues, Severity::kFailure, r.failure});
     }
     for (const ResponseOrbit& o : primary)
       if (std::isfinite(o.orbit.semi_major))

@@ -188,16 +188,18 @@ std::vector<double> GridFrequencies(const SimulateOptions& options, double T, Si
   }
   if (merged)
     r.diagnostics.push_back(
-        std::to_string(merged) +
-        " requested frequencies fell on the grid frequency of another and were "
-        "recorded once: the grid is 1/(periods·T); record more periods for a finer one");
+        {DiagnosticCode::kFrequenciesMerged, Severity::kNote,
+         std::to_string(merged) +
+             " requested frequencies fell on the grid frequency of another and were "
+             "recorded once: the grid is 1/(periods·T); record more periods for a finer one"});
   if (moved)
     r.diagnostics.push_back(
-        std::to_string(moved) + " of " + std::to_string(options.frequencies_hz.size()) +
-        " excitation frequencies moved to whole cycles of the " + std::to_string(options.periods) +
-        "-period record, off the multiples of fp/2 (grid " + MessageNumber(1 / length, 10) +
-        " Hz; largest move " + MessageNumber(largest_move, 10) +
-        " Hz): each record's own frequency is in the data");
+        {DiagnosticCode::kFrequencyMovedToGrid, Severity::kNote,
+         std::to_string(moved) + " of " + std::to_string(options.frequencies_hz.size()) +
+             " excitation frequencies moved to whole cycles of the " +
+             std::to_string(options.periods) + "-period record, off the multiples of fp/2 (grid " +
+             MessageNumber(1 / length, 10) + " Hz; largest move " +
+             MessageNumber(largest_move, 10) + " Hz): each record's own frequency is in the data"});
   return grid;
 }
 

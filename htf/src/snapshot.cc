@@ -149,7 +149,7 @@ void CheckByHtf(const PeriodicSystem& system, const ModalChannel& channel, doubl
     << "the htf route (N = " << htf.harmonics() << ") at " << P << " excitation frequencies "
     << "over the band the orders need: max disagreement " << r.max_summed_disagreement
     << " (relative to the largest |H_z| there)";
-  r.diagnostics.push_back(s.str());
+  r.diagnostics.push_back({DiagnosticCode::kRoutesCompared, Severity::kNote, s.str()});
 }
 
 // --compare: the periodic system's Floquet exponents and summed partials G with their error.
@@ -160,7 +160,8 @@ void CompareWithPeriodic(const PeriodicSystem& system, const SnapshotOptions& op
   const FloquetResult fl = AnalyzeFloquet(system, fo);
   for (const auto& m : fl.modes) r.floquet_exponents.push_back(m.exponent);
   if (!fl.ok) {
-    r.diagnostics.push_back("Floquet analysis failed: no summed partial FRFs");
+    r.diagnostics.push_back({DiagnosticCode::kFloquetFailed, Severity::kWarning,
+                             "Floquet analysis failed: no summed partial FRFs"});
     return;
   }
   const ModalModel model = BuildModalModel(system, fl, options.modal);

@@ -159,7 +159,7 @@ struct HillOutcome {
   int lost = 0;                ///< zeros at N without a partner at N + Δ
   bool converged = false;
   std::string failure;
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> notes;
 };
 
 void CompareTruncations(const PencilRun& coarse, double omega, double tol, HillOutcome& h) {
@@ -222,9 +222,10 @@ HillOutcome ConvergeHill(const SystemFourier& f, double omega, int hill_harmonic
     const int next = N + h.delta;
     if (h.converged || o.harmonics > 0) break;
     if (next >= o.max_harmonics || !plan.Fits(next)) {
-      h.notes.push_back("zeros: the truncation stopped at N = " + std::to_string(N) +
-                        (next >= o.max_harmonics ? " (max_harmonics)" : " (max_pencil_size)") +
-                        " before every zero converged");
+      h.notes.push_back({DiagnosticCode::kTruncationLimited, Severity::kWarning,
+                         "zeros: the truncation stopped at N = " + std::to_string(N) +
+                             (next >= o.max_harmonics ? " (max_harmonics)" : " (max_pencil_size)") +
+                             " before every zero converged"});
       break;
     }
     N = next;
@@ -273,10 +274,11 @@ void ReportHill(const HillOutcome& h, double omega, TransmissionZeros& r) {
     << r.zeros.size() << " centred on harmonic 0 (the zeros), " << h.fine.uncentred
     << " other finite eigenvalues (shifted members, truncation edge), " << h.fine.infinite
     << " infinite";
-  r.diagnostics.push_back(s.str());
+  r.diagnostics.push_back({DiagnosticCode::kZerosSummary, Severity::kNote, s.str()});
   if (h.lost > 0)
-    r.diagnostics.push_back("hill: " + std::to_string(h.lost) +
-                            " zeros at N have no partner at N + Δ");
+    r.diagnostics.push_back(
+        {DiagnosticCode::kZerosUnpaired, Severity::kWarning,
+         "hill: " + std::to_string(h.lost) + " zeros at N have no partner at N + Δ"});
 }
 
 }  // namespace
@@ -348,7 +350,7 @@ struct CheckRun {
   std::string failure;
   std::vector<cd> zeros;
   std::vector<double> estimates;
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> notes;
 };
 
 // min over kSamples of σmin/σmax of f(t) (0 when some sample is zero or singular).
@@ -376,22 +378,25 @@ std::optional<ZeroRoute> ChooseCheck(const PeriodicSystem& system, const SystemF
   if (internal::MaxFeedthrough(system) > 0) {
     const double d = WorstInverseCondition(T, [&](double t) { return system.D(t); });
     if (d > kInvertible) return ZeroRoute::kZeroDynamics;
-    run.notes.push_back("zeros: no check route: D(t) is not zero but singular somewhere " +
-                        std::string("(σmin/σmax down to ") + MessageNumber(d, 2) + ")");
+    run.notes.push_back({DiagnosticCode::kCheckRouteUnavailable, Severity::kNote,
+                         "zeros: no check route: D(t) is not zero but singular somewhere " +
+                             std::string("(σmin/σmax down to ") + MessageNumber(d, 2) + ")"});
     return std::nullopt;
   }
   const double cb = WorstInverseCondition(
       T, [&](double t) -> Eigen::MatrixXd { return system.C(t) * system.B(t); });
   if (!(cb > kInvertible)) {
     run.notes.push_back(
-        "zeros: no check route: D = 0 and C(t)B(t) is singular somewhere (relative degree "
-        "above one): the Hill route stands alone");
+        {DiagnosticCode::kCheckRouteUnavailable, Severity::kNote,
+         "zeros: no check route: D = 0 and C(t)B(t) is singular somewhere (relative degree "
+         "above one): the Hill route stands alone"});
     return std::nullopt;
   }
   if (!f.C.converged) {
     run.notes.push_back(
-        "zeros: no check route: C(t)'s Fourier fit did not converge (a jump), so C'(t) of the "
-        "relative-degree-one route is not available");
+        {DiagnosticCode::kCheckRouteUnavailable, Severity::kNote,
+         "zeros: no check route: C(t)'s Fourier fit did not converge (a jump), so C'(t) of the "
+         "relative-degree-one route is not available"});
     return std::nullopt;
   }
   return ZeroRoute::kRelativeDegreeOne;
@@ -510,7 +515,7 @@ void CompareWithCheck(const CheckRun& check, double omega, double tol, Transmiss
   s << "zeros: the " << ToString(*check.route) << " route found " << check.zeros.size()
     << ", the Hill route " << hill.size() << "; largest disagreement " << MessageNumber(worst, 2)
     << "; the values are the " << ToString(r.route) << " route's (the smaller estimates)";
-  r.diagnostics.push_back(s.str());
+  r.diagnostics.push_back({DiagnosticCode::kRoutesCompared, Severity::kNote, s.str()});
   if (check.zeros.size() != hill.size())
     failure = "zeros: the Hill route found " + std::to_string(hill.size()) + " zeros, the " +
               std::string(ToString(*check.route)) + " route " + std::to_string(check.zeros.size());
@@ -555,22 +560,29 @@ TransmissionZeros HarmonicTransferFunction::Zeros(const ZerosOptions& options) c
   TransmissionZeros r;
   const HillOutcome hill = ConvergeHill(coefficients(), omega, hill_.harmonics(), options);
   std::string failure = hill.failure;
+  // The kind of the failure, by the step that set it: the Hill route, its check, convergence.
+  DiagnosticCode failure_code = DiagnosticCode::kHillSolverFailed;
   if (failure.empty()) ReportHill(hill, omega, r);
-  if (failure.empty() && options.check) Check(system_, coefficients(), options, r, failure);
+  if (failure.empty() && options.check) {
+    failure_code = DiagnosticCode::kRoutesDisagree;
+    Check(system_, coefficients(), options, r, failure);
+  }
+  if (failure.empty()) failure_code = DiagnosticCode::kTruncationNotConverged;
   if (failure.empty() && !hill.converged) {
     const std::string unconverged =
         "the Hill route's truncation did not converge to tol (largest change " +
         MessageNumber(LargestChange(hill), 2) + ")";
     // Confirmed within its estimate by the check route, whose values are then reported.
     if (r.route != ZeroRoute::kHill)
-      r.diagnostics.push_back("zeros: " + unconverged + "; it agrees with the check route");
+      r.diagnostics.push_back({DiagnosticCode::kTruncationNotConverged, Severity::kWarning,
+                               "zeros: " + unconverged + "; it agrees with the check route"});
     else
       failure = "zeros: " + unconverged;
   }
   SortZeros(r.zeros);
   r.ok = failure.empty();
   r.failure = failure;
-  if (!r.ok) r.diagnostics.push_back(failure);
+  if (!r.ok) r.diagnostics.push_back({failure_code, Severity::kFailure, failure});
   r.elapsed_s = SecondsSince(start);
   return r;
 }

@@ -139,7 +139,8 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
       grid.ok = false;
       std::ostringstream s;
       s << "segment [" << p.t0 << ", " << p.t1 << "]: " << p.tr.message;
-      grid.diagnostics.push_back(s.str());
+      grid.diagnostics.push_back(
+          {DiagnosticCode::kSegmentIntegrationFailed, Severity::kFailure, s.str()});
     }
     worst = std::max(worst, p.cond);
   }
@@ -148,7 +149,8 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
     s << "segment refinement stopped with a factor of condition " << worst << " (limit "
       << options.max_factor_condition << ", at most " << options.max_segments
       << " segments): the smallest multipliers may be inaccurate";
-    grid.diagnostics.push_back(s.str());
+    grid.diagnostics.push_back(
+        {DiagnosticCode::kSegmentRefinementStopped, Severity::kWarning, s.str()});
   }
   const bool effects = std::all_of(pieces.begin(), pieces.end(), [](const Segment& p) {
     return p.tr.local_error_effect.size() > 0 && p.tr.local_error_effect.allFinite();

@@ -781,16 +781,18 @@ void NoteSpacingAndSpeeds(LinOperatingPoint& op) {
       lo = std::min(lo, d);
       hi = std::max(hi, d);
     }
-    op.diagnostics.push_back("the " + std::to_string(K) +
-                             " azimuths are unevenly spaced: " + Degrees(lo) + "° to " +
-                             Degrees(hi) + "° apart (even: " + Degrees(2 * pi / K) + "°)");
+    op.diagnostics.push_back({DiagnosticCode::kAzimuthsUneven, Severity::kWarning,
+                              "the " + std::to_string(K) +
+                                  " azimuths are unevenly spaced: " + Degrees(lo) + "° to " +
+                                  Degrees(hi) + "° apart (even: " + Degrees(2 * pi / K) + "°)"});
   }
   double spread = 0;
   for (double w : op.rotor_speeds) spread = std::max(spread, std::abs(w - op.rotor_speed));
   if (spread > 1e-12 * std::abs(op.rotor_speed))  // not the rounding of their mean
-    op.diagnostics.push_back("rotor speeds differ by up to " + FormatNumber(spread, "%.3g") +
-                             " rad/s between files; the period "
-                             "uses their mean");
+    op.diagnostics.push_back({DiagnosticCode::kRotorSpeedsDiffer, Severity::kNote,
+                              "rotor speeds differ by up to " + FormatNumber(spread, "%.3g") +
+                                  " rad/s between files; the period "
+                                  "uses their mean"});
 }
 
 }  // namespace
@@ -811,8 +813,9 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
     int count = 0;
     for (const LinFile& f : files) count += (f.*member).size() > 0;
     if (count > 0 && count < static_cast<int>(files.size()))
-      op.diagnostics.push_back(std::string("matrix ") + name +
-                               " is missing in some files and was dropped from all");
+      op.diagnostics.push_back(
+          {DiagnosticCode::kMatrixDropped, Severity::kWarning,
+           std::string("matrix ") + name + " is missing in some files and was dropped from all"});
     return count == static_cast<int>(files.size());
   };
   const bool all_b = in_all("B", &LinFile::B), all_c = in_all("C", &LinFile::C),
@@ -1071,7 +1074,7 @@ std::vector<std::string> LinCaveats(const LinOperatingPoint& op) {
         "nearest-sample hold; the two agree only as far as the samples allow, which is not a "
         "proof of convergence — linearise at more azimuths to check");
   }
-  for (const std::string& d : op.diagnostics) notes.push_back(d);
+  for (const Diagnostic& d : op.diagnostics) notes.push_back(d.text);
   if (op.azimuth_state) {
     notes.push_back("state " + std::to_string(*op.azimuth_state + 1) + " (" +
                     op.states[*op.azimuth_state].description +

@@ -306,9 +306,11 @@ void FindChannelCoordinates(const LinOperatingPoint& op, bool* with_inputs, bool
   *with_inputs = s0.B.size() > 0 && static_cast<int>(op.inputs.size()) == s0.B.cols();
   *with_outputs = s0.C.size() > 0 && static_cast<int>(op.outputs.size()) == s0.C.rows();
   if (s0.B.size() > 0 && !*with_inputs)
-    r.diagnostics.push_back("B not transformed: the files have no input table");
+    r.diagnostics.push_back({DiagnosticCode::kMbcNotTransformed, Severity::kNote,
+                             "B not transformed: the files have no input table"});
   if (s0.C.size() > 0 && !*with_outputs)
-    r.diagnostics.push_back("C not transformed: the files have no output table");
+    r.diagnostics.push_back({DiagnosticCode::kMbcNotTransformed, Severity::kNote,
+                             "C not transformed: the files have no output table"});
   auto channels = [&](const std::vector<LinChannel>& list, bool* use, const char* what) {
     BladeCoordinates c;
     if (!*use) return c;
@@ -319,7 +321,8 @@ void FindChannelCoordinates(const LinOperatingPoint& op, bool* with_inputs, bool
                          std::to_string(c.blades) + " blades, the states of " +
                          std::to_string(r.blades));
     } catch (const InputError& e) {
-      r.diagnostics.push_back(std::string(what) + " not transformed (" + e.what() + ")");
+      r.diagnostics.push_back({DiagnosticCode::kMbcNotTransformed, Severity::kWarning,
+                               std::string(what) + " not transformed (" + e.what() + ")"});
       *use = false;
       c = BladeCoordinates();
     }
@@ -376,7 +379,8 @@ void TransformSamples(const LinOperatingPoint& op, const Mbc3Options& options,
 bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& options, Mbc3Result& r) {
   const Eigen::EigenSolver<MatrixXd> eig(r.average.A);
   if (eig.info() != Eigen::Success) {
-    r.diagnostics.push_back("the eigenvalue solver did not converge on the averaged matrix");
+    r.diagnostics.push_back({DiagnosticCode::kMbcEigenFailed, Severity::kFailure,
+                             "the eigenvalue solver did not converge on the averaged matrix"});
     return false;
   }
   const int n = static_cast<int>(r.average.A.rows());
@@ -458,7 +462,8 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
   const std::vector<int> rate_of = RateOf(op.states);
   CheckRateGroups(r.state_coordinates, rate_of, op.states);
   if (r.blades == 0)
-    r.diagnostics.push_back("no rotating-frame states: the transform is the identity");
+    r.diagnostics.push_back({DiagnosticCode::kNoRotatingStates, Severity::kNote,
+                             "no rotating-frame states: the transform is the identity"});
   bool with_inputs = false, with_outputs = false;
   FindChannelCoordinates(op, &with_inputs, &with_outputs, r);
   r.states = op.states;
@@ -486,7 +491,7 @@ Mbc3Result Mbc3(const LinOperatingPoint& op, const Mbc3Options& options) {
                     "rigid-body mode λ = %.3g 1/s: the rotor's rigid rotation, exactly 0 for the "
                     "periodic system; its distance from 0 is the error of sampling and averaging",
                     m.eigenvalue.real());
-      r.diagnostics.push_back(buf);
+      r.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote, buf});
     }
   return r;
 }
@@ -512,11 +517,12 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
       out.outputs[i].rotating_frame = false;
     }
   out.diagnostics.push_back(
-      mbc.blades > 0
-          ? "in multi-blade coordinates (" + std::to_string(mbc.blades) +
-                " blades): the transformed matrices at each azimuth, not averaged"
-          : std::string("no rotating-frame blade states: the multi-blade transform is the "
-                        "identity and the files' coordinates are used as they are"));
+      {DiagnosticCode::kMultiBladeCoordinates, Severity::kNote,
+       mbc.blades > 0
+           ? "in multi-blade coordinates (" + std::to_string(mbc.blades) +
+                 " blades): the transformed matrices at each azimuth, not averaged"
+           : std::string("no rotating-frame blade states: the multi-blade transform is the "
+                         "identity and the files' coordinates are used as they are")});
   return out;
 }
 

@@ -77,7 +77,7 @@ void BindCampbellResult(py::module_& m) {
       .def_property_readonly(
           "notes",
           [](const LinCampbellResult& x) {
-            std::vector<std::string> v = x.diagram.diagnostics;
+            std::vector<std::string> v = Texts(x.diagram.diagnostics);
             for (const LinCampbellPoint& p : x.points)
               for (const std::string& n : p.notes) v.push_back(n);
             return v;

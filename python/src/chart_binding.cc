@@ -445,7 +445,7 @@ void BindChartCampbell(py::class_<ChartResult>& r) {
           "1-D: (lo, hi) intervals where the system is stable but some mode's damping ratio is low")
       .def_property_readonly(
           "campbell_notes",
-          [](const ChartResult& c) { return c.chart.analysis.campbell.diagnostics; },
+          [](const ChartResult& c) { return Texts(c.chart.analysis.campbell.diagnostics); },
           "1-D: lost lines and ambiguous tracking");
 }
 

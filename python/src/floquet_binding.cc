@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
@@ -203,8 +204,15 @@ formula beyond the error estimate): the diagnostics say why.)doc");
   r.def_readonly("rhs_evals", &FloquetResult::rhs_evals,
                  "evaluations of A(t) (taylor: products A_j Phi_k of the series)")
       .def_readonly("elapsed_s", &FloquetResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &FloquetResult::diagnostics,
-                    "what the analysis noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&FloquetResult::diagnostics),
+                             "what the analysis noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&FloquetResult::diagnostics),
+                             kDiagnosticCodesDoc)
+      .def_property_readonly(
+          "termination",
+          [](const FloquetResult& f) { return std::string(ToString(f.termination)); },
+          "how the analysis ended: 'completed' (ok), 'integration_failed', "
+          "'eigenvalues_failed', 'checks_failed' or 'no_modes_below_cutoff'")
       .def(
           "mode_matrix",
           [](const FloquetResult& f, Real t) {

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/pfrf.h"
 #include "ltp/htf/pfrf_model_error.h"
@@ -29,7 +30,7 @@ py::dict RouteDict(const RouteRun& run) {
                   py::arg("own_error") = RealArray(run.own_error),
                   py::arg("max_deviation_from_primary") = worst, py::arg("failures") = run.failures,
                   py::arg("setup_s") = run.setup_s, py::arg("elapsed_s") = run.elapsed_s,
-                  py::arg("diagnostics") = run.diagnostics);
+                  py::arg("diagnostics") = Texts(run.diagnostics));
 }
 
 // H over excitation frequency and order, with its error estimate.
@@ -172,8 +173,10 @@ estimate for every value from the independent routes' disagreement.
   BindPfrfRoutes(r);
   BindPfrfModal(r);
   r.def_readonly("elapsed_s", &PfrfResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &PfrfResult::diagnostics,
-                    "what the routes noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&PfrfResult::diagnostics),
+                             "what the routes noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&PfrfResult::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const PfrfResult& r) {
         return "<ltp.PfrfResult: " + std::to_string(r.frequencies_hz.size()) +
                " frequencies, orders " + std::to_string(r.min_order) + ".." +
@@ -275,8 +278,10 @@ G(ω) = Σ_z H_z(ω − zΩp) (paper Fig. 6), with an error estimate.)doc")
           [](const SnapshotResult& r) { return ComplexArray(r.floquet_exponents); },
           "compare=True: the periodic system's exponents")
       .def_readonly("elapsed_s", &SnapshotResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &SnapshotResult::diagnostics,
-                    "what the routes noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&SnapshotResult::diagnostics),
+                             "what the routes noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&SnapshotResult::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const SnapshotResult& r) {
         return "<ltp.SnapshotResult: frozen at t = " + std::to_string(r.time) + " s, " +
                std::to_string(r.frequencies_hz.size()) + " frequencies>";

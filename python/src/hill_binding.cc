@@ -3,6 +3,7 @@
 #include <type_traits>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/hill.h"
@@ -154,8 +155,10 @@ Koopman–Hill cross-check.)doc");
           "eigenvalues", [](const HillResult& h) { return ComplexArray(h.eigenvalues); },
           "every eigenvalue of the Hill matrix found")
       .def_readonly("elapsed_s", &HillResult::elapsed_s, "wall time (s)")
-      .def_readonly("diagnostics", &HillResult::diagnostics,
-                    "what the analysis noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&HillResult::diagnostics),
+                             "what the analysis noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&HillResult::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__",
            [](const HillResult& h) { return "<ltp.HillResult: " + h.BriefReport() + ">"; });
 }
@@ -231,8 +234,10 @@ at N = max_harmonics (`last`).)doc")
       .def_readonly("last", &HillStudyRun::last, "the HillResult at N = max_harmonics")
       .def_property_readonly(
           "elapsed_s", [](const HillStudyRun& r) { return r.study.elapsed_s; }, "wall time (s)")
-      .def_readonly("diagnostics", &HillStudyRun::diagnostics,
-                    "what the study noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&HillStudyRun::diagnostics),
+                             "what the study noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&HillStudyRun::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const HillStudyRun& r) {
         return "<ltp.HillStudy: " + std::to_string(r.study.rows.size()) + " truncations, " +
                (r.study.rate_kind ? std::string(ToString(r.study.rate_kind)) : "rate not fitted") +

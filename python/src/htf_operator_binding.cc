@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/harmonic_transfer_function.h"
 #include "ltp/htf/response_orbit.h"
@@ -88,7 +89,7 @@ py::dict OrbitSweepDict(const OrbitSweep& r) {
       r.check_route ? py::object(py::str(std::string(ToString(*r.check_route)))) : py::none();
   d["ok"] = r.ok;
   d["failure"] = r.failure;
-  d["diagnostics"] = r.diagnostics;
+  d["diagnostics"] = Texts(r.diagnostics);
   return d;
 }
 
@@ -156,7 +157,10 @@ Hamiltonian's Floquet exponents (a bracket). ok when both ran and agree.)doc")
                     "K of the section (harmonics −K…K) the search converged at")
       .def_readonly("search_points", &HinfNorm::search_points, "sections evaluated")
       .def_readonly("elapsed_s", &HinfNorm::elapsed_s, "wall time of the whole call (s)")
-      .def_readonly("diagnostics", &HinfNorm::diagnostics, "notes, one sentence each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&HinfNorm::diagnostics),
+                             "notes, one sentence each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&HinfNorm::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const HinfNorm& r) {
         return NormRepr("HinfNorm", r.value, r.error_estimate, r.ok, r.failure);
       });
@@ -177,7 +181,10 @@ routes ran (or the modal one alone, said in diagnostics) and agree.)doc")
           "lyapunov_value", [](const H2Norm& r) { return r.lyapunov_value; },
           "the Lyapunov route's value (None when skipped)")
       .def_readonly("elapsed_s", &H2Norm::elapsed_s, "wall time of the whole call (s)")
-      .def_readonly("diagnostics", &H2Norm::diagnostics, "notes, one sentence each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&H2Norm::diagnostics),
+                             "notes, one sentence each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&H2Norm::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const H2Norm& r) {
         return NormRepr("H2Norm", r.value, r.error_estimate, r.ok, r.failure);
       });
@@ -286,7 +293,10 @@ invertible). The arrays are parallel, one entry per zero.)doc")
       .def_readonly("uncentred_eigenvalues", &TransmissionZeros::uncentred_eigenvalues,
                     "finite eigenvalues at N + Δ not centred on harmonic 0")
       .def_readonly("elapsed_s", &TransmissionZeros::elapsed_s, "wall time of the call (s)")
-      .def_readonly("diagnostics", &TransmissionZeros::diagnostics, "notes, one sentence each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&TransmissionZeros::diagnostics),
+                             "notes, one sentence each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&TransmissionZeros::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const TransmissionZeros& r) {
         std::ostringstream s;
         s << "<TransmissionZeros " << r.zeros.size() << " zeros, N = " << r.harmonics
@@ -445,8 +455,11 @@ void AddProperties(HtfClass& htf) {
           "ok", [](const PyHtf& h) { return h.htf->ok(); },
           "the modal form is reliable and the Hill truncation converged")
       .def_property_readonly(
-          "diagnostics", [](const PyHtf& h) { return h.htf->diagnostics(); },
+          "diagnostics", [](const PyHtf& h) { return Texts(h.htf->diagnostics()); },
           "notes of the decomposition, the modal form and the Hill route")
+      .def_property_readonly(
+          "diagnostic_codes", [](const PyHtf& h) { return CodeNames(h.htf->diagnostics()); },
+          kDiagnosticCodesDoc)
       .def("__repr__", [](const PyHtf& h) {
         return "<HarmonicTransferFunction " + std::to_string(h.system.system.states()) +
                " states, " + std::to_string(h.system.system.inputs()) + " inputs, " +

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/error.h"
 #include "ltp/htf/identify.h"
 #include "ltp/htf/rotor_angle.h"
@@ -135,8 +136,12 @@ per broadband realisation), ready for ltp.identify(r.time, r.input, r.output, pe
           "settle_time", [](const SimulatedRecords& s) { return s.result.settle_time; },
           "s integrated before each record")
       .def_property_readonly(
-          "diagnostics", [](const SimulatedRecords& s) { return s.result.diagnostics; },
-          "e.g. frequencies moved to the record's grid");
+          "diagnostics", [](const SimulatedRecords& s) { return Texts(s.result.diagnostics); },
+          "e.g. frequencies moved to the record's grid")
+      .def_property_readonly(
+          "diagnostic_codes",
+          [](const SimulatedRecords& s) { return CodeNames(s.result.diagnostics); },
+          kDiagnosticCodesDoc);
 }
 
 // ltp.simulate: the options checked as the CLI checks them; the records made without the GIL.
@@ -263,8 +268,12 @@ Partial FRFs estimated from time data (ltp.identify): H over frequency and order
           },
           "{'min', 'max', 'mean'} rad/s from the tacho or the encoder, else None")
       .def_property_readonly(
-          "diagnostics", [](const IdentifiedRecords& r) { return r.result.diagnostics; },
-          "what the data say about themselves (speed, gaps, clipping, …), one line each");
+          "diagnostics", [](const IdentifiedRecords& r) { return Texts(r.result.diagnostics); },
+          "what the data say about themselves (speed, gaps, clipping, …), one line each")
+      .def_property_readonly(
+          "diagnostic_codes",
+          [](const IdentifiedRecords& r) { return CodeNames(r.result.diagnostics); },
+          kDiagnosticCodesDoc);
 }
 
 // The records as the library's time data, one TimeRecord each. @throws InputError when a record's

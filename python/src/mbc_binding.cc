@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/error.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
@@ -130,8 +131,10 @@ void BindMbcResult(py::module_& m) {
                     "max Re λ over the modes that are not rigid-body (1/s)")
       .def_readonly("periodic_part", &Mbc3Result::periodic_part,
                     "max_k ‖A_NR(ψ_k) − mean‖/‖mean‖: what averaging discards (0: isotropic)")
-      .def_readonly("diagnostics", &Mbc3Result::diagnostics,
-                    "what the transform noticed, one line each")
+      .def_property_readonly("diagnostics", DiagnosticTexts(&Mbc3Result::diagnostics),
+                             "what the transform noticed, one line each")
+      .def_property_readonly("diagnostic_codes", DiagnosticCodes(&Mbc3Result::diagnostics),
+                             kDiagnosticCodesDoc)
       .def("__repr__", [](const Mbc3Result& x) {
         return "<ltp.MbcResult: " + std::to_string(x.modes.size()) + " modes, " +
                std::to_string(x.blades) + " blades, max Re λ = " + std::to_string(x.max_real_part) +

@@ -174,7 +174,7 @@ CampbellCrossing MakeCrossing(const CampbellDiagram& d, size_t line_index, int n
 // Ωp/2 = nΩ/2π), the sign of the difference is noise: no crossing is counted there, and the
 // stretch is reported in `notes`.
 void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<CampbellCrossing>& out,
-                   std::vector<std::string>& notes) {
+                   std::vector<Diagnostic>& notes) {
   const CampbellLine& line = d.lines[line_index];
   const size_t P = d.parameter.size();
   const auto& x = d.parameter;
@@ -196,10 +196,11 @@ void FindCrossings(const CampbellDiagram& d, size_t line_index, std::vector<Camp
       size_t q = p;
       while (tracked(q + 1) && locked(q + 1)) ++q;
       if (q > p) {
-        notes.push_back("mode " + std::to_string(line_index + 1) + " is locked to " +
-                        std::to_string(n) + "P for " + MessageNumber(x[p]) + " … " +
-                        MessageNumber(x[q]) +
-                        " (its frequency is nΩ/2π to round-off: no crossing is counted there)");
+        notes.push_back(
+            {DiagnosticCode::kLineLockedToHarmonic, Severity::kNote,
+             "mode " + std::to_string(line_index + 1) + " is locked to " + std::to_string(n) +
+                 "P for " + MessageNumber(x[p]) + " … " + MessageNumber(x[q]) +
+                 " (its frequency is nΩ/2π to round-off: no crossing is counted there)"});
       } else if (p > 0 && p + 1 < P && valid(p - 1) && valid(p + 1) &&
                  (g(p - 1) < 0) != (g(p + 1) < 0)) {
         // A crossing on a grid point: its error is the residual over the slope.
@@ -346,15 +347,17 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
           why = "the point failed: " + points[p].failure;
           break;
         }
-      d.diagnostics.push_back(name + " (" + line.description + ") is lost after " +
-                              MessageNumber(d.parameter[at]) + ": " + why);
+      d.diagnostics.push_back({DiagnosticCode::kLineLost, Severity::kWarning,
+                               name + " (" + line.description + ") is lost after " +
+                                   MessageNumber(d.parameter[at]) + ": " + why});
     }
   }
   if (overdamped > 0)
-    d.diagnostics.push_back(std::to_string(overdamped) + (overdamped == 1 ? " line" : " lines") +
-                            " left out: damped above " +
-                            MessageNumber(100 * options.max_damping_ratio, 3) +
-                            " % wherever tracked (overdamped states such as inflow dynamics)");
+    d.diagnostics.push_back(
+        {DiagnosticCode::kOverdampedLinesLeftOut, Severity::kNote,
+         std::to_string(overdamped) + (overdamped == 1 ? " line" : " lines") +
+             " left out: damped above " + MessageNumber(100 * options.max_damping_ratio, 3) +
+             " % wherever tracked (overdamped states such as inflow dynamics)"});
   d.per_rev = PerRevLines(d, options.max_per_rev);
   for (size_t k = 0; k < d.lines.size(); ++k) FindCrossings(d, k, d.crossings, d.diagnostics);
   std::stable_sort(d.crossings.begin(), d.crossings.end(), [](const auto& a, const auto& b) {
@@ -366,9 +369,11 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     for (size_t k = 0; k < tracking.ambiguous.size() && k < 5; ++k)
       where += (k ? ", " : "") + MessageNumber(d.parameter[tracking.ambiguous[k]]);
     if (tracking.ambiguous.size() > 5) where += ", …";
-    d.diagnostics.push_back("mode tracking is ambiguous at " +
-                            std::to_string(tracking.ambiguous.size()) + " points (" + where +
-                            "; MAC below 0.5 or a runner-up within 10 %): lines may swap there");
+    d.diagnostics.push_back(
+        {DiagnosticCode::kTrackingAmbiguous, Severity::kWarning,
+         "mode tracking is ambiguous at " + std::to_string(tracking.ambiguous.size()) +
+             " points (" + where +
+             "; MAC below 0.5 or a runner-up within 10 %): lines may swap there"});
   }
   return d;
 }

@@ -39,8 +39,8 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
     p.notes.push_back(std::to_string(p.mbc.rigid_body_modes) + " rigid-body mode" +
                       (p.mbc.rigid_body_modes == 1 ? "" : "s") +
                       " (the rotor's free rotation) left out");
-  for (const std::string& d : op.diagnostics) p.notes.push_back(d);
-  for (const std::string& d : p.mbc.diagnostics) p.notes.push_back(d);
+  for (const Diagnostic& d : op.diagnostics) p.notes.push_back(d.text);
+  for (const Diagnostic& d : p.mbc.diagnostics) p.notes.push_back(d.text);
   return p;
 }
 

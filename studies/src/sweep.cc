@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -83,9 +84,9 @@ void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& option
     r = AnalyzeFloquet(system, o);
   }
   point.period = r.period;
-  point.diagnostics = r.diagnostics;
+  point.diagnostics = Texts(r.diagnostics);
   if (!r.ok) {
-    point.failure = r.diagnostics.empty() ? "Floquet analysis failed" : r.diagnostics.back();
+    point.failure = r.diagnostics.empty() ? "Floquet analysis failed" : r.diagnostics.back().text;
     return;
   }
   point.ok = true;
@@ -110,9 +111,9 @@ void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bo
   o.koopman_check = false;  // a cross-check per point would dominate the sweep
   HillResult r = AnalyzeHillAuto(system, o, options.hill_tol, options.hill_max_harmonics);
   point.period = system.period();
-  point.diagnostics = r.diagnostics;
+  point.diagnostics = Texts(r.diagnostics);
   if (!r.ok) {
-    point.failure = r.diagnostics.empty() ? "Hill analysis failed" : r.diagnostics.back();
+    point.failure = r.diagnostics.empty() ? "Hill analysis failed" : r.diagnostics.back().text;
     return;
   }
   point.ok = true;

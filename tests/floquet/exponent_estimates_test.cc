@@ -43,9 +43,7 @@ TEST(ExponentEstimates, EachExponentIsWithinItsOwnEstimateAndTheVerdictUsesIt) {
   EXPECT_EQ(ClassifyStability(r.ok, r.max_real_exponent, r.error_estimate),
             StabilityVerdict::kMarginal);
   EXPECT_EQ(r.verdict, StabilityVerdict::kStable);
-  EXPECT_TRUE(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
-    return d.find("each exponent with its own estimate") != std::string::npos;
-  }));
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kVerdictPerModeBand));
 }
 
 }  // namespace

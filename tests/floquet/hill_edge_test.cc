@@ -146,7 +146,7 @@ TEST(HillTail, SlowGeometricDecayIsCoveredByTheTailFactor) {
   o.harmonics = 4;
   const HillResult h = AnalyzeHillAuto(fourier, o, 1e-10, 256);
   ASSERT_TRUE(h.tolerance_met.has_value());
-  EXPECT_TRUE(*h.tolerance_met) << h.diagnostics.back();
+  EXPECT_TRUE(*h.tolerance_met) << h.diagnostics.back().text;
   EXPECT_LE(h.harmonics, 128);
   EXPECT_LT(MaxExponentMismatch(Exponents(h.modes), ref, fourier.omega()), 1e-9);
 }

@@ -95,10 +95,7 @@ TEST(LocalErrorEstimate, OnlyBulirschStoerCarriesLocalErrors) {
   o.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
   const FloquetResult r = AnalyzeFloquet(system, o);
   EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kRefinedRun);
-  bool said = false;
-  for (const std::string& d : r.diagnostics)
-    said = said || d.find("refined run instead") != std::string::npos;
-  EXPECT_TRUE(said);
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
 }
 
 }  // namespace

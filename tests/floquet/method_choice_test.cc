@@ -28,11 +28,6 @@ namespace {
 using cd = std::complex<double>;
 using test::kPi;
 
-bool Mentions(const std::vector<std::string>& diagnostics, const std::string& what) {
-  return std::any_of(diagnostics.begin(), diagnostics.end(),
-                     [&](const std::string& d) { return d.find(what) != std::string::npos; });
-}
-
 // Largest distance of the modes' exponents to `exact`, matched one-to-one modulo Ωp (a missed
 // exponent cannot hide behind another mode's nearest value); +inf when the counts differ.
 double MatchedDistance(const std::vector<FloquetMode>& modes, const std::vector<cd>& exact,
@@ -97,8 +92,7 @@ TEST(MethodChoice, AutoMonodromyOnMeissnerIsExactAndSaysWhy) {
   const FloquetResult r = AnalyzeFloquet(s, o);
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.integrator, IntegratorType::kExpm);
-  EXPECT_TRUE(
-      Mentions(r.diagnostics, "integrator auto → expm: A(t) is constant between its breakpoints"));
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kIntegratorChosen));
   const double err = MatchedDistance(r.modes, exact, s.omega());
   EXPECT_LT(err, 1e-13);
   EXPECT_GE(r.error_estimate.value(), err);
@@ -208,7 +202,8 @@ TEST(MethodChoice, HillAutoSolverOnStiffYamlFindsEveryExponent) {
   o.harmonics = 8;
   const HillResult h = AnalyzeHill(s, o);
   ASSERT_TRUE(h.ok);
-  EXPECT_TRUE(Mentions(h.diagnostics, "solver auto → structured"));
+  EXPECT_TRUE(HasCode(h.diagnostics, DiagnosticCode::kHillSolverChosen));
+  EXPECT_EQ(h.solver, HillSolver::kStructured);
   const double err = MatchedDistance(h.modes, {-800.0, 150.0, -3.0}, s.omega());
   EXPECT_LT(err, 1e-6 * 800);
   EXPECT_GE(h.error_estimate.value(), err);

@@ -132,7 +132,8 @@ TEST(ModesBelow, RefusesBadCutOffsAndSaysWhenNoModeIsBelowIt) {
   const FloquetResult r = AnalyzeFloquet(s, o);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.verdict, StabilityVerdict::kFailed);
-  EXPECT_NE(r.failure.find("raise the cut-off"), std::string::npos);
+  EXPECT_EQ(r.termination, Termination::kNoModesBelowCutoff);
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kNoModesBelowCutoff));
 }
 
 }  // namespace

@@ -39,11 +39,8 @@ TimeData RigData(const testing::Rig& rig, bool tacho, double input_noise = 0,
   return d;
 }
 
-bool Mentions(const IdentifyResult& id, const std::string& text) {
-  for (const std::string& d : id.diagnostics)
-    if (d.find(text) != std::string::npos) return true;
-  return false;
-}
+// Whether the result reports an event of kind `code` (the sentence it says is in the comment).
+bool Says(const IdentifyResult& id, DiagnosticCode code) { return HasCode(id.diagnostics, code); }
 
 // Largest |H_z − closed form at the record's mean speed| relative to max |H_z|, |z| ≤ 2.
 double WorstError(const testing::Rig& rig, const IdentifyResult& id, double speed) {
@@ -74,14 +71,17 @@ TEST(IdentifyRig, ASpeedOffsetReadFromATachoLeavesNoBias) {
     EXPECT_NEAR(id.frequencies[f].excitation_hz, kFrequencies[f].first, 1e-10);
     EXPECT_NEAR(id.frequencies[f].speed / rig.Speed(), 1, 1e-6);
   }
-  EXPECT_TRUE(Mentions(id, "3 of 3 records excite at another frequency than the file says"));
-  EXPECT_TRUE(Mentions(id, "measured speed differs from the model's 2π/T by up to 1 %"));
+  EXPECT_TRUE(
+      Says(id, DiagnosticCode::kExcitationFrequencyMoved));  // 3 of 3 records excite at another
+                                                             // frequency than the file says
+  EXPECT_TRUE(Says(id, DiagnosticCode::kSpeedOffModel));  // measured speed differs from the model's
+                                                          // 2π/T by up to 1 %
   // Without the tacho the same records are read at the model's speed: the bias the issue
   // measured (≈ 30° on H_±1) — named, since the lines themselves show the speed.
   const IdentifyResult blind = IdentifyStepSine(RigData(rig, false), Orders());
   EXPECT_GT(WorstError(rig, blind, rig.Speed()), 0.1);
-  EXPECT_TRUE(
-      Mentions(blind, "in 3 of 3 records the response's lines sit at a speed up to 1 % off"));
+  EXPECT_TRUE(Says(blind, DiagnosticCode::kSpeedOffModel));  // in 3 of 3 records the response's
+                                                             // lines sit at a speed up to 1 % off
 }
 
 TEST(IdentifyRig, ASpeedRampReadFromATachoIsTheModelAtTheMeanSpeed) {
@@ -102,7 +102,8 @@ TEST(IdentifyRig, ASpeedRampReadFromATachoIsTheModelAtTheMeanSpeed) {
   }
   EXPECT_GT(spread, 0.03);
   EXPECT_LT(WorstError(rig, id, mean), 0.1 * spread);
-  EXPECT_TRUE(Mentions(id, "the speed changes by up to 0.99 % within a record"));
+  EXPECT_TRUE(Says(
+      id, DiagnosticCode::kSpeedChanges));  // the speed changes by up to 0.99 % within a record
 }
 
 // The share of estimates, over seeds, whose 95 % bound holds the closed form at the rig's
@@ -159,8 +160,9 @@ TEST(IdentifyRig, SynchronousResponseAndGapsAreAbsorbedAndNamed) {
   r.angle.erase(r.angle.begin() + 600, r.angle.begin() + 603);
   const IdentifyResult id = IdentifyStepSine(d, Orders());
   EXPECT_LT(WorstError(rig, id, rig.Speed()), 1e-6);
-  EXPECT_TRUE(Mentions(id, "synchronous response at 1×, 2×"));
-  EXPECT_TRUE(Mentions(id, "record 2: 1 gap(s) in t, the first at sample 601"));
+  EXPECT_TRUE(Says(id, DiagnosticCode::kSynchronousResponse));  // synchronous response at 1×, 2×
+  EXPECT_TRUE(
+      Says(id, DiagnosticCode::kRecordGaps));  // record 2: 1 gap(s) in t, the first at sample 601
 }
 
 TEST(IdentifyRig, ClippingAndSlippedSamplesAreNamed) {
@@ -170,7 +172,8 @@ TEST(IdentifyRig, ClippingAndSlippedSamplesAreNamed) {
     const double limit = 0.9 * r.outputs.cwiseAbs().maxCoeff();
     r.outputs = r.outputs.cwiseMin(limit).cwiseMax(-limit);
   }
-  EXPECT_TRUE(Mentions(IdentifyStepSine(clipped, Orders()), "output sits at its extreme value"));
+  EXPECT_TRUE(Says(IdentifyStepSine(clipped, Orders()),
+                   DiagnosticCode::kRecordClipped));  // output sits at its extreme value
   // Three samples lost while the DAQ's clock went on: the later samples are written 3 steps
   // early.
   TimeData slipped = RigData(rig, true);
@@ -184,7 +187,8 @@ TEST(IdentifyRig, ClippingAndSlippedSamplesAreNamed) {
     r.time.resize(static_cast<size_t>(n - 3));
     r.angle.resize(static_cast<size_t>(n - 3));
   }
-  EXPECT_TRUE(Mentions(IdentifyStepSine(slipped, Orders()), "the input's phase moves by"));
+  EXPECT_TRUE(Says(IdentifyStepSine(slipped, Orders()),
+                   DiagnosticCode::kInputPhaseMoves));  // the input's phase moves by
 }
 
 // An output sampled late (here 2.6 samples: an anti-alias filter's group delay) turns the
@@ -262,8 +266,9 @@ TEST(IdentifyRig, BroadbandOnATachoGivesTheClosedForm) {
       worst = std::max(worst, std::abs(id.frequencies[f].h[z] - truth[z]) / scale);
   }
   EXPECT_LT(worst, 1e-6);
-  EXPECT_TRUE(Mentions(id, "broadband on the measured angle"));
-  EXPECT_TRUE(Mentions(id, "measured speed differs from the model's 2π/T by 1 %"));
+  EXPECT_TRUE(Says(id, DiagnosticCode::kBroadbandFit));  // broadband on the measured angle
+  EXPECT_TRUE(Says(
+      id, DiagnosticCode::kSpeedOffModel));  // measured speed differs from the model's 2π/T by 1 %
   // The constant-speed route on the same records, without the angle: refused (not whole
   // periods) — it could only have been biased.
   TimeData blind = m.Data(0, 0, 1);

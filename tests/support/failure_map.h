@@ -144,23 +144,20 @@ inline std::string SourceDir() {
 #endif
 }
 
-inline bool Warns(const std::vector<std::string>& diagnostics, std::string* which) {
-  static const char* kWords[] = {"defective",       "not converged", "failed",   "unreliable",
-                                 "ill-conditioned", "singular",      "resonan",  "did not reach",
-                                 "not reached",     "exceed",        "no exact", "lost",
-                                 "loses",           "undecided",     "could not"};
-  for (const auto& d : diagnostics)
-    for (const char* w : kWords)
-      if (d.find(w) != std::string::npos) {
-        if (which) *which = d.substr(0, 90);
-        return true;
-      }
+// A warning or failure among the diagnostics (by severity, not by its words); `which` gets the
+// first one's text.
+inline bool Warns(const std::vector<Diagnostic>& diagnostics, std::string* which) {
+  for (const Diagnostic& d : diagnostics)
+    if (d.severity != Severity::kNote) {
+      if (which) *which = d.text.substr(0, 90);
+      return true;
+    }
   return false;
 }
 
 /// Verdict from what the method claimed and what it got.
 inline Cell Judge(bool ok, double err, std::optional<double> estimate, double scale,
-                  const std::vector<std::string>& diagnostics, const std::string& failure = "") {
+                  const std::vector<Diagnostic>& diagnostics, const std::string& failure = "") {
   Cell c;
   c.error_rel = std::isfinite(err) ? err / scale : kInf;
   c.estimate_rel = estimate ? *estimate / scale : -1;
@@ -176,7 +173,7 @@ inline Cell Judge(bool ok, double err, std::optional<double> estimate, double sc
     c.how = !failure.empty()      ? failure
             : warns               ? warning
             : diagnostics.empty() ? "not ok"
-                                  : diagnostics.back().substr(0, 90);
+                                  : diagnostics.back().text.substr(0, 90);
   } else if (covers) {
     c.verdict = Verdict::kFailsSaysSo;
     c.how = "estimate covers the error";

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/work_estimate.h"
 #include "ltp/integrate/integrator.h"
@@ -165,10 +166,25 @@ struct FloquetMode {
   std::optional<double> forward_whirl;
 };
 
+/// How a Floquet analysis ended; ok is true exactly for kCompleted.
+enum class Termination {
+  kNotRun,              ///< AnalyzeFloquet was not called
+  kCompleted,           ///< every step ran and the result passed its checks
+  kIntegrationFailed,   ///< the state transition over the period failed
+  kEigenvaluesFailed,   ///< no eigenvalues of the monodromy (every fallback failed)
+  kChecksFailed,        ///< the result failed its own checks (Liouville, the two cut-offs)
+  kNoModesBelowCutoff,  ///< FloquetOptions::modes_below left no mode to analyse
+};
+
+/// A stable name of `t` ("checks_failed").
+std::string_view ToString(Termination t);
+
 struct FloquetResult {
   /// false: the integration failed, or the result failed its own checks (Liouville beyond the
   /// error estimate); modes are kept when they were computed, see diagnostics.
   bool ok = false;
+  /// Why the analysis ended as it did; set with `failure` by Fail, or kCompleted with ok.
+  Termination termination = Termination::kNotRun;
   /// Why ok is false, one sentence (also among the diagnostics); empty when ok.
   std::string failure;
   int states = 0;
@@ -228,7 +244,7 @@ struct FloquetResult {
   std::optional<ModalReduction> reduction;
   long rhs_evals = 0;  ///< evaluations of A(t)Φ; kTaylor: products A_j Φ_k of the series
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 
   /// Ξ(t) from the Fourier coefficients of the mode shapes (spectral interpolation).
   Eigen::MatrixXcd ModeMatrix(double t) const;
@@ -237,6 +253,10 @@ struct FloquetResult {
   Eigen::MatrixXcd LeftModes(double t) const;
   /// One line: K, max Re λ, stability, error, time.
   std::string BriefReport() const;
+  /// Marks the result failed: ok false, `termination` and `failure` set together.
+  void Fail(Termination why, std::string sentence);
+  /// Marks the result usable: ok, kCompleted, no failure.
+  void Complete();
 };
 
 /// Floquet analysis of the homogeneous part x' = A(t) x. Never throws for numerical trouble

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/core/periodic_system.h"
@@ -142,6 +143,8 @@ struct HillResult {
   /// The structured solver found fewer than n exponents (or failed the Liouville check) and
   /// the dense one gave them.
   bool dense_fallback = false;
+  /// The rule that chose the physical exponents; selection_rule is its name, ToString(selection).
+  HillSelectionRule selection = HillSelectionRule::kCentroid;
   std::string selection_rule;
   /// The n physical exponents (same struct and order as AnalyzeFloquet: by |frequency|,
   /// positive first, then Re λ). branch_margin = 0.5 − |centroid|.
@@ -202,7 +205,7 @@ struct HillResult {
   /// All eigenvalues of the Hill matrix (dense solver) or those found (structured).
   std::vector<std::complex<double>> eigenvalues;
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 
   /// One line: N, size, max Re λ, error estimates, time.
   std::string BriefReport() const;
@@ -259,7 +262,7 @@ struct HillStudy {
   /// max_harmonics; reference exponents Hill did not match last).
   std::vector<std::complex<double>> reference;
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// `options.harmonics` is overridden per row. With a reference (the monodromy route), errors
@@ -277,7 +280,7 @@ struct HillStudyRun {
   HillStudy study;
   HillResult last;  ///< AnalyzeHill at N = max_harmonics
   /// last's diagnostics, then the study's that last does not already have.
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 inline constexpr int kHillStudyMaxHarmonics = 32;
 inline constexpr double kHillStudyReferenceTol = 1e-12;

@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/htf/pfrf.h"
@@ -85,7 +86,7 @@ struct HinfNorm {
   int section_harmonics = 0;
   int search_points = 0;
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// ‖G‖₂: ((1/T) ∫_0^T ∫_0^∞ ‖g(t + τ, t)‖_F² dτ dt)^{1/2}, g the impulse response.
@@ -103,7 +104,7 @@ struct H2Norm {
   double modal_value = 0;
   std::optional<double> lyapunov_value;  ///< empty when the route was skipped
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// The routes to the transmission zeros (docs/htf-operator.md, "Zeros").
@@ -187,7 +188,7 @@ struct TransmissionZeros {
   /// and eigenvalues of the truncation edge).
   int uncentred_eigenvalues = 0;
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// The harmonic transfer function of one system: set up once (a Floquet decomposition and the
@@ -222,7 +223,7 @@ class HarmonicTransferFunction {
   const SystemFourier& coefficients() const { return hill_.coefficients(); }
   /// The modal model is reliable and the Hill route's truncation converged.
   bool ok() const;
-  std::vector<std::string> diagnostics() const;
+  std::vector<Diagnostic> diagnostics() const;
 
  private:
   PeriodicSystem system_;

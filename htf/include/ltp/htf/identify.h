@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/htf/time_data.h"
 
 namespace ltp {
@@ -47,7 +48,7 @@ struct IdentifiedFrequency {
 struct IdentifyResult {
   int min_order = 0, max_order = 0;
   std::vector<IdentifiedFrequency> frequencies;  ///< one per record, by excitation frequency
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// A record whose excitation_hz is 0 (not written) is excited at its input's strongest line.

@@ -21,9 +21,11 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/htf/route_reason.h"
 #include "ltp/integrate/integrator.h"
 
 namespace ltp {
@@ -93,7 +95,7 @@ struct ModalModel {
   bool reliable = false;
   long rhs_evals = 0;
   double elapsed_s = 0;  ///< building the model (the Floquet analysis not included)
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 
   /// H_z(ω) for z = min_order..max_order.
   PartialFrfs Evaluate(double omega, int min_order, int max_order) const;
@@ -181,7 +183,7 @@ class HtfSolver {
   const SystemFourier& coefficients() const { return fourier_; }
   /// The automatic truncation reached its target (always true for a fixed N).
   bool truncation_converged() const { return truncation_converged_; }
-  const std::vector<std::string>& diagnostics() const { return diagnostics_; }
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
 
  private:
   int n_ = 0, m_ = 0, p_ = 0;
@@ -191,7 +193,7 @@ class HtfSolver {
   int harmonics_ = 0, ha_ = 0;
   double fourier_tail_ = 0;
   SystemFourier fourier_;
-  std::vector<std::string> diagnostics_;
+  std::vector<Diagnostic> diagnostics_;
   std::map<int, std::shared_ptr<const internal::ShiftedHessenbergSolver>> reduced_;  ///< by N
 
   PartialFrfs EvaluateBanded(std::complex<double> s, int min_order, int max_order, int N) const;
@@ -247,7 +249,7 @@ class ForcedResponseSolver {
   /// Largest upper-half amplitude ratio of the response spectra so far (sampling check).
   double sample_tail() const { return sample_tail_; }
   long rhs_evals() const { return rhs_evals_; }
-  const std::vector<std::string>& diagnostics() const { return diagnostics_; }
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
 
  private:
   // y_p from y(t0) over [t0, t0 + periods·T], writing the samples of the last period (S per
@@ -271,7 +273,7 @@ class ForcedResponseSolver {
   /// Breakpoints only, with 0 and T: the grid of the periods that record nothing (settling),
   /// where landing on every sample would only cut the steps short.
   std::vector<double> jump_pieces_;
-  std::vector<std::string> diagnostics_;
+  std::vector<Diagnostic> diagnostics_;
 };
 
 // --- Sweeps ---------------------------------------------------------------------------------
@@ -312,7 +314,7 @@ struct RouteRun {
   int failures = 0;
   double setup_s = 0;    ///< one-off work (decomposition, Fourier fit, Φ samples)
   double elapsed_s = 0;  ///< setup + all points
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 struct Resonance {
@@ -341,7 +343,8 @@ struct PfrfResult {
   std::vector<std::vector<double>> error_estimate;
   std::vector<bool> checked;     ///< frequency f had check routes run on it
   std::vector<RouteRun> routes;  ///< primary first
-  /// Why these routes (automatic choice), or "as requested".
+  /// Why these routes: the kind, and in words (the routes and the reason, or "as requested").
+  RouteReason route_reason = RouteReason::kAsRequested;
   std::string route_choice;
   /// Route auto tried the modal route first and its check found it wrong (beyond
   /// max(1e-8, 100 × the Floquet tolerance) of the largest |H_z|): the primary is then the
@@ -361,7 +364,7 @@ struct PfrfResult {
   std::vector<double> order_max;    ///< max_f |H_z| per order
   std::vector<Resonance> resonances;
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// Sets the primary and check routes from a route name, as `ltp pfrf --route` and Python's

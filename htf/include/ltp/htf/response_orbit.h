@@ -12,8 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/whirl.h"
 #include "ltp/htf/harmonic_transfer_function.h"
+#include "ltp/htf/route_reason.h"
 
 namespace ltp {
 
@@ -86,10 +88,11 @@ struct OrbitSweep {
   std::string failure;         ///< why ok is false, one sentence; empty when ok
   std::vector<double> omegas;  ///< excitation frequencies ω (rad/s), as given
   int min_order = 0, max_order = 0;
-  OperatorRoute route = OperatorRoute::kModal;  ///< whose values are reported
-  std::optional<OperatorRoute> check_route;     ///< empty without the check
-  std::string route_choice;                     ///< why this route ("as requested", ...)
-  int spin = 1;                                 ///< RotorSpin of the system
+  OperatorRoute route = OperatorRoute::kModal;           ///< whose values are reported
+  std::optional<OperatorRoute> check_route;              ///< empty without the check
+  RouteReason route_reason = RouteReason::kAsRequested;  ///< why this route
+  std::string route_choice;  ///< the same in words ("as requested", ...)
+  int spin = 1;              ///< RotorSpin of the system
   /// orbits[i][z − min_order]: order z at omegas[i], by `route`
   std::vector<std::vector<ResponseOrbit>> orbits;
   /// Each value's |ΔX| + |ΔY| between the routes: a bound on how far any of its radii and
@@ -102,7 +105,7 @@ struct OrbitSweep {
   double max_semi_major = 0;             ///< over the sweep
   double max_disagreement = 0;           ///< max error_estimate (0 without the check)
   double max_relative_disagreement = 0;  ///< divided by max_semi_major
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// ResponseOrbits at every frequency of `omegas` (rad/s) on the one set-up of `htf`, by the

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/htf/time_data.h"
 
@@ -65,9 +66,9 @@ struct SimulateOptions {
 
 struct SimulationResult {
   TimeData data;
-  double settle_time = 0;                ///< s, integrated before each record
-  double max_real_exponent = 0;          ///< of the system (1/s)
-  std::vector<std::string> diagnostics;  ///< e.g. frequencies moved to the record's grid
+  double settle_time = 0;               ///< s, integrated before each record
+  double max_real_exponent = 0;         ///< of the system (1/s)
+  std::vector<Diagnostic> diagnostics;  ///< e.g. frequencies moved to the record's grid
 };
 
 /// @throws InputError for bad options, an input the system does not have, an unstable or

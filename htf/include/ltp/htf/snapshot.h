@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/htf/pfrf.h"
 
@@ -55,7 +56,7 @@ struct SnapshotResult {
   bool modal_reliable = true;
   std::vector<std::complex<double>> floquet_exponents;  ///< compare only
   double elapsed_s = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// @throws InputError (bad options, channel out of range, angle without a rotor speed).

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 
 namespace ltp {
@@ -91,7 +92,7 @@ struct LinOperatingPoint {
   std::vector<LtiSystem> samples;  ///< A, B, C, D at each azimuth, channels in that order
   /// Index of the generator-azimuth state (the rigid rotation of the rotor), if any.
   std::optional<int> azimuth_state;
-  std::vector<std::string> diagnostics;  ///< e.g. unevenly spaced azimuths
+  std::vector<Diagnostic> diagnostics;  ///< e.g. unevenly spaced azimuths
 
   int size() const { return static_cast<int>(azimuths.size()); }
   double period() const;

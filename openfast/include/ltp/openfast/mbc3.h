@@ -42,6 +42,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/openfast/linearization.h"
 
@@ -147,7 +148,7 @@ struct Mbc3Result {
   double max_real_part = 0;
   /// max_k ‖A_NR(ψ_k) − mean‖ / ‖mean‖ (Frobenius): the periodicity averaging discards.
   double periodic_part = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// MBC3 of a set of `.lin` files at one operating point. @throws InputError when channels

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/mode_description.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/studies/mode_tracking.h"
@@ -88,7 +89,7 @@ struct CampbellDiagram {
   std::vector<CampbellCrossing> crossings;  ///< by line, then per-rev, then parameter
   /// Intervals of the swept parameter where the system is stable but weakly damped.
   std::vector<std::pair<double, double>> weakly_damped;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// Names mode `mode` of point `point` (indices into the sweep points and their modes).

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/integrate/integrator.h"
 
@@ -40,7 +41,7 @@ struct SegmentGrid {
   /// Matrix products inside the factors of fixed-step methods (Magnus, expm): their steps,
   /// each with its own rounding that no error control sees. 0 for adaptive methods.
   long fixed_steps = 0;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;
 };
 
 SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOptions& options);
