@@ -7,6 +7,7 @@
 
 #include "ltp/core/channel.h"
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 #include "time_data_csv.h"
 
 namespace ltp::cli {
@@ -26,12 +27,10 @@ std::string WithoutUnit(const std::string& name) {
   return Trim(at == std::string::npos ? name : name.substr(0, at));
 }
 
-std::vector<std::string> Split(const std::string& line, char separator) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, separator)) cells.push_back(Trim(cell));
-  if (!line.empty() && line.back() == separator) cells.emplace_back();
+// The trimmed cells of a table line.
+std::vector<std::string> Cells(const std::string& line, char separator) {
+  std::vector<std::string> cells = SplitAt(line, separator);
+  for (std::string& cell : cells) cell = Trim(cell);
   return cells;
 }
 
@@ -92,7 +91,7 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
     double x = 0;
     bool numeric = false;
     for (char sep : {';', '\t', ','})
-      numeric = numeric || ParseNumber(Split(text, sep)[0], sep == ';', &x);
+      numeric = numeric || ParseNumber(Cells(text, sep)[0], sep == ';', &x);
     if (numeric) break;
   }
   if (first == 0 || first == lines.size())
@@ -104,7 +103,7 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
   table.path = path;
   const char separator = SeparatorOf(lines[first - 1].second);
   const bool decimal_comma = separator == ';';  // a semicolon file may write decimal commas
-  const std::vector<std::string> header = Split(lines[first - 1].second, separator);
+  const std::vector<std::string> header = Cells(lines[first - 1].second, separator);
   int time_column = -1;
   for (size_t c = 0; c < header.size(); ++c) {
     const std::string name = WithoutUnit(header[c]);
@@ -117,7 +116,7 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
   std::vector<std::vector<double>> rows;
   for (size_t l = first; l < lines.size(); ++l) {
     const std::string where = path + ":" + std::to_string(lines[l].first);
-    const std::vector<std::string> cells = Split(lines[l].second, separator);
+    const std::vector<std::string> cells = Cells(lines[l].second, separator);
     if (cells.size() != header.size())
       throw InputError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
                        std::to_string(header.size()));

@@ -17,6 +17,7 @@
 #include "format.h"
 #include "ltp/core/channel.h"
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 #include "ltp/core/whirl.h"
 #include "ltp/htf/frequency_range.h"
 #include "ltp/htf/harmonic_transfer_function.h"
@@ -54,13 +55,6 @@ struct OrbitSetup {
   std::vector<double> frequencies_hz;
   OrbitSweepOptions options;
 };
-
-std::string Split1(std::string& rest, char sep) {
-  const size_t at = rest.find(sep);
-  std::string head = rest.substr(0, at);
-  rest = at == std::string::npos ? "" : rest.substr(at + 1);
-  return head;
-}
 
 // A real number at the start of `s` (strtod), advancing `s`; false when there is none.
 bool TakeNumber(const char*& s, double* x) {
@@ -121,9 +115,7 @@ std::string InputName(const PeriodicSystem& sys, int i) {
 Eigen::VectorXcd ParseInputWeights(const std::string& text, const PeriodicSystem& sys) {
   Eigen::VectorXcd u = Eigen::VectorXcd::Zero(sys.inputs());
   std::vector<bool> given(static_cast<size_t>(sys.inputs()), false);
-  std::string rest = text;
-  do {
-    const std::string item = Split1(rest, ',');
+  for (const std::string& item : SplitAt(text, ',')) {
     const size_t eq = item.find('=');
     if (eq == std::string::npos)
       throw InputError("--input: expected NAME=WEIGHT items separated by commas, got '" + item +
@@ -134,7 +126,7 @@ Eigen::VectorXcd ParseInputWeights(const std::string& text, const PeriodicSystem
       throw InputError("--input: input '" + InputName(sys, i) + "' is given twice");
     given[static_cast<size_t>(i)] = true;
     u(i) = ParseWeight(item.substr(eq + 1), "--input " + item.substr(0, eq));
-  } while (!rest.empty());
+  }
   if (u.cwiseAbs().maxCoeff() == 0) throw InputError("--input: every weight is zero");
   return u;
 }
@@ -145,12 +137,12 @@ Eigen::VectorXcd UnbalanceFrom(const std::string& text, const PeriodicSystem& sy
   if (sys.inputs() < 2)
     throw InputError("--unbalance needs two force inputs; scene '" + scene + "' has " +
                      std::to_string(sys.inputs()) + " (use --input NAME=WEIGHT)");
-  std::string rest = text;
-  const std::string fx = Split1(rest, ',');
-  if (fx.empty() || rest.empty() || rest.find(',') != std::string::npos)
+  const std::vector<std::string> pair = SplitAt(text, ',');
+  if (pair.size() != 2 || pair[0].empty() || pair[1].empty())
     throw InputError("--unbalance: expected FX,FY (two inputs), got '" + text + "'");
+  const std::string& fx = pair[0];
   const int ix = ResolveChannel(fx, sys.labels().inputs, sys.inputs(), "--unbalance", "input");
-  const int iy = ResolveChannel(rest, sys.labels().inputs, sys.inputs(), "--unbalance", "input");
+  const int iy = ResolveChannel(pair[1], sys.labels().inputs, sys.inputs(), "--unbalance", "input");
   if (ix == iy) throw InputError("--unbalance: FX and FY name the same input '" + fx + "'");
   return UnbalanceInput(sys.inputs(), ix, iy, RotorSpin(sys));
 }

@@ -14,15 +14,6 @@ namespace ltp::cli {
 
 namespace {
 
-std::vector<std::string> SplitCsv(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
 double Number(const std::string& text, const std::string& where) {
   const std::optional<double> x = NumberIn(text);
   if (!x) throw InputError(where + ": '" + text + "' is not a number");
@@ -212,7 +203,7 @@ TimeData ReadTimeDataCsv(const std::string& path, double period, bool require_pe
       ReadCommentLine(line, where, data, file_period);
       continue;
     }
-    const std::vector<std::string> cells = SplitCsv(line);
+    const std::vector<std::string> cells = SplitAt(line, ',');
     if (!header) {
       ReadHeader(cells, where, data);
       header = true;

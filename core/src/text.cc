@@ -17,6 +17,16 @@ std::string Trim(std::string_view s) {
   return std::string(s.substr(first, last - first + 1));
 }
 
+std::vector<std::string> SplitAt(std::string_view s, char separator) {
+  std::vector<std::string> parts;
+  for (size_t start = 0;;) {
+    const size_t at = s.find(separator, start);
+    parts.emplace_back(s.substr(start, at == std::string_view::npos ? s.npos : at - start));
+    if (at == std::string_view::npos) return parts;
+    start = at + 1;
+  }
+}
+
 namespace {
 
 // Byte offset of the first byte that breaks UTF-8, or npos.

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "ltp/core/error.h"
+#include "ltp/core/text.h"
 
 namespace ltp {
 
@@ -21,18 +22,6 @@ double ParseNumber(const std::string& s, const std::string& what) {
   }
 }
 
-std::vector<std::string> Split(const std::string& s, char sep) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  for (;;) {
-    const size_t at = s.find(sep, start);
-    parts.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) break;
-    start = at + 1;
-  }
-  return parts;
-}
-
 int ParseInt(const std::string& s, const std::string& what) {
   try {
     size_t used = 0;
@@ -47,7 +36,7 @@ int ParseInt(const std::string& s, const std::string& what) {
 }  // namespace
 
 std::vector<double> ParseFrequencyRange(const std::string& text, const std::string& option) {
-  const auto parts = Split(text, ':');
+  const auto parts = SplitAt(text, ':');
   if (parts.size() != 3) throw InputError(option + " must be F0:F1:DF in Hz, got '" + text + "'");
   const double f0 = ParseNumber(parts[0], option + " F0"),
                f1 = ParseNumber(parts[1], option + " F1");
@@ -64,7 +53,7 @@ std::vector<double> ParseFrequencyRange(const std::string& text, const std::stri
 
 std::vector<double> ParseFrequencyList(const std::string& text, const std::string& option) {
   std::vector<double> f;
-  for (const std::string& item : Split(text, ',')) {
+  for (const std::string& item : SplitAt(text, ',')) {
     if (item.empty()) throw InputError(option + ": an empty item in '" + text + "'");
     const std::vector<double> part = item.find(':') == std::string::npos
                                          ? std::vector<double>{ParseNumber(item, option)}
@@ -77,7 +66,7 @@ std::vector<double> ParseFrequencyList(const std::string& text, const std::strin
 }
 
 std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& option) {
-  const auto parts = Split(text, ':');
+  const auto parts = SplitAt(text, ':');
   if (parts.size() == 1) {
     const int z = ParseInt(parts[0], option);
     return {z, z};
@@ -90,7 +79,7 @@ std::pair<int, int> ParseOrderRange(const std::string& text, const std::string& 
 }
 
 std::pair<double, double> ParseFrequencyBand(const std::string& text, const std::string& option) {
-  const std::vector<std::string> parts = Split(text, ':');
+  const std::vector<std::string> parts = SplitAt(text, ':');
   if (parts.size() != 2) throw InputError(option + ": expected F0:F1 (Hz), got '" + text + "'");
   const double f0 = ParseNumber(parts[0], option), f1 = ParseNumber(parts[1], option);
   if (!(f0 >= 0 && f1 > f0))

@@ -183,8 +183,9 @@ TEST(OrbitCli, BadInputExitTwoOneLine) {
            j + "--unbalance fx,fy --y 0", "orbit mathieu --freq 0.1 --unbalance u,u",
            "orbit rotor --freq 0.1 --x x --y y --unbalance fx", j + "--unbalance fx,fx",
            j + "--unbalance fx,fz", j, j + "--unbalance fx,fy --input fx=1", j + "--input fx=abc",
-           j + "--input fx=1,fx=2", j + "--input fx=0", j + "--input fx",
-           j + "--unbalance fx,fy --route fast", j + "--unbalance fx,fy --orders 2:-2",
+           j + "--input fx=1,fx=2", j + "--input fx=0", j + "--input fx", j + "--input fx=1,",
+           j + "--unbalance fx,fy,", j + "--unbalance fx,fy --route fast",
+           j + "--unbalance fx,fy --orders 2:-2",
            "orbit jeffcott --freq 0.1,,0.2 --unbalance fx,fy",
            j + "--unbalance fx,fy --plot o.txt"}) {
     const auto r = RunLtp(args);

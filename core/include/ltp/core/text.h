@@ -10,6 +10,10 @@ namespace ltp {
 /// `s` without leading and trailing blanks (space, tab, CR, LF).
 std::string Trim(std::string_view s);
 
+/// `s` cut at every `separator`: n separators give n + 1 parts, empty ones included ("a,,b," →
+/// "a", "", "b", ""; "" → ""). The one splitter of the readers and option parsers.
+std::vector<std::string> SplitAt(std::string_view s, char separator);
+
 /// Where `text` stops being UTF-8 (RFC 3629: no overlong forms, surrogates or code points
 /// beyond U+10FFFF), as "not valid UTF-8 text (byte 0x.. on line .. at offset ..); `rule`"
 /// (the line when `text` has several), or empty when it is valid. Names read from files end up in
