@@ -375,9 +375,11 @@ internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int s
 // Fewest segments whose factors stay well conditioned: the study's K panel found more
 // segments only cost time once every factor is below the limit, and fewer lose the small
 // multipliers (stiff.yaml: K = 1 overflows, K = 4 is off by 327 1/s).
-std::string DescribeSegmentChoice(const internal::SegmentGrid& grid,
-                                  const FloquetOptions& options) {
+std::string DescribeSegmentChoice(const internal::SegmentGrid& grid, const FloquetOptions& options,
+                                  bool in_modes) {
   const int k = static_cast<int>(grid.times.size()) - 1;
+  // Which measure judged the factors (docs/model-sizes.md, "Segments in the mean's modes").
+  const char* measure = in_modes ? " in the mean's modes" : "";
   std::ostringstream s;
   s << "segments auto → K = " << k
     << (!options.estimate_error || !grid.local_error_effects.empty() ? ""
@@ -388,12 +390,12 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid,
   if (k == grid.initial_segments)
     s << "the " << grid.initial_segments
       << (grid.initial_segments == 1 ? " segment" : " uniform segments")
-      << " already keep every factor's condition below " << options.max_factor_condition
+      << " already keep every factor's condition below " << options.max_factor_condition << measure
       << " (worst " << std::setprecision(3) << grid.worst_condition << ")";
   else
     s << "refined from " << grid.initial_segments
       << " where factors grew or decayed beyond condition " << options.max_factor_condition
-      << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
+      << measure << " (worst now " << std::setprecision(3) << grid.worst_condition << ")";
   return s.str();
 }
 
@@ -878,7 +880,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   for (auto& d : CollapseRepeated(grid.diagnostics)) r.diagnostics.push_back(std::move(d));
   if (options.segments == 0 && grid.ok)
     r.diagnostics.push_back(
-        {DiagnosticCode::kSegmentsChosen, Severity::kNote, DescribeSegmentChoice(grid, options)});
+        {DiagnosticCode::kSegmentsChosen, Severity::kNote,
+         DescribeSegmentChoice(grid, options, grid_options.modal_basis.has_value())});
   if (!grid.ok) {
     r.Fail(Termination::kIntegrationFailed,
            grid.diagnostics.empty() ? "the integration of the period failed"
