@@ -1,6 +1,6 @@
 // The real eigenvector basis of a constant matrix, in which the segment grid measures the
-// condition of factors made by integrators that are exact for the mean of A(t)
-// (docs/model-sizes.md, "Segments in the mean's modes").
+// condition of factors made by integrators whose error is a backward error of each step's
+// generator (docs/model-sizes.md, "Segments in the mean's modes").
 #pragma once
 
 #include <Eigen/Dense>

@@ -21,10 +21,12 @@ struct SegmentGridOptions {
   double max_factor_condition = 1e3;
   int max_segments = 20000;
   int threads = 1;
-  /// When set (RealModalBasis of the mean Ā), a factor Φ's condition is measured as that of
-  /// W⁻¹ Φ W: for integrators exact for the mean the factor's error sits on each mode's own
-  /// scale, so what limits a segment is how far the modes' rates spread over it, not how
-  /// non-normal the states make Ā (docs/model-sizes.md, "Segments in the mean's modes").
+  /// When set (RealModalBasis of the mean Ā), a factor Φ is also measured as W⁻¹ Φ W and
+  /// accepted when either measure is within the limit. For integrators whose error is a
+  /// backward error of each step's generator (Magnus, Magnus–Filon, exponentials) that error
+  /// sits on each mode's own scale in this basis, so what limits a segment is how far the modes'
+  /// rates spread over it, not how non-normal the states make Ā (docs/model-sizes.md,
+  /// "Segments in the mean's modes").
   std::optional<Eigen::MatrixXd> modal_basis;
 };
 
