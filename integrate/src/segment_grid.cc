@@ -16,15 +16,10 @@ namespace ltp::internal {
 namespace {
 
 // σmax/σmin of a factor after diagonal balancing (LAPACK dgebal, scaling only); +inf for a
-// non-finite or singular one. Balancing matters: in [p; p'] coordinates an oscillator's factor
-// has singular values ω and 1/ω although nothing grows or decays, and the raw condition number
-// would split the period into thousands of segments for no gain in accuracy. With a modal
-// basis W (given with its LU), the factor is first taken into the mean's modes: W⁻¹ Φ W.
-double FactorCondition(const Eigen::MatrixXd& f, const Eigen::MatrixXd* w,
-                       const Eigen::PartialPivLU<Eigen::MatrixXd>* lu) {
-  if (f.size() == 0) return 1;
-  if (!f.allFinite()) return std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd b = w ? Eigen::MatrixXd(lu->solve(f * *w)) : f;
+// singular one. Balancing matters: in [p; p'] coordinates an oscillator's factor has singular
+// values ω and 1/ω although nothing grows or decays, and the raw condition number would split
+// the period into thousands of segments for no gain in accuracy.
+double BalancedCondition(Eigen::MatrixXd b) {
   const Eigen::MatrixXd unbalanced = b;
   const lapack_int n = static_cast<lapack_int>(b.rows());
   lapack_int ilo = 0, ihi = 0;
@@ -32,6 +27,19 @@ double FactorCondition(const Eigen::MatrixXd& f, const Eigen::MatrixXd* w,
   if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0)
     b = unbalanced;
   return ConditionNumber(b);
+}
+
+// A factor's condition as the grid judges it (+inf when not finite). With a modal basis W (given
+// with its LU) the factor is first taken into the mean's modes, W⁻¹ Φ W, and the states' measure
+// is consulted only when that one exceeds the limit: a factor either measure accepts is
+// accepted, so the basis never asks for more segments than the states would.
+double FactorCondition(const Eigen::MatrixXd& f, const SegmentGridOptions& options,
+                       const Eigen::PartialPivLU<Eigen::MatrixXd>* modal_lu) {
+  if (f.size() == 0) return 1;
+  if (!f.allFinite()) return std::numeric_limits<double>::infinity();
+  if (!modal_lu) return BalancedCondition(f);
+  const double modal = BalancedCondition(modal_lu->solve(f * *options.modal_basis));
+  return modal <= options.max_factor_condition ? modal : std::min(modal, BalancedCondition(f));
 }
 
 // How many equal parts a piece of condition `cond` is split into (log cond is additive along
@@ -65,7 +73,6 @@ void Integrate(const PeriodicSystem& system, std::vector<Segment>& pieces,
                const Eigen::PartialPivLU<Eigen::MatrixXd>* modal_lu) {
   const IntegratorOptions& integrator = options.integrator;
   const int threads = options.threads;
-  const Eigen::MatrixXd* w = options.modal_basis ? &*options.modal_basis : nullptr;
   std::vector<std::pair<double, double>> intervals;
   for (size_t i : todo) intervals.emplace_back(pieces[i].t0, pieces[i].t1);
   std::vector<TransitionResult> results =
@@ -75,8 +82,10 @@ void Integrate(const PeriodicSystem& system, std::vector<Segment>& pieces,
   for (long j = 0; j < count; ++j) {
     Segment& p = pieces[todo[j]];
     p.tr = std::move(results[j]);
-    p.cond =
-        p.tr.ok ? FactorCondition(p.tr.phi, w, modal_lu) : std::numeric_limits<double>::infinity();
+    // Only a grid that refines needs the conditions (an SVD per factor).
+    p.cond = !p.tr.ok         ? std::numeric_limits<double>::infinity()
+             : options.refine ? FactorCondition(p.tr.phi, options, modal_lu)
+                              : 1;
   }
 }
 

@@ -39,7 +39,7 @@ struct SegmentGrid {
   std::vector<Eigen::MatrixXd> local_error_effects;
   long rhs_evals = 0;
   int initial_segments = 0;    ///< the uniform grid it started from
-  double worst_condition = 1;  ///< max over the factors of σmax/σmin
+  double worst_condition = 1;  ///< max over the factors of σmax/σmin (1 unless refining)
   /// Matrix products inside the factors of fixed-step methods (Magnus, expm): their steps,
   /// each with its own rounding that no error control sees. 0 for adaptive methods.
   long fixed_steps = 0;
