@@ -872,7 +872,8 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // the integrator.
   const bool constant = s.traits && s.traits->constant_pieces && !s.traits->has_jumps;
   internal::SegmentGridOptions grid_options = GridOptionsFor(options, grid_samples, n, constant);
-  grid_options.modal_basis = ModalBasisForTheGrid(s);
+  // Only a grid that refines measures its factors' conditions.
+  if (grid_options.refine) grid_options.modal_basis = ModalBasisForTheGrid(s);
   grid_options.integrator.on_advance = progress.Phase("run");
   internal::SegmentGrid grid = internal::ComputeSegmentGrid(s.system, grid_options);
   r.rhs_evals += grid.rhs_evals;

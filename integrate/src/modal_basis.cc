@@ -12,7 +12,7 @@ namespace ltp::internal {
 
 namespace {
 
-// W with dgeevx (balanced, transformed back; each eigenvector of unit norm) or, in the
+// W with dgeev (which balances, transforms back and gives each eigenvector unit norm) or, in the
 // sanitizer build, Eigen's pseudo-eigenvectors with each real vector and each complex pair's
 // (a, b) scaled to unit norm together (separate scales would make D's 2×2 blocks non-normal).
 std::optional<Eigen::MatrixXd> Eigenvectors(const Eigen::MatrixXd& a) {
@@ -20,12 +20,9 @@ std::optional<Eigen::MatrixXd> Eigenvectors(const Eigen::MatrixXd& a) {
 #ifndef LTP_EIGEN_ONLY
   const auto m = static_cast<lapack_int>(n);
   Eigen::MatrixXd work = a, w(n, n);
-  std::vector<double> re(n), im(n), scale(n), rconde(n), rcondv(n);
-  lapack_int ilo = 0, ihi = 0;
-  double abnrm = 0;
-  if (LAPACKE_dgeevx(LAPACK_COL_MAJOR, 'B', 'N', 'V', 'N', m, work.data(), m, re.data(), im.data(),
-                     nullptr, 1, w.data(), m, &ilo, &ihi, scale.data(), &abnrm, rconde.data(),
-                     rcondv.data()) != 0)
+  std::vector<double> re(n), im(n);
+  if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', m, work.data(), m, re.data(), im.data(), nullptr, 1,
+                    w.data(), m) != 0)
     return std::nullopt;
   return w;
 #else

@@ -10,6 +10,7 @@
 
 #include "integrator_internal.h"
 #include "ltp/integrate/detail/condition_number.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
 
@@ -19,13 +20,12 @@ namespace {
 // singular one. Balancing matters: in [p; p'] coordinates an oscillator's factor has singular
 // values ω and 1/ω although nothing grows or decays, and the raw condition number would split
 // the period into thousands of segments for no gain in accuracy.
-double BalancedCondition(Eigen::MatrixXd b) {
-  const Eigen::MatrixXd unbalanced = b;
+double BalancedCondition(const Eigen::MatrixXd& f) {
+  Eigen::MatrixXd b = f;
   const lapack_int n = static_cast<lapack_int>(b.rows());
   lapack_int ilo = 0, ihi = 0;
   std::vector<double> scale(n);
-  if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0)
-    b = unbalanced;
+  if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n, b.data(), n, &ilo, &ihi, scale.data()) != 0) b = f;
   return ConditionNumber(b);
 }
 
@@ -38,7 +38,9 @@ double FactorCondition(const Eigen::MatrixXd& f, const SegmentGridOptions& optio
   if (f.size() == 0) return 1;
   if (!f.allFinite()) return std::numeric_limits<double>::infinity();
   if (!modal_lu) return BalancedCondition(f);
-  const double modal = BalancedCondition(modal_lu->solve(f * *options.modal_basis));
+  Eigen::MatrixXd fw(f.rows(), f.cols());
+  MultiplyInto(f, *options.modal_basis, fw);
+  const double modal = BalancedCondition(modal_lu->solve(fw));
   return modal <= options.max_factor_condition ? modal : std::min(modal, BalancedCondition(f));
 }
 
@@ -107,7 +109,7 @@ SegmentGrid ComputeSegmentGrid(const PeriodicSystem& system, const SegmentGridOp
   for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   const double log_limit = std::log(options.max_factor_condition);
   std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> modal_lu;
-  if (options.modal_basis) modal_lu.emplace(*options.modal_basis);
+  if (options.modal_basis && options.refine) modal_lu.emplace(*options.modal_basis);
   for (int round = 0;; ++round) {
     Integrate(system, pieces, todo, options, modal_lu ? &*modal_lu : nullptr);
     for (size_t i : todo) grid.rhs_evals += pieces[i].tr.rhs_evals;
