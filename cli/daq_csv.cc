@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <sstream>
 
 #include "ltp/core/channel.h"
 #include "ltp/core/error.h"
