@@ -318,7 +318,7 @@ std::vector<std::string> Texts(const std::vector<Diagnostic>& diagnostics) {
   return texts;
 }
 
-// The same grouping as CollapseRepeatedLines: by code and the text's shape without numbers.
+// Grouped by code and the text's shape without numbers.
 std::vector<Diagnostic> CollapseRepeated(const std::vector<Diagnostic>& diagnostics, int keep) {
   using Key = std::pair<DiagnosticCode, std::string>;
   std::map<Key, size_t> count;

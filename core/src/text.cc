@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <map>
 #include <sstream>
 
 namespace ltp {
@@ -84,23 +83,6 @@ std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule)
     s << " on line " << 1 + std::count(before.begin(), before.end(), '\n');
   s << " at offset " << at << "); " << rule;
   return s.str();
-}
-
-std::vector<std::string> CollapseRepeatedLines(const std::vector<std::string>& lines, int keep) {
-  std::map<std::string, size_t> count;
-  for (const std::string& l : lines) ++count[NumberShape(l)];
-  std::map<std::string, size_t> seen;
-  std::vector<std::string> out;
-  for (const std::string& l : lines) {
-    const std::string key = NumberShape(l);
-    const size_t k = ++seen[key];
-    if (k <= static_cast<size_t>(keep) || count[key] <= static_cast<size_t>(keep) + 1) {
-      out.push_back(l);
-    } else if (k == static_cast<size_t>(keep) + 1) {
-      out.push_back("… and " + std::to_string(count[key] - keep) + " more like the above");
-    }
-  }
-  return out;
 }
 
 }  // namespace ltp
