@@ -40,6 +40,11 @@ constexpr double kProductsPerPiece = 2 * 12;
 // Magnus 6 where MagnusOverTheMeanPays (A(t) constant to the tolerance around fast modes):
 // the 64-state generated rotor took 882 evaluations.
 constexpr double kNearlyConstantMagnus = 1000;
+// Taylor series: a step of order p = −ln tol spans about p/e² radians of the fastest motion at
+// any tolerance (docs/taylor-integrator.md), about e² orders per radian in each pass; the run
+// and the refined run make two (the 120-state finite-element shaft: 13 orders per radian over
+// the analysis).
+constexpr double kTaylorOrdersPerRadian = 15;
 // CVODE's cost per right-hand side in evaluations (see EstimateFloquetWork).
 constexpr double kCvodeTypicalCost = 10;
 constexpr double kCvodeLeastCost = 2;
@@ -131,6 +136,16 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
     s << "T·ρ(A) = " << traits.oscillation << " radians per period, about "
       << std::lround(per_radian) << " evaluations each (a low-order method's steps at tol "
       << integrator.rel_tol << ", their exponentials counted as evaluations)";
+  } else if (integrator.type == IntegratorType::kTaylor) {
+    // Products, not evaluations: series_products_per_order for each order of a step.
+    const double radians = std::max(traits.oscillation, traits.stiffness);
+    const double per_radian =
+        kTaylorOrdersPerRadian * std::max(traits.series_products_per_order, 0.5);
+    w.fewest_evaluations = kFewestFraction * per_radian * radians;
+    w.evaluations = per_radian * radians;
+    s << "T·ρ(A) = " << radians << " radians per period to follow, about "
+      << std::lround(per_radian) << " products each over the analysis (Taylor series, "
+      << traits.series_products_per_order << " per order)";
   } else if (integrator.type == IntegratorType::kExpm) {
     w.fewest_evaluations = pieces;
     w.evaluations = kProductsPerPiece * pieces;

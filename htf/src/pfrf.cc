@@ -173,11 +173,17 @@ void AdoptPrimary(const std::vector<internal::RoutePoint>& at, RouteRun& run, Pf
 
 // Per-point deviations of a check route from the primary bound the primary's error only up to
 // the check route's own error, so that is added (measured and assumed). Without it the
-// estimate fell just below the true error whenever both routes erred the same way.
+// estimate fell just below the true error whenever both routes erred the same way. The check's
+// rounding is added too: its truncation change does not show it, and near a Jordan block the
+// Hill solve is as ill-conditioned as the modes' matrix Ξ, about u·cond Ξ·|H| (undamped Mathieu
+// 1e-9 inside a tongue boundary, cond Ξ = 3e4: htf off shooting by 3e-11, 4.5e-12 of |H|).
 void MergeCheck(const std::vector<internal::RoutePoint>& at, RouteRun& run, PfrfResult& r) {
+  const double condition = r.modal ? std::max(r.modal->condition, 1.0) : 1.0;
   for (size_t q = 0; q < run.points.size(); ++q) {
     const int i = run.points[q];
-    const double own = run.own_error[q];
+    const double rounding =
+        std::numeric_limits<double>::epsilon() * condition * internal::LargestFinite(at[q].values);
+    const double own = run.own_error[q] + rounding;
     double worst = 0;
     for (size_t z = 0; z < r.values[i].size(); ++z) {
       const double d = std::abs(at[q].values[z] - r.values[i][z]) + own;

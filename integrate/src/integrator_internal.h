@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,21 @@ std::vector<Piece> TransitionPieces(const PeriodicSystem& system, const std::vec
 std::vector<TransitionResult> OdeintTransitions(const PeriodicSystem& system,
                                                 const std::vector<Piece>& pieces,
                                                 const IntegratorOptions& options);
+
+/// What a Taylor-series step exploits in a Fourier-form A(t) (integrator_taylor.cc).
+struct TaylorSeriesShape {
+  int harmonics = 0;  ///< H: A(t) = A₀ + Σ_{w ≤ H} cos wΩt C_w + sin wΩt S_w
+  /// A = [0 D; A₂₁ A₂₂] with D diagonal (the identity or its balanced scaling) and every
+  /// harmonic in the lower rows: only the lower rows of a term need products.
+  bool second_order = false;
+  bool constant_damping = false;   ///< second order, and the harmonics leave A₂₂ alone
+  Eigen::VectorXd upper_diagonal;  ///< D (second order only)
+  /// Products of n × n matrices per order of the series: 1 + 2H; (1 + 2H)/2 in second-order
+  /// form; (1 + H)/2 with constant damping.
+  double ProductsPerOrder() const;
+};
+/// The shape of A(t)'s series; nullopt when A(t) is not a Fourier series.
+std::optional<TaylorSeriesShape> ShapeOfSeries(const PeriodicSystem& system);
 
 /// kTaylor (integrator_taylor.cc) for a Fourier-form system: Φ(t_{i+1}, t_i) for consecutive
 /// `times`, one result each (fewer, the last not ok, when a step failed); max_steps bounds the

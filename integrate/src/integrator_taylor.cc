@@ -2,7 +2,9 @@
 // polynomial (the Fourier form). There every derivative of A at a step's start is exact and
 // cheap — harmonic w contributes (wΩ)^j/j! times its cos/sin turned by jπ/2 — so the series of Φ
 // follows from the recurrence Φ_{k+1} = Σ_j A_j Φ_{k−j} / (k + 1) without evaluating A anywhere
-// else, and one step of order p ≈ −ln(tol) spans what Bulirsch–Stoer covers in many
+// else, and one step of order p ≈ −ln(tol) spans what Bulirsch–Stoer covers in many. The
+// convolution is summed per harmonic: Σ_j A_j Φ_{k−j} = Ā Φ_k + Σ_w (C_w X_w + S_w Y_w) with
+// X_w, Y_w scalar-weighted sums of the Φ_i, so an order costs 1 + 2H products, not k + 1
 // (docs/taylor-integrator.md: the order and step rule, and what they cost).
 #include <Eigen/Dense>
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "integrator_internal.h"
+#include "ltp/integrate/detail/matrix_product.h"
 
 namespace ltp::internal {
 
@@ -27,12 +30,19 @@ class TaylorSeriesStepper {
         omega_(system.omega()),
         rel_tol_(options.rel_tol),
         abs_tol_(options.abs_tol) {
-    series_ = system.RealSeriesA(&harmonics_);
-    a_.assign(static_cast<size_t>(order_) + 1, Matrix::Zero(n_, n_));
-    phi_.assign(static_cast<size_t>(order_) + 1, Matrix::Zero(n_, n_));
-    a_[0] = Block(0);
-    second_order_ = SecondOrderForm();
-    constant_damping_ = second_order_ && ConstantLowerRight();
+    series_ = system.RealSeriesA(nullptr);
+    shape_ = *ShapeOfSeries(system);
+    terms_.setZero(static_cast<Eigen::Index>(n_) * n_, order_ + 1);
+    weights_.assign(static_cast<size_t>(2 * shape_.harmonics) * (order_ + 1), 0.0);
+    inner_ = shape_.constant_damping ? n_ / 2 : n_;
+    if (shape_.second_order) upper_diagonal_ = shape_.upper_diagonal;
+    // The BLAS path's buffers (a stability map builds a stepper per point: n = 2 skips them).
+    if constexpr (N == Eigen::Dynamic) {
+      reversed_weights_.setZero(order_ + 1, 2 * shape_.harmonics);
+      sums_.setZero(static_cast<Eigen::Index>(n_) * n_, 2 * shape_.harmonics);
+      lower_.setZero(shape_.second_order ? n_ / 2 : n_, n_);
+      if (inner_ < n_) inner_terms_.setZero(static_cast<Eigen::Index>(inner_) * n_, order_ + 1);
+    }
   }
 
   /// Φ(t1, t0) into `result` (steps and products added); false when a step's series is not
@@ -45,7 +55,8 @@ class TaylorSeriesStepper {
         result.message = "Taylor series: more than max_steps steps";
         return false;
       }
-      SeriesOfA(t);
+      SeriesOfHarmonics(t);
+      if constexpr (N != Eigen::Dynamic) SeriesOfA();
       const double tol = abs_tol_ + rel_tol_ * phi.cwiseAbs().maxCoeff();
       // Steps that cannot reach t1 skip the check for an early end (on n = 2 it costs about a
       // quarter of the step).
@@ -61,11 +72,11 @@ class TaylorSeriesStepper {
         return false;
       }
       // Horner: Φ(t + h) = Σ_k Φ_k h^k.
-      phi = phi_[static_cast<size_t>(order)];
-      for (int k = order - 1; k >= 0; --k) phi = phi_[static_cast<size_t>(k)] + h * phi;
+      phi = Term(order);
+      for (int k = order - 1; k >= 0; --k) phi = Term(k) + h * phi;
       t = h == t1 - t ? t1 : t + h;
       ++result.steps;
-      result.rhs_evals += static_cast<long>(order) * (order + 1) / 2;
+      result.rhs_evals += std::lround(order * shape_.ProductsPerOrder());
     }
     result.phi = phi;
     return true;
@@ -76,54 +87,37 @@ class TaylorSeriesStepper {
   // little about the tail).
   static constexpr int kMinOrder = 4;
 
-  // The order from the tolerance: a step of order p is p²/2 products and, for coefficients
-  // decaying like (ωh)^k/k!, spans h ∝ p tol^{1/p}, so the work per unit time ∝ p tol^{−1/p}
-  // is least at p = −ln tol (23 at 1e-10). Clamped to where the series stays cheap.
+  // The order from the tolerance: for coefficients decaying like (ωh)^k/k! a step of order p
+  // spans h ∝ p tol^{1/p}. p = −ln tol (23 at 1e-10) keeps the largest term, e^{ωh}, and with
+  // it the rounding, small (docs/taylor-integrator.md). Clamped to where the series stays cheap.
   static int TaylorOrder(double rel_tol) {
     return std::clamp(static_cast<int>(std::ceil(-std::log(rel_tol))), 8, 36);
+  }
+
+  // Φ_k, the k-th Taylor coefficient of Φ at the step's start (a column of terms_).
+  Eigen::Map<Matrix> Term(int k) { return Eigen::Map<Matrix>(terms_.col(k).data(), n_, n_); }
+  Eigen::Map<const Matrix> Term(int k) const {
+    return Eigen::Map<const Matrix>(terms_.col(k).data(), n_, n_);
   }
 
   Eigen::Map<const Matrix> Block(int b) const {
     return Eigen::Map<const Matrix>(series_ + static_cast<size_t>(b) * n_ * n_, n_, n_);
   }
 
-  // A = [0 I; A₂₁ A₂₂] with every harmonic zero in the upper rows: the upper half of each
-  // Φ_{k+1} is the lower half of Φ_k / (k + 1), and only the lower rows need products.
-  bool SecondOrderForm() const {
-    if (n_ % 2 != 0) return false;
-    const int h = n_ / 2;
-    const Matrix a0 = Block(0);
-    for (int j = 0; j < n_; ++j)
-      for (int i = 0; i < h; ++i)
-        if (a0(i, j) != (j == i + h ? 1.0 : 0.0)) return false;
-    for (int b = 1; b <= 2 * harmonics_; ++b)
-      if (!Block(b).topRows(h).isZero(0)) return false;
-    return true;
-  }
-
-  // Second-order form whose harmonics leave A₂₂ alone (constant damping, e.g. Mathieu, the
-  // Jeffcott rotor): for j ≥ 1 lower(A_j) Φ = A₂₁,j · upper(Φ), half the products.
-  bool ConstantLowerRight() const {
-    const int h = n_ / 2;
-    for (int b = 1; b <= 2 * harmonics_; ++b)
-      if (!Block(b).bottomRightCorner(h, h).isZero(0)) return false;
-    return true;
-  }
-
-  // A_j = A^(j)(t)/j!, j = 0 … p: the mean block A₀ (j = 0 only) plus every harmonic's j-th
-  // derivative.
-  void SeriesOfA(double t) {
-    a_[0] = Block(0);
-    for (int j = 1; j <= order_; ++j) a_[static_cast<size_t>(j)].setZero();
-    if (harmonics_ == 0) return;
+  // The scalar series of each harmonic at the step's start t: weights_ holds, for harmonic w
+  // and j = 0 … p, (wΩ)^j/j! · cos(wΩt + jπ/2) and · sin(wΩt + jπ/2), the Taylor coefficients
+  // of cos wΩ(t + τ) and sin wΩ(t + τ) in τ (the jπ/2 turns are sign swaps).
+  void SeriesOfHarmonics(double t) {
     const double c1 = std::cos(omega_ * t), s1 = std::sin(omega_ * t);
     double c = c1, s = s1;
-    for (int w = 1; w <= harmonics_; ++w) {
-      const auto cw = Block(2 * w - 1), sw = Block(2 * w);
+    for (int w = 1; w <= shape_.harmonics; ++w) {
+      double* cos_w = CosWeights(w);
+      double* sin_w = SinWeights(w);
       double scale = 1;       // (wΩ)^j / j!
       double cj = c, sj = s;  // cos and sin of wΩt + jπ/2
       for (int j = 0; j <= order_; ++j) {
-        a_[static_cast<size_t>(j)] += (scale * cj) * cw + (scale * sj) * sw;
+        cos_w[j] = scale * cj;
+        sin_w[j] = scale * sj;
         const double turned = -sj;
         sj = cj;
         cj = turned;
@@ -135,62 +129,126 @@ class TaylorSeriesStepper {
     }
   }
 
+  double* CosWeights(int w) {
+    return weights_.data() + static_cast<size_t>(2 * (w - 1)) * (order_ + 1);
+  }
+  double* SinWeights(int w) { return CosWeights(w) + (order_ + 1); }
+
   // Φ_0 = Φ, Φ_{k+1} = Σ_{j ≤ k} A_j Φ_{k−j} / (k + 1), up to the order; returns the order
   // computed. With left > 0, stops early when the series already reaches the end of the
   // interval, `left` ahead, within the tolerance — the last step of an interval, short
   // segments.
   int SeriesOfPhi(const Matrix& phi, double tol, double left) {
-    phi_[0] = phi;
+    Term(0) = phi;
     double power = 1;                                            // left^(k+1)
     double last_term = std::numeric_limits<double>::infinity();  // ‖Φ_k‖ left^k
     for (int k = 0; k < order_; ++k) {
-      Matrix& next = phi_[static_cast<size_t>(k) + 1];
-      const double inv = 1.0 / (k + 1);
-      if (second_order_) {
-        SecondOrderTerm(k, inv, next);
-      } else {
-        next.noalias() = a_[0] * phi_[static_cast<size_t>(k)];
-        for (int j = 1; j <= k; ++j)
-          next.noalias() += a_[static_cast<size_t>(j)] * phi_[static_cast<size_t>(k - j)];
-        next *= inv;
-      }
+      NextTerm(k);
       if (left == 0) continue;
       power *= left;
-      const double term = phi_[static_cast<size_t>(k) + 1].cwiseAbs().maxCoeff() * power;
+      const double term = terms_.col(k + 1).cwiseAbs().maxCoeff() * power;
       if (k + 1 >= kMinOrder && term <= tol && last_term <= tol) return k + 1;
       last_term = term;
     }
     return order_;
   }
 
-  // Φ_{k+1} = (1/(k+1)) [Φ_k's lower half; Σ_j lower(A_j) Φ_{k−j}]: fixed-size halves for
-  // fixed N (a dynamic block would send the tiny products through Eigen's general kernel).
-  void SecondOrderTerm(int k, double inv, Matrix& next) const {
+  // Φ_{k+1} = (Ā Φ_k + Σ_w C_w X_w + S_w Y_w) / (k + 1), X_w = Σ_j cos_w[j] Φ_{k−j} and Y_w
+  // likewise. In second-order form A = [0 D; A₂₁ A₂₂] with every harmonic in the lower rows:
+  // the upper half of Φ_{k+1} is D times the lower half of Φ_k/(k + 1), and only the lower rows
+  // need products; with constant damping (harmonics only in A₂₁) only the upper rows of X_w
+  // and Y_w enter.
+  void NextTerm(int k) {
+    if constexpr (N == Eigen::Dynamic) {
+      NextTermInBlas(k);
+    } else {
+      NextTermFixed(k);
+    }
+  }
+
+  // Large n: the 2H sums in one product of the stored terms with their weights, every product
+  // through BLAS.
+  void NextTermInBlas(int k) {
+    const int rows = static_cast<int>(lower_.rows());
+    MultiplyInto(Block(0).bottomRows(rows), Term(k), lower_);
+    if (shape_.harmonics > 0) {
+      for (int column = 0; column < 2 * shape_.harmonics; ++column) {
+        const double* weights = Weights(column);
+        for (int i = 0; i <= k; ++i) reversed_weights_(i, column) = weights[k - i];
+      }
+      const Eigen::MatrixXd& terms = inner_ < n_ ? inner_terms_ : terms_;
+      if (inner_ < n_) {
+        Eigen::Map<Eigen::MatrixXd>(inner_terms_.col(k).data(), inner_, n_) =
+            Term(k).topRows(inner_);
+      }
+      auto sums = sums_.topRows(static_cast<Eigen::Index>(inner_) * n_);
+      MultiplyInto(terms.leftCols(k + 1), reversed_weights_.topRows(k + 1), sums);
+      for (int column = 0; column < 2 * shape_.harmonics; ++column) {
+        const Eigen::Map<const Eigen::MatrixXd> sum(sums_.col(column).data(), inner_, n_);
+        MultiplyInto(Block(1 + column).bottomLeftCorner(rows, inner_), sum, lower_, 1.0);
+      }
+    }
+    FinishTerm(k, lower_);
+  }
+
+  // n = 2, 4: a product is a few flops, so the harmonics are combined into A's series once per
+  // step (SeriesOfA) and the recurrence convolves, k + 1 tiny products for order k — cheaper
+  // here than 2H weighted sums per order (the 401 × 401 Mathieu map 15 % faster).
+  void NextTermFixed(int k) {
     if constexpr (N != Eigen::Dynamic && N % 2 == 0) {
       constexpr int h = N / 2;
-      Eigen::Matrix<double, h, N> lower =
-          a_[0].template bottomRows<h>() * phi_[static_cast<size_t>(k)];
-      if (constant_damping_) {
-        for (int j = 1; j <= k; ++j)
-          lower.noalias() += a_[static_cast<size_t>(j)].template bottomLeftCorner<h, h>() *
-                             phi_[static_cast<size_t>(k - j)].template topRows<h>();
-      } else {
-        for (int j = 1; j <= k; ++j)
-          lower.noalias() += a_[static_cast<size_t>(j)].template bottomRows<h>() *
-                             phi_[static_cast<size_t>(k - j)];
+      if (shape_.second_order) {
+        Eigen::Matrix<double, h, N> lower = a_[0].template bottomRows<h>() * Term(k);
+        for (int j = 1; j <= k; ++j) {
+          if (shape_.constant_damping) {
+            lower.noalias() += a_[static_cast<size_t>(j)].template bottomLeftCorner<h, h>() *
+                               Term(k - j).template topRows<h>();
+          } else {
+            lower.noalias() += a_[static_cast<size_t>(j)].template bottomRows<h>() * Term(k - j);
+          }
+        }
+        FinishTerm(k, lower);
+        return;
       }
-      next.template bottomRows<h>() = inv * lower;
-      next.template topRows<h>() = inv * phi_[static_cast<size_t>(k)].template bottomRows<h>();
-    } else {
-      const int h = n_ / 2;
-      auto lower = next.bottomRows(h);
-      lower.noalias() = a_[0].bottomRows(h) * phi_[static_cast<size_t>(k)];
-      for (int j = 1; j <= k; ++j)
-        lower.noalias() +=
-            a_[static_cast<size_t>(j)].bottomRows(h) * phi_[static_cast<size_t>(k - j)];
-      lower *= inv;
-      next.topRows(h) = inv * phi_[static_cast<size_t>(k)].bottomRows(h);
     }
+    Matrix next = a_[0] * Term(k);
+    for (int j = 1; j <= k; ++j) next.noalias() += a_[static_cast<size_t>(j)] * Term(k - j);
+    FinishTerm(k, next);
+  }
+
+  // A_j = A^(j)(t)/j!, j = 0 … p, from the harmonics' series (fixed sizes only).
+  void SeriesOfA() {
+    a_.resize(static_cast<size_t>(order_) + 1);
+    for (int j = 0; j <= order_; ++j) {
+      Matrix& aj = a_[static_cast<size_t>(j)];
+      aj = j == 0 ? Matrix(Block(0)) : Matrix::Zero(n_, n_);
+      for (int column = 0; column < 2 * shape_.harmonics; ++column)
+        aj += Weights(column)[j] * Block(1 + column);
+    }
+  }
+
+  // Φ_{k+1} from its computed rows (all, or the lower half in second-order form).
+  template <typename Rows>
+  void FinishTerm(int k, const Rows& computed) {
+    const double inv = 1.0 / (k + 1);
+    auto next = Term(k + 1);
+    constexpr int kRows = Rows::RowsAtCompileTime;
+    if constexpr (N != Eigen::Dynamic && kRows != Eigen::Dynamic) {  // fixed sizes throughout
+      next.template bottomRows<kRows>() = inv * computed;
+      if constexpr (kRows < N)
+        next.template topRows<N - kRows>() =
+            inv * upper_diagonal_.asDiagonal() * Term(k).template bottomRows<N - kRows>();
+    } else {
+      const int rows = static_cast<int>(computed.rows()), skip = n_ - rows;
+      next.bottomRows(rows) = inv * computed;
+      if (skip > 0)
+        next.topRows(skip) = inv * upper_diagonal_.asDiagonal() * Term(k).bottomRows(skip);
+    }
+  }
+
+  // The series of harmonic (column / 2 + 1)'s cosine (even columns) or sine (odd).
+  const double* Weights(int column) const {
+    return weights_.data() + static_cast<size_t>(column) * (order_ + 1);
   }
 
   // The longest h whose last two terms ‖Φ_k‖ h^k (k = p − 1, p) are within `tol` (the
@@ -199,7 +257,7 @@ class TaylorSeriesStepper {
   double StepLength(double tol, int order) const {
     double h = std::numeric_limits<double>::infinity();
     for (int k : {order - 1, order}) {
-      const double size = phi_[static_cast<size_t>(k)].cwiseAbs().maxCoeff();
+      const double size = terms_.col(k).cwiseAbs().maxCoeff();
       if (!std::isfinite(size)) return std::numeric_limits<double>::quiet_NaN();
       if (size > 0) h = std::min(h, std::pow(tol / size, 1.0 / k));
     }
@@ -210,13 +268,56 @@ class TaylorSeriesStepper {
   int order_;
   double omega_, rel_tol_, abs_tol_;
   const double* series_ = nullptr;
-  int harmonics_ = 0;
-  bool second_order_ = false;
-  bool constant_damping_ = false;  // second order, harmonics only in A₂₁
-  std::vector<Matrix> a_, phi_;    // the series of A(t) and of Φ at the step's start
+  TaylorSeriesShape shape_;
+  int inner_ = 0;                     // the rows of X_w, Y_w that enter (all, or the upper half)
+  Eigen::MatrixXd terms_;             // Φ_0 … Φ_p at the step's start, one column each
+  std::vector<double> weights_;       // the harmonics' scalar series (SeriesOfHarmonics)
+  Eigen::MatrixXd reversed_weights_;  // weights_ of order k − i in row i: X_w, Y_w by a product
+  Eigen::MatrixXd inner_terms_;       // the upper rows of Φ_0 … Φ_p when only those enter X_w
+  Eigen::MatrixXd sums_;   // X_1, Y_1, … X_H, Y_H (the rows that enter), one column each
+  Eigen::MatrixXd lower_;  // the rows of Φ_{k+1} that need products (large n)
+  std::vector<Matrix> a_;  // A's series at the step's start (fixed sizes)
+  // D of the second-order form, fixed-size for n = 2, 4.
+  Eigen::Matrix<double, N == Eigen::Dynamic ? Eigen::Dynamic : N / 2, 1> upper_diagonal_;
   // The last step taken at the full order: a shorter interval end may be reached early.
   double full_step_ = std::numeric_limits<double>::infinity();
 };
+
+}  // namespace
+
+double TaylorSeriesShape::ProductsPerOrder() const {
+  // In second-order form a harmonic's product is (n/2 × n)(n × n), with constant damping
+  // (n/2 × n/2)(n/2 × n): half a full product, or a quarter.
+  const double products_of_harmonics = constant_damping ? 1.0 * harmonics : 2.0 * harmonics;
+  return (1 + products_of_harmonics) * (second_order ? 0.5 : 1.0);
+}
+
+std::optional<TaylorSeriesShape> ShapeOfSeries(const PeriodicSystem& system) {
+  TaylorSeriesShape shape;
+  const double* series = system.RealSeriesA(&shape.harmonics);
+  if (series == nullptr) return std::nullopt;
+  const int n = system.states();
+  if (n % 2 != 0) return shape;
+  const int h = n / 2;
+  auto block = [&](int b) {
+    return Eigen::Map<const Eigen::MatrixXd>(series + static_cast<size_t>(b) * n * n, n, n);
+  };
+  const auto a0 = block(0);
+  // A = [0 D; A₂₁ A₂₂], D diagonal, every harmonic zero in the upper rows.
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < h; ++i)
+      if (j != i + h && a0(i, j) != 0) return shape;
+  for (int b = 1; b <= 2 * shape.harmonics; ++b)
+    if (!block(b).topRows(h).isZero(0)) return shape;
+  shape.second_order = true;
+  shape.upper_diagonal = a0.topRightCorner(h, h).diagonal();
+  shape.constant_damping = true;
+  for (int b = 1; b <= 2 * shape.harmonics; ++b)
+    if (!block(b).bottomRightCorner(h, h).isZero(0)) shape.constant_damping = false;
+  return shape;
+}
+
+namespace {
 
 template <int N>
 std::vector<TransitionResult> RunTaylor(const PeriodicSystem& system,

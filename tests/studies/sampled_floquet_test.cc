@@ -226,18 +226,15 @@ TEST(LinSampledFloquet, TrigonometricRouteEstimateBoundsItsError) {
   }
 }
 
-// The trigonometric route as `ltp mbc` runs it — one Bulirsch–Stoer run with its local errors
-// carried (no refined run): its estimate bounds its error. Reference as above (Bulirsch–Stoer
-// at 1e-13, on the MBC-transformed samples the route integrates).
+// The trigonometric route as `ltp mbc` runs it — `auto` takes Taylor series for the fitted
+// series of 60 states, with a refined run; with Bulirsch–Stoer one run carries its local errors
+// instead: either estimate bounds its error. Reference as above (Bulirsch–Stoer at 1e-13, on
+// the MBC-transformed samples the route integrates).
 TEST(LinSampledFloquet, TrigonometricRouteAsMbcRunsItBoundsItsError) {
   const std::string dir = test::SourceDir() + "/tests/data/openfast/lin-60-states/";
   const LinOperatingPoint op =
       ReadLinOperatingPoint({dir + "Big.0.lin", dir + "Big.1.lin", dir + "Big.2.lin"});
   const Mbc3Result mbc = Mbc3(op);
-  const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc);
-  ASSERT_TRUE(r.ok && r.trig.error_estimate);
-  EXPECT_EQ(r.trig.error_estimate_method, ErrorEstimateMethod::kLocalErrors);
-  EXPECT_TRUE(r.hold.mode_samples.empty());  // the table shows MBC branches: no shapes needed
   FloquetOptions ref;
   ref.integrator.type = IntegratorType::kBulirschStoer;
   ref.integrator.rel_tol = 1e-13;
@@ -246,8 +243,19 @@ TEST(LinSampledFloquet, TrigonometricRouteAsMbcRunsItBoundsItsError) {
   const FloquetResult reference = AnalyzeFloquet(
       BuildLinSystem(InMultiBladeCoordinates(op, mbc), SampleInterpolation::kTrigonometric), ref);
   ASSERT_TRUE(reference.ok);
-  EXPECT_LT(MaxExponentMismatch(Exponents(r.trig), Exponents(reference), op.rotor_speed),
-            *r.trig.error_estimate);
+  for (const auto& [type, method] :
+       {std::pair{IntegratorType::kAuto, ErrorEstimateMethod::kRefinedRun},
+        std::pair{IntegratorType::kBulirschStoer, ErrorEstimateMethod::kLocalErrors}}) {
+    SCOPED_TRACE(ToString(type));
+    SampledFloquetOptions options;
+    options.floquet.integrator.type = type;
+    const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc, options);
+    ASSERT_TRUE(r.ok && r.trig.error_estimate);
+    EXPECT_EQ(r.trig.error_estimate_method, method);
+    EXPECT_TRUE(r.hold.mode_samples.empty());  // the table shows MBC branches: no shapes needed
+    EXPECT_LT(MaxExponentMismatch(Exponents(r.trig), Exponents(reference), op.rotor_speed),
+              *r.trig.error_estimate);
+  }
 }
 
 // The plain monodromy route on the .lin system (files' own coordinates, no MBC): the generator

@@ -11,9 +11,10 @@ namespace ltp::internal {
 /// Columns of b from which MultiplyInto calls BLAS (below it Eigen's own product is faster).
 inline constexpr int kBlasColumns = 16;
 
-/// out = a · b; out must not overlap a or b.
+/// out = a · b + beta · out; out must not overlap a or b.
 void MultiplyInto(const Eigen::Ref<const Eigen::MatrixXd>& a,
-                  const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> out);
+                  const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> out,
+                  double beta = 0);
 /// The same for complex matrices (zgemm): the periodic eigenvectors' Schur bases.
 void MultiplyInto(const Eigen::Ref<const Eigen::MatrixXcd>& a,
                   const Eigen::Ref<const Eigen::MatrixXcd>& b, Eigen::Ref<Eigen::MatrixXcd> out);
