@@ -206,7 +206,8 @@ BENCHMARK_CAPTURE(BM_Chain40, rkf78, IntegratorType::kRkf78)->Unit(benchmark::kM
 BENCHMARK_CAPTURE(BM_Chain40, cvode_bdf, IntegratorType::kCvodeBdf)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, magnus6, IntegratorType::kMagnus6)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Chain40, bs, IntegratorType::kBulirschStoer)->Unit(benchmark::kMillisecond);
-// Where Taylor series do not pay: p²/2 products of 40 × 40 matrices per step.
+// Taylor series on 40 states: 1 + 2H products of 40 × 40 matrices per order (0.46× bs on
+// 2026-11-29; 2.7× while a step was p²/2 products).
 BENCHMARK_CAPTURE(BM_Chain40, taylor, IntegratorType::kTaylor)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Chain40FullAnalysis)->Unit(benchmark::kMillisecond);
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "integrator_internal.h"
@@ -31,7 +32,7 @@ class TaylorSeriesStepper {
         rel_tol_(options.rel_tol),
         abs_tol_(options.abs_tol) {
     series_ = system.RealSeriesA(nullptr);
-    shape_ = *ShapeOfSeries(system);
+    shape_ = std::move(*ShapeOfSeries(system));
     terms_.setZero(static_cast<Eigen::Index>(n_) * n_, order_ + 1);
     weights_.assign(static_cast<size_t>(2 * shape_.harmonics) * (order_ + 1), 0.0);
     inner_ = shape_.constant_damping ? n_ / 2 : n_;
