@@ -112,8 +112,8 @@ class TaylorSeriesStepper {
     const double c1 = std::cos(omega_ * t), s1 = std::sin(omega_ * t);
     double c = c1, s = s1;
     for (int w = 1; w <= shape_.harmonics; ++w) {
-      double* cos_w = CosWeights(w);
-      double* sin_w = SinWeights(w);
+      double* cos_w = Weights(2 * (w - 1));
+      double* sin_w = Weights(2 * (w - 1) + 1);
       double scale = 1;       // (wΩ)^j / j!
       double cj = c, sj = s;  // cos and sin of wΩt + jπ/2
       for (int j = 0; j <= order_; ++j) {
@@ -129,11 +129,6 @@ class TaylorSeriesStepper {
       c = next_c;
     }
   }
-
-  double* CosWeights(int w) {
-    return weights_.data() + static_cast<size_t>(2 * (w - 1)) * (order_ + 1);
-  }
-  double* SinWeights(int w) { return CosWeights(w) + (order_ + 1); }
 
   // Φ_0 = Φ, Φ_{k+1} = Σ_{j ≤ k} A_j Φ_{k−j} / (k + 1), up to the order; returns the order
   // computed. With left > 0, stops early when the series already reaches the end of the
@@ -247,8 +242,9 @@ class TaylorSeriesStepper {
     }
   }
 
-  // The series of harmonic (column / 2 + 1)'s cosine (even columns) or sine (odd).
-  const double* Weights(int column) const {
+  // The series of harmonic (column / 2 + 1)'s cosine (even columns) or sine (odd), the
+  // weights of C_w and S_w = Block(1 + column).
+  double* Weights(int column) {
     return weights_.data() + static_cast<size_t>(column) * (order_ + 1);
   }
 
