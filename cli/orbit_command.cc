@@ -262,6 +262,7 @@ json OrbitJson(const OrbitSweep& r, const HarmonicTransferFunction& htf, const L
           {"route", std::string(ToString(r.route))},
           {"check_route", r.check_route ? json(std::string(ToString(*r.check_route))) : json()},
           {"route_choice", r.route_choice},
+          {"route_reason", std::string(CodeName(r.route_reason))},
           {"hill_harmonics", htf.hill_harmonics()},
           {"max_disagreement", JsonNumber(r.max_disagreement)},
           {"max_relative_disagreement", JsonNumber(r.max_relative_disagreement)},

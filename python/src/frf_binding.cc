@@ -91,6 +91,11 @@ void BindPfrfRoutes(py::class_<PfrfResult>& r) {
       .def_readonly("route_choice", &PfrfResult::route_choice,
                     "why these routes (automatic choice), or 'as requested'")
       .def_property_readonly(
+          "route_reason", [](const PfrfResult& r) { return std::string(CodeName(r.route_reason)); },
+          "why these routes, as a code for programs: 'as_requested', 'no_decomposition', "
+          "'modal_resolved', 'modal_unreliable' or 'modal_check_failed' (route_choice says it "
+          "in a sentence)")
+      .def_property_readonly(
           "routes",
           [](const PfrfResult& r) {
             py::list out;

@@ -60,6 +60,7 @@ TEST(OrbitCli, UnbalanceEqualsFourPfrfCallsCombined) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["route"], "modal");
   EXPECT_EQ(j["check_route"], "hill");
+  EXPECT_EQ(j["route_reason"], "modal_resolved");  // the typed reason beside route_choice
   ASSERT_EQ(j["frequencies"].size(), 2u);
   const cd mj(0, -1);
   int compared = 0;

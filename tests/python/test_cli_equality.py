@@ -117,6 +117,7 @@ def test_hill_equals_cli(ltp_cli, scene, parameters, extra):
 def assert_pfrf_equal(j, r):
     assert j["orders"] == [int(r.orders[0]), int(r.orders[-1])]
     assert j["primary_route"] == r.primary_route and j["route_choice"] == r.route_choice
+    assert j["route_reason"] == r.route_reason
     assert j["input"] == r.input and j["output"] == r.output
     assert same(j["fp_hz"], r.fp_hz) and same(j["period"], r.period)
     zmin = int(r.orders[0])

@@ -29,3 +29,15 @@ def test_a_failed_check_is_named_by_its_code():
     assert "liouville_check_failed" in r.diagnostic_codes
     k = r.diagnostic_codes.index("liouville_check_failed")
     assert r.diagnostics[k] == r.failure
+
+
+def test_the_route_choice_has_a_code_beside_its_sentence():
+    # Damped Mathieu: the modal model is resolved, so auto runs the modal route first, checked
+    # by htf (as tests/htf/pfrf_route_choice_test.cc finds for the same kind of system); a named
+    # route is "as requested".
+    mathieu = ltp.scene("mathieu", a=2, c=0.2)
+    auto = ltp.pfrf(mathieu, "0.1:0.5:0.1", orders=(-1, 1))
+    assert auto.primary_route == "modal" and auto.route_reason == "modal_resolved"
+    named = ltp.pfrf(mathieu, "0.1:0.5:0.1", route="htf", orders=(-1, 1))
+    assert named.primary_route == "htf" and named.route_reason == "as_requested"
+    assert named.route_choice.endswith("as requested")
