@@ -37,7 +37,9 @@ class TaylorSeriesStepper {
     weights_.assign(static_cast<size_t>(2 * shape_.harmonics) * (order_ + 1), 0.0);
     inner_ = shape_.constant_damping ? n_ / 2 : n_;
     if (shape_.second_order) upper_diagonal_ = shape_.upper_diagonal;
-    // The BLAS path's buffers (a stability map builds a stepper per point: n = 2 skips them).
+    // The BLAS path's buffers (a stability map builds a stepper per point: n = 2 skips them);
+    // the fixed sizes' series of A.
+    if constexpr (N != Eigen::Dynamic) a_.resize(static_cast<size_t>(order_) + 1);
     if constexpr (N == Eigen::Dynamic) {
       reversed_weights_.setZero(order_ + 1, 2 * shape_.harmonics);
       sums_.setZero(static_cast<Eigen::Index>(n_) * n_, 2 * shape_.harmonics);
@@ -214,7 +216,6 @@ class TaylorSeriesStepper {
 
   // A_j = A^(j)(t)/j!, j = 0 … p, from the harmonics' series (fixed sizes only).
   void SeriesOfA() {
-    a_.resize(static_cast<size_t>(order_) + 1);
     for (int j = 0; j <= order_; ++j) {
       Matrix& aj = a_[static_cast<size_t>(j)];
       aj = j == 0 ? Matrix(Block(0)) : Matrix::Zero(n_, n_);
