@@ -9,7 +9,7 @@
 #include <complex>
 #include <numbers>
 
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "support/systems.h"
 
 namespace {

@@ -377,11 +377,17 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
   }
 }
 
-void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+std::vector<int> HillTruncations(const Config& cfg) {
+  if (cfg.quick) return {2, 8, 16};
+  return {1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128, 256};
+}
+
+// Hill at fixed truncations N, dense and structured: one timed solve, and the estimate of what
+// `ltp floquet --method hill --harmonics N` reports.
+void RunHillTruncations(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
   const PeriodicSystem& s = sc.sys;
   const int n = s.states();
-  std::vector<int> ns = {1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128, 256};
-  if (cfg.quick) ns = {2, 8, 16};
+  const std::vector<int> ns = HillTruncations(cfg);
   for (HillSolver solver : {HillSolver::kDense, HillSolver::kStructured}) {
     for (int N : ns) {
       const int size = (2 * N + 1) * n;
@@ -426,8 +432,12 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
       if (row.t.wall_s > 3) break;
     }
   }
-  // What `ltp floquet --method hill` does by default: N doubled until N vs N+Δ meets the
-  // tolerance, the solver chosen per N (HillSolver::kAuto); timed whole, estimate included.
+}
+
+// What `ltp floquet --method hill` does by default: N doubled until N vs N+Δ meets the
+// tolerance, the solver chosen per N (HillSolver::kAuto); timed whole, estimate included.
+void RunHillAuto(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+  const PeriodicSystem& s = sc.sys;
   for (double tol : cfg.quick ? std::vector<double>{1e-6} : std::vector<double>{1e-5, 1e-10}) {
     Row row = NewRow(sc, "hill auto (N and solver)", "tol", tol);
     HillOptions o;
@@ -452,8 +462,13 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
               << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s (" << row.note << ")\n";
     if (row.t.wall_s > 3) break;
   }
-  // Koopman–Hill: Φ(T) ≈ C expm(H_N T) W, then eig; no selection among Hill eigenvalues.
-  for (int N : ns) {
+}
+
+// Koopman–Hill: Φ(T) ≈ C expm(H_N T) W, then eig; no selection among Hill eigenvalues.
+void RunKoopmanHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+  const PeriodicSystem& s = sc.sys;
+  const int n = s.states();
+  for (int N : HillTruncations(cfg)) {
     const int size = (2 * N + 1) * n;
     if (size > sc.max_koopman_size) break;
     Row row = NewRow(sc, "koopman-hill", "harmonics", N);
@@ -477,6 +492,12 @@ void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
     Finish(row, sc);
     rows.push_back(row);
   }
+}
+
+void RunHill(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows) {
+  RunHillTruncations(sc, cfg, rows);
+  RunHillAuto(sc, cfg, rows);
+  RunKoopmanHill(sc, cfg, rows);
 }
 
 // --- partial FRFs ---------------------------------------------------------------------------
@@ -539,74 +560,101 @@ Values ModalValues(const PeriodicSystem& s, const std::vector<double>& fhz, doub
   return v;
 }
 
-void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, std::ostream& log) {
-  const PeriodicSystem& s = sc.sys;
-  const auto& fhz = sc.freqs_hz;
-  // References: shooting (no Fourier truncation, rkf78 at 1e-13) for modal / htf / time;
-  // the modal route at 1e-13 for shooting itself. Their agreement is printed.
-  bool ok1 = false, ok2 = false;
-  const Values ref_shoot = ShootingValues(s, fhz, 1e-13, &ok1);
-  const Values ref_modal = ModalValues(s, fhz, 1e-13, &ok2);
-  double hscale = 0;
-  const double agree = FrfError(ref_modal, ref_shoot, &hscale);
-  log << sc.name << ": PFRF references shooting (rkf78 1e-13) vs modal (rkf78 1e-13) agree to "
-      << Fmt(agree / hscale) << " relative (max |H_z| " << Fmt(hscale) << ")\n";
-  {  // for the peers (benchmarks/peers/pfrf_stepsine_scipy.py): the reference values themselves
-    std::ofstream ref(cfg.out + "/pfrf_reference.csv", std::ios::app);  // header: main()
+// The partial-FRF panel of one scene: each route over its knob, measured against a reference by
+// another route.
+class PfrfStudy {
+ public:
+  PfrfStudy(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows)
+      : sc_(sc), s_(sc.sys), fhz_(sc.freqs_hz), cfg_(cfg), rows_(rows) {}
+
+  void Run(std::ostream& log) {
+    References(log);
+    const std::vector<double> tols =
+        cfg_.quick ? std::vector<double>{1e-5, 1e-10} : std::vector<double>{1e-4, 1e-8, 1e-12};
+    ModalLine(tols);
+    HtfLine();
+    ShootingLine(tols);
+    if (sc_.time_route) TimeLine();
+    SweepLines();
+    SweepHonesty();
+  }
+
+ private:
+  // References: shooting (no Fourier truncation, rkf78 at 1e-13) for modal / htf / time; the
+  // modal route at 1e-13 for shooting itself. Their agreement is printed.
+  void References(std::ostream& log) {
+    bool ok1 = false, ok2 = false;
+    ref_shoot_ = ShootingValues(s_, fhz_, 1e-13, &ok1);
+    ref_modal_ = ModalValues(s_, fhz_, 1e-13, &ok2);
+    agree_ = FrfError(ref_modal_, ref_shoot_, &hscale_);
+    log << sc_.name << ": PFRF references shooting (rkf78 1e-13) vs modal (rkf78 1e-13) agree to "
+        << Fmt(agree_ / hscale_) << " relative (max |H_z| " << Fmt(hscale_) << ")\n";
+    // For the peers (benchmarks/peers/pfrf_stepsine_scipy.py): the reference values themselves.
+    std::ofstream ref(cfg_.out + "/pfrf_reference.csv", std::ios::app);  // header: main()
     ref << std::setprecision(17);
-    for (size_t f = 0; f < fhz.size(); ++f)
+    for (size_t f = 0; f < fhz_.size(); ++f)
       for (int z = kMinOrder; z <= kMaxOrder; ++z) {
-        const cd h = ref_shoot[f][z - kMinOrder](0, 0);
-        ref << sc.name << "," << fhz[f] << "," << z << "," << h.real() << "," << h.imag() << ","
-            << agree / hscale << "\n";
+        const cd h = ref_shoot_[f][z - kMinOrder](0, 0);
+        ref << sc_.name << "," << fhz_[f] << "," << z << "," << h.real() << "," << h.imag() << ","
+            << agree_ / hscale_ << "\n";
       }
   }
-  auto add = [&](Row row, const Values& v, const Values& ref) {
+
+  void Add(Row row, const Values& v, const Values& ref) {
     row.error_abs = row.ok ? FrfError(v, ref) : kInf;
-    row.error_rel = row.error_abs / hscale;
+    row.error_rel = row.error_abs / hscale_;
     if (!std::isfinite(row.error_abs)) row.ok = false;
-    rows.push_back(row);
-    std::cerr << "  " << sc.name << " pfrf " << row.method << " " << row.knob_name << "="
+    rows_.push_back(row);
+    std::cerr << "  " << sc_.name << " pfrf " << row.method << " " << row.knob_name << "="
               << row.knob << " err " << Fmt(row.error_rel) << " cpu " << Fmt(row.t.cpu_s) << " s\n";
-  };
-  const std::vector<double> tols =
-      cfg.quick ? std::vector<double>{1e-5, 1e-10} : std::vector<double>{1e-4, 1e-8, 1e-12};
-  for (double tol : tols) {
-    Row row = NewRow(sc, "modal (Floquet rkf78)", "rel_tol", tol, "pfrf");
-    Values v;
-    row.t = TimeIt([&] { v = ModalValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
-    add(row, v, ref_shoot);
   }
-  for (int N : cfg.quick ? std::vector<int>{4, 16} : std::vector<int>{2, 4, 8, 16, 32, 64}) {
-    Row row = NewRow(sc, "htf (banded)", "harmonics", N, "pfrf");
-    Values v;
-    row.ok = true;
-    row.t = TimeIt(
-        [&] {
-          HtfOptions ho;
-          ho.harmonics = N;
-          HtfSolver htf(s, ho);
-          v.clear();
-          for (double f : fhz) v.push_back(htf.Evaluate(2 * kPi * f, kMinOrder, kMaxOrder));
-        },
-        cfg.repeats, cfg.budget_s);
-    add(row, v, ref_shoot);
-    if (row.t.wall_s > 3) break;
+
+  void ModalLine(const std::vector<double>& tols) {
+    for (double tol : tols) {
+      Row row = NewRow(sc_, "modal (Floquet rkf78)", "rel_tol", tol, "pfrf");
+      Values v;
+      row.t = TimeIt([&] { v = ModalValues(s_, fhz_, tol, &row.ok); }, cfg_.repeats, cfg_.budget_s);
+      Add(row, v, ref_shoot_);
+    }
   }
-  for (double tol : tols) {
-    Row row = NewRow(sc, "shooting (rkf78)", "rel_tol", tol, "pfrf");
-    Values v;
-    row.t = TimeIt([&] { v = ShootingValues(s, fhz, tol, &row.ok); }, cfg.repeats, cfg.budget_s);
-    add(row, v, ref_modal);
-    if (row.t.wall_s > 5) break;
+
+  void HtfLine() {
+    for (int N : cfg_.quick ? std::vector<int>{4, 16} : std::vector<int>{2, 4, 8, 16, 32, 64}) {
+      Row row = NewRow(sc_, "htf (banded)", "harmonics", N, "pfrf");
+      Values v;
+      row.ok = true;
+      row.t = TimeIt(
+          [&] {
+            HtfOptions ho;
+            ho.harmonics = N;
+            HtfSolver htf(s_, ho);
+            v.clear();
+            for (double f : fhz_) v.push_back(htf.Evaluate(2 * kPi * f, kMinOrder, kMaxOrder));
+          },
+          cfg_.repeats, cfg_.budget_s);
+      Add(row, v, ref_shoot_);
+      if (row.t.wall_s > 3) break;
+    }
   }
-  if (sc.time_route) {
+
+  void ShootingLine(const std::vector<double>& tols) {
+    for (double tol : tols) {
+      Row row = NewRow(sc_, "shooting (rkf78)", "rel_tol", tol, "pfrf");
+      Values v;
+      row.t =
+          TimeIt([&] { v = ShootingValues(s_, fhz_, tol, &row.ok); }, cfg_.repeats, cfg_.budget_s);
+      Add(row, v, ref_modal_);
+      if (row.t.wall_s > 5) break;
+    }
+  }
+
+  void TimeLine() {
     FloquetOptions fo = MonoOptions(IntegratorType::kRkf78);
     fo.compute_modes = true;
-    const FloquetResult fl = AnalyzeFloquet(s, fo);
+    const FloquetResult fl = AnalyzeFloquet(s_, fo);
     for (double settle :
-         cfg.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
-      Row row = NewRow(sc, "time (step-sine)", "settle_tol", settle, "pfrf");
+         cfg_.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-6, 1e-9}) {
+      Row row = NewRow(sc_, "time (step-sine)", "settle_tol", settle, "pfrf");
       Values v;
       row.t = TimeIt(
           [&] {
@@ -614,53 +662,57 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
             so.settle_tol = settle;
             so.rel_tol = std::min(1e-6, settle * 1e-2);
             so.abs_tol = so.rel_tol * 1e-3;
-            ForcedResponseSolver solver(s, so);
+            ForcedResponseSolver solver(s_, so);
             const double ts = ForcedResponseSolver::SettlingTime(fl, settle);
             v.clear();
             row.ok = true;
-            for (double f : fhz) {
+            for (double f : fhz_) {
               bool pt = true;
               v.push_back(solver.TimeSimulation(2 * kPi * f, kMinOrder, kMaxOrder, ts, &pt));
               row.ok = row.ok && pt;
             }
           },
-          1, cfg.budget_s);
-      add(row, v, ref_shoot);
+          1, cfg_.budget_s);
+      Add(row, v, ref_shoot_);
     }
   }
-  // The sweep `ltp pfrf` runs by default (route auto, integrator auto, a check every 10th
-  // frequency), over the Floquet tolerance, beside the same sweep with each route forced
-  // (`--route R`; its check chosen as auto would): the Floquet decomposition, the checks and the
-  // resonance attribution are in every one of them.
-  Values ref_channel;  // channel (0, 0) of the reference
-  for (const PartialFrfs& h : ref_shoot) {
-    ref_channel.emplace_back();
-    for (const auto& m : h) ref_channel.back().push_back(m.block(0, 0, 1, 1));
+
+  // `ltp pfrf`'s options: route `route`, integrator auto.
+  PfrfOptions SweepOptions(PfrfRoute route, double tol) const {
+    PfrfOptions po;
+    po.frequencies_hz = fhz_;
+    po.min_order = kMinOrder;
+    po.max_order = kMaxOrder;
+    po.primary = route;
+    po.floquet.integrator.type = IntegratorType::kAuto;
+    po.floquet.integrator.rel_tol = tol;
+    po.modal.integrator.type = IntegratorType::kAuto;
+    return po;
   }
-  for (const PfrfRoute route :
-       {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting})
-    for (double tol : {1e-10}) {
+
+  // The sweep `ltp pfrf` runs by default (route auto, integrator auto, a check every 10th
+  // frequency) beside the same sweep with each route forced (`--route R`; its check chosen as
+  // auto would): the Floquet decomposition, the checks and the resonance attribution are in
+  // every one of them. A sweep reports one channel: compared on channel (0, 0).
+  void SweepLines() {
+    Values ref_channel;
+    for (const PartialFrfs& h : ref_shoot_) {
+      ref_channel.emplace_back();
+      for (const auto& m : h) ref_channel.back().push_back(m.block(0, 0, 1, 1));
+    }
+    const double tol = 1e-10;
+    for (const PfrfRoute route :
+         {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf, PfrfRoute::kShooting}) {
       const std::string method = route == PfrfRoute::kAuto
                                      ? "ltp pfrf auto (default)"
                                      : "ltp pfrf --route " + std::string(ToString(route));
-      Row row = NewRow(sc, method, "rel_tol", tol, "pfrf");
-      Values v;
+      Row row = NewRow(sc_, method, "rel_tol", tol, "pfrf");
       PfrfResult pr;
-      row.t = TimeIt(
-          [&] {
-            PfrfOptions po;
-            po.frequencies_hz = fhz;
-            po.min_order = kMinOrder;
-            po.max_order = kMaxOrder;
-            po.primary = route;
-            po.floquet.integrator.type = IntegratorType::kAuto;
-            po.floquet.integrator.rel_tol = tol;
-            po.modal.integrator.type = IntegratorType::kAuto;
-            pr = ComputePartialFrf(s, po);
-          },
-          cfg.repeats, cfg.budget_s);
+      row.t = TimeIt([&] { pr = ComputePartialFrf(s_, SweepOptions(route, tol)); }, cfg_.repeats,
+                     cfg_.budget_s);
       row.ok = pr.ok;
-      for (size_t f = 0; f < fhz.size(); ++f) {
+      Values v;
+      for (size_t f = 0; f < fhz_.size(); ++f) {
         PartialFrfs h(kMaxOrder - kMinOrder + 1, Eigen::MatrixXcd::Zero(1, 1));
         for (int z = kMinOrder; z <= kMaxOrder; ++z)
           h[z - kMinOrder](0, 0) = pr.values[f][z - kMinOrder];
@@ -670,34 +722,45 @@ void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, st
       row.note = "picked " + std::string(ToString(pr.routes.front().route));
       for (size_t k = 1; k < pr.routes.size(); ++k)
         row.note += (k == 1 ? " checked by " : ", ") + std::string(ToString(pr.routes[k].route));
-      add(row, v, ref_channel);  // a sweep reports one channel: compared on that channel
-    }
-  // Honesty of the sweep a user runs (`ltp pfrf`: automatic route and checks), here with a
-  // check at every frequency so every value has its own estimate.
-  PfrfOptions po;
-  po.floquet.integrator.type = IntegratorType::kAuto;
-  po.modal.integrator.type = IntegratorType::kAuto;
-  po.frequencies_hz = fhz;
-  po.min_order = kMinOrder;
-  po.max_order = kMaxOrder;
-  po.check_every = 1;
-  const PfrfResult pr = ComputePartialFrf(s, po);
-  for (size_t f = 0; f < fhz.size(); ++f) {
-    for (int z = kMinOrder; z <= kMaxOrder; ++z) {
-      Row row = NewRow(sc, "ltp pfrf default (auto route + checks)", "freq_hz,order",
-                       fhz[f] + 1e-3 * z /* informative only */, "pfrf-honesty");
-      row.ok = pr.ok;
-      const cd got = pr.values[f][z - kMinOrder];
-      const cd ref = ref_shoot[f][z - kMinOrder](po.output, po.input);
-      row.estimate_error = std::abs(got - ref);
-      row.estimate = pr.error_estimate[f][z - kMinOrder];
-      row.floor = std::max(2 * agree, 1e-14 * hscale);  // as Finish()
-      row.error_abs = row.estimate_error;
-      row.error_rel = row.error_abs / hscale;
-      row.t = {pr.elapsed_s, pr.elapsed_s, 1};
-      rows.push_back(row);
+      Add(row, v, ref_channel);
     }
   }
+
+  // Honesty of the sweep a user runs (`ltp pfrf`: automatic route and checks), here with a
+  // check at every frequency so every value has its own estimate.
+  void SweepHonesty() {
+    PfrfOptions po = SweepOptions(PfrfRoute::kAuto, PfrfOptions{}.floquet.integrator.rel_tol);
+    po.check_every = 1;
+    const PfrfResult pr = ComputePartialFrf(s_, po);
+    for (size_t f = 0; f < fhz_.size(); ++f) {
+      for (int z = kMinOrder; z <= kMaxOrder; ++z) {
+        Row row = NewRow(sc_, "ltp pfrf default (auto route + checks)", "freq_hz,order",
+                         fhz_[f] + 1e-3 * z /* informative only */, "pfrf-honesty");
+        row.ok = pr.ok;
+        const cd got = pr.values[f][z - kMinOrder];
+        const cd ref = ref_shoot_[f][z - kMinOrder](po.output, po.input);
+        row.estimate_error = std::abs(got - ref);
+        row.estimate = pr.error_estimate[f][z - kMinOrder];
+        row.floor = std::max(2 * agree_, 1e-14 * hscale_);  // as Finish()
+        row.error_abs = row.estimate_error;
+        row.error_rel = row.error_abs / hscale_;
+        row.t = {pr.elapsed_s, pr.elapsed_s, 1};
+        rows_.push_back(row);
+      }
+    }
+  }
+
+  const StudyScene& sc_;
+  const PeriodicSystem& s_;
+  const std::vector<double>& fhz_;
+  const Config& cfg_;
+  std::vector<Row>& rows_;
+  Values ref_shoot_, ref_modal_;
+  double agree_ = 0, hscale_ = 0;
+};
+
+void RunPfrf(const StudyScene& sc, const Config& cfg, std::vector<Row>& rows, std::ostream& log) {
+  PfrfStudy(sc, cfg, rows).Run(log);
 }
 
 // --- honesty on sampled models and chart boundaries ------------------------------------------

@@ -12,8 +12,9 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
 #include "ltp/floquet/model_error.h"
+#include "ltp/hill/hill.h"
+#include "ltp/hill/hill_model_error.h"
 #include "ltp/models/rotor.h"
 #include "ltp/studies/rotor_mbc_check.h"
 #include "modal_reduction_output.h"
@@ -268,11 +269,14 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
             << VerdictText(r.verdict) << "   (max log|ρ| = " << Num(r.max_log_abs_multiplier, 8)
             << ")\n"
             << "  error estimate " << Num(r.error_estimate, 2) << " 1/s on every exponent "
-            << (r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-                    ? "(its steps' local errors, one\n  extrapolation order lower, carried to the "
-                      "exponents; the numbers come from that one run)\n"
-                    : "(difference to the run at the requested tolerance on\n  another grid; the "
-                      "numbers shown come from the refined, 100× tighter run)\n");
+            << (r.error_estimate_method != ErrorEstimateMethod::kLocalErrors
+                    ? "(difference to the run at the requested tolerance on\n  another grid; the "
+                      "numbers shown come from the refined, 100× tighter run)\n"
+                : r.integrator == IntegratorType::kTaylor
+                    ? "(difference to the product of the\n  steps' order-p sums; the numbers "
+                      "shown come from order p + 4 on the same steps)\n"
+                    : "(its steps' local errors, one\n  extrapolation order lower, carried to the "
+                      "exponents; the numbers come from that one run)\n");
   if (r.model_error)
     std::cout << "  of which the model's sampling error is " << Num(*r.model_error, 2)
               << " 1/s (other models of the same samples; docs/sampled-models.md)\n";
@@ -524,7 +528,8 @@ Command AddFloquetCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--estimate", args.estimate,
                   "refined-run (a second run at --tol/100 gives the numbers) | local-errors "
-                  "(Bulirsch–Stoer: one run, its steps' local errors carried to the exponents)")
+                  "(one run: Bulirsch–Stoer's steps' local errors carried to the exponents; "
+                  "Taylor series' order-p product beside the reported order p + 4)")
       ->capture_default_str();
   cmd->add_option("--mode-samples", args.options.mode_samples,
                   "samples of the mode shapes per period (power of two; 0 = automatic)")

@@ -13,7 +13,7 @@
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "plot.h"
 #include "progress_bar.h"
 #include "scene_args.h"

@@ -1,7 +1,7 @@
 # The installed CMake package: find_package(ltp) gives ltp::core, ltp::openfast, ltp::models,
-# ltp::integrate, ltp::floquet, ltp::htf and ltp::studies.
+# ltp::integrate, ltp::floquet, ltp::hill, ltp::htf and ltp::studies.
 # The targets install themselves into the export set ltpTargets (see core/, openfast/, models/,
-# integrate/, floquet/, htf/).
+# integrate/, floquet/, hill/, htf/).
 include(CMakePackageConfigHelpers)
 set(LTP_CONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/ltp)
 

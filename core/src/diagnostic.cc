@@ -122,8 +122,8 @@ constexpr bool InEnumOrder() {
   return true;
 }
 static_assert(InEnumOrder(), "kCodeNames must list every DiagnosticCode in the enum's order");
-static_assert(static_cast<size_t>(DiagnosticCode::kMatrixDropped) + 1 == kCodeNames.size(),
-              "kCodeNames must end with the enum's last code");
+static_assert(static_cast<size_t>(DiagnosticCode::kCount) == kCodeNames.size(),
+              "kCodeNames must name every DiagnosticCode");
 
 }  // namespace
 

@@ -16,6 +16,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
 #include "ltp/core/text.h"
+#include "ltp/floquet/detail/rigid_body.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/integrate/detail/modal_basis.h"
@@ -24,7 +25,6 @@
 #include "ltp/integrate/integrator_choice.h"
 #include "ltp/integrate/threads.h"
 #include "modes_below.h"
-#include "rigid_body.h"
 
 namespace ltp {
 
@@ -759,13 +759,19 @@ std::vector<double> IntegrationErrors(const Setup& s,
   const FloquetOptions& options = s.options;
   r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
                                                              : ErrorEstimateMethod::kLocalErrors;
-  if (options.estimate_error && n > 0 && options.error_estimate_method != r.error_estimate_method)
+  // Under `auto` the estimate follows the integrator it chose (r.error_estimate_method says
+  // which); a named integrator that carries no local errors, or Bulirsch–Stoer's failing, is
+  // worth a note.
+  const bool named = !s.traits || options.integrator.type == IntegratorType::kBulirschStoer;
+  if (options.estimate_error && n > 0 && named &&
+      options.error_estimate_method != r.error_estimate_method)
     r.diagnostics.push_back(
         {DiagnosticCode::kErrorEstimateFallback, Severity::kNote,
          options.integrator.type == IntegratorType::kBulirschStoer
              ? "error estimate: the carried local errors were not finite (a singular step "
                "matrix); the refined run instead"
-             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer only; " +
+             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer and Taylor "
+               "series only; " +
                    std::string(ToString(options.integrator.type)) +
                    " gets the refined run instead"});
   if (!options.estimate_error || n == 0) return std::vector<double>(n, 0.0);

@@ -13,6 +13,7 @@
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
+#include "ltp/floquet/detail/sampling_errors.h"
 
 namespace ltp {
 
@@ -34,9 +35,9 @@ FloquetResult AnalyzeAlternative(const PeriodicSystem& alternative, const std::s
   o.compute_modes = false;
   // The term it gives is the models' difference, orders above a tight tolerance wherever it
   // matters: the other model runs at kAlternativeTolerance (where the user's is tighter), its own
-  // error estimated in the same pass (Bulirsch–Stoer's carried local errors; a refined run for
-  // other integrators) and added to each distance, so the term stays at least the difference to
-  // the other model's exact exponents.
+  // error estimated in the same pass (Bulirsch–Stoer's carried local errors, Taylor series'
+  // order-p product; a refined run for other integrators) and added to each distance, so the term
+  // stays at least the difference to the other model's exact exponents.
   o.integrator.rel_tol = std::max(options.integrator.rel_tol, kAlternativeTolerance);
   o.integrator.abs_tol = std::max(options.integrator.abs_tol, 1e-3 * kAlternativeTolerance);
   o.estimate_error = true;
@@ -112,7 +113,10 @@ std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& mode
   return a;
 }
 
-// What the estimate now contains, one line.
+}  // namespace
+
+namespace detail {
+
 std::string SamplingErrorLine(double term, size_t alternatives) {
   std::ostringstream s;
   if (std::isfinite(term)) {
@@ -144,31 +148,20 @@ double SamplingBand(const std::vector<double>& e, double integration, double max
   return band;
 }
 
-const char* kUndecided =
+const char* const kModelUndecided =
     "stability undecided (marginal): |max Re λ| is within its error estimate once the model's "
     "sampling error is included — linearise at more azimuths";
 
-// The term in a result of either route: e_k on each mode's band, the largest on the estimate,
-// the verdict from the per-mode band; `integration` is the route's own estimate.
-template <class Result>
-void ApplySamplingErrors(const std::vector<double>& e, double integration, size_t alternatives,
-                         Result& r) {
-  const double term = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
-  r.model_error = term;
-  r.error_estimate = integration + term;
-  r.diagnostics.push_back({DiagnosticCode::kModelErrorIncluded, Severity::kNote,
-                           SamplingErrorLine(term, alternatives)});
-  // The verdict asks whether any Re λ_k ± (integration + e_k) crosses 0.
-  const double band =
-      SamplingBand(e, integration, r.max_real_exponent, *r.error_estimate, r.modes, r.diagnostics);
-  const StabilityVerdict before = r.verdict;
-  r.verdict = ClassifyStability(r.ok, r.max_real_exponent, band);
-  r.stable = r.verdict == StabilityVerdict::kStable;
-  if (r.verdict == StabilityVerdict::kMarginal && before != StabilityVerdict::kMarginal)
-    r.diagnostics.push_back({DiagnosticCode::kStabilityMarginal, Severity::kWarning, kUndecided});
-}
+}  // namespace detail
 
-}  // namespace
+SamplingErrors SamplingErrorsAgainst(const std::vector<PeriodicSystem>& alternatives, int states,
+                                     double period, const FloquetOptions& options,
+                                     const std::vector<std::complex<double>>& exponents,
+                                     int grid_segments) {
+  const AnalysedAlternatives a =
+      AnalyzeAlternatives(alternatives, states, period, options, grid_segments);
+  return {SamplingErrorsOf(a.results, exponents, period, options.modes_below > 0), a.evaluations};
+}
 
 void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, FloquetResult& r) {
@@ -188,20 +181,7 @@ void IncludeModelError(const std::vector<FloquetResult>& analysed, FloquetResult
       throw InputError("IncludeModelError: an alternative model has another size or period");
   const std::vector<double> e =
       SamplingErrorsOf(analysed, Exponents(r.modes), r.period, r.reduction.has_value());
-  ApplySamplingErrors(e, r.error_estimate.value_or(0), analysed.size(), r);
-}
-
-void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
-                       const FloquetOptions& options, HillResult& h) {
-  if (alternatives.empty() || h.modes.empty()) return;
-  const auto start = std::chrono::steady_clock::now();
-  const AnalysedAlternatives a = AnalyzeAlternatives(alternatives, h.states, h.period, options, 0);
-  const std::vector<double> e =
-      SamplingErrorsOf(a.results, Exponents(h.modes), h.period, options.modes_below > 0);
-  // Hill's estimate is one number for every exponent (none: no bound).
-  ApplySamplingErrors(e, h.error_estimate.value_or(std::numeric_limits<double>::infinity()),
-                      alternatives.size(), h);
-  h.elapsed_s += SecondsSince(start);
+  detail::ApplySamplingErrors(e, r.error_estimate.value_or(0), analysed.size(), r);
 }
 
 double PerModeBand(const std::vector<FloquetMode>& modes, double max_real, double fallback) {

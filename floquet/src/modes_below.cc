@@ -11,9 +11,9 @@
 #include "ltp/core/elapsed.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/mode_description.h"
+#include "ltp/floquet/detail/rigid_body.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/integrate/detail/state_balancing.h"
-#include "rigid_body.h"
 #include "spectral_split.h"
 #include "truncation_tail.h"
 

@@ -1,5 +1,5 @@
 // The rigid-body mode of a free rotation angle (rigid_body.h).
-#include "rigid_body.h"
+#include "ltp/floquet/detail/rigid_body.h"
 
 #include <algorithm>
 #include <cmath>

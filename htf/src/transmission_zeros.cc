@@ -17,7 +17,7 @@
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/htf/harmonic_transfer_function.h"
 
 namespace ltp {

@@ -28,30 +28,36 @@ class TaylorSeriesStepper {
   TaylorSeriesStepper(const PeriodicSystem& system, const IntegratorOptions& options)
       : n_(system.states()),
         order_(TaylorOrder(options.rel_tol)),
+        check_orders_(options.carry_local_errors ? kCheckOrders : 0),
+        series_order_(order_ + check_orders_),
         omega_(system.omega()),
         rel_tol_(options.rel_tol),
         abs_tol_(options.abs_tol) {
     series_ = system.RealSeriesA(nullptr);
     shape_ = std::move(*ShapeOfSeries(system));
-    terms_.setZero(static_cast<Eigen::Index>(n_) * n_, order_ + 1);
-    weights_.assign(static_cast<size_t>(2 * shape_.harmonics) * (order_ + 1), 0.0);
+    terms_.setZero(static_cast<Eigen::Index>(n_) * n_, series_order_ + 1);
+    weights_.assign(static_cast<size_t>(2 * shape_.harmonics) * (series_order_ + 1), 0.0);
     inner_ = shape_.constant_damping ? n_ / 2 : n_;
     if (shape_.second_order) upper_diagonal_ = shape_.upper_diagonal;
     // The BLAS path's buffers (a stability map builds a stepper per point: n = 2 skips them);
     // the fixed sizes' series of A.
-    if constexpr (N != Eigen::Dynamic) a_.resize(static_cast<size_t>(order_) + 1);
+    if constexpr (N != Eigen::Dynamic) a_.resize(static_cast<size_t>(series_order_) + 1);
     if constexpr (N == Eigen::Dynamic) {
-      reversed_weights_.setZero(order_ + 1, 2 * shape_.harmonics);
+      reversed_weights_.setZero(series_order_ + 1, 2 * shape_.harmonics);
       sums_.setZero(static_cast<Eigen::Index>(n_) * n_, 2 * shape_.harmonics);
       lower_.setZero(shape_.second_order ? n_ / 2 : n_, n_);
-      if (inner_ < n_) inner_terms_.setZero(static_cast<Eigen::Index>(inner_) * n_, order_ + 1);
+      if (inner_ < n_)
+        inner_terms_.setZero(static_cast<Eigen::Index>(inner_) * n_, series_order_ + 1);
     }
   }
 
   /// Φ(t1, t0) into `result` (steps and products added); false when a step's series is not
-  /// finite (overflow) or the step budget `steps_left` runs out.
+  /// finite (overflow) or the step budget `steps_left` runs out. With carry_local_errors, also
+  /// the lower-order product's offset in result.local_error_effect (CheckedStep).
   bool Transition(double t0, double t1, TransitionResult& result, long& steps_left) {
     Matrix phi = Matrix::Identity(n_, n_);
+    Matrix lower;  // the product of the steps' order-p sums (carry_local_errors)
+    if (check_orders_ > 0) lower = Matrix::Identity(n_, n_);
     double t = t0;
     while (t < t1) {
       if (steps_left-- <= 0) {
@@ -60,11 +66,16 @@ class TaylorSeriesStepper {
       }
       SeriesOfHarmonics(t);
       if constexpr (N != Eigen::Dynamic) SeriesOfA();
-      const double tol = abs_tol_ + rel_tol_ * phi.cwiseAbs().maxCoeff();
+      const double scale = phi.cwiseAbs().maxCoeff();
+      // The step's own transition S (from I) when both products are kept; else Φ's series.
+      const double tol =
+          check_orders_ > 0 ? rel_tol_ + abs_tol_ / scale : abs_tol_ + rel_tol_ * scale;
       // Steps that cannot reach t1 skip the check for an early end (on n = 2 it costs about a
       // quarter of the step).
       const bool may_end = t1 - t <= full_step_;
-      const int order = SeriesOfPhi(phi, tol, may_end ? t1 - t : 0);
+      const int order = check_orders_ > 0
+                            ? SeriesOfPhi(Matrix::Identity(n_, n_), tol, may_end ? t1 - t : 0)
+                            : SeriesOfPhi(phi, tol, may_end ? t1 - t : 0);
       double h = t1 - t;  // reached early: the series' last terms at t1 are within tol
       if (order == order_) {
         full_step_ = StepLength(tol, order);
@@ -74,14 +85,18 @@ class TaylorSeriesStepper {
         result.message = kNotFiniteMessage;
         return false;
       }
-      // Horner: Φ(t + h) = Σ_k Φ_k h^k.
-      phi = Term(order);
-      for (int k = order - 1; k >= 0; --k) phi = Term(k) + h * phi;
+      if (check_orders_ > 0) {
+        CheckedStep(order, h, phi, lower);
+      } else {
+        phi = Sum(order, h);
+      }
       t = h == t1 - t ? t1 : t + h;
       ++result.steps;
-      result.rhs_evals += std::lround(order * shape_.ProductsPerOrder());
+      result.rhs_evals += std::lround((order + check_orders_) * shape_.ProductsPerOrder()) +
+                          (check_orders_ > 0 ? 2 : 0);
     }
     result.phi = phi;
+    if (check_orders_ > 0) result.local_error_effect = lower - phi;
     return true;
   }
 
@@ -89,6 +104,42 @@ class TaylorSeriesStepper {
   // The lowest order an interval's end may be reached with (fewer terms than this say
   // little about the tail).
   static constexpr int kMinOrder = 4;
+
+  // The terms beyond the step's order p that the checked product takes: each shrinks the tail
+  // by about ωh/k ≈ 0.15 at the steps the order rule takes, so four make the order-(p + 4) sum
+  // ~10³ times more accurate than the order-p one (docs/taylor-integrator.md).
+  static constexpr int kCheckOrders = 4;
+
+  // Horner: Σ_{k ≤ order} Φ_k h^k.
+  Matrix Sum(int order, double h) const {
+    Matrix sum = Term(order);
+    for (int k = order - 1; k >= 0; --k) sum = Term(k) + h * sum;
+    return sum;
+  }
+
+  // Carry_local_errors: the terms p + 1 … p + q of the step's transition S as well, then
+  // Φ ← S_{p+q} Φ (the numbers reported) and Φ_lower ← S_p Φ_lower (held only to the
+  // tolerance). Φ_lower − Φ is the first run's error of a refined-run estimate, on the same steps.
+  void CheckedStep(int order, double h, Matrix& phi, Matrix& lower) {
+    for (int k = order; k < order + check_orders_; ++k) NextTerm(k);
+    const Matrix low = Sum(order, h);
+    Matrix high = Term(order + check_orders_);
+    for (int k = order + check_orders_ - 1; k > order; --k) high = Term(k) + h * high;
+    high = low + std::pow(h, order + 1) * high;
+    Multiply(high, phi);
+    Multiply(low, lower);
+  }
+
+  // x ← step · x, through BLAS for large n.
+  void Multiply(const Matrix& step, Matrix& x) const {
+    Matrix product(n_, n_);
+    if constexpr (N == Eigen::Dynamic) {
+      MultiplyInto(step, x, product);
+    } else {
+      product.noalias() = step * x;
+    }
+    x.swap(product);
+  }
 
   // The order from the tolerance: for coefficients decaying like (ωh)^k/k! a step of order p
   // spans h ∝ p tol^{1/p}. p = −ln tol (23 at 1e-10) keeps the largest term, e^{ωh}, and with
@@ -118,7 +169,7 @@ class TaylorSeriesStepper {
       double* sin_w = Weights(2 * (w - 1) + 1);
       double scale = 1;       // (wΩ)^j / j!
       double cj = c, sj = s;  // cos and sin of wΩt + jπ/2
-      for (int j = 0; j <= order_; ++j) {
+      for (int j = 0; j <= series_order_; ++j) {
         cos_w[j] = scale * cj;
         sin_w[j] = scale * sj;
         const double turned = -sj;
@@ -216,7 +267,7 @@ class TaylorSeriesStepper {
 
   // A_j = A^(j)(t)/j!, j = 0 … p, from the harmonics' series (fixed sizes only).
   void SeriesOfA() {
-    for (int j = 0; j <= order_; ++j) {
+    for (int j = 0; j <= series_order_; ++j) {
       Matrix& aj = a_[static_cast<size_t>(j)];
       aj = j == 0 ? Matrix(Block(0)) : Matrix::Zero(n_, n_);
       for (int column = 0; column < 2 * shape_.harmonics; ++column)
@@ -246,7 +297,7 @@ class TaylorSeriesStepper {
   // The series of harmonic (column / 2 + 1)'s cosine (even columns) or sine (odd), the
   // weights of C_w and S_w = Block(1 + column).
   double* Weights(int column) {
-    return weights_.data() + static_cast<size_t>(column) * (order_ + 1);
+    return weights_.data() + static_cast<size_t>(column) * (series_order_ + 1);
   }
 
   // The longest h whose last two terms ‖Φ_k‖ h^k (k = p − 1, p) are within `tol` (the
@@ -263,7 +314,9 @@ class TaylorSeriesStepper {
   }
 
   int n_;
-  int order_;
+  int order_;         // p: the step length and the reported order without checked products
+  int check_orders_;  // q: 0, or kCheckOrders with carry_local_errors
+  int series_order_;  // p + q: the terms stored
   double omega_, rel_tol_, abs_tol_;
   const double* series_ = nullptr;
   TaylorSeriesShape shape_;

@@ -97,9 +97,17 @@ class Parser {
   LinFile Parse() {
     LinFile f;
     f.path = source_;
+    const size_t body = ReadHeader(f);
+    ReadBody(body, f);
+    return f;
+  }
+
+ private:
+  // Header: "Key: value [unit]" lines up to the first table or matrix. Returns the first line
+  // of the body.
+  size_t ReadHeader(LinFile& f) const {
     size_t i = 0;
     bool have_states_count = false;
-    // Header: "Key: value [unit]" lines up to the first table or matrix.
     for (; i < lines_.size(); ++i) {
       const std::string line = Trim(lines_[i]);
       if (line.empty()) continue;
@@ -107,91 +115,76 @@ class Parser {
       if (StartsWith(line, "Order of") || MatrixHeader(line)) break;
       const auto colon = line.find(':');
       if (colon == std::string::npos) continue;
-      const std::string key = Lower(Trim(line.substr(0, colon)));
-      const std::string value = Trim(line.substr(colon + 1));
-      auto number = [&]() {
-        double v = 0;
-        const auto tokens = Tokenize(value);
-        if (tokens.empty() || !ParseNumber(tokens[0].text, &v) || !std::isfinite(v))
-          Fail(i, "expected a number after '" + Trim(line.substr(0, colon)) + ":', got '" +
-                      Shorten(value) + "'");
-        return v;
-      };
-      auto count = [&]() {
-        const double v = number();
-        if (v < 0 || v != std::floor(v) || v > 1e7)
-          Fail(i, "expected a non-negative whole number after '" + Trim(line.substr(0, colon)) +
-                      ":', got '" + Shorten(value) + "'");
-        return static_cast<int>(v);
-      };
-      if (key == "simulation time")
-        f.simulation_time = number();
-      else if (key == "rotor speed")
-        f.rotor_speed = number();
-      else if (key == "azimuth")
-        f.azimuth = number();
-      else if (key == "wind speed")
-        f.wind_speed = number();
-      else if (key == "number of continuous states") {
-        f.continuous_states = count();
+      if (ReadHeaderField(i, Trim(line.substr(0, colon)), Trim(line.substr(colon + 1)), f))
         have_states_count = true;
-      } else if (key == "number of discrete states")
-        f.discrete_states = count();
-      else if (key == "number of constraint states")
-        f.constraint_states = count();
-      else if (key == "number of inputs")
-        f.inputs = count();
-      else if (key == "number of outputs")
-        f.outputs = count();
-      else if (key == "jacobians included in this file?") {
-        const std::string v = Lower(value);
-        if (StartsWith(v, "yes") || v == "t" || v == "true")
-          f.jacobians_included = true;
-        else if (StartsWith(v, "no") || v == "f" || v == "false")
-          f.jacobians_included = false;
-        else
-          Fail(i, "expected Yes or No after 'Jacobians included in this file?', got '" +
-                      Shorten(value) + "'");
-      }
     }
     if (!have_states_count)
       Fail(0,
            "expected 'Number of continuous states:' in the header (is this an OpenFAST .lin "
            "file?)");
+    return i;
+  }
 
+  // One header field; true when it was the number of continuous states.
+  bool ReadHeaderField(size_t i, const std::string& field, const std::string& value,
+                       LinFile& f) const {
+    const std::string key = Lower(field);
+    auto number = [&]() {
+      double v = 0;
+      const auto tokens = Tokenize(value);
+      if (tokens.empty() || !ParseNumber(tokens[0].text, &v) || !std::isfinite(v))
+        Fail(i, "expected a number after '" + field + ":', got '" + Shorten(value) + "'");
+      return v;
+    };
+    auto count = [&]() {
+      const double v = number();
+      if (v < 0 || v != std::floor(v) || v > 1e7)
+        Fail(i, "expected a non-negative whole number after '" + field + ":', got '" +
+                    Shorten(value) + "'");
+      return static_cast<int>(v);
+    };
+    if (key == "simulation time")
+      f.simulation_time = number();
+    else if (key == "rotor speed")
+      f.rotor_speed = number();
+    else if (key == "azimuth")
+      f.azimuth = number();
+    else if (key == "wind speed")
+      f.wind_speed = number();
+    else if (key == "number of continuous states") {
+      f.continuous_states = count();
+      return true;
+    } else if (key == "number of discrete states")
+      f.discrete_states = count();
+    else if (key == "number of constraint states")
+      f.constraint_states = count();
+    else if (key == "number of inputs")
+      f.inputs = count();
+    else if (key == "number of outputs")
+      f.outputs = count();
+    else if (key == "jacobians included in this file?") {
+      const std::string v = Lower(value);
+      if (StartsWith(v, "yes") || v == "t" || v == "true")
+        f.jacobians_included = true;
+      else if (StartsWith(v, "no") || v == "f" || v == "false")
+        f.jacobians_included = false;
+      else
+        Fail(i, "expected Yes or No after 'Jacobians included in this file?', got '" +
+                    Shorten(value) + "'");
+    }
+    return false;
+  }
+
+  // The tables ("Order of ...") and matrices, from line i to the end.
+  void ReadBody(size_t i, LinFile& f) const {
     bool have_states = false;
     std::map<std::string, size_t> seen_matrices;
     for (; i < lines_.size(); ++i) {
       const std::string line = Trim(lines_[i]);
       if (line.empty()) continue;
       if (StartsWith(line, "Order of")) {
-        const std::string what = Lower(line);
-        std::vector<LinChannel>* target = nullptr;
-        int rows = -1;  // -1: unknown table, read to the next blank line
-        int default_order = 0;
-        if (what.find("continuous state derivatives") != std::string::npos) {
-          target = &f.state_derivatives;
-          rows = f.continuous_states;
-          default_order = 2;
-        } else if (what.find("continuous states") != std::string::npos) {
-          target = &f.states;
-          rows = f.continuous_states;
-          default_order = 2;
-          have_states = true;
-        } else if (what.find("discrete states") != std::string::npos) {
-          rows = f.discrete_states;
-        } else if (what.find("constraint states") != std::string::npos) {
-          rows = f.constraint_states;
-        } else if (what.find("inputs") != std::string::npos) {
-          target = &f.input_channels;
-          rows = f.inputs;
-        } else if (what.find("outputs") != std::string::npos) {
-          target = &f.output_channels;
-          rows = f.outputs;
-        }
-        std::vector<LinChannel> table;
-        i = ReadTable(i, rows, default_order, &table);
-        if (target) *target = std::move(table);
+        if (IsStateTable(line)) have_states = true;
+        i = ReadChannelTable(i, line, f);
         continue;
       }
       std::string name;
@@ -213,10 +206,46 @@ class Parser {
       Fail(lines_.empty() ? 0 : lines_.size() - 1,
            "expected the table 'Order of continuous states:' (" +
                std::to_string(f.continuous_states) + " rows) before the end of the file");
-    return f;
   }
 
- private:
+  static bool IsStateTable(const std::string& caption) {
+    const std::string what = Lower(caption);
+    return what.find("continuous state derivatives") == std::string::npos &&
+           what.find("continuous states") != std::string::npos;
+  }
+
+  // The table captioned at line i into its field of f (discrete and constraint states are read
+  // and dropped); returns the table's last line.
+  size_t ReadChannelTable(size_t i, const std::string& caption, LinFile& f) const {
+    const std::string what = Lower(caption);
+    std::vector<LinChannel>* target = nullptr;
+    int rows = -1;  // -1: unknown table, read to the next blank line
+    int default_order = 0;
+    if (what.find("continuous state derivatives") != std::string::npos) {
+      target = &f.state_derivatives;
+      rows = f.continuous_states;
+      default_order = 2;
+    } else if (what.find("continuous states") != std::string::npos) {
+      target = &f.states;
+      rows = f.continuous_states;
+      default_order = 2;
+    } else if (what.find("discrete states") != std::string::npos) {
+      rows = f.discrete_states;
+    } else if (what.find("constraint states") != std::string::npos) {
+      rows = f.constraint_states;
+    } else if (what.find("inputs") != std::string::npos) {
+      target = &f.input_channels;
+      rows = f.inputs;
+    } else if (what.find("outputs") != std::string::npos) {
+      target = &f.output_channels;
+      rows = f.outputs;
+    }
+    std::vector<LinChannel> table;
+    i = ReadTable(i, rows, default_order, &table);
+    if (target) *target = std::move(table);
+    return i;
+  }
+
   [[noreturn]] void Fail(size_t line, const std::string& message) const {
     throw SceneError(source_ + ":" + std::to_string(line + 1) + ": " + message);
   }

@@ -98,7 +98,8 @@ void BindFloquetVerdict(py::class_<FloquetResult>& r) {
           "error_estimate_method",
           [](const FloquetResult& f) { return std::string(ToString(f.error_estimate_method)); },
           "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
-          "'local-errors' (Bulirsch–Stoer's local errors carried to the exponents, one run)")
+          "'local-errors' (one run: Bulirsch–Stoer's local errors carried to the exponents, or "
+          "Taylor series' order-p product beside the reported order p + 4)")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
                     "stopped before its multipliers");
@@ -314,7 +315,8 @@ the same options and defaults.
   segments      number of segments K of the period, or 'auto'
   multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
   estimate      'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
-                (Bulirsch–Stoer: one run, its steps' local errors carried to the exponents)
+                (one run: Bulirsch–Stoer's steps' local errors carried to the exponents;
+                Taylor series' order-p product beside the reported order p + 4)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU

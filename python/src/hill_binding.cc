@@ -6,8 +6,9 @@
 #include "diagnostic_properties.h"
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
 #include "ltp/floquet/model_error.h"
+#include "ltp/hill/hill.h"
+#include "ltp/hill/hill_model_error.h"
 
 namespace ltp::python {
 

@@ -70,9 +70,10 @@ void RunBothRoutes(const LinOperatingPoint& used, const SampledFloquetOptions& o
   FloquetOptions trig_options = options.floquet;
   trig_options.compute_modes = false;
   // The second route is there to be compared with the first, at differences far above the
-  // tolerance: with Bulirsch–Stoer one run with its local errors carried instead of a second run
-  // at a 100× tighter tolerance (200 states: 6.6 → 2.9 s). Other integrators (Taylor series,
-  // `auto`'s choice for most fitted series) take the refined run.
+  // tolerance: one run with its local errors carried instead of a second run at a 100× tighter
+  // tolerance — Bulirsch–Stoer's previous extrapolation row (200 states: 6.6 → 2.9 s) or Taylor
+  // series' order-p product (`auto`'s choice for most fitted series). Others take the refined
+  // run.
   trig_options.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
   hold_options.on_progress = PrefixedProgress(options.floquet.on_progress, "hold route: ");
   trig_options.on_progress = PrefixedProgress(options.floquet.on_progress, "trigonometric route: ");

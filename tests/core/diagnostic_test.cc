@@ -19,8 +19,8 @@ TEST(Diagnostic, EveryCodeHasADistinctSnakeCaseName) {
     for (char c : name) EXPECT_TRUE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_');
     EXPECT_TRUE(names.insert(name).second) << name << " twice";
   }
-  // The list holds every value: the last enumerator's index + 1 values.
-  EXPECT_EQ(AllDiagnosticCodes().size(), static_cast<size_t>(DiagnosticCode::kMatrixDropped) + 1);
+  // The list holds every code: one per value below the kCount sentinel.
+  EXPECT_EQ(AllDiagnosticCodes().size(), static_cast<size_t>(DiagnosticCode::kCount));
 }
 
 TEST(Diagnostic, HasCodeAndTexts) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <complex>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -96,6 +97,55 @@ TEST(LocalErrorEstimate, OnlyBulirschStoerCarriesLocalErrors) {
   const FloquetResult r = AnalyzeFloquet(system, o);
   EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kRefinedRun);
   EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
+}
+
+// Taylor series keep the product of their order-p sums beside the reported order-(p + 4) one on
+// the same steps: the estimate is the order-p product's distance, so it covers the error of the
+// reported numbers (against the RKF78 reference) by a wide margin, as a refined run's does.
+// Mathieu in Fourier form, a = 1.3, q = 0.2 (with light damping), at 1e-6 so that the error of
+// the reported numbers stands clear of the reference's.
+TEST(LocalErrorEstimate, TaylorSeriesCarryTheirLowerOrderProduct) {
+  FourierMatrix a(2, 2, 1);
+  a[0] << 0, 1, -1.3, -0.05;
+  a[1] << 0, 0, -0.2, 0;
+  a[-1] = a[1];
+  const PeriodicSystem system = PeriodicSystem::FromFourier(2 * 3.141592653589793, a);
+  const FloquetResult ref = Reference(system);
+  for (IntegratorType type : {IntegratorType::kTaylor, IntegratorType::kAuto}) {
+    FloquetOptions o;
+    o.integrator.type = type;
+    o.integrator.rel_tol = 1e-6;
+    o.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
+    const FloquetResult r = AnalyzeFloquet(system, o);
+    ASSERT_TRUE(r.ok && r.error_estimate);
+    ASSERT_EQ(r.integrator, IntegratorType::kTaylor);  // auto's choice on this system
+    EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors);
+    EXPECT_FALSE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
+    const double error = MaxExponentMismatch(Exponents(r), Exponents(ref), system.omega());
+    EXPECT_GE(*r.error_estimate, error);
+    EXPECT_LT(*r.error_estimate, 1e-3);  // of the order of the tolerance, not a blanket bound
+    std::cerr << "taylor local errors: error " << error << " estimate " << *r.error_estimate
+              << "\n";
+  }
+}
+
+// Under `auto` the estimate follows the integrator it chose: held samples get the exact
+// exponential, which carries no local errors, so the refined run is used without a note (the
+// result says which estimate it is).
+TEST(LocalErrorEstimate, AutoChoiceWithoutLocalErrorsTakesTheRefinedRunQuietly) {
+  Eigen::MatrixXd a0(2, 2), a1(2, 2);
+  a0 << 0, 1, -1.5, -0.1;
+  a1 << 0, 1, -1.1, -0.1;
+  const PeriodicSystem system =
+      PeriodicSystem::FromSamples(2.0, {0.0, 1.0}, {LtiSystem{a0, {}, {}, {}}, {a1, {}, {}, {}}});
+  FloquetOptions o;
+  o.integrator.type = IntegratorType::kAuto;
+  o.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
+  const FloquetResult r = AnalyzeFloquet(system, o);
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.integrator, IntegratorType::kExpm);  // the case: auto's choice carries none
+  EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kRefinedRun);
+  EXPECT_FALSE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
 }
 
 }  // namespace

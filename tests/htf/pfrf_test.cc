@@ -11,7 +11,7 @@
 #include <string>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/htf/snapshot.h"
 #include "ltp/models/scene.h"
 #include "support/systems.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/models/scene.h"
 
 namespace ltp {

@@ -17,7 +17,7 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/rotor_mbc.h"
 #include "ltp/openfast/linearization.h"
@@ -227,8 +227,9 @@ TEST(LinSampledFloquet, TrigonometricRouteEstimateBoundsItsError) {
 }
 
 // The trigonometric route as `ltp mbc` runs it — `auto` takes Taylor series for the fitted
-// series of 60 states, with a refined run; with Bulirsch–Stoer one run carries its local errors
-// instead: either estimate bounds its error. Reference as above (Bulirsch–Stoer at 1e-13, on
+// series of 60 states, whose one run keeps its order-p product beside the reported one; with
+// Bulirsch–Stoer one run carries its local errors: either estimate bounds its error, and
+// neither falls back to a refined run. Reference as above (Bulirsch–Stoer at 1e-13, on
 // the MBC-transformed samples the route integrates).
 TEST(LinSampledFloquet, TrigonometricRouteAsMbcRunsItBoundsItsError) {
   const std::string dir = test::SourceDir() + "/tests/data/openfast/lin-60-states/";
@@ -243,15 +244,17 @@ TEST(LinSampledFloquet, TrigonometricRouteAsMbcRunsItBoundsItsError) {
   const FloquetResult reference = AnalyzeFloquet(
       BuildLinSystem(InMultiBladeCoordinates(op, mbc), SampleInterpolation::kTrigonometric), ref);
   ASSERT_TRUE(reference.ok);
-  for (const auto& [type, method] :
-       {std::pair{IntegratorType::kAuto, ErrorEstimateMethod::kRefinedRun},
-        std::pair{IntegratorType::kBulirschStoer, ErrorEstimateMethod::kLocalErrors}}) {
+  for (const auto& [type, chosen] :
+       {std::pair{IntegratorType::kAuto, IntegratorType::kTaylor},
+        std::pair{IntegratorType::kBulirschStoer, IntegratorType::kBulirschStoer}}) {
     SCOPED_TRACE(ToString(type));
     SampledFloquetOptions options;
     options.floquet.integrator.type = type;
     const SampledFloquetResult r = AnalyzeSampledFloquet(op, mbc, options);
     ASSERT_TRUE(r.ok && r.trig.error_estimate);
-    EXPECT_EQ(r.trig.error_estimate_method, method);
+    EXPECT_EQ(r.trig.integrator, chosen);
+    EXPECT_EQ(r.trig.error_estimate_method, ErrorEstimateMethod::kLocalErrors);
+    EXPECT_FALSE(HasCode(r.trig.diagnostics, DiagnosticCode::kErrorEstimateFallback));
     EXPECT_TRUE(r.hold.mode_samples.empty());  // the table shows MBC branches: no shapes needed
     EXPECT_LT(MaxExponentMismatch(Exponents(r.trig), Exponents(reference), op.rotor_speed),
               *r.trig.error_estimate);

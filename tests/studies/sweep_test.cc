@@ -11,7 +11,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/models/scene.h"
 #include "ltp/studies/mode_tracking.h"
 #include "ltp/studies/stability_boundary.h"

@@ -27,7 +27,7 @@
 #include "ltp/core/exponent_match.h"
 #include "ltp/core/fourier_fit.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/htf/pfrf.h"
 #include "ltp/models/scene.h"
 #include "support/systems.h"
@@ -292,6 +292,328 @@ inline std::vector<Regime> FailureRegimes(bool quick) {
   return r;
 }
 
+namespace fm {
+
+/// The reference integration: RKF78 at 1e-13, no estimate.
+inline FloquetOptions TightFloquet() {
+  FloquetOptions tight;
+  tight.integrator.type = IntegratorType::kRkf78;
+  tight.integrator.rel_tol = 1e-13;
+  tight.integrator.abs_tol = 1e-16;
+  tight.estimate_error = false;
+  return tight;
+}
+
+/// Reference exponents for each route: the closed form, or the other route at a tight
+/// tolerance (then `note` says how far the two references agree).
+struct ExponentReferences {
+  std::vector<cd> for_monodromy, for_hill;
+  double scale = 1;  ///< max(1, largest |exponent|)
+};
+
+inline ExponentReferences ReferenceExponents(const Regime& reg, std::vector<std::string>& notes) {
+  const PeriodicSystem& s = reg.sys;
+  ExponentReferences ref{reg.exact, reg.exact};
+  if (reg.exact.empty()) {
+    const FloquetResult fl = AnalyzeFloquet(s, TightFloquet());
+    ref.for_hill = Exponents(fl.modes);
+    HillOptions ho;
+    ho.solver = HillSolver::kStructured;
+    ho.harmonics = reg.hill_ref_harmonics;
+    ho.expected = ref.for_hill;
+    ho.delta_harmonics = -1;
+    ho.koopman_check = false;
+    ho.fourier.tol = 1e-15;
+    const HillResult h = AnalyzeHill(s, ho);
+    ref.for_monodromy = Exponents(h.modes);
+    const double agree = ExponentError(ref.for_monodromy, ref.for_hill, s.omega());
+    std::ostringstream n;
+    n << reg.name << ": references agree to " << agree << " 1/s";
+    notes.push_back(n.str());
+  }
+  for (const cd& x : ref.for_hill) ref.scale = std::max(ref.scale, std::abs(x));
+  return ref;
+}
+
+/// A silent cell when some exponent's own estimate (FloquetMode::error_estimate) does not cover
+/// its own error.
+inline void JudgeOwnEstimates(const FloquetResult& r, const ExponentReferences& ref, double omega,
+                              Cell& c) {
+  if (!r.ok || c.verdict == Verdict::kFailsSilently ||
+      Exponents(r.modes).size() != ref.for_monodromy.size())
+    return;
+  const std::vector<double> own_errors =
+      MatchExponents(Exponents(r.modes), ref.for_monodromy, omega);
+  for (size_t k = 0; k < r.modes.size(); ++k) {
+    const auto& own = r.modes[k].error_estimate;
+    if (own && !(*own >= own_errors[k]) && own_errors[k] > 1e-12 * ref.scale) {
+      std::ostringstream h;
+      h << "exponent " << r.modes[k].exponent << ": error " << own_errors[k]
+        << ", its own estimate " << *own;
+      c.verdict = Verdict::kFailsSilently;
+      c.how = h.str();
+    }
+  }
+}
+
+/// Methods 1, 2: the monodromy route (defaults of `ltp floquet`: integrator auto), and the
+/// single-shot multipliers.
+inline std::vector<Cell> MonodromyCells(const Regime& reg, const ExponentReferences& ref) {
+  std::vector<Cell> cells;
+  for (MultiplierMethod mm : {MultiplierMethod::kPeriodicSchur, MultiplierMethod::kSingleShot}) {
+    FloquetOptions o;
+    o.integrator.type = IntegratorType::kAuto;
+    o.multipliers = mm;
+    const double t0 = WallNow();
+    const FloquetResult r = AnalyzeFloquet(reg.sys, o);
+    const double err =
+        r.ok ? ExponentError(Exponents(r.modes), ref.for_monodromy, reg.sys.omega()) : kInf;
+    Cell c = Judge(r.ok, err, r.error_estimate, ref.scale, r.diagnostics);
+    JudgeOwnEstimates(r, ref, reg.sys.omega(), c);
+    c.elapsed_s = WallNow() - t0;
+    cells.push_back(c);
+  }
+  return cells;
+}
+
+/// The Koopman–Hill projection of an automatic Hill run. Its error is at most its gap to Hill's
+/// exponents plus Hill's own error (the gap alone fell short on the Poisson kernel, where Hill's
+/// error is 5 % of the gap).
+inline Cell KoopmanCell(const HillResult& h, const ExponentReferences& ref, double omega) {
+  if (h.koopman_log_multipliers.empty())
+    return Judge(false, kInf, std::nullopt, ref.scale, {},
+                 h.koopman_discrepancy ? "no result" : "skipped (matrix too large), says so");
+  const auto e = FromLogMultipliers(h.koopman_log_multipliers, h.period);
+  const double err = ExponentError(e, ref.for_hill, omega);
+  std::optional<double> bound;
+  if (h.koopman_discrepancy && h.error_estimate) bound = *h.koopman_discrepancy + *h.error_estimate;
+  return Judge(h.ok, err, bound, ref.scale, h.diagnostics);
+}
+
+/// Methods 3, 4: Hill with the truncation chosen automatically (`--method hill`, tol 1e-10;
+/// solver auto as `ltp floquet` picks it, and structured); 5: its Koopman–Hill projection.
+inline std::vector<Cell> HillCells(const Regime& reg, const ExponentReferences& ref, bool quick) {
+  std::vector<Cell> cells;
+  HillResult hill_auto;
+  for (HillSolver solver : {HillSolver::kAuto, HillSolver::kStructured}) {
+    HillOptions ho;
+    ho.solver = solver;
+    const double t0 = WallNow();
+    HillResult h;
+    Cell c;
+    try {
+      h = AnalyzeHillAuto(reg.sys, ho, 1e-10, quick ? 64 : 128);
+      const double err =
+          h.ok ? ExponentError(Exponents(h.modes), ref.for_hill, reg.sys.omega()) : kInf;
+      c = Judge(h.ok, err, HillEstimate(h), ref.scale, h.diagnostics);
+    } catch (const Error& e) {
+      c = Judge(false, kInf, std::nullopt, ref.scale, {}, e.what());
+    }
+    c.elapsed_s = WallNow() - t0;
+    cells.push_back(c);
+    if (solver == HillSolver::kAuto) hill_auto = h;
+  }
+  cells.push_back(KoopmanCell(hill_auto, ref, reg.sys.omega()));
+  return cells;
+}
+
+/// Reference partial FRFs at the regime's frequencies, orders −2…2, by three routes: shooting
+/// at 1e-13, modal at 1e-13 and the HTF at 256 harmonics. Each route is measured against
+/// another route's.
+struct PfrfReferences {
+  std::vector<PartialFrfs> shooting, modal, htf;
+  bool shooting_ok = false, modal_ok = false, htf_ok = false;
+
+  /// The reference for `route`: one computed by another route; null when none exists.
+  const std::vector<PartialFrfs>* For(PfrfRoute route) const {
+    if (route != PfrfRoute::kShooting && shooting_ok) return &shooting;
+    if (route != PfrfRoute::kModal && modal_ok) return &modal;
+    if (route != PfrfRoute::kHtf && htf_ok) return &htf;
+    return nullptr;
+  }
+
+  /// How far the references themselves disagree (shooting vs modal, when both exist): a
+  /// smaller "error" is not measurable.
+  double Spread() const {
+    double spread = 0;
+    if (shooting_ok && modal_ok)
+      for (size_t f = 0; f < shooting.size(); ++f)
+        for (size_t z = 0; z < shooting[f].size(); ++z)
+          spread = std::max(spread, std::abs(shooting[f][z](0, 0) - modal[f][z](0, 0)));
+    return spread;
+  }
+};
+
+inline void ShootingReference(const Regime& reg, PfrfReferences& refs) {
+  try {
+    ShootingOptions so;
+    so.rel_tol = 1e-13;
+    so.abs_tol = 1e-16;
+    so.integrator = TightFloquet().integrator;
+    ForcedResponseSolver fs(reg.sys, so);
+    refs.shooting_ok = true;
+    for (double f : reg.freqs_hz) {
+      bool ok = true;
+      refs.shooting.push_back(fs.Shooting(2 * kPi * f, -2, 2, &ok));
+      refs.shooting_ok = refs.shooting_ok && ok && refs.shooting.back().back().allFinite();
+    }
+  } catch (const Error&) {
+    refs.shooting_ok = false;
+  }
+}
+
+inline void ModalReference(const Regime& reg, PfrfReferences& refs) {
+  try {
+    const FloquetOptions tight = TightFloquet();
+    FloquetResult fl = AnalyzeFloquet(reg.sys, tight);
+    ModalOptions mo;
+    mo.integrator = tight.integrator;
+    const ModalModel mm = BuildModalModel(reg.sys, fl, mo);
+    refs.modal_ok = fl.ok && mm.reliable;
+    for (double f : reg.freqs_hz) refs.modal.push_back(mm.Evaluate(2 * kPi * f, -2, 2));
+  } catch (const Error&) {
+    refs.modal_ok = false;
+  }
+}
+
+inline void HtfReference(const Regime& reg, PfrfReferences& refs) {
+  try {
+    HtfOptions ho;
+    ho.harmonics = 256;
+    HtfSolver htf(reg.sys, ho);
+    refs.htf_ok = true;
+    for (double f : reg.freqs_hz) {
+      refs.htf.push_back(htf.Evaluate(2 * kPi * f, -2, 2));
+      refs.htf_ok = refs.htf_ok && refs.htf.back().back().allFinite();
+    }
+    // Jumps: the HTF converges like N^-1 at best, no reference.
+    if (!reg.sys.breakpoints().empty()) refs.htf_ok = false;
+  } catch (const Error&) {
+    refs.htf_ok = false;
+  }
+}
+
+/// None at a resonance (the reference is infinite there).
+inline PfrfReferences ReferencePfrfs(const Regime& reg) {
+  PfrfReferences refs;
+  if (reg.resonance) return refs;
+  ShootingReference(reg, refs);
+  ModalReference(reg, refs);
+  HtfReference(reg, refs);
+  return refs;
+}
+
+/// `ltp pfrf --route R` (checks: htf for modal, modal otherwise) with a check at every
+/// frequency; auto exactly as `ltp pfrf`'s defaults.
+inline PfrfOptions PfrfOptionsFor(const Regime& reg, PfrfRoute route) {
+  PfrfOptions po;
+  po.frequencies_hz = reg.freqs_hz;
+  po.min_order = -2;
+  po.max_order = 2;
+  po.primary = route;
+  po.checks = {route == PfrfRoute::kModal ? PfrfRoute::kHtf : PfrfRoute::kModal};
+  if (route == PfrfRoute::kAuto) {
+    po.checks = {PfrfRoute::kAuto};
+    po.floquet.integrator.type = IntegratorType::kAuto;
+    po.modal.integrator.type = IntegratorType::kAuto;
+  }
+  po.check_every = 1;
+  return po;
+}
+
+inline bool AllFinite(const PfrfResult& pr) {
+  if (!pr.ok) return false;
+  for (const auto& row : pr.values)
+    for (const cd& v : row)
+      if (!std::isfinite(v.real()) || !std::isfinite(v.imag())) return false;
+  return true;
+}
+
+/// At a resonance the reference is infinite: a finite answer must say it is unreliable
+/// (a warning, or not ok).
+inline Cell JudgeAtResonance(const PfrfResult& pr) {
+  Cell c;
+  std::string w;
+  if (!AllFinite(pr)) {
+    c.verdict = Verdict::kFailsSaysSo;
+    c.how = "non-finite value / not ok";
+  } else if (Warns(pr.diagnostics, &w)) {
+    c.verdict = Verdict::kFailsSaysSo;
+    c.how = w;
+  } else {
+    double vmax = 0, emin = kInf;
+    for (size_t z = 0; z < pr.values[0].size(); ++z) {
+      vmax = std::max(vmax, std::abs(pr.values[0][z]));
+      emin = std::min(emin, pr.error_estimate[0][z]);
+    }
+    c.verdict = Verdict::kFailsSilently;
+    std::ostringstream h;
+    h << "finite |H| = " << vmax << ", estimate " << emin;
+    c.how = h.str();
+  }
+  return c;
+}
+
+/// Against a reference: "covers" means every value's estimate covers its error (errors below
+/// the references' own spread are not measurable and not counted).
+inline Cell JudgeAgainst(const Regime& reg, const PfrfResult& pr,
+                         const std::vector<PartialFrfs>& ref, double spread) {
+  double hscale = 0, err = 0, worst_ratio = kInf;
+  std::string worst_at;
+  bool covered = true;
+  for (size_t f = 0; f < pr.values.size(); ++f)
+    for (size_t z = 0; z < pr.values[f].size(); ++z) {
+      const cd rv = ref[f][z](0, 0);
+      hscale = std::max(hscale, std::abs(rv));
+      const double d = std::abs(pr.values[f][z] - rv);
+      err = std::max(err, d);
+      if (d <= spread) continue;
+      if (pr.error_estimate[f][z] / d < worst_ratio) {
+        worst_ratio = pr.error_estimate[f][z] / d;
+        std::ostringstream w;
+        w << std::setprecision(2) << " at f = " << reg.freqs_hz[f] << " Hz, z = " << int(z) - 2
+          << ": |H| " << std::abs(rv) << ", error " << d << ", estimate "
+          << pr.error_estimate[f][z];
+        worst_at = w.str();
+      }
+      if (!(pr.error_estimate[f][z] >= d)) covered = false;
+    }
+  hscale = std::max(hscale, 1e-300);
+  Cell c = Judge(AllFinite(pr), err, covered ? err : 0, hscale, pr.diagnostics);
+  if (c.verdict == Verdict::kFailsSilently) {
+    std::ostringstream h;
+    h << "error " << std::setprecision(2) << c.error_rel << " relative; smallest estimate/error "
+      << worst_ratio << worst_at << " (reference spread " << spread / hscale << ")";
+    c.how = h.str();
+  }
+  return c;
+}
+
+/// Methods 6–10: partial FRFs by each route.
+inline Cell PfrfCell(const Regime& reg, PfrfRoute route, const PfrfReferences& refs) {
+  const double t0 = WallNow();
+  Cell c;
+  try {
+    const PfrfResult pr = ComputePartialFrf(reg.sys, PfrfOptionsFor(reg, route));
+    // Auto: measured against a reference from a route other than the one it picked.
+    const auto* ref = refs.For(route == PfrfRoute::kAuto ? pr.routes.front().route : route);
+    if (reg.resonance) {
+      c = JudgeAtResonance(pr);
+    } else if (!ref) {
+      c.verdict = Verdict::kNotApplicable;
+      c.how = "no reference";
+    } else {
+      c = JudgeAgainst(reg, pr, *ref, refs.Spread());
+    }
+  } catch (const Error& e) {
+    c = Judge(false, kInf, std::nullopt, 1, {}, std::string(e.what()).substr(0, 90));
+  }
+  c.elapsed_s = WallNow() - t0;
+  return c;
+}
+
+}  // namespace fm
+
 /// `only`: run just the regimes whose name contains it (empty: all).
 inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nullptr,
                                 const std::string& only = "") {
@@ -309,262 +631,19 @@ inline FailureMap RunFailureMap(bool quick = false, std::ostream* progress = nul
                  "PFRF time"};
   map.regimes = FailureRegimes(quick);
   if (!only.empty())
-    map.regimes.erase(
-        std::remove_if(map.regimes.begin(), map.regimes.end(),
-                       [&](const Regime& r) { return r.name.find(only) == std::string::npos; }),
-        map.regimes.end());
+    std::erase_if(map.regimes,
+                  [&](const Regime& r) { return r.name.find(only) == std::string::npos; });
   for (const Regime& reg : map.regimes) {
-    const PeriodicSystem& s = reg.sys;
-    const double omega = s.omega();
-    // Reference exponents: the closed form, or the other route at a tight tolerance.
-    FloquetOptions tight;
-    tight.integrator.type = IntegratorType::kRkf78;
-    tight.integrator.rel_tol = 1e-13;
-    tight.integrator.abs_tol = 1e-16;
-    tight.estimate_error = false;
-    std::vector<cd> ref_for_mono = reg.exact, ref_for_hill = reg.exact;
-    if (reg.exact.empty()) {
-      const FloquetResult fl = AnalyzeFloquet(s, tight);
-      ref_for_hill = Exponents(fl.modes);
-      HillOptions ho;
-      ho.solver = HillSolver::kStructured;
-      ho.harmonics = reg.hill_ref_harmonics;
-      ho.expected = ref_for_hill;
-      ho.delta_harmonics = -1;
-      ho.koopman_check = false;
-      ho.fourier.tol = 1e-15;
-      const HillResult h = AnalyzeHill(s, ho);
-      ref_for_mono = Exponents(h.modes);
-      const double agree = ExponentError(ref_for_mono, ref_for_hill, omega);
-      std::ostringstream n;
-      n << reg.name << ": references agree to " << agree << " 1/s";
-      map.notes.push_back(n.str());
-    }
-    double scale = 1;
-    for (const cd& x : ref_for_hill) scale = std::max(scale, std::abs(x));
-    std::vector<Cell> row;
-    // 1, 2: monodromy route (defaults of `ltp floquet`: integrator auto), and the single-shot
-    // multipliers.
-    for (MultiplierMethod mm : {MultiplierMethod::kPeriodicSchur, MultiplierMethod::kSingleShot}) {
-      FloquetOptions o;
-      o.integrator.type = IntegratorType::kAuto;
-      o.multipliers = mm;
-      const double t0 = WallNow();
-      const FloquetResult r = AnalyzeFloquet(s, o);
-      const double err = r.ok ? ExponentError(Exponents(r.modes), ref_for_mono, omega) : kInf;
-      Cell c = Judge(r.ok, err, r.error_estimate, scale, r.diagnostics);
-      // Each exponent's own estimate (FloquetMode::error_estimate) must cover its own error.
-      if (r.ok && c.verdict != Verdict::kFailsSilently &&
-          Exponents(r.modes).size() == ref_for_mono.size()) {
-        const std::vector<double> own_errors =
-            MatchExponents(Exponents(r.modes), ref_for_mono, omega);
-        for (size_t k = 0; k < r.modes.size(); ++k) {
-          const auto& own = r.modes[k].error_estimate;
-          if (own && !(*own >= own_errors[k]) && own_errors[k] > 1e-12 * scale) {
-            std::ostringstream h;
-            h << "exponent " << r.modes[k].exponent << ": error " << own_errors[k]
-              << ", its own estimate " << *own;
-            c.verdict = Verdict::kFailsSilently;
-            c.how = h.str();
-          }
-        }
-      }
-      c.elapsed_s = WallNow() - t0;
-      row.push_back(c);
-    }
-    // 3, 4: Hill with the truncation chosen automatically (`--method hill`, tol 1e-10; solver
-    // auto as `ltp floquet` picks it, and structured); 5: its Koopman–Hill projection
-    // (estimate: the disagreement with Hill's exponents plus Hill's own estimate).
-    HillResult hill_auto;
-    for (HillSolver solver : {HillSolver::kAuto, HillSolver::kStructured}) {
-      HillOptions ho;
-      ho.solver = solver;
-      const double t0 = WallNow();
-      HillResult h;
-      Cell c;
-      try {
-        h = AnalyzeHillAuto(s, ho, 1e-10, quick ? 64 : 128);
-        const double err = h.ok ? ExponentError(Exponents(h.modes), ref_for_hill, s.omega()) : kInf;
-        c = Judge(h.ok, err, HillEstimate(h), scale, h.diagnostics);
-      } catch (const Error& e) {
-        c = Judge(false, kInf, std::nullopt, scale, {}, e.what());
-      }
-      c.elapsed_s = WallNow() - t0;
-      row.push_back(c);
-      if (solver == HillSolver::kAuto) hill_auto = h;
-    }
-    {
-      Cell c;
-      const HillResult& h = hill_auto;
-      if (h.koopman_log_multipliers.empty()) {
-        c = Judge(false, kInf, std::nullopt, scale, {},
-                  h.koopman_discrepancy ? "no result" : "skipped (matrix too large), says so");
-      } else {
-        const auto e = FromLogMultipliers(h.koopman_log_multipliers, h.period);
-        const double err = ExponentError(e, ref_for_hill, s.omega());
-        // Its error is at most its gap to Hill's exponents plus Hill's own error (the gap alone
-        // fell short on the Poisson kernel, where Hill's error is 5 % of the gap).
-        std::optional<double> bound;
-        if (h.koopman_discrepancy && h.error_estimate)
-          bound = *h.koopman_discrepancy + *h.error_estimate;
-        c = Judge(h.ok, err, bound, scale, h.diagnostics);
-      }
-      row.push_back(c);
-    }
-    // 6–9: partial FRFs, `ltp pfrf --route R` (checks: htf for modal, modal otherwise) with a
-    // check at every frequency. Reference: shooting at 1e-13 (modal at 1e-13 for shooting).
-    // Three candidate references; each route is measured against another route's.
-    std::vector<PartialFrfs> ref_shoot, ref_modal, ref_htf;
-    bool shoot_ok = !reg.resonance, modal_ok = !reg.resonance, htf_ok = !reg.resonance;
-    if (!reg.resonance) {
-      try {
-        ShootingOptions so;
-        so.rel_tol = 1e-13;
-        so.abs_tol = 1e-16;
-        so.integrator = tight.integrator;
-        ForcedResponseSolver fs(s, so);
-        for (double f : reg.freqs_hz) {
-          bool ok = true;
-          ref_shoot.push_back(fs.Shooting(2 * kPi * f, -2, 2, &ok));
-          shoot_ok = shoot_ok && ok && ref_shoot.back().back().allFinite();
-        }
-      } catch (const Error&) {
-        shoot_ok = false;
-      }
-      try {
-        FloquetResult fl = AnalyzeFloquet(s, tight);
-        ModalOptions mo;
-        mo.integrator = tight.integrator;
-        const ModalModel mm = BuildModalModel(s, fl, mo);
-        modal_ok = fl.ok && mm.reliable;
-        for (double f : reg.freqs_hz) ref_modal.push_back(mm.Evaluate(2 * kPi * f, -2, 2));
-      } catch (const Error&) {
-        modal_ok = false;
-      }
-      try {
-        HtfOptions ho;
-        ho.harmonics = 256;
-        HtfSolver htf(s, ho);
-        for (double f : reg.freqs_hz) {
-          ref_htf.push_back(htf.Evaluate(2 * kPi * f, -2, 2));
-          htf_ok = htf_ok && ref_htf.back().back().allFinite();
-        }
-        // Jumps: the HTF converges like N^-1 at best, no reference.
-        if (!s.breakpoints().empty()) htf_ok = false;
-      } catch (const Error&) {
-        htf_ok = false;
-      }
-    }
-    auto reference_for = [&](PfrfRoute route, bool* ok) -> const std::vector<PartialFrfs>& {
-      *ok = true;
-      if (route != PfrfRoute::kShooting && shoot_ok) return ref_shoot;
-      if (route != PfrfRoute::kModal && modal_ok) return ref_modal;
-      if (route != PfrfRoute::kHtf && htf_ok) return ref_htf;
-      *ok = false;
-      return ref_shoot;
-    };
+    const ExponentReferences ref = ReferenceExponents(reg, map.notes);
+    std::vector<Cell> row = MonodromyCells(reg, ref);
+    for (const Cell& c : HillCells(reg, ref, quick)) row.push_back(c);
+    const PfrfReferences refs = ReferencePfrfs(reg);
     for (PfrfRoute route : {PfrfRoute::kAuto, PfrfRoute::kModal, PfrfRoute::kHtf,
-                            PfrfRoute::kShooting, PfrfRoute::kTime}) {
-      PfrfOptions po;
-      po.frequencies_hz = reg.freqs_hz;
-      po.min_order = -2;
-      po.max_order = 2;
-      po.primary = route;
-      po.checks = {route == PfrfRoute::kModal ? PfrfRoute::kHtf : PfrfRoute::kModal};
-      if (route == PfrfRoute::kAuto) {  // exactly `ltp pfrf`'s defaults
-        po.checks = {PfrfRoute::kAuto};
-        po.floquet.integrator.type = IntegratorType::kAuto;
-        po.modal.integrator.type = IntegratorType::kAuto;
-      }
-      po.check_every = 1;
-      const double t0 = WallNow();
-      Cell c;
-      try {
-        const PfrfResult pr = ComputePartialFrf(s, po);
-        bool ref_ok = false;
-        // Auto: measured against a reference from a route other than the one it picked.
-        const auto& ref =
-            reference_for(route == PfrfRoute::kAuto ? pr.routes.front().route : route, &ref_ok);
-        double hscale = 0, err = 0, est = kInf, worst_ratio = kInf;
-        std::string worst_at;
-        bool finite = pr.ok;
-        bool covered = true;
-        // What the references themselves disagree by (shooting vs modal, when both exist):
-        // a smaller "error" is not measurable.
-        double spread = 0;
-        if (shoot_ok && modal_ok)
-          for (size_t f = 0; f < ref_shoot.size(); ++f)
-            for (size_t z = 0; z < ref_shoot[f].size(); ++z)
-              spread = std::max(spread, std::abs(ref_shoot[f][z](0, 0) - ref_modal[f][z](0, 0)));
-        for (size_t f = 0; f < pr.values.size(); ++f)
-          for (size_t z = 0; z < pr.values[f].size(); ++z) {
-            const cd v = pr.values[f][z];
-            if (!std::isfinite(v.real()) || !std::isfinite(v.imag())) finite = false;
-            if (!reg.resonance && ref_ok) {
-              const cd rv = ref[f][z](0, 0);
-              hscale = std::max(hscale, std::abs(rv));
-              const double d = std::abs(v - rv);
-              err = std::max(err, d);
-              if (d > spread) {
-                if (pr.error_estimate[f][z] / d < worst_ratio) {
-                  worst_ratio = pr.error_estimate[f][z] / d;
-                  std::ostringstream w;
-                  w << std::setprecision(2) << " at f = " << reg.freqs_hz[f]
-                    << " Hz, z = " << int(z) - 2 << ": |H| " << std::abs(rv) << ", error " << d
-                    << ", estimate " << pr.error_estimate[f][z];
-                  worst_at = w.str();
-                }
-                if (!(pr.error_estimate[f][z] >= d)) covered = false;
-              }
-            }
-          }
-        if (reg.resonance) {
-          // Infinite reference: a finite answer must say it is unreliable (estimate of the order
-          // of the value itself, or a warning).
-          double vmax = 0, emin = kInf;
-          for (size_t z = 0; z < pr.values[0].size(); ++z) {
-            vmax = std::max(vmax, std::abs(pr.values[0][z]));
-            emin = std::min(emin, pr.error_estimate[0][z]);
-          }
-          std::string w;
-          if (!finite) {
-            c.verdict = Verdict::kFailsSaysSo;
-            c.how = "non-finite value / not ok";
-          } else if (Warns(pr.diagnostics, &w)) {
-            c.verdict = Verdict::kFailsSaysSo;
-            c.how = w;
-          } else {
-            c.verdict = Verdict::kFailsSilently;
-            std::ostringstream h;
-            h << "finite |H| = " << vmax << ", estimate " << emin;
-            c.how = h.str();
-          }
-        } else if (!ref_ok) {
-          c.verdict = Verdict::kNotApplicable;
-          c.how = "no reference";
-        } else {
-          hscale = std::max(hscale, 1e-300);
-          // Per-value estimates: "covers" means every value's estimate covers its error.
-          est = covered ? err : 0;
-          c = Judge(finite, err, covered ? est : 0, hscale, pr.diagnostics);
-          if (c.verdict == Verdict::kFailsSilently) {
-            std::ostringstream h;
-            h << "error " << std::setprecision(2) << c.error_rel
-              << " relative; smallest estimate/error " << worst_ratio << worst_at
-              << " (reference spread " << spread / hscale << ")";
-            c.how = h.str();
-          }
-        }
-      } catch (const Error& e) {
-        c = Judge(false, kInf, std::nullopt, 1, {}, std::string(e.what()).substr(0, 90));
-      }
-      c.elapsed_s = WallNow() - t0;
-      row.push_back(c);
-    }
+                            PfrfRoute::kShooting, PfrfRoute::kTime})
+      row.push_back(PfrfCell(reg, route, refs));
     if (progress) {
       *progress << "failure map: " << reg.name << ":";
-      for (size_t m = 0; m < row.size(); ++m)
-        *progress << " " << std::setprecision(2) << row[m].elapsed_s << "s";
+      for (const Cell& c : row) *progress << " " << std::setprecision(2) << c.elapsed_s << "s";
       *progress << "\n";
     }
     map.cells.push_back(row);

@@ -16,7 +16,7 @@
 
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 namespace ltp::wp {
 

@@ -132,6 +132,8 @@ enum class DiagnosticCode {
   kAzimuthsUneven,         ///< the azimuths are unevenly spaced
   kRotorSpeedsDiffer,      ///< the files' rotor speeds differ
   kMatrixDropped,          ///< a matrix missing in some files was dropped from all
+
+  kCount  ///< not a code: how many there are (new codes go above it)
 };
 
 /// Every DiagnosticCode, in declaration order (for tests and tables).

@@ -8,11 +8,11 @@
 // sample hold ↔ trigonometric polynomial) give a second model; how far its exponents are from
 // the analysed one's is the model error term, added to the estimate before the verdict
 // (docs/sampled-models.md states the rule and what it cannot see).
+#include <complex>
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
 
 namespace ltp {
 
@@ -33,12 +33,17 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
 /// @throws InputError when an analysis has another size or period than `r`.
 void IncludeModelError(const std::vector<FloquetResult>& analysed, FloquetResult& r);
 
-/// The same for Hill's route: the alternatives are analysed by the monodromy route (multipliers
-/// only, `options`), each exponent's e_k is added to its band and the largest to
-/// h.error_estimate; h.model_error, the verdict, the time are set as above. A Hill estimate
-/// of 1e-13 on a model whose samples leave 1e-5 undetermined is not an estimate.
-void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
-                       const FloquetOptions& options, HillResult& h);
+/// Each exponent's sampling error against `alternatives` (see above), analysed by the monodromy
+/// route (multipliers only, `options`, from `grid_segments` segments when > 0); for a route
+/// whose exponents come from elsewhere (Hill's: ltp/hill/hill_model_error.h).
+struct SamplingErrors {
+  std::vector<double> per_exponent;  ///< e_k, in the order of `exponents`
+  long evaluations = 0;              ///< what the alternatives' analyses cost
+};
+SamplingErrors SamplingErrorsAgainst(const std::vector<PeriodicSystem>& alternatives, int states,
+                                     double period, const FloquetOptions& options,
+                                     const std::vector<std::complex<double>>& exponents,
+                                     int grid_segments = 0);
 
 /// The band on max Re λ that a verdict uses when exponent k carries its own error own[k]
 /// besides the common `integration` estimate: the largest distance from `max_real` to

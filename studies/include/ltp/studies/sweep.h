@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/models/scene.h"
 
 namespace ltp {

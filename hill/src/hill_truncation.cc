@@ -23,8 +23,8 @@
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/floquet/hill.h"
-#include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/hill/hill.h"
+#include "ltp/hill/hill_solver_choice.h"
 #include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {

@@ -3,7 +3,7 @@
 // integrator choice and the work–precision study's crossovers.
 #include <string>
 
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "ltp/integrate/integrator_choice.h"
 
 namespace ltp {

@@ -5,7 +5,7 @@
 
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 namespace ltp {
 

@@ -11,7 +11,7 @@
 
 #include "hill_internal.h"
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 namespace ltp {
 namespace hill_internal {

@@ -1,5 +1,5 @@
 // Hill's eigensolver choice from the work–precision study (see hill_solver_choice.h).
-#include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/hill/hill_solver_choice.h"
 
 #include <algorithm>
 #include <sstream>

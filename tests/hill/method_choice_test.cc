@@ -12,8 +12,8 @@
 
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
-#include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/hill/hill.h"
+#include "ltp/hill/hill_solver_choice.h"
 #include "ltp/integrate/integrator_choice.h"
 #include "ltp/models/rotor.h"
 #include "ltp/models/scene.h"

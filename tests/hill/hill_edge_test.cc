@@ -14,7 +14,7 @@
 
 #include "ltp/core/exponent_match.h"
 #include "ltp/floquet/floquet.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 #include "support/systems.h"
 
 namespace ltp {

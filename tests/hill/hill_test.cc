@@ -1,7 +1,7 @@
 // Hill's method against the monodromy route (AnalyzeFloquet at tight tolerance), the Meissner
 // closed-form monodromy, the Jeffcott rotor's rotating-frame eigenvalues, and its own
 // internal cross-checks (dense vs structured, Koopman–Hill, N vs N+Δ, a-priori bound).
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 #include <gsl/gsl_sf_mathieu.h>
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "ltp/core/error.h"
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 namespace ltp {
 

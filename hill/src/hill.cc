@@ -1,6 +1,6 @@
 // Hill analysis: coefficients → Hill matrix → eigenpairs → physical selection → error
 // estimates (N vs N+Δ, a-priori bound, Koopman–Hill cross-check) → result.
-#include "ltp/floquet/hill.h"
+#include "ltp/hill/hill.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,9 +12,9 @@
 #include "ltp/core/elapsed.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
-#include "ltp/floquet/hill_solver_choice.h"
+#include "ltp/floquet/detail/rigid_body.h"
+#include "ltp/hill/hill_solver_choice.h"
 #include "ltp/integrate/detail/condition_number.h"
-#include "rigid_body.h"
 
 namespace ltp {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "ltp/core/diagnostic.h"
 #include "ltp/core/fourier_matrix.h"
-#include "ltp/floquet/hill.h"
 #include "ltp/floquet/work_estimate.h"
+#include "ltp/hill/hill.h"
 
 namespace ltp::hill_internal {
 
