@@ -202,19 +202,26 @@ std::optional<DecodedPoint> DecodePoint(const std::string& payload) {
   return d;
 }
 
-std::string EncodeDiagnostic(std::uint32_t id, const std::string& text) {
+std::string EncodeDiagnostic(std::uint32_t id, const Diagnostic& d) {
   Writer w('D');
   w.Put(id);
-  w.Text(text);
+  w.Put(static_cast<std::uint32_t>(d.code));
+  w.Put(static_cast<std::uint8_t>(d.severity));
+  w.Text(d.text);
   return w.Take();
 }
 
-std::optional<std::pair<std::uint32_t, std::string>> DecodeDiagnostic(const std::string& payload) {
+std::optional<std::pair<std::uint32_t, Diagnostic>> DecodeDiagnostic(const std::string& payload) {
   Reader r(payload, 'D');
   const auto id = r.Get<std::uint32_t>();
+  const auto code = r.Get<std::uint32_t>();
+  const auto severity = r.Get<std::uint8_t>();
   std::string text = r.Text();
-  if (!r.done()) return {};
-  return std::make_pair(id, std::move(text));
+  if (!r.done() || code >= static_cast<std::uint32_t>(DiagnosticCode::kCount) ||
+      severity > static_cast<std::uint8_t>(Severity::kFailure))
+    return {};
+  return std::make_pair(id, Diagnostic{static_cast<DiagnosticCode>(code),
+                                       static_cast<Severity>(severity), std::move(text)});
 }
 
 }  // namespace
@@ -222,9 +229,9 @@ std::optional<std::pair<std::uint32_t, std::string>> DecodeDiagnostic(const std:
 std::string PointWriter::Records(const SweepPoint& point, bool with_shapes) {
   std::string definitions;
   std::vector<std::uint32_t> ids;
-  for (const std::string& d : point.diagnostics) {
+  for (const Diagnostic& d : point.diagnostics) {
     const auto next = static_cast<std::uint32_t>(ids_.size());
-    const auto [it, added] = ids_.emplace(d, next);
+    const auto [it, added] = ids_.emplace(std::tuple{d.code, d.severity, d.text}, next);
     if (added) definitions += JournalFrame(EncodeDiagnostic(it->second, d));
     ids.push_back(it->second);
   }
@@ -237,14 +244,14 @@ std::string PointWriter::Record(const SweepPoint& point, bool with_shapes) {
 
 std::optional<SweepPoint> PointReader::Read(const std::string& payload) {
   if (const auto d = DecodeDiagnostic(payload)) {
-    texts_[d->first] = d->second;
+    diagnostics_[d->first] = d->second;
     return std::nullopt;
   }
   std::optional<DecodedPoint> decoded = DecodePoint(payload);
   if (!decoded) return std::nullopt;
   for (std::uint32_t id : decoded->diagnostic_ids) {
-    const auto it = texts_.find(id);
-    if (it == texts_.end()) return std::nullopt;
+    const auto it = diagnostics_.find(id);
+    if (it == diagnostics_.end()) return std::nullopt;
     decoded->point.diagnostics.push_back(it->second);
   }
   return std::move(decoded->point);

@@ -5,10 +5,10 @@
 // reproduces the uninterrupted one exactly; about a third of the size of the same points in
 // JSON and read back with no parsing of decimal text.
 //
-//   file    = magic "ltp-journal 2\n", then records
+//   file    = magic "ltp-journal 3\n", then records
 //   record  = u32 payload length, u64 FNV-1a of the payload, payload     (little-endian)
 //   payload = 'H' identity JSON text                 (first record: which sweep)
-//           | 'D' u32 id, text                        (a diagnostic text, written once)
+//           | 'D' u32 id, u32 code, u8 severity, text (a diagnostic, written once)
 //           | 'P' point                               (see EncodePoint)
 //
 // Reading stops at a record that runs past the end of the file (torn by a kill) or whose length
@@ -18,13 +18,14 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "ltp/studies/sweep.h"
 
 namespace ltp::cli {
 
-inline constexpr char kJournalMagic[] = "ltp-journal 2\n";
+inline constexpr char kJournalMagic[] = "ltp-journal 3\n";
 
 /// One framed record around `payload`.
 std::string JournalFrame(const std::string& payload);
@@ -33,18 +34,18 @@ std::string JournalFrame(const std::string& payload);
 /// checksum are left out; a torn tail ends the list.
 std::vector<std::string> FramedPayloads(const std::string& bytes, size_t from = 0);
 
-/// Points to records: a diagnostic text is written once ('D'), the points that carry it refer
-/// to its id. `with_shapes` false leaves out the mode shapes.
+/// Points to records: a diagnostic is written once ('D'), the points that carry it refer to its
+/// id. `with_shapes` false leaves out the mode shapes.
 class PointWriter {
  public:
-  /// A point's records, its diagnostic texts not written before first. Not thread-safe: the
-  /// texts' ids are shared.
+  /// A point's records, its diagnostics not written before first. Not thread-safe: the
+  /// diagnostics' ids are shared.
   std::string Records(const SweepPoint& point, bool with_shapes);
   /// The record of a point without diagnostics (Records without the shared ids): any thread.
   static std::string Record(const SweepPoint& point, bool with_shapes);
 
  private:
-  std::map<std::string, std::uint32_t> ids_;
+  std::map<std::tuple<DiagnosticCode, Severity, std::string>, std::uint32_t> ids_;
 };
 
 /// Records back to points, in the order PointWriter wrote them.
@@ -55,7 +56,7 @@ class PointReader {
   std::optional<SweepPoint> Read(const std::string& payload);
 
  private:
-  std::map<std::uint32_t, std::string> texts_;
+  std::map<std::uint32_t, Diagnostic> diagnostics_;
 };
 
 /// The 'H' payload: which sweep a journal belongs to.

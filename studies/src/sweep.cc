@@ -84,7 +84,7 @@ void AnalyzeByMonodromy(const PeriodicSystem& system, const SweepOptions& option
     r = AnalyzeFloquet(system, o);
   }
   point.period = r.period;
-  point.diagnostics = Texts(r.diagnostics);
+  point.diagnostics = r.diagnostics;
   if (!r.ok) {
     point.failure = r.diagnostics.empty() ? "Floquet analysis failed" : r.diagnostics.back().text;
     return;
@@ -111,7 +111,7 @@ void AnalyzeByHill(const PeriodicSystem& system, const SweepOptions& options, bo
   o.koopman_check = false;  // a cross-check per point would dominate the sweep
   HillResult r = AnalyzeHillAuto(system, o, options.hill_tol, options.hill_max_harmonics);
   point.period = system.period();
-  point.diagnostics = Texts(r.diagnostics);
+  point.diagnostics = r.diagnostics;
   if (!r.ok) {
     point.failure = r.diagnostics.empty() ? "Hill analysis failed" : r.diagnostics.back().text;
     return;

@@ -317,7 +317,7 @@ TEST(ChartCli, ResumeDropsDamagedJournalRecords) {
   ASSERT_EQ(RunLtp(sweep + "--csv " + cut + " --stop-after 40").code, 130);
   const std::string journal = cut + ".journal";
   const std::string bytes = ReadFile(journal);
-  const std::string magic = "ltp-journal 2\n";
+  const std::string magic = "ltp-journal 3\n";
   ASSERT_EQ(bytes.compare(0, magic.size(), magic), 0);
   std::vector<std::string> records;  // whole frames, in order
   for (size_t at = magic.size(); at + 12 <= bytes.size();) {
@@ -380,7 +380,7 @@ TEST(ChartCli, ResumeRefusesJournalsThatAreNotJournals) {
   ASSERT_EQ(RunLtp(sweep + "--set c=0.5 --csv " + csv + " --stop-after 20").code, 130);
   {  // the header's identity replaced by an empty text, its checksum made right again
     const std::string bytes = ReadFile(journal);
-    const size_t magic = std::string("ltp-journal 2\n").size();
+    const size_t magic = std::string("ltp-journal 3\n").size();
     std::uint32_t size = 0;
     std::memcpy(&size, bytes.data() + magic, 4);
     std::string payload = "H";

@@ -85,7 +85,7 @@ struct SweepPoint {
   Eigen::MatrixXcd shapes;
   /// With SweepOptions::snapshot: eigenvalues of A(0) and of the averaged A_0 (1/s).
   std::vector<std::complex<double>> snapshot_eigenvalues, averaged_eigenvalues;
-  std::vector<std::string> diagnostics;
+  std::vector<Diagnostic> diagnostics;  ///< the point's analysis's, as it reported them
   double elapsed_s = 0;
 };
 
