@@ -327,13 +327,13 @@ void RunMonodromy(const StudyScene& sc, const Config& cfg, std::vector<Row>& row
         row.estimate = re.ok ? re.error_estimate.value_or(-1) : -1;
         row.estimate_error =
             re.ok ? ExponentError(Exponents(re.modes), sc.ref_for_mono, s.omega()) : kInf;
-        // Bulirsch–Stoer's other estimate, its carried local errors (one run): honesty only,
-        // in its own panel, so the chart's lines stay the plain runs.
-        if (line.type == IntegratorType::kBulirschStoer) {
+        // The other estimate of Bulirsch–Stoer and Taylor series, their carried local errors
+        // (one run): honesty only, in its own panel, so the chart's lines stay the plain runs.
+        if (line.type == IntegratorType::kBulirschStoer || line.type == IntegratorType::kTaylor) {
           e.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
           const FloquetResult rl = AnalyzeFloquet(s, e);
-          Row local = NewRow(sc, "bs, local-errors estimate", row.knob_name, row.knob,
-                             "local-errors-honesty");
+          Row local = NewRow(sc, std::string(ToString(line.type)) + ", local-errors estimate",
+                             row.knob_name, row.knob, "local-errors-honesty");
           local.ok = rl.ok;
           local.estimate = rl.ok ? rl.error_estimate.value_or(-1) : -1;
           local.estimate_error =

@@ -92,7 +92,8 @@ void ResolveOptions(FloquetArgs& args) {
   }
   const auto estimate = ParseErrorEstimateMethod(args.estimate);
   if (!estimate)
-    throw InputError("--estimate must be refined-run or local-errors, got '" + args.estimate + "'");
+    throw InputError("--estimate must be auto, refined-run or local-errors, got '" + args.estimate +
+                     "'");
   args.options.error_estimate_method = *estimate;
   if (args.multipliers == "schur" || args.multipliers == "periodic-schur") {
     args.options.multipliers = MultiplierMethod::kPeriodicSchur;
@@ -527,9 +528,10 @@ Command AddFloquetCommand(CLI::App& app) {
          "schur (periodic Schur of the segment factors) | single-shot (eig of the formed Φ)")
       ->capture_default_str();
   cmd->add_option("--estimate", args.estimate,
-                  "refined-run (a second run at --tol/100 gives the numbers) | local-errors "
-                  "(one run: Bulirsch–Stoer's steps' local errors carried to the exponents; "
-                  "Taylor series' order-p product beside the reported order p + 4)")
+                  "auto (local-errors for Taylor series, refined-run otherwise) | refined-run "
+                  "(a second run at --tol/100 gives the numbers) | local-errors (one run: "
+                  "Bulirsch–Stoer's steps' local errors carried to the exponents; Taylor series' "
+                  "order-p product beside the reported order p + 4)")
       ->capture_default_str();
   cmd->add_option("--mode-samples", args.options.mode_samples,
                   "samples of the mode shapes per period (power of two; 0 = automatic)")

@@ -76,12 +76,20 @@ std::string_view ToString(MultiplierMethod method) {
 }
 
 std::string_view ToString(ErrorEstimateMethod method) {
-  return method == ErrorEstimateMethod::kRefinedRun ? "refined-run" : "local-errors";
+  switch (method) {
+    case ErrorEstimateMethod::kRefinedRun:
+      return "refined-run";
+    case ErrorEstimateMethod::kLocalErrors:
+      return "local-errors";
+    case ErrorEstimateMethod::kAuto:
+      return "auto";
+  }
+  return "unknown";
 }
 
 std::optional<ErrorEstimateMethod> ParseErrorEstimateMethod(std::string_view name) {
-  for (ErrorEstimateMethod m :
-       {ErrorEstimateMethod::kRefinedRun, ErrorEstimateMethod::kLocalErrors})
+  for (ErrorEstimateMethod m : {ErrorEstimateMethod::kRefinedRun, ErrorEstimateMethod::kLocalErrors,
+                                ErrorEstimateMethod::kAuto})
     if (name == ToString(m)) return m;
   return std::nullopt;
 }
@@ -135,14 +143,15 @@ void FloquetOptions::Validate() const {
     check.Fail("modes_below", modes_below, "a finite modes_below >= 0 (rad/s; 0 = every mode)");
   // The refined run doubles a fixed step count; past the integrators' cap it would fail after
   // the first run's work instead of before any.
-  if (estimate_error && error_estimate_method == ErrorEstimateMethod::kRefinedRun &&
+  if (estimate_error && error_estimate_method != ErrorEstimateMethod::kLocalErrors &&
       integrator.steps_per_period > 50000000)
     check.Fail(
         "integrator.steps_per_period", integrator.steps_per_period,
         "<= 5e7 with the refined-run error estimate, which doubles the steps (at most 1e8 per "
         "period); or the local-error estimate, or none");
   if (error_estimate_method != ErrorEstimateMethod::kRefinedRun &&
-      error_estimate_method != ErrorEstimateMethod::kLocalErrors)
+      error_estimate_method != ErrorEstimateMethod::kLocalErrors &&
+      error_estimate_method != ErrorEstimateMethod::kAuto)
     check.Fail("error_estimate_method", static_cast<int>(error_estimate_method),
                "one of the ErrorEstimateMethod values");
 }
@@ -698,7 +707,19 @@ struct Setup {
   FloquetOptions options;
   std::optional<SystemTraits> traits;  ///< measured when the integrator was auto
   double period_scale = 1;
+  ErrorEstimateMethod requested_estimate = ErrorEstimateMethod::kAuto;  ///< before resolution
 };
+
+// kAuto: the local errors where they keep the refined run's promise (ErrorEstimateMethod).
+ErrorEstimateMethod ResolveEstimateMethod(ErrorEstimateMethod requested, IntegratorType type) {
+  if (requested != ErrorEstimateMethod::kAuto) return requested;
+  return type == IntegratorType::kTaylor ? ErrorEstimateMethod::kLocalErrors
+                                         : ErrorEstimateMethod::kRefinedRun;
+}
+
+bool CarriesLocalErrors(IntegratorType type) {
+  return type == IntegratorType::kBulirschStoer || type == IntegratorType::kTaylor;
+}
 
 // States in units far apart (a finite-element rotor's metres and radians, stiffness entries of
 // 1e9 N/m) are rescaled by powers of two before anything is measured or integrated; shapes and
@@ -722,6 +743,9 @@ Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, Floq
     r.diagnostics.push_back(
         {DiagnosticCode::kIntegratorChosen, Severity::kNote,
          "integrator auto → " + std::string(ToString(s.options.integrator.type)) + ": " + choice});
+  s.requested_estimate = requested.error_estimate_method;
+  s.options.error_estimate_method =
+      ResolveEstimateMethod(requested.error_estimate_method, s.options.integrator.type);
   r.states = s.system.states();
   r.period = s.system.period();
   r.integrator = s.options.integrator.type;
@@ -759,17 +783,18 @@ std::vector<double> IntegrationErrors(const Setup& s,
   const FloquetOptions& options = s.options;
   r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
                                                              : ErrorEstimateMethod::kLocalErrors;
-  // Under `auto` the estimate follows the integrator it chose (r.error_estimate_method says
-  // which); a named integrator that carries no local errors, or Bulirsch–Stoer's failing, is
-  // worth a note.
-  const bool named = !s.traits || options.integrator.type == IntegratorType::kBulirschStoer;
-  if (options.estimate_error && n > 0 && named &&
+  // Worth a note: local errors that were not finite, or asked of an integrator the user named
+  // that carries none. Under `auto` (integrator or estimate) the estimate follows the integrator
+  // chosen, and r.error_estimate_method says which.
+  const bool carrier = CarriesLocalErrors(options.integrator.type);
+  const bool asked = s.requested_estimate == ErrorEstimateMethod::kLocalErrors && !s.traits;
+  if (options.estimate_error && n > 0 && (carrier || asked) &&
       options.error_estimate_method != r.error_estimate_method)
     r.diagnostics.push_back(
         {DiagnosticCode::kErrorEstimateFallback, Severity::kNote,
-         options.integrator.type == IntegratorType::kBulirschStoer
+         carrier
              ? "error estimate: the carried local errors were not finite (a singular step "
-               "matrix); the refined run instead"
+               "matrix or an overflowing series); the refined run instead"
              : "error estimate: the steps' local errors are carried by Bulirsch–Stoer and Taylor "
                "series only; " +
                    std::string(ToString(options.integrator.type)) +

@@ -258,7 +258,8 @@ FloquetResult LtpFloquet(const System& system, const std::string& integrator, Re
   o.multipliers = MultipliersFrom(multipliers);
   const auto method = ParseErrorEstimateMethod(estimate);
   if (!method)
-    throw InputError("estimate must be 'refined-run' or 'local-errors', got '" + estimate + "'");
+    throw InputError("estimate must be 'auto', 'refined-run' or 'local-errors', got '" + estimate +
+                     "'");
   o.error_estimate_method = *method;
   o.mode_samples = mode_samples;
   o.threads = AnalysisThreads(system, threads);
@@ -314,7 +315,8 @@ the same options and defaults.
   steps         fixed-step methods: steps per period (0 = automatic)
   segments      number of segments K of the period, or 'auto'
   multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
-  estimate      'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
+  estimate      'auto' ('local-errors' for Taylor series, 'refined-run' otherwise) |
+                'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
                 (one run: Bulirsch–Stoer's steps' local errors carried to the exponents;
                 Taylor series' order-p product beside the reported order p + 4)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)

@@ -297,7 +297,7 @@ TEST(Cli, LocalErrorEstimateCoversTheDistanceToHill) {
   EXPECT_NE(text.out.find("local errors"), std::string::npos) << text.out;
   const Outcome bad = Ltp("floquet mathieu --estimate twice");
   EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.err.find("--estimate must be refined-run or local-errors"), std::string::npos)
+  EXPECT_NE(bad.err.find("--estimate must be auto, refined-run or local-errors"), std::string::npos)
       << bad.err;
 }
 

@@ -29,6 +29,7 @@ std::map<std::string, std::vector<double>> Phases(IntegratorType type, int threa
   std::mutex m;
   FloquetOptions o;
   o.integrator.type = type;
+  o.error_estimate_method = ErrorEstimateMethod::kRefinedRun;  // the phases of a refined run
   o.threads = threads;
   o.on_progress = [&](std::string_view phase, double fraction) {
     std::lock_guard<std::mutex> lock(m);  // the library promises one call at a time; checked

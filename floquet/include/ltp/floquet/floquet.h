@@ -50,9 +50,14 @@ enum class ErrorEstimateMethod {
   /// reported order-(p + 4) ones on the same steps; about 1.2 runs' work, the numbers about 10³×
   /// better than the estimate, as a refined run's.
   kLocalErrors,
+  /// The cheaper one that keeps the refined run's promise (numbers from a computation far more
+  /// accurate than the one the estimate measures): kLocalErrors for Taylor series, kRefinedRun
+  /// for every other integrator (Bulirsch–Stoer's local errors would report the run's own
+  /// numbers). FloquetResult::error_estimate_method says which ran.
+  kAuto,
 };
 std::string_view ToString(ErrorEstimateMethod method);
-/// "refined-run" or "local-errors"; nullopt otherwise.
+/// "refined-run", "local-errors" or "auto"; nullopt otherwise.
 std::optional<ErrorEstimateMethod> ParseErrorEstimateMethod(std::string_view name);
 
 struct FloquetOptions {
@@ -78,7 +83,7 @@ struct FloquetOptions {
   /// is at rel_tol/100 (or twice the steps) on another grid — every segment halved with modes,
   /// the boundaries moved to the midpoints without.
   bool estimate_error = true;
-  ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
+  ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kAuto;
   /// Compute mode shapes, left modes and branch selection (off: multipliers only, faster).
   bool compute_modes = true;
   /// Keep the segment factors Φ_i = Φ(t_{i+1}, t_i) in the result (FloquetResult::
@@ -194,7 +199,8 @@ struct FloquetResult {
   double period = 0;
   IntegratorType integrator = IntegratorType::kAuto;  ///< the one used (auto resolved)
   MultiplierMethod multiplier_method = MultiplierMethod::kPeriodicSchur;
-  /// The estimate's method actually used (kLocalErrors falls back for other integrators).
+  /// The estimate's method actually used (never kAuto; kLocalErrors falls back to kRefinedRun
+  /// for integrators that carry no local errors).
   ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
   int segments = 0;  ///< K actually used
   /// K of the grid the first run chose (the error estimate's refined run re-cuts it into
