@@ -296,12 +296,12 @@ std::string_view ToString(ZeroRoute route) {
 }
 
 void ZerosOptions::Validate() const {
-  auto fail = [](const std::string& what) { throw InputError("zeros options: " + what); };
-  if (harmonics < 0) fail("harmonics must be >= 0 (0 = automatic)");
-  if (delta < 0) fail("delta must be >= 0 (0 = automatic)");
-  if (!(tol > 0 && tol < 0.1)) fail("tol must be in (0, 0.1)");
-  if (max_harmonics < 1) fail("max_harmonics must be >= 1");
-  if (max_pencil_size < 1) fail("max_pencil_size must be >= 1");
+  const OptionCheck check("ZerosOptions");
+  if (harmonics < 0) check.Fail("harmonics", harmonics, "harmonics >= 0 (0 = automatic)");
+  if (delta < 0) check.Fail("delta", delta, "delta >= 0 (0 = automatic)");
+  if (!(tol > 0 && tol < 0.1)) check.Fail("tol", tol, "0 < tol < 0.1");
+  if (max_harmonics < 1) check.Fail("max_harmonics", max_harmonics, "max_harmonics >= 1");
+  if (max_pencil_size < 1) check.Fail("max_pencil_size", max_pencil_size, "max_pencil_size >= 1");
   floquet.Validate();
 }
 

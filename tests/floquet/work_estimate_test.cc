@@ -12,18 +12,12 @@
 #include "ltp/core/error.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/integrate/integrator_choice.h"
+#include "support/systems.h"
 
 namespace ltp {
 namespace {
 
-// x'' + 0.02 x' + w²(1 + 0.1 cos t) x = 0 over 2π: T·ρ ≈ 2π w radians per period.
-PeriodicSystem FastOscillator(double w) {
-  FourierMatrix a(2, 2, 1);
-  a[0] << 0, 1, -w * w, -0.02;
-  a[1] << 0, 0, -0.05 * w * w, 0;
-  a[-1] = a[1];
-  return PeriodicSystem::FromFourier(2 * std::numbers::pi, a);
-}
+using test::FastOscillator;
 
 // Analyses FastOscillator(w) with `type` at `tol` and checks that the estimate brackets the
 // evaluations it counted, each weighed as `weight` evaluations' worth.

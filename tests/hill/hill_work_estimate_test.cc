@@ -9,18 +9,12 @@
 #include "ltp/core/error.h"
 #include "ltp/floquet/work_estimate.h"
 #include "ltp/hill/hill.h"
+#include "support/systems.h"
 
 namespace ltp {
 namespace {
 
-// x'' + 0.02 x' + w²(1 + 0.1 cos t) x = 0 over 2π (as in tests/floquet/work_estimate_test.cc).
-PeriodicSystem FastOscillator(double w) {
-  FourierMatrix a(2, 2, 1);
-  a[0] << 0, 1, -w * w, -0.02;
-  a[1] << 0, 0, -0.05 * w * w, 0;
-  a[-1] = a[1];
-  return PeriodicSystem::FromFourier(2 * std::numbers::pi, a);
-}
+using test::FastOscillator;
 
 // Hill's dense solver weighs its eigen-solves before it starts: announced through the hook and
 // the diagnostics, refused far beyond the limit (N = 1000 on 2 states: sizes 4002 and 6002,

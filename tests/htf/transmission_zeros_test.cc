@@ -7,6 +7,8 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -27,6 +29,27 @@ void ExpectRoutesAgree(const TransmissionZeros& r, double omega, double estimate
     const double d = ExponentDistance(z.centred, *z.check_value, omega);
     EXPECT_LE(d, z.error_estimate + *z.check_error_estimate + 1e-12) << z.centred;
     EXPECT_LT(z.error_estimate, estimate_below) << z.centred;
+  }
+}
+
+// Bad options are refused before any work, naming the field and the constraint in the one
+// style of every Validate() (OptionCheck).
+TEST(TransmissionZeros, BadOptionsNameTheFieldAndTheConstraint) {
+  for (auto [field, set] : std::initializer_list<std::pair<const char*, void (*)(ZerosOptions&)>>{
+           {"ZerosOptions::tol = 0.5. Violated constraint: 0 < tol < 0.1",
+            [](ZerosOptions& o) { o.tol = 0.5; }},
+           {"ZerosOptions::harmonics = -1. Violated constraint: harmonics >= 0",
+            [](ZerosOptions& o) { o.harmonics = -1; }},
+           {"ZerosOptions::max_pencil_size = 0. Violated constraint: max_pencil_size >= 1",
+            [](ZerosOptions& o) { o.max_pencil_size = 0; }}}) {
+    ZerosOptions o;
+    set(o);
+    try {
+      o.Validate();
+      ADD_FAILURE() << field << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
   }
 }
 

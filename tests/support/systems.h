@@ -17,6 +17,16 @@ constexpr double kPi = std::numbers::pi;
 /// Damped Mathieu y'' + c y' + (a − 2q cos 2t) y = 0, period π, exact Fourier form:
 /// A_0 = [[0,1],[−a,−c]], A_{±1} = [[0,0],[q,0]] (2q cos 2t = q e^{j2t} + q e^{−j2t}, Ωp = 2).
 /// `omega_p` ≠ 2 rescales time: the excitation becomes 2q cos Ωp t, period 2π/Ωp.
+// x'' + 0.02 x' + w²(1 + 0.1 cos t) x = 0 over 2π: T·ρ ≈ 2π w radians per period (the work
+// estimate's tests: how fast the fastest motion is sets the work).
+inline PeriodicSystem FastOscillator(double w) {
+  FourierMatrix a(2, 2, 1);
+  a[0] << 0, 1, -w * w, -0.02;
+  a[1] << 0, 0, -0.05 * w * w, 0;
+  a[-1] = a[1];
+  return PeriodicSystem::FromFourier(2 * std::numbers::pi, a);
+}
+
 inline PeriodicSystem Mathieu(double a, double q, double c = 0, double omega_p = 2) {
   FourierMatrix A(2, 2, 1);
   Eigen::MatrixXcd a0(2, 2), a1 = Eigen::MatrixXcd::Zero(2, 2);

@@ -129,8 +129,8 @@ struct ZerosOptions {
   int delta = 0;
   double tol = 1e-9;
   int max_harmonics = 64;
-  /// Largest pencil solved (rows (2N+1)(n+m), dense complex QZ with eigenvectors: ~ rows³,
-  /// 693 and 1029 rows took 22 s together on a shared 2-core machine; the limit ~1 min).
+  /// Largest pencil solved (rows (2N+1)(n+m), dense complex QZ with eigenvectors: work ~ rows³;
+  /// the limit keeps one solve to about a minute on a 2-core machine, docs/htf-operator.md).
   int max_pencil_size = 1500;
   /// Run the check route where it applies (D(t) invertible, or D = 0 with C(t)B(t) invertible).
   bool check = true;
