@@ -123,9 +123,12 @@ class TaylorSeriesStepper {
   void CheckedStep(int order, double h, Matrix& phi, Matrix& lower) {
     for (int k = order; k < order + check_orders_; ++k) NextTerm(k);
     const Matrix low = Sum(order, h);
+    // The higher sum as the lower one plus its tail h^{p+1} Σ_j S_{p+1+j} h^j; from the top
+    // when h^{p+1} overflows (a long step of a slow system).
     Matrix high = Term(order + check_orders_);
     for (int k = order + check_orders_ - 1; k > order; --k) high = Term(k) + h * high;
-    high = low + std::pow(h, order + 1) * high;
+    const double power = std::pow(h, order + 1);
+    high = std::isfinite(power) ? Matrix(low + power * high) : Sum(order + check_orders_, h);
     Multiply(high, phi);
     Multiply(low, lower);
   }
