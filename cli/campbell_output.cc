@@ -44,7 +44,7 @@ json CampbellJson(const CampbellDiagram& d) {
 }
 
 void PrintCampbell(std::ostream& out, const CampbellDiagram& d, const std::string& axis) {
-  out << "  modes (one line per conjugate pair; shares of the displacement energy at t = 0):\n";
+  out << "  modes (one line per conjugate pair, named by the states' participation):\n";
   for (size_t k = 0; k < d.lines.size(); ++k) {
     const CampbellLine& line = d.lines[k];
     out << "    " << Num(static_cast<double>(k + 1), 3, 3) << "  " << line.description;

@@ -181,7 +181,7 @@ void FrequencyPanel(const ChartPlotInput& in, const CampbellExtras& x, std::ostr
   const size_t every = std::max<size_t>(1, d.parameter.size() / 25);
   g << "set title '" << in.eigenvalues << ", tracked by MAC; markers: "
     << (every == 1 ? std::string("computed points")
-                   : "every " + std::to_string(every) + "th computed point")
+                   : "one per " + std::to_string(every) + " computed points")
     << (d.per_rev.empty() ? "" : "; dashed: n·Ω/2π; circles: crossings") << shading << "'\n"
     << "set ylabel '"
     << (d.frequency == CampbellFrequency::kNatural ? "natural frequency |λ|/2π"

@@ -219,7 +219,7 @@ void PrintModeTable(const std::vector<FloquetMode>& modes,
                     const std::vector<std::string>& descriptions = {}) {
   std::cout << "\n  mode      Re λ [1/s]    Im λ [rad/s]     freq [Hz]   damping ζ       log|ρ|    "
                "arg ρ [rad]  branch"
-            << (descriptions.empty() ? "" : "   carried by (energy at t = 0)") << "\n";
+            << (descriptions.empty() ? "" : "   carried by (participation at t = 0)") << "\n";
   for (size_t k = 0; k < modes.size(); ++k) {
     const FloquetMode& m = modes[k];
     std::cout << "  " << std::setw(4) << k + 1 << Num(m.exponent.real(), 7, 15)

@@ -68,7 +68,12 @@ json ModeJson(const MbcMode& m, const Mbc3Result& r) {
            {{"re", JsonNumbers(std::vector<double>(m.eigenvector.real().begin(),
                                                    m.eigenvector.real().end()))},
             {"im", JsonNumbers(std::vector<double>(m.eigenvector.imag().begin(),
-                                                   m.eigenvector.imag().end()))}}}};
+                                                   m.eigenvector.imag().end()))}}},
+          {"participation",
+           {{"re", JsonNumbers(std::vector<double>(m.participation.real().begin(),
+                                                   m.participation.real().end()))},
+            {"im", JsonNumbers(std::vector<double>(m.participation.imag().begin(),
+                                                   m.participation.imag().end()))}}}};
 }
 
 // One row per MBC state, per mode its shape's magnitude and phase (degrees, the leading state

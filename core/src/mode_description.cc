@@ -49,40 +49,122 @@ std::string StateName(const SystemLabels& labels, int i) {
   return name += std::to_string(i + 1);
 }
 
-// Indices of the displacement states (see the header).
-std::vector<int> DisplacementStates(const SystemLabels& labels, int n) {
-  std::map<std::string, int> index;
-  for (int i = 0; i < n; ++i) index[StateName(labels, i)] = i;
-  std::vector<int> rate(static_cast<size_t>(n), 0);
-  bool any = false;
-  for (int i = 0; i < n; ++i) {
-    const std::string name = StateName(labels, i);
-    const bool dot =
-        name.size() > 4 && name.ends_with("_dot") && index.count(name.substr(0, name.size() - 4));
-    if (dot || name.find("First time derivative of ") != std::string::npos) {
-      rate[static_cast<size_t>(i)] = 1;
-      any = true;
-    }
-  }
-  std::vector<int> out;
-  for (int i = 0; i < n; ++i)
-    if (!any || !rate[static_cast<size_t>(i)]) out.push_back(i);
-  return out;
+// "..., m/s" → "...": a trailing unit after the last ", " (OpenFAST's descriptions).
+std::string WithoutUnit(const std::string& name) {
+  const auto comma = name.rfind(", ");
+  if (comma == std::string::npos) return name;
+  const std::string unit = name.substr(comma + 2);
+  if (unit.empty() || unit.size() > 10 || unit.find(' ') != std::string::npos) return name;
+  return name.substr(0, comma);
 }
 
-// Energy of a blade family per multiblade harmonic k = 0..B−1 (DFT over the blade index,
-// scaled so the harmonics sum to the family's energy).
-std::vector<double> MultibladeEnergies(const std::vector<std::complex<double>>& v) {
-  const int B = static_cast<int>(v.size());
-  std::vector<double> e(static_cast<size_t>(B), 0);
-  for (int k = 0; k < B; ++k) {
-    std::complex<double> c = 0;
-    for (int b = 0; b < B; ++b)
-      c += v[static_cast<size_t>(b)] * std::polar(1.0, -2 * std::numbers::pi * k * b / B);
-    e[static_cast<size_t>(k)] = std::norm(c) / B;
+// For each state, the index of the displacement whose rate it is, else its own index (see
+// the header: "s_dot" beside "s"; "First time derivative of s, m/s" beside "s, m").
+std::vector<int> CoordinateOf(const SystemLabels& labels, int n) {
+  std::map<std::string, int> index, index_without_unit;
+  for (int i = 0; i < n; ++i) {
+    index.emplace(StateName(labels, i), i);
+    index_without_unit.emplace(WithoutUnit(StateName(labels, i)), i);
   }
-  return e;
+  static const std::string kDerivative = "First time derivative of ";
+  std::vector<int> coordinate(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    coordinate[static_cast<size_t>(i)] = i;
+    const std::string name = StateName(labels, i);
+    if (name.size() > 4 && name.ends_with("_dot")) {
+      const auto it = index.find(name.substr(0, name.size() - 4));
+      if (it != index.end()) coordinate[static_cast<size_t>(i)] = it->second;
+    } else if (const auto at = name.find(kDerivative); at != std::string::npos) {
+      std::string base = name;
+      base.erase(at, kDerivative.size());
+      const auto it = index_without_unit.find(WithoutUnit(base));
+      if (it != index_without_unit.end() && it->second != i)
+        coordinate[static_cast<size_t>(i)] = it->second;
+    }
+  }
+  return coordinate;
 }
+
+// Participation of a blade family per multiblade harmonic k = 0..B−1: the DFT over the blade
+// index of the right vector's entries and the inverse DFT of the left's, so the harmonics'
+// participations add up to the family's Σ_b v_b w_b.
+std::vector<std::complex<double>> MultibladeParticipation(
+    const std::vector<std::complex<double>>& v, const std::vector<std::complex<double>>& w) {
+  const int B = static_cast<int>(v.size());
+  std::vector<std::complex<double>> p(static_cast<size_t>(B), 0);
+  for (int k = 0; k < B; ++k) {
+    std::complex<double> vk = 0, wk = 0;
+    for (int b = 0; b < B; ++b) {
+      const std::complex<double> e = std::polar(1.0, -2 * std::numbers::pi * k * b / B);
+      vk += v[static_cast<size_t>(b)] * e;
+      wk += w[static_cast<size_t>(b)] * std::conj(e);
+    }
+    p[static_cast<size_t>(k)] = vk * wk / static_cast<double>(B);
+  }
+  return p;
+}
+
+std::string MultibladePart(int k, int B) {
+  const int harmonic = std::min(k, B - k);
+  if (harmonic == 0) return "collective";
+  if (B % 2 == 0 && 2 * harmonic == B) return "differential";
+  if (harmonic == 1) return "cyclic";
+  return "cyclic " + std::to_string(harmonic);
+}
+
+// Blade families: the label with its blade number replaced by '#' → state index per blade
+// (complete families only; key_of names each member's family, empty for the others).
+struct BladeFamilies {
+  std::map<std::string, std::vector<int>> members;
+  std::vector<std::string> key_of;
+};
+
+BladeFamilies FindBladeFamilies(const SystemLabels& labels, const std::vector<int>& coordinate) {
+  const int n = static_cast<int>(coordinate.size());
+  BladeFamilies f;
+  f.key_of.resize(static_cast<size_t>(n));
+  const int B = labels.blades;
+  if (B < 2) return f;
+  std::vector<char> blade_state(static_cast<size_t>(n), 0);
+  for (int i : labels.blade_states)
+    if (i >= 0 && i < n) blade_state[static_cast<size_t>(i)] = 1;
+  for (int i = 0; i < n; ++i) {
+    // A rate is a blade state when its displacement is.
+    if (!blade_state[static_cast<size_t>(i)] &&
+        !blade_state[static_cast<size_t>(coordinate[static_cast<size_t>(i)])])
+      continue;
+    const BladeNumber b = FindBladeNumber(StateName(labels, i));
+    if (b.blade < 1 || b.blade > B) continue;
+    auto& members = f.members[b.key];
+    members.resize(static_cast<size_t>(B), -1);
+    if (members[static_cast<size_t>(b.blade - 1)] >= 0) continue;  // twice: not a family
+    members[static_cast<size_t>(b.blade - 1)] = i;
+    f.key_of[static_cast<size_t>(i)] = b.key;
+  }
+  for (auto it = f.members.begin(); it != f.members.end();) {
+    const bool complete = std::count(it->second.begin(), it->second.end(), -1) == 0;
+    if (!complete)
+      for (int i : it->second)
+        if (i >= 0) f.key_of[static_cast<size_t>(i)].clear();
+    it = complete ? std::next(it) : f.members.erase(it);
+  }
+  return f;
+}
+
+// Participation summed per family name, in order of first appearance.
+class FamilySums {
+ public:
+  void Add(const std::string& name, std::complex<double> p) {
+    const auto [it, added] = index_.emplace(name, sums_.size());
+    if (added) sums_.push_back({name, 0});
+    sums_[it->second].second += p;
+  }
+  const std::vector<std::pair<std::string, std::complex<double>>>& sums() const { return sums_; }
+
+ private:
+  std::map<std::string, size_t> index_;
+  std::vector<std::pair<std::string, std::complex<double>>> sums_;
+};
 
 }  // namespace
 
@@ -92,64 +174,42 @@ void ModeDescriptionOptions::Validate() const {
   if (max_families < 1) check.Fail("max_families", max_families, ">= 1");
 }
 
-ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::VectorXcd& shape,
-                                  const ModeDescriptionOptions& options) {
+ModeDescription DescribeMode(const SystemLabels& labels, const Eigen::VectorXcd& right,
+                             const Eigen::VectorXcd& left, const ModeDescriptionOptions& options) {
   options.Validate();
-  const int n = static_cast<int>(shape.size());
+  const int n = static_cast<int>(right.size());
+  if (left.size() != right.size())
+    throw InputError("mode description: right eigenvector has " + std::to_string(n) +
+                     " entries, left " + std::to_string(left.size()));
   if (!labels.states.empty() && static_cast<int>(labels.states.size()) != n)
     throw InputError("mode shape has " + std::to_string(n) + " entries for " +
                      std::to_string(labels.states.size()) + " labelled states");
-  const std::vector<int> states = DisplacementStates(labels, n);
-  // Blade families: key → state index per blade.
-  const int B = labels.blades;
-  std::map<std::string, std::vector<int>> blade_family;
-  std::vector<std::string> key_of(static_cast<size_t>(n));
-  if (B >= 2) {
-    std::vector<char> blade_state(static_cast<size_t>(n), 0);
-    for (int i : labels.blade_states)
-      if (i >= 0 && i < n) blade_state[static_cast<size_t>(i)] = 1;
-    for (int i : states) {
-      if (!blade_state[static_cast<size_t>(i)]) continue;
-      const BladeNumber b = FindBladeNumber(StateName(labels, i));
-      if (b.blade < 1 || b.blade > B) continue;
-      auto& members = blade_family[b.key];
-      members.resize(static_cast<size_t>(B), -1);
-      if (members[static_cast<size_t>(b.blade - 1)] >= 0) continue;  // twice: not a family
-      members[static_cast<size_t>(b.blade - 1)] = i;
-      key_of[static_cast<size_t>(i)] = b.key;
+  const std::vector<int> coordinate = CoordinateOf(labels, n);
+  const BladeFamilies blade = FindBladeFamilies(labels, coordinate);
+  FamilySums sums;
+  for (int i = 0; i < n; ++i)
+    if (blade.key_of[static_cast<size_t>(i)].empty())
+      sums.Add(StateName(labels, coordinate[static_cast<size_t>(i)]), right(i) * left(i));
+  for (const auto& [key, members] : blade.members) {
+    // A rate family is named after its displacements' family.
+    const std::string& displacement_key =
+        blade.key_of[static_cast<size_t>(coordinate[static_cast<size_t>(members[0])])];
+    const std::string name = FamilyName(displacement_key.empty() ? key : displacement_key);
+    std::vector<std::complex<double>> v, w;
+    for (int i : members) {
+      v.push_back(right(i));
+      w.push_back(left(i));
     }
-    for (auto it = blade_family.begin(); it != blade_family.end();) {
-      const bool complete = std::count(it->second.begin(), it->second.end(), -1) == 0;
-      if (!complete)
-        for (int i : it->second)
-          if (i >= 0) key_of[static_cast<size_t>(i)].clear();
-      it = complete ? std::next(it) : blade_family.erase(it);
-    }
+    const std::vector<std::complex<double>> p = MultibladeParticipation(v, w);
+    const int B = static_cast<int>(members.size());
+    for (int k = 0; k < B; ++k)
+      sums.Add(name + " " + MultibladePart(k, B), p[static_cast<size_t>(k)]);
   }
   ModeDescription d;
   double total = 0;
-  for (int i : states) total += std::norm(shape(i));
-  if (!(total > 0)) return d;
-  for (int i : states)
-    if (key_of[static_cast<size_t>(i)].empty())
-      d.families.push_back({StateName(labels, i), std::norm(shape(i)) / total});
-  for (const auto& [key, members] : blade_family) {
-    std::vector<std::complex<double>> v;
-    for (int i : members) v.push_back(shape(i));
-    const std::vector<double> e = MultibladeEnergies(v);
-    const std::string name = FamilyName(key);
-    std::map<std::string, double> parts;
-    for (int k = 0; k < B; ++k) {
-      const int harmonic = std::min(k, B - k);
-      std::string part = harmonic == 0                       ? "collective"
-                         : (B % 2 == 0 && 2 * harmonic == B) ? "differential"
-                         : harmonic == 1                     ? "cyclic"
-                                                             : "cyclic " + std::to_string(harmonic);
-      parts[part] += e[static_cast<size_t>(k)];
-    }
-    for (const auto& [part, energy] : parts)
-      d.families.push_back({name + " " + part, energy / total});
-  }
+  for (const auto& [name, p] : sums.sums()) total += std::abs(p);
+  if (!(total > 0) || !std::isfinite(total)) return d;
+  for (const auto& [name, p] : sums.sums()) d.families.push_back({name, std::abs(p) / total});
   // Largest first; shares equal to 1e-9 (e.g. a circular whirl's two planes) keep state order.
   std::stable_sort(d.families.begin(), d.families.end(), [](const auto& a, const auto& b) {
     return std::llround(a.share * 1e9) > std::llround(b.share * 1e9);
@@ -164,15 +224,30 @@ ModeDescription DescribeModeShape(const SystemLabels& labels, const Eigen::Vecto
   return d;
 }
 
+std::vector<std::string> DescribeModes(const SystemLabels& labels, const Eigen::MatrixXcd& right,
+                                       const Eigen::MatrixXcd& left,
+                                       const ModeDescriptionOptions& options) {
+  std::vector<std::string> out(static_cast<size_t>(right.cols()));
+  if ((!labels.states.empty() && static_cast<Eigen::Index>(labels.states.size()) != right.rows()) ||
+      left.rows() != right.cols() || left.cols() != right.rows())
+    return out;
+  for (Eigen::Index k = 0; k < right.cols(); ++k)
+    out[static_cast<size_t>(k)] =
+        DescribeMode(labels, right.col(k), left.row(k).transpose(), options).text;
+  return out;
+}
+
+Eigen::MatrixXcd LeftEigenvectors(const Eigen::MatrixXcd& right) {
+  if (right.rows() != right.cols() || right.size() == 0) return {};
+  Eigen::MatrixXcd left = right.partialPivLu().inverse();
+  if (!left.allFinite()) return {};
+  return left;
+}
+
 std::vector<std::string> DescribeModeShapes(const SystemLabels& labels,
                                             const Eigen::MatrixXcd& shapes,
                                             const ModeDescriptionOptions& options) {
-  std::vector<std::string> out(static_cast<size_t>(shapes.cols()));
-  if (!labels.states.empty() && static_cast<Eigen::Index>(labels.states.size()) != shapes.rows())
-    return out;
-  for (Eigen::Index k = 0; k < shapes.cols(); ++k)
-    out[static_cast<size_t>(k)] = DescribeModeShape(labels, shapes.col(k), options).text;
-  return out;
+  return DescribeModes(labels, shapes, LeftEigenvectors(shapes), options);
 }
 
 }  // namespace ltp

@@ -84,6 +84,19 @@ Eigen::MatrixXcd ToStates(const Eigen::MatrixXcd& q, const Eigen::MatrixXd& u,
   return x;
 }
 
+// The left eigenvectors (rows) in the given states of the modes `keep` of the reduced shapes
+// q (complete, square): for x = S U q, q = Wᵀ S⁻¹ x, so a row ℓ of q⁻¹ acts on x as ℓ Wᵀ S⁻¹.
+Eigen::MatrixXcd LeftToStates(const Eigen::MatrixXcd& q, const Eigen::MatrixXd& w,
+                              const Eigen::VectorXd& scale, const std::vector<int>& keep) {
+  const Eigen::MatrixXcd inverse = LeftEigenvectors(q);
+  if (inverse.size() == 0) return {};
+  Eigen::MatrixXcd picked(keep.size(), inverse.cols());
+  for (size_t j = 0; j < keep.size(); ++j) picked.row(j) = inverse.row(keep[j]);
+  Eigen::MatrixXcd x = picked * w.transpose().cast<cd>();
+  if (scale.size()) x = x * scale.cwiseInverse().cast<cd>().asDiagonal();
+  return x;
+}
+
 std::string Hz(double rad_per_s) {
   std::ostringstream s;
   s << rad_per_s / (2 * std::numbers::pi) << " Hz";
@@ -207,7 +220,9 @@ void TakeFromProjection(const FloquetResult& numbers, const SpectralSplit& used,
   if (scale.size())
     r.monodromy = scale.asDiagonal() * r.monodromy * scale.cwiseInverse().asDiagonal();
   if (!r.mode_samples.empty())
-    r.mode_descriptions = DescribeModeShapes(labels, r.mode_samples.front());
+    r.mode_descriptions =
+        DescribeModes(labels, r.mode_samples.front(),
+                      LeftToStates(numbers.mode_samples.front(), used.left, scale, kept_columns));
   for (std::string& line : FlagRigidBodyModes(
            labels, r.mode_samples.empty() ? Eigen::MatrixXcd() : r.mode_samples.front(), r.modes))
     r.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote, std::move(line)});

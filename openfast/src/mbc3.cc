@@ -12,6 +12,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_fit.h"
+#include "ltp/core/mode_description.h"
 #include "ltp/core/multiblade.h"
 
 namespace ltp {
@@ -101,17 +102,25 @@ void CheckRateGroups(const BladeCoordinates& c, const std::vector<int>& rate_of,
   }
 }
 
-// The mode's description: shares of the displacement-state energy summed per coordinate
-// family (a fixed-frame state, a collective, or a cosine/sine pair), largest first; a cyclic
-// pair is named by its whirl direction when the phase between cosine and sine says so.
+// The mode's participation per displacement: p_d plus the participation of d's rate (a
+// second-order DOF takes part through both; docs/mode-descriptions.md).
+Eigen::VectorXcd ParticipationPerDisplacement(const std::vector<int>& rate_of,
+                                              const Eigen::VectorXcd& participation) {
+  Eigen::VectorXcd p = Eigen::VectorXcd::Zero(participation.size());
+  for (Eigen::Index i = 0; i < participation.size(); ++i)
+    p(rate_of[i] >= 0 ? rate_of[i] : i) += participation(i);
+  return p;
+}
+
+// The mode's description: its participation summed per coordinate family (a fixed-frame
+// state, a collective, or a cosine/sine pair, each with its rates), |sum| over the sum of the
+// families' |sum|, largest first; a cyclic pair is named by its whirl direction when the phase
+// between cosine and sine says so.
 void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
                   const std::vector<LinChannel>& states, const Mbc3Options& options, MbcMode& m) {
   const int n = static_cast<int>(states.size());
   const Eigen::VectorXcd& v = m.eigenvector;
-  double total = 0;
-  for (int i = 0; i < n; ++i)
-    if (rate_of[i] < 0) total += std::norm(v[i]);
-  if (total <= 0) return;
+  const Eigen::VectorXcd p = ParticipationPerDisplacement(rate_of, m.participation);
   struct Family {
     std::string name;
     double share = 0;
@@ -122,14 +131,14 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
   for (int i = 0; i < n; ++i) {
     if (rate_of[i] >= 0 || done[i]) continue;
     done[i] = true;
-    Family f{WithoutUnit(states[i].description), std::norm(v[i]) / total, ""};
+    Family f{WithoutUnit(states[i].description), std::abs(p[i]), ""};
     const int g = c.group_of[i], b = c.blade_of[i];
     const bool cyclic = g >= 0 && b > 0 && !(c.blades % 2 == 0 && b == c.blades - 1);
     if (cyclic) {
       const int cos_index = c.groups[g][b % 2 == 1 ? b : b - 1];
       const int sin_index = c.groups[g][b % 2 == 1 ? b + 1 : b];
       done[cos_index] = done[sin_index] = true;
-      f.share = (std::norm(v[cos_index]) + std::norm(v[sin_index])) / total;
+      f.share = std::abs(p[cos_index] + p[sin_index]);
       // Pattern a_c cos φ + a_s sin φ in the fixed frame, times e^{jωt}, ω > 0: it travels
       // with the rotor (forward) when a_s lags a_c by 90°, Im(conj(a_c) a_s) < 0.
       const double w = std::imag(std::conj(v[cos_index]) * v[sin_index]);
@@ -152,6 +161,10 @@ void DescribeMode(const BladeCoordinates& c, const std::vector<int>& rate_of,
     }
     families.push_back(std::move(f));
   }
+  double total = 0;
+  for (const Family& f : families) total += f.share;
+  if (!(total > 0) || !std::isfinite(total)) return;
+  for (Family& f : families) f.share /= total;
   std::stable_sort(families.begin(), families.end(),
                    [](const Family& a, const Family& b) { return a.share > b.share; });
   std::string d;
@@ -374,8 +387,8 @@ void TransformSamples(const LinOperatingPoint& op, const Mbc3Options& options,
 }
 
 // One mode per eigenvalue of the averaged matrix with Im λ ≥ 0 (a conjugate is not listed
-// twice), with the states that carry it: shares over displacements and first-order states (a
-// rate is λ times its displacement).
+// twice), with the states that take part in it: participation per displacement (its rate's
+// added) and first-order state.
 bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& options, Mbc3Result& r) {
   const Eigen::EigenSolver<MatrixXd> eig(r.average.A);
   if (eig.info() != Eigen::Success) {
@@ -386,6 +399,7 @@ bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& optio
   const int n = static_cast<int>(r.average.A.rows());
   const Eigen::VectorXcd values = eig.eigenvalues();
   const Eigen::MatrixXcd vectors = eig.eigenvectors();
+  const Eigen::MatrixXcd left = LeftEigenvectors(vectors);  // empty for a defective matrix
   for (int k = 0; k < n; ++k) {
     const std::complex<double> lambda = values[k];
     if (lambda.imag() < 0) continue;
@@ -400,12 +414,17 @@ bool ModesOfTheAverage(const std::vector<int>& rate_of, const Mbc3Options& optio
     Eigen::Index lead = 0;
     vectors.col(k).cwiseAbs().maxCoeff(&lead);
     m.eigenvector = vectors.col(k) / vectors(lead, k);
+    if (left.size())
+      m.participation = vectors.col(k).cwiseProduct(left.row(k).transpose());
+    else
+      m.participation = Eigen::VectorXcd::Zero(n);
+    const Eigen::VectorXcd p = ParticipationPerDisplacement(rate_of, m.participation);
     double total = 0;
     for (int i = 0; i < n; ++i)
-      if (rate_of[i] < 0) total += std::norm(m.eigenvector[i]);
+      if (rate_of[i] < 0) total += std::abs(p[i]);
     std::vector<MbcMode::Share> shares;
     for (int i = 0; i < n; ++i)
-      if (rate_of[i] < 0 && total > 0) shares.push_back({i, std::norm(m.eigenvector[i]) / total});
+      if (rate_of[i] < 0 && total > 0) shares.push_back({i, std::abs(p[i]) / total});
     std::sort(shares.begin(), shares.end(),
               [](const MbcMode::Share& a, const MbcMode::Share& b) { return a.share > b.share; });
     for (const auto& s : shares) {

@@ -144,10 +144,10 @@ void BindFloquetModes(py::class_<FloquetResult>& r) {
       .def_property_readonly(
           "mode_descriptions",
           [](const FloquetResult& f) { return StringArray(f.mode_descriptions); },
-          "what carries each mode (numpy str array): shares of its displacement energy per state "
-          "at t = 0, "
-          "blade states "
-          "as multiblade families (e.g. 'zeta cyclic 78%, x 22%')")
+          "what carries each mode (numpy str array): each state's participation in it at t = 0 "
+          "(unit-free; a second-order DOF's share of the mode's energy, its rate counted with it), "
+          "blade states as multiblade families (e.g. 'zeta cyclic 78%, x 22%'; "
+          "docs/mode-descriptions.md)")
       .def_property_readonly(
           "forward_whirl",
           [](const FloquetResult& f) -> py::object {

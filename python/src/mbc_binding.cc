@@ -37,6 +37,15 @@ Eigen::MatrixXcd MbcEigenvectors(const Mbc3Result& x) {
   return v;
 }
 
+// Each mode's participation factors as one matrix: a column per mode, a row per MBC state.
+Eigen::MatrixXcd MbcParticipation(const Mbc3Result& x) {
+  Eigen::MatrixXcd p(static_cast<Eigen::Index>(x.states.size()),
+                     static_cast<Eigen::Index>(x.modes.size()));
+  for (size_t k = 0; k < x.modes.size(); ++k)
+    p.col(static_cast<Eigen::Index>(k)) = x.modes[k].participation;
+  return p;
+}
+
 // One entry per mode, in the order of natural frequency.
 void BindMbcModes(py::class_<Mbc3Result>& r) {
   r.def_property_readonly(
@@ -96,11 +105,18 @@ void BindMbcModes(py::class_<Mbc3Result>& r) {
           [](const Mbc3Result& x) {
             return ModeColumn<std::string>(x, [](const MbcMode& m) { return m.description; });
           },
-          "what carries each mode (shares per coordinate family)")
+          "what carries each mode: its participation summed per coordinate family (a "
+          "displacement with its rate, a collective, a cosine/sine pair), unit-free")
       .def_property_readonly("eigenvectors", &MbcEigenvectors,
                              "complex mode shapes in MBC coordinates (rows: states), one column "
                              "per mode, each scaled so "
-                             "its largest entry is 1 (what one animates; ltp mbc --shapes-csv)");
+                             "its largest entry is 1 (what one animates; ltp mbc --shapes-csv)")
+      .def_property_readonly(
+          "participation", &MbcParticipation,
+          "participation factors v_i·w_i (right and left eigenvectors of A, w·v = 1), one "
+          "column per mode, rows as states: unit-free, each column sums to 1; a second-order "
+          "DOF's displacement and rate rows add up to its share of the mode's energy "
+          "(docs/mode-descriptions.md)");
 }
 
 void BindMbcResult(py::module_& m) {

@@ -5,6 +5,7 @@
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -76,15 +77,34 @@ std::vector<int> PhysicalLabels(const std::vector<SweepPoint>& points,
   return {};
 }
 
-std::string Describe(const SweepPoint& point, int mode, const SystemLabels& labels,
-                     const ModeDescriptionOptions& options) {
-  if (point.shapes.cols() <= mode) return "";
-  try {
-    return DescribeModeShape(labels, point.shapes.col(mode), options).text;
-  } catch (const InputError&) {
-    return "";  // the point's system has other states than the labels name
+// Names a point's modes from its shapes (all modes, so their inverse gives the left
+// eigenvectors), each point's inverse computed once when first asked.
+class ShapeNamer {
+ public:
+  ShapeNamer(const std::vector<SweepPoint>& points, const SystemLabels& labels,
+             const ModeDescriptionOptions& options)
+      : points_(points), labels_(labels), options_(options), left_(points.size()) {}
+
+  std::string operator()(size_t p, int mode) {
+    const SweepPoint& point = points_[p];
+    if (point.shapes.cols() <= mode) return "";
+    if (!left_[p]) left_[p] = LeftEigenvectors(point.shapes);
+    if (left_[p]->rows() != point.shapes.cols()) return "";
+    try {
+      return DescribeMode(labels_, point.shapes.col(mode), left_[p]->row(mode).transpose(),
+                          options_)
+          .text;
+    } catch (const InputError&) {
+      return "";  // the point's system has other states than the labels name
+    }
   }
-}
+
+ private:
+  const std::vector<SweepPoint>& points_;
+  const SystemLabels& labels_;
+  const ModeDescriptionOptions& options_;
+  std::vector<std::optional<Eigen::MatrixXcd>> left_;
+};
 
 CampbellLine TraceLine(const std::vector<SweepPoint>& points, const ModeTracking& tracking,
                        int label, const CampbellModeNamer& describe, CampbellFrequency kind) {
@@ -321,9 +341,8 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
     d.parameter.push_back(p.values[0]);
     d.rotor_speed.push_back(p.rotor_speed);
   }
-  const CampbellModeNamer by_shape = [&](size_t p, int mode) {
-    return Describe(points[p], mode, labels, options.description);
-  };
+  ShapeNamer shape_namer(points, labels, options.description);
+  const CampbellModeNamer by_shape = [&](size_t p, int mode) { return shape_namer(p, mode); };
   const CampbellModeNamer& describe = namer ? namer : by_shape;
   long overdamped = 0;
   for (int label : PhysicalLabels(points, tracking)) {

@@ -70,3 +70,35 @@ def test_mbc_refuses_what_is_not_lin_files(tmp_path):
         ltp.mbc(str(tmp_path))
     with pytest.raises(ltp.InputError):
         ltp.mbc(3)
+
+
+def test_mbc_participation_against_numpy(ltp_cli):
+    """Participation factors p_ik = V[i,k] inv(V)[k,i] of numpy's own eigen-decomposition of
+    the averaged matrix; each column sums to 1; the leading single state's share is its
+    displacement's and rate's |p| summed, over the sum of every displacement's."""
+    j = ltp_cli("mbc", FIVE_MW, "--no-floquet")
+    m = ltp.mbc(FIVE_MW)
+    values, vectors = np.linalg.eig(m.A)
+    left = np.linalg.inv(vectors)
+    p = m.participation
+    assert p.shape == (len(m.states), len(m.eigenvalues))
+    for k, lam in enumerate(m.eigenvalues):
+        i = np.argmin(np.abs(values - lam))
+        reference = vectors[:, i] * left[i, :]
+        assert np.abs(p[:, k] - reference).max() <= 1e-9, k
+        assert abs(p[:, k].sum() - 1) <= 1e-9, k
+        mode = j["modes"][k]
+        json_p = np.array(mode["participation"]["re"]) + 1j * np.array(mode["participation"]["im"])
+        assert np.abs(json_p - p[:, k]).max() <= 1e-12, k
+    # Displacement d and its rate r: "... First time derivative of X, m/s" beside "... X, m".
+    names = list(m.states)
+    base = [n.replace("First time derivative of ", "").rsplit(", ", 1)[0] for n in names]
+    displacement = [base.index(b) for b in base]  # the first state with the same base
+    for k, mode in enumerate(j["modes"]):
+        per_dof = np.zeros(len(names), complex)
+        for i in range(len(names)):
+            per_dof[displacement[i]] += p[i, k]
+        shares = np.abs(per_dof) / np.abs(per_dof).sum()
+        lead = mode["dominant_states"][0]
+        assert abs(shares[names.index(lead["state"])] - lead["share"]) <= 1e-9, k
+        assert np.argmax(shares) == names.index(lead["state"]), k

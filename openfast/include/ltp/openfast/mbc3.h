@@ -113,10 +113,10 @@ struct MbcMode {
   bool rigid_body = false;
   struct Share {
     int state = 0;     ///< index into Mbc3Result::states
-    double share = 0;  ///< fraction of the displacement-state energy
+    double share = 0;  ///< fraction of the mode's participation (a displacement's with its rate's)
   };
   std::vector<Share> dominant;  ///< single states, largest first
-  /// Shares summed per coordinate family (a fixed-frame state, a collective, a cosine/sine
+  /// Participation summed per coordinate family (a fixed-frame state, a collective, a cosine/sine
   /// pair), e.g. "ED 1st flapwise bending-mode DOF of blade (cyclic, BW whirl: regressive) 99%".
   std::string description;
   /// "forward" or "backward" when the leading family is a cyclic pair whose cosine and sine
@@ -125,6 +125,11 @@ struct MbcMode {
   /// The mode shape in MBC coordinates (all states, Mbc3Result::states' order), scaled so its
   /// largest entry is 1: the other entries' phases are relative to the leading state.
   Eigen::VectorXcd eigenvector;
+  /// Participation factor of each state, p_i = v_i·w_i (right and left eigenvectors of the
+  /// averaged matrix, w·v = 1): unit-free, summing to 1; for a second-order DOF the
+  /// displacement's and rate's parts add up to its share of the mode's energy
+  /// (docs/mode-descriptions.md). Zero when the averaged matrix has no complete eigenvectors.
+  Eigen::VectorXcd participation;
 };
 
 /// "oscillatory", "real", "rigid-body" (the words of the CLI's output).

@@ -98,7 +98,7 @@ using CampbellModeNamer = std::function<std::string(size_t point, int mode)>;
 /// `points` in sweep order (a 1-D sweep), `tracking` = TrackModes(points), `labels` those of
 /// the swept scene's system (they name the states in the descriptions). `namer` names a line
 /// by its mode at its first and last point; without one, by the states carrying the mode's
-/// shape (DescribeModeShape with `labels`).
+/// participation (DescribeMode with `labels`).
 CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
                                     const ModeTracking& tracking, const SystemLabels& labels,
                                     const CampbellOptions& options = {},
