@@ -47,9 +47,14 @@ bool HasJumps(const PeriodicSystem& system) {
 
 // Largest disagreement, relative to the largest |H_z| at a check point, at which the
 // automatic choice keeps the modal route: far above the routes' own tolerances (they agree to
-// ~1e-12 where both are right), far below a visible error.
-double ModalAgreementLimit(const PfrfOptions& o) {
-  return std::max(1e-8, 100 * o.floquet.integrator.rel_tol);
+// ~1e-12 where both are right), far below a visible error — and above the modal values' own
+// rounding, which a right model has too: Ξ and Ξ⁻¹ are each off by about u·cond Ξ, their
+// product by u·cond Ξ² (undamped Mathieu 3e-9 from a tongue boundary, cond Ξ 1.8e4: modal
+// and htf 4e-11 apart at rel_tol 1e-10, 3e-8 at 1e-11, as the rounding fell). Ten times that
+// floor counts, up to 1e-6: beyond, the modal route is kept only if it agrees to 1e-6.
+double ModalAgreementLimit(const PfrfOptions& o, double condition) {
+  const double rounding = 10 * std::numeric_limits<double>::epsilon() * condition * condition;
+  return std::max({1e-8, 100 * o.floquet.integrator.rel_tol, std::min(rounding, 1e-6)});
 }
 
 RouteChoice ChooseRoutes(const PeriodicSystem& system, const PfrfOptions& o, PfrfResult& r) {
@@ -412,7 +417,7 @@ PfrfResult SweepRoutes(const PeriodicSystem& system, const PfrfOptions& options,
       plan.any_checks()) {
     // The evidence that decides the automatic choice: the modal values against the check
     // route at the check points, relative to the largest response there.
-    const double limit = ModalAgreementLimit(options);
+    const double limit = ModalAgreementLimit(options, r.modal ? r.modal->condition : 1.0);
     const double worst = ModalCheckDisagreement(r, limit);
     if (worst > 0) return SweepWithoutModal(system, options, start, worst, limit, std::move(r));
   }
