@@ -70,6 +70,12 @@ int ExpressionMatrices::Add(const ExpressionMatrixText& text) {
   return static_cast<int>(matrices_.size()) - 1;
 }
 
+std::optional<Eigen::MatrixXd> ExpressionMatrices::ConstantValue(int handle) const {
+  const Compiled& m = matrices_.at(static_cast<size_t>(handle));
+  if (!m.varying.empty()) return std::nullopt;
+  return m.constant;
+}
+
 std::vector<PeriodicSystem::MatrixFunction> ExpressionMatrices::Finish() {
   auto shared = std::make_shared<Shared>();
   shared->matrices = std::move(matrices_);

@@ -3,6 +3,7 @@
 // MatrixFunctions of a PeriodicSystem. Entries that do not depend on t are evaluated once here;
 // the others are evaluated per call with each thread's own parsers (TimeExpressionPool).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ class ExpressionMatrices {
   /// entries that may jump for their jump times. Returns the matrix's handle.
   /// @throws SceneError naming the entry.
   int Add(const ExpressionMatrixText& text);
+
+  /// The matrix `handle` when none of its entries depends on t, else empty. Before Finish.
+  std::optional<Eigen::MatrixXd> ConstantValue(int handle) const;
 
   /// Jump times in [0, T) found so far (unsorted, may repeat).
   const std::vector<double>& jumps() const { return jumps_; }

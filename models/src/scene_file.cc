@@ -22,6 +22,8 @@
 #include "ltp/core/second_order.h"
 #include "ltp/core/text.h"
 #include "ltp/models/scene.h"
+#include "matrix_market.h"
+#include "scene_file_matrices.h"
 
 namespace ltp {
 namespace {
@@ -38,6 +40,8 @@ struct SceneModel {
   std::string mass_where;  // location of second_order.M, for SingularMassError
   // state_space: A, B, C, D.  second_order: M, D, K, F, Cd, Cv. Absent matrices are empty.
   std::map<std::string, ExpressionMatrixText> matrices;
+  // second_order matrices given as Matrix Market files instead (the scene is then Fourier form).
+  std::map<std::string, internal::FileMatrix> file_matrices;
   int states = 0, inputs = 0, outputs = 0;
   SystemLabels labels;
   // sampled: matrices at K times (or azimuths) over one period. Each of A, B, C, D holds K
@@ -125,6 +129,20 @@ class Reader {
     return rows;
   }
 
+  // A matrix from Matrix Market files: one term {file, factor, harmonics} or a list of them,
+  // file names relative to the scene file's directory.
+  internal::FileMatrix FileMatrix(const YAML::Node& node, const std::string& entry) const {
+    internal::FileMatrix m;
+    m.where = Where(node, entry);
+    if (node.IsMap()) {
+      m.terms.push_back(FileTerm(node, entry, m));
+    } else {
+      for (size_t i = 0; i < node.size(); ++i)
+        m.terms.push_back(FileTerm(node[i], entry + "[" + std::to_string(i) + "]", m));
+    }
+    return m;
+  }
+
   void CheckKeys(const YAML::Node& map, const std::string& entry,
                  const std::set<std::string>& allowed) const {
     for (const auto& item : map) {
@@ -140,6 +158,63 @@ class Reader {
   const std::string& source() const { return source_; }
 
  private:
+  internal::FileMatrixTerm FileTerm(const YAML::Node& node, const std::string& entry,
+                                    internal::FileMatrix& m) const {
+    if (!node.IsMap()) Fail(node, entry, "expected {file: M.mtx, factor: ..., harmonics: [...]}");
+    CheckKeys(node, entry, {"file", "factor", "harmonics"});
+    internal::FileMatrixTerm term;
+    if (node["file"]) term.constant = MatrixFile(node["file"], entry + ".file", m);
+    if (node["factor"]) term.factor = Expression(node["factor"], entry + ".factor");
+    if (const YAML::Node harmonics = node["harmonics"]) {
+      if (!harmonics.IsSequence())
+        Fail(harmonics, entry + ".harmonics", "expected a list of {order, cos, sin}");
+      for (size_t i = 0; i < harmonics.size(); ++i) {
+        const YAML::Node h = harmonics[i];
+        const std::string at = entry + ".harmonics[" + std::to_string(i) + "]";
+        if (!h.IsMap()) Fail(h, at, "expected {order: 1, cos: C.mtx, sin: S.mtx}");
+        CheckKeys(h, at, {"order", "cos", "sin"});
+        internal::FileMatrixTerm::Harmonic harmonic;
+        if (h["order"]) {
+          const std::string order = Scalar(h["order"], at + ".order");
+          if (order.empty() || order.size() > 3 ||
+              order.find_first_not_of("0123456789") != std::string::npos || std::stoi(order) < 1)
+            Fail(h["order"], at + ".order", "expected an integer 1..999, got '" + order + "'");
+          harmonic.order = std::stoi(order);
+        }
+        if (h["cos"]) harmonic.cos = MatrixFile(h["cos"], at + ".cos", m);
+        if (h["sin"]) harmonic.sin = MatrixFile(h["sin"], at + ".sin", m);
+        if (!h["cos"] && !h["sin"]) Fail(h, at, "gives neither cos nor sin");
+        term.harmonics.push_back(std::move(harmonic));
+      }
+    }
+    if (!node["file"] && !node["harmonics"]) Fail(node, entry, "gives neither file nor harmonics");
+    return term;
+  }
+
+  // Reads one .mtx file; every file of a matrix must have the same size.
+  Eigen::MatrixXd MatrixFile(const YAML::Node& node, const std::string& entry,
+                             internal::FileMatrix& m) const {
+    const std::string name = Scalar(node, entry);
+    std::filesystem::path path(name);
+    if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
+    Eigen::MatrixXd a;
+    try {
+      a = internal::ReadMatrixMarket(path.string());
+    } catch (const SceneError& e) {
+      Fail(node, entry, e.what());
+    }
+    if (m.rows == 0) {
+      m.rows = static_cast<int>(a.rows());
+      m.cols = static_cast<int>(a.cols());
+    } else if (a.rows() != m.rows || a.cols() != m.cols) {
+      Fail(node, entry,
+           name + " is " + std::to_string(a.rows()) + "x" + std::to_string(a.cols()) +
+               " but the matrix's other files are " + std::to_string(m.rows) + "x" +
+               std::to_string(m.cols));
+    }
+    return a;
+  }
+
   std::string source_;
 };
 
@@ -150,6 +225,20 @@ std::string Size(const ExpressionMatrixText& m) {
   return std::to_string(Rows(m)) + "x" + std::to_string(Cols(m));
 }
 
+// A matrix given as Matrix Market file terms ({file: ...} or a list of them), not expressions.
+bool FromFiles(const YAML::Node& node) {
+  return node.IsMap() || (node.IsSequence() && node.size() > 0 && node[0].IsMap());
+}
+
+// Rows and columns of matrix `name` of the model, from expressions or files.
+std::pair<int, int> SizeOf(const SceneModel& model, const std::string& name) {
+  if (const auto f = model.file_matrices.find(name); f != model.file_matrices.end())
+    return {f->second.rows, f->second.cols};
+  const auto e = model.matrices.find(name);
+  if (e == model.matrices.end()) return {0, 0};
+  return {Rows(e->second), Cols(e->second)};
+}
+
 // Reads an optional matrix `key` of `block` and checks its size (-1: any).
 void ReadMatrix(const Reader& reader, const YAML::Node& block, const std::string& block_name,
                 const std::string& key, const std::string& stored_as, int rows, int cols,
@@ -157,6 +246,18 @@ void ReadMatrix(const Reader& reader, const YAML::Node& block, const std::string
   const YAML::Node node = block[key];
   if (!node) return;
   const std::string entry = block_name + "." + key;
+  if (FromFiles(node)) {
+    if (!model.second_order)
+      reader.Fail(node, entry, "matrices from files are read in a second_order block only");
+    internal::FileMatrix m = reader.FileMatrix(node, entry);
+    if ((rows >= 0 && m.rows != rows) || (cols >= 0 && m.cols != cols))
+      reader.Fail(node, entry,
+                  "is " + std::to_string(m.rows) + "x" + std::to_string(m.cols) + " but must be " +
+                      (rows >= 0 ? std::to_string(rows) : "any") + "x" +
+                      (cols >= 0 ? std::to_string(cols) : "any"));
+    model.file_matrices[stored_as] = std::move(m);
+    return;
+  }
   ExpressionMatrixText m = reader.Matrix(node, entry);
   if ((rows >= 0 && Rows(m) != rows) || (cols >= 0 && Cols(m) != cols))
     reader.Fail(node, entry,
@@ -195,26 +296,26 @@ void ReadSecondOrder(const Reader& reader, const YAML::Node& root, SceneModel& m
   reader.CheckKeys(block, name, {"M", "D", "K", "F", "outputs"});
   if (!block["M"]) reader.Fail(mark, name, "missing the mass matrix M");
   if (!block["K"]) reader.Fail(mark, name, "missing the stiffness matrix K");
-  const ExpressionMatrixText mass = reader.Matrix(block["M"], name + ".M");
-  if (Rows(mass) != Cols(mass))
-    reader.Fail(block["M"], name + ".M", "must be square, got " + Size(mass));
-  const int q = Rows(mass);
-  model.matrices["M"] = mass;
+  ReadMatrix(reader, block, name, "M", "M", -1, -1, model);
+  const auto [q, mass_cols] = SizeOf(model, "M");
+  if (q != mass_cols)
+    reader.Fail(block["M"], name + ".M",
+                "must be square, got " + std::to_string(q) + "x" + std::to_string(mass_cols));
   model.mass_where = reader.Where(block["M"], name + ".M");
   ReadMatrix(reader, block, name, "K", "K", q, q, model);
   ReadMatrix(reader, block, name, "D", "D", q, q, model);
   ReadMatrix(reader, block, name, "F", "F", q, -1, model);
   model.states = 2 * q;
-  model.inputs = Cols(model.matrices["F"]);
+  model.inputs = SizeOf(model, "F").second;
   if (const YAML::Node outputs = block["outputs"]) {
     const std::string entry = name + ".outputs";
     if (!outputs.IsMap())
       reader.Fail(outputs, entry, "expected a mapping with displacement and/or velocity");
     reader.CheckKeys(outputs, entry, {"displacement", "velocity"});
     ReadMatrix(reader, outputs, entry, "displacement", "Cd", -1, q, model);
-    const int p = Rows(model.matrices["Cd"]);
+    const int p = SizeOf(model, "Cd").first;
     ReadMatrix(reader, outputs, entry, "velocity", "Cv", p > 0 ? p : -1, q, model);
-    model.outputs = std::max(p, Rows(model.matrices["Cv"]));
+    model.outputs = std::max(p, SizeOf(model, "Cv").first);
   }
 }
 
@@ -432,6 +533,41 @@ PeriodicSystem BuildSampled(const SceneModel& model, const internal::Constants& 
 
 void CheckCoefficients(const PeriodicSystem& system, const std::string& where);
 
+// A second_order block with matrices from files: the exact Fourier series of every matrix
+// (expression matrices beside them must be constant in t), one Fourier-form system.
+PeriodicSystem BuildSecondOrderSeries(const SceneModel& model, const internal::Constants& constants,
+                                      double period) {
+  if (!model.breakpoints.empty())
+    throw SceneError(model.breakpoints[0].where +
+                     ": matrices from files are Fourier series, which do not jump");
+  internal::ExpressionMatrices compiler(constants, period);
+  auto series = [&](const std::string& name) -> FourierMatrix {
+    if (const auto f = model.file_matrices.find(name); f != model.file_matrices.end())
+      return internal::FileMatrixSeries(
+          f->second, [&](const ExpressionEntry& e) { return Value(e, constants); });
+    const auto e = model.matrices.find(name);
+    if (e == model.matrices.end() || e->second.empty()) return {};
+    const std::optional<Eigen::MatrixXd> value = compiler.ConstantValue(compiler.Add(e->second));
+    if (!value)
+      throw SceneError(e->second[0][0].where.substr(0, e->second[0][0].where.find(": ")) + ": " +
+                       name +
+                       " depends on t beside matrices from files: give its periodic part as "
+                       "file harmonics too");
+    return FourierMatrix::Constant(*value);
+  };
+  std::optional<PeriodicSystem> system;
+  try {
+    system = FromSecondOrderSeries(period, series("M"), series("D"), series("K"), series("F"),
+                                   series("Cd"), series("Cv"));
+  } catch (const SingularMassError& e) {
+    throw SingularMassError(model.mass_where + ": " + e.what());
+  }
+  CheckCoefficients(*system, model.mass_where);
+  system = system->WithLabels(model.labels);
+  if (model.rotor_speed) system = system->WithRotorSpeed(Value(*model.rotor_speed, constants));
+  return *system;
+}
+
 PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& parameters) {
   const internal::Constants constants(parameters.begin(), parameters.end());
   const ExpressionEntry& period_entry = model.period ? *model.period : *model.omega;
@@ -459,6 +595,7 @@ PeriodicSystem BuildFromModel(const SceneModel& model, const ParameterMap& param
     return system;
   }
 
+  if (!model.file_matrices.empty()) return BuildSecondOrderSeries(model, constants, period);
   internal::ExpressionMatrices compiler(constants, period);
   std::map<std::string, int> handles;
   for (const auto& [name, text] : model.matrices)
