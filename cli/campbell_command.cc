@@ -26,7 +26,7 @@ struct CampbellArgs {
   std::vector<std::string> points;
   std::string by = "auto";
   bool keep_going = false;
-  CampbellOptions campbell;
+  CampbellOptions campbell = LinCampbellOptions{}.campbell;  // the library's defaults
   std::string csv, plot;
   bool json = false;
 };
@@ -48,7 +48,7 @@ LinCampbellOptions MakeOptions(const CampbellArgs& args) {
 // is not tracked).
 void WriteLinesCsv(const std::string& path, const LinCampbellResult& r) {
   const bool by_rpm = r.axis == OperatingPointAxis::kRotorSpeed;
-  const char* kind = r.diagram.frequency == CampbellFrequency::kNatural ? "natural" : "damped";
+  const std::string kind(ToString(r.diagram.frequency));
   std::ofstream out(path);
   out.precision(12);
   out << (by_rpm ? "rotor_speed_rpm,wind_speed_m_s" : "wind_speed_m_s,rotor_speed_rpm");

@@ -35,7 +35,7 @@ json CampbellJson(const CampbellDiagram& d) {
                          {"real_part", JsonNumber(c.real_part)},
                          {"damping_ratio", JsonNumber(c.damping_ratio)}});
   for (const auto& [lo, hi] : d.weakly_damped) weak.push_back({JsonNumber(lo), JsonNumber(hi)});
-  return {{"frequency", d.frequency == CampbellFrequency::kNatural ? "natural" : "damped"},
+  return {{"frequency", std::string(ToString(d.frequency))},
           {"lines", lines},
           {"per_rev", d.per_rev},
           {"crossings", crossings},
@@ -102,7 +102,7 @@ void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
   cmd->add_option("--frequency", options.frequency,
                   "Campbell: damped (Im λ/2π) or natural (|λ|/2π, as ACDC draws) frequencies")
       ->transform(kinds)
-      ->option_text("damped|natural=damped");
+      ->option_text("damped|natural=" + std::string(ToString(options.frequency)));
   cmd->add_option("--max-damping", options.max_damping_ratio,
                   "Campbell: leave out lines damped above this ratio wherever tracked (e.g. 0.3 "
                   "hides inflow states; 1 = keep all)")

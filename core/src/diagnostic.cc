@@ -114,6 +114,7 @@ constexpr auto kCodeNames = std::to_array<CodeAndName>({
     {DiagnosticCode::kAzimuthsUneven, "azimuths_uneven"},
     {DiagnosticCode::kRotorSpeedsDiffer, "rotor_speeds_differ"},
     {DiagnosticCode::kMatrixDropped, "matrix_dropped"},
+    {DiagnosticCode::kOperatingSpeedDiffers, "operating_speed_differs"},
 });
 
 constexpr bool InEnumOrder() {

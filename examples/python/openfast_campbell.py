@@ -5,7 +5,7 @@
 #     PYTHONPATH=build/python python3 examples/python/openfast_campbell.py out
 #
 # The same diagram from the command line (the numbers are equal, tests/python/test_campbell.py):
-#     ltp campbell FOLDER --frequency natural --plot campbell.svg
+#     ltp campbell FOLDER --plot campbell.svg
 
 # %% Setup
 import pathlib
@@ -36,7 +36,7 @@ print(len(list(folder.glob("*.lin"))), "files in", folder)
 
 # %% MBC3 at each operating point, modes tracked across the points by their shapes.
 # Natural frequencies |λ|/2π, as ACDC and openfast_toolbox draw them.
-c = ltp.campbell([str(folder)], frequency="natural")
+c = ltp.campbell([str(folder)])  # natural frequencies |λ|/2π, as ACDC draws them
 print(c)
 print("operating points:", np.round(c.parameter, 3), c.axis_label)
 for k, line in enumerate(c.lines, start=1):

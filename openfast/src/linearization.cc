@@ -800,6 +800,22 @@ std::optional<int> FindAzimuthState(const std::vector<LinChannel>& states) {
   return std::nullopt;
 }
 
+// A file whose operating point turns the azimuth at another rate than its header's rotor
+// speed contradicts itself (an edited header, files of another run): said, not averaged away.
+// The .lin tables print 4 significant digits, so 1 % is beyond their rounding.
+void NoteOperatingSpeeds(LinOperatingPoint& op) {
+  for (size_t k = 0; k < op.files.size(); ++k) {
+    const double header = op.rotor_speeds[k], rate = op.operating_speeds[k];
+    if (std::abs(rate - header) <= 0.01 * std::abs(header)) continue;
+    op.diagnostics.push_back(
+        {DiagnosticCode::kOperatingSpeedDiffers, Severity::kWarning,
+         op.files[k] + ": its operating point turns the azimuth at " + FormatNumber(rate, "%.4g") +
+             " rad/s, its header says 'Rotor Speed: " + FormatNumber(header, "%.4g") + " rad/s' (" +
+             FormatNumber(100 * (rate - header) / header, "%+.2g") +
+             " %); the period uses the header's: check the file"});
+  }
+}
+
 // Notes on uneven azimuths and on rotor speeds that differ between the files.
 void NoteSpacingAndSpeeds(LinOperatingPoint& op) {
   const int K = op.size();
@@ -869,6 +885,7 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   op.rotor_speed = sum / static_cast<double>(op.rotor_speeds.size());
   op.azimuth_state = FindAzimuthState(op.states);
   NoteSpacingAndSpeeds(op);
+  NoteOperatingSpeeds(op);
   return op;
 }
 

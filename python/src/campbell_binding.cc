@@ -59,8 +59,13 @@ void BindCampbellResult(py::module_& m) {
           "the .lin files of each point, sorted by azimuth")
       .def_property_readonly(
           "lines", [](const LinCampbellResult& x) { return CampbellLines(x.diagram); },
-          "one line per tracked mode: description, per-point frequency_hz (damped), real_part, "
+          "one line per tracked mode: description, per-point frequency_hz (natural or damped, "
+          "as .frequency says), real_part, "
           "damping_ratio (NaN where not tracked), lost_after (point index or -1)")
+      .def_property_readonly(
+          "frequency",
+          [](const LinCampbellResult& x) { return std::string(ToString(x.diagram.frequency)); },
+          "'natural' (|λ|/2π) or 'damped' (Im λ/2π): what the lines' frequency_hz hold")
       .def_property_readonly(
           "crossings", [](const LinCampbellResult& x) { return CampbellCrossings(x.diagram); },
           "where each line crosses a per-rev line n·Ω/2π (mode numbered as in lines, from 1)")
@@ -108,7 +113,7 @@ LinCampbellResult LtpCampbell(const std::vector<std::string>& points, const std:
 
 void BindCampbellFunction(py::module_& m) {
   m.def("campbell", &LtpCampbell, py::arg("points"), py::kw_only(), py::arg("by") = "auto",
-        py::arg("frequency") = "damped", py::arg("max_damping") = 1.0,
+        py::arg("frequency") = "natural", py::arg("max_damping") = 1.0,
         py::arg("keep_going") = false, R"doc(
 The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
 function. `points` are folders, .lin files or globs; OpenFAST's <root>.<k>.lin files are
@@ -119,7 +124,8 @@ shapes.
   by           'auto' (rotor speed unless two points share one, then wind speed) |
                'rotor-speed' (abscissa in rpm) | 'wind-speed' (m/s, from the files' headers)
   keep_going   leave out a point that cannot be read or analysed (reasons in .skipped)
-  frequency    'damped' (Im λ/2π) | 'natural' (|λ|/2π, as ACDC and openfast_toolbox draw)
+  frequency    'natural' (|λ|/2π, as ACDC and openfast_toolbox draw; the default) |
+               'damped' (Im λ/2π)
   max_damping  leave out lines damped above this ratio wherever tracked (1: keep all)
 
     c = ltp.campbell(sorted(glob.glob("runs/omega-*")))

@@ -14,6 +14,10 @@
 
 namespace ltp {
 
+std::string_view ToString(CampbellFrequency kind) {
+  return kind == CampbellFrequency::kNatural ? "natural" : "damped";
+}
+
 std::optional<CampbellFrequency> ParseCampbellFrequency(std::string_view name) {
   if (name == "damped") return CampbellFrequency::kDamped;
   if (name == "natural") return CampbellFrequency::kNatural;

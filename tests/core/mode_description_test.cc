@@ -172,8 +172,8 @@ TEST(ModeDescription, SecondOrderSharesAreKineticEnergyShares) {
     (modes.eigenvalues().cwiseSqrt().array() - omega).abs().minCoeff(&j);
     const Eigen::VectorXd phi = modes.eigenvectors().col(j);
     const Eigen::VectorXd kinetic = phi.cwiseProduct(e.m * phi) / phi.dot(e.m * phi);
-    const ModeDescription d =
-        DescribeMode(e.labels(), right.col(k), left.row(k).transpose(), {.min_share = 0});
+    const ModeDescription d = DescribeMode(e.labels(), right.col(k), left.row(k).transpose(),
+                                           {.min_share = 0, .max_families = 3});
     ASSERT_EQ(d.families.size(), 3u);
     double absolute_total = kinetic.cwiseAbs().sum();  // a consistent mass may give one < 0
     for (const auto& f : d.families) {

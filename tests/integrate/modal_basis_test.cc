@@ -28,8 +28,11 @@ TEST(RealModalBasis, TakesAIntoRealBlockDiagonalForm) {
     // A 2 × 2 block starts where the subdiagonal entry is not round-off.
     const int width = j + 1 < d.cols() && std::abs(d(j + 1, j)) > 1e-8 * a.norm() ? 2 : 1;
     pairs += width == 2;
-    for (Eigen::Index i = 0; i < d.rows(); ++i)
-      if (i < j || i >= j + width) EXPECT_LT(std::abs(d(i, j)), 1e-12 * a.norm()) << i << "," << j;
+    for (Eigen::Index i = 0; i < d.rows(); ++i) {
+      if (i < j || i >= j + width) {
+        EXPECT_LT(std::abs(d(i, j)), 1e-12 * a.norm()) << i << "," << j;
+      }
+    }
     j += width;
   }
   EXPECT_GT(pairs, 0);  // a random 9 × 9 has complex pairs: the 2 × 2 case is exercised

@@ -276,6 +276,34 @@ TEST(OpenFastLin, StatesAreMatchedByDescriptionAcrossFiles) {
   EXPECT_NE(m.find("has no state 'RT lag angle of blade 1, rad'"), std::string::npos) << m;
 }
 
+TEST(OpenFastLin, AnAzimuthRateThatContradictsTheHeaderIsSaid) {
+  // The 5 MW files turn the generator azimuth at 0.9425 rad/s, their header's rotor speed: no
+  // warning. One file's operating point edited to 1.2 rad/s: a warning naming it and both rates.
+  std::vector<LinFile> files;
+  for (const char* name : {"Main.1.lin", "Main.12.lin", "Main.24.lin"})
+    files.push_back(ReadLinFile(FiveMwDir() + "/" + name));
+  auto said = [](const LinOperatingPoint& op) {
+    std::vector<std::string> texts;
+    for (const Diagnostic& d : op.diagnostics)
+      if (d.code == DiagnosticCode::kOperatingSpeedDiffers) texts.push_back(d.text);
+    return texts;
+  };
+  EXPECT_TRUE(said(MakeLinOperatingPoint(files)).empty());
+  bool edited = false;
+  for (LinChannel& c : files[1].state_derivatives)
+    if (c.description.find("First time derivative") != std::string::npos &&
+        c.description.find("DOF_GeAz") != std::string::npos) {
+      c.operating_point = 1.2;
+      edited = true;
+    }
+  ASSERT_TRUE(edited);
+  const std::vector<std::string> texts = said(MakeLinOperatingPoint(files));
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_NE(texts[0].find("Main.12.lin"), std::string::npos) << texts[0];
+  EXPECT_NE(texts[0].find("at 1.2 rad/s"), std::string::npos) << texts[0];
+  EXPECT_NE(texts[0].find("'Rotor Speed: 0.9425 rad/s'"), std::string::npos) << texts[0];
+}
+
 TEST(OpenFastLin, RejectsFilesFromDifferentOperatingPoints) {
   RotorParameters rotor;
   rotor.blades = 3;

@@ -132,6 +132,7 @@ enum class DiagnosticCode {
   kAzimuthsUneven,         ///< the azimuths are unevenly spaced
   kRotorSpeedsDiffer,      ///< the files' rotor speeds differ
   kMatrixDropped,          ///< a matrix missing in some files was dropped from all
+  kOperatingSpeedDiffers,  ///< a file's azimuth rate differs from its header's rotor speed
 
   kCount  ///< not a code: how many there are (new codes go above it)
 };

@@ -36,6 +36,8 @@ enum class CampbellFrequency {
 
 /// "damped" or "natural" (the CLI's --frequency, Python's frequency=); nullopt otherwise.
 std::optional<CampbellFrequency> ParseCampbellFrequency(std::string_view name);
+/// The name ParseCampbellFrequency reads: "damped" or "natural".
+std::string_view ToString(CampbellFrequency kind);
 
 struct CampbellOptions {
   CampbellFrequency frequency = CampbellFrequency::kDamped;

@@ -38,7 +38,13 @@ struct LinCampbellOptions {
   /// LinCampbellResult::skipped) instead of failing the diagram; at least one must remain.
   bool keep_going = false;
   Mbc3Options mbc;
-  CampbellOptions campbell;
+  /// Natural frequencies |λ|/2π by default: what ACDC and openfast_toolbox draw for .lin sets,
+  /// so a design review compares like with like (ltp chart's Floquet lines default to damped).
+  CampbellOptions campbell = [] {
+    CampbellOptions o;
+    o.frequency = CampbellFrequency::kNatural;
+    return o;
+  }();
   /// @throws InputError naming the field and the violated constraint.
   void Validate() const;
 };
