@@ -13,6 +13,7 @@
 #include "ltp/floquet/floquet.h"
 #include "ltp/integrate/integrator_choice.h"
 #include "support/systems.h"
+#include "support/throws.h"
 
 namespace ltp {
 namespace {
@@ -118,14 +119,10 @@ TEST(WorkEstimate, AnAnalysisBeyondTheLimitIsRefusedWithTheEstimate) {
   // 2e9 radians per period: even a fifth of the typical count at a nanosecond each is a minute.
   FloquetOptions o;
   o.max_work_seconds = 1;
-  try {
-    AnalyzeFloquet(FastOscillator(3e8), o);
-    FAIL() << "not refused";
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("would take at least"), std::string::npos) << m;
-    EXPECT_NE(m.find("max_work_seconds"), std::string::npos) << m;
-  }
+  const std::string m =
+      test::ThrownMessage<InputError>([&] { AnalyzeFloquet(FastOscillator(3e8), o); });
+  EXPECT_NE(m.find("would take at least"), std::string::npos) << m;
+  EXPECT_NE(m.find("max_work_seconds"), std::string::npos) << m;
 }
 
 TEST(WorkEstimate, ALongAnalysisIsAnnouncedBeforeItStarts) {
