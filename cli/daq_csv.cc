@@ -21,7 +21,7 @@ std::string Trim(const std::string& s) {
 }
 
 // "Force [N]" / "Force (N)" / "Force_N"? Only brackets and parentheses count as units.
-std::string WithoutUnit(const std::string& name) {
+std::string WithoutBracketedUnit(const std::string& name) {
   const size_t at = name.find_first_of("[(");
   return Trim(at == std::string::npos ? name : name.substr(0, at));
 }
@@ -105,7 +105,7 @@ ChannelTable ReadDaqCsv(const std::string& path, double sample_rate) {
   const std::vector<std::string> header = Cells(lines[first - 1].second, separator);
   int time_column = -1;
   for (size_t c = 0; c < header.size(); ++c) {
-    const std::string name = WithoutUnit(header[c]);
+    const std::string name = WithoutBracketedUnit(header[c]);
     if (time_column < 0 && IsTimeName(name)) {
       time_column = static_cast<int>(c);
       continue;

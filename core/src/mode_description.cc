@@ -9,6 +9,7 @@
 
 #include "ltp/core/error.h"
 #include "ltp/core/multiblade.h"
+#include "ltp/core/text.h"
 
 namespace ltp {
 
@@ -47,15 +48,6 @@ std::string StateName(const SystemLabels& labels, int i) {
   if (i < static_cast<int>(labels.states.size())) return labels.states[static_cast<size_t>(i)];
   std::string name = "x";  // (not "x" + to_string: g++ 12 warns falsely, -Wrestrict)
   return name += std::to_string(i + 1);
-}
-
-// "..., m/s" → "...": a trailing unit after the last ", " (OpenFAST's descriptions).
-std::string WithoutUnit(const std::string& name) {
-  const auto comma = name.rfind(", ");
-  if (comma == std::string::npos) return name;
-  const std::string unit = name.substr(comma + 2);
-  if (unit.empty() || unit.size() > 10 || unit.find(' ') != std::string::npos) return name;
-  return name.substr(0, comma);
 }
 
 // For each state, the index of the displacement whose rate it is, else its own index (see

@@ -85,4 +85,12 @@ std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule)
   return s.str();
 }
 
+std::string WithoutUnit(const std::string& label) {
+  const auto comma = label.rfind(", ");
+  if (comma == std::string::npos) return label;
+  const std::string unit = label.substr(comma + 2);
+  if (unit.empty() || unit.size() > 10 || unit.find(' ') != std::string::npos) return label;
+  return label.substr(0, comma);
+}
+
 }  // namespace ltp

@@ -14,6 +14,7 @@
 #include "ltp/core/fourier_fit.h"
 #include "ltp/core/mode_description.h"
 #include "ltp/core/multiblade.h"
+#include "ltp/core/text.h"
 
 namespace ltp {
 
@@ -63,15 +64,6 @@ std::string CoordinateWord(int blades, int c) {
   const int h = (c + 1) / 2;
   const std::string word = c % 2 == 1 ? "cosine" : "sine";
   return h == 1 ? word : word + " " + std::to_string(h);
-}
-
-// "desc, m" → "desc" (a trailing unit: no spaces, short).
-std::string WithoutUnit(const std::string& description) {
-  const auto comma = description.rfind(", ");
-  if (comma == std::string::npos) return description;
-  const std::string unit = description.substr(comma + 2);
-  if (unit.empty() || unit.size() > 10 || unit.find(' ') != std::string::npos) return description;
-  return description.substr(0, comma);
 }
 
 std::string Percent(double share) {

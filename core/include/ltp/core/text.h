@@ -24,4 +24,8 @@ std::optional<std::string> NotUtf8(std::string_view text, std::string_view rule)
 /// `line` with every number replaced by '#': lines that differ only in their numbers share it.
 std::string NumberShape(std::string_view line);
 
+/// An OpenFAST-style label without its trailing unit: "ED 1st tower ... DOF, m" → "ED 1st tower
+/// ... DOF" (the part after the last ", " when it is short and has no blank); else unchanged.
+std::string WithoutUnit(const std::string& label);
+
 }  // namespace ltp
