@@ -230,6 +230,13 @@ Eigen::MatrixXcd FloquetResult::ModeMatrix(double t) const {
   return xi;
 }
 
+std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes) {
+  std::vector<std::complex<double>> a;
+  a.reserve(modes.size());
+  for (const FloquetMode& m : modes) a.push_back(m.exponent);
+  return a;
+}
+
 Eigen::MatrixXcd FloquetResult::LeftModes(double t) const {
   const Eigen::MatrixXcd xi = ModeMatrix(t);
   return xi.completeOrthogonalDecomposition().pseudoInverse();

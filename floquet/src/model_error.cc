@@ -66,8 +66,7 @@ std::vector<double> SamplingErrorsOf(const std::vector<FloquetResult>& analysed,
       std::fill(e.begin(), e.end(), inf);
       continue;
     }
-    std::vector<std::complex<double>> b;
-    for (const FloquetMode& m : other.modes) b.push_back(m.exponent);
+    const std::vector<std::complex<double>> b = Exponents(other.modes);
     const std::vector<int> match = MatchExponentIndices(exponents, b, omega);
     for (size_t k = 0; k < exponents.size(); ++k) {
       if (match[k] < 0) {
@@ -104,12 +103,6 @@ AnalysedAlternatives AnalyzeAlternatives(const std::vector<PeriodicSystem>& alte
     a.results.push_back(AnalyzeAlternative(alternatives[i], name, options, grid_segments));
     a.evaluations += a.results.back().rhs_evals;  // the work reported is the whole analysis's
   }
-  return a;
-}
-
-std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes) {
-  std::vector<std::complex<double>> a;
-  for (const FloquetMode& m : modes) a.push_back(m.exponent);
   return a;
 }
 

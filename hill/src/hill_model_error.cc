@@ -15,8 +15,7 @@ void IncludeModelError(const std::vector<PeriodicSystem>& alternatives,
                        const FloquetOptions& options, HillResult& h) {
   if (alternatives.empty() || h.modes.empty()) return;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::complex<double>> exponents;
-  for (const FloquetMode& m : h.modes) exponents.push_back(m.exponent);
+  const std::vector<std::complex<double>> exponents = Exponents(h.modes);
   const SamplingErrors e =
       SamplingErrorsAgainst(alternatives, h.states, h.period, options, exponents);
   // Hill's estimate is one number for every exponent (none: no bound).

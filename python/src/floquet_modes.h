@@ -19,12 +19,7 @@ void BindModeArrays(Class& c) {
     };
   };
   c.def_property_readonly(
-       "exponents",
-       [](const Result& r) {
-         std::vector<Complex> v;
-         for (const FloquetMode& m : r.modes) v.push_back(m.exponent);
-         return ComplexArray(v);
-       },
+       "exponents", [](const Result& r) { return ComplexArray(Exponents(r.modes)); },
        "Floquet exponents λ_k (1/s), complex")
       .def_property_readonly(
           "log_multipliers",

@@ -19,8 +19,7 @@ std::optional<RotorMbcCheck> CheckRotorByMbc(const Scene& scene, const Parameter
     return check;
   }
   const MbcRotorSystem mbc = RotorInMultiBladeCoordinates(rotor);
-  std::vector<std::complex<double>> exponents;
-  for (const FloquetMode& m : result.modes) exponents.push_back(m.exponent);
+  const std::vector<std::complex<double>> exponents = Exponents(result.modes);
   check.applicable = true;
   check.blades = mbc.blades;
   check.max_difference = MaxExponentMismatch(exponents, mbc.eigenvalues, mbc.rotor_speed);

@@ -22,12 +22,6 @@ complex<double> OntoBranch(complex<double> x, complex<double> target, double ome
   return {x.real(), x.imag() + m * omega};
 }
 
-std::vector<complex<double>> Exponents(const FloquetResult& r) {
-  std::vector<complex<double>> e;
-  for (const FloquetMode& m : r.modes) e.push_back(m.exponent);
-  return e;
-}
-
 // Without MBC: the rigid rotation is the exponent with a positive real multiplier, nearest 0,
 // whose mode shape at t = 0 is led by the azimuth state.
 int RigidExponent(const FloquetResult& r, const LinOperatingPoint& op, double omega) {
@@ -117,7 +111,7 @@ References CollectReferences(const Mbc3Result& mbc, const SampledFloquetOptions&
       }
     }
   } else {
-    const std::vector<complex<double>> hold = Exponents(hold_result);
+    const std::vector<complex<double>> hold = Exponents(hold_result.modes);
     const int rigid = RigidExponent(hold_result, used, omega);
     for (size_t k = 0; k < hold.size(); ++k) {
       refs.exponents.push_back(hold[k]);
@@ -131,7 +125,8 @@ References CollectReferences(const Mbc3Result& mbc, const SampledFloquetOptions&
 // Each reference's exponent from either route, on the reference's branch: the table's modes,
 // max Re λ of each route and the routes' largest differences.
 void MatchRoutes(const References& refs, double omega, bool with_mbc, SampledFloquetResult* r) {
-  const std::vector<complex<double>> hold = Exponents(r->hold), trig = Exponents(r->trig);
+  const std::vector<complex<double>> hold = Exponents(r->hold.modes),
+                                     trig = Exponents(r->trig.modes);
   const std::vector<int> to_hold = MatchExponentIndices(refs.exponents, hold, omega);
   const std::vector<int> to_trig = MatchExponentIndices(refs.exponents, trig, omega);
   r->max_real_hold = r->max_real_trig = -std::numeric_limits<double>::infinity();

@@ -22,12 +22,6 @@ namespace {
 
 using cd = std::complex<double>;
 
-std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
-  std::vector<cd> v;
-  for (const FloquetMode& m : modes) v.push_back(m.exponent);
-  return v;
-}
-
 // The Poisson-kernel oscillator with A(t) in closed form, for the monodromy reference (rkf78 at
 // 1e-13: an independent route that never sees the Fourier series).
 PeriodicSystem PoissonKernelFunction(double a, double b, double r, double c) {

@@ -33,12 +33,6 @@ FloquetResult Reference(const PeriodicSystem& s) {
   return AnalyzeFloquet(s, o);
 }
 
-std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
-  std::vector<cd> v;
-  for (const FloquetMode& m : modes) v.push_back(m.exponent);
-  return v;
-}
-
 // Largest distance of exponents matched one-to-one modulo Ωp (+inf when the counts differ).
 double MaxDistanceModulo(const std::vector<cd>& a, const std::vector<cd>& b, double omega) {
   EXPECT_EQ(a.size(), b.size());

@@ -35,12 +35,6 @@ inline double ExponentError(const std::vector<cd>& got, const std::vector<cd>& r
   return worst;
 }
 
-inline std::vector<cd> Exponents(const std::vector<FloquetMode>& modes) {
-  std::vector<cd> e;
-  for (const auto& m : modes) e.push_back(m.exponent);
-  return e;
-}
-
 /// Exponents from log-multipliers of a period `period`.
 inline std::vector<cd> FromLogMultipliers(const std::vector<cd>& logs, double period) {
   std::vector<cd> e;

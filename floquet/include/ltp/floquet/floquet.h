@@ -174,6 +174,9 @@ struct FloquetMode {
   std::optional<double> forward_whirl;
 };
 
+/// The exponents λ of `modes`, in their order (FloquetResult::modes, HillResult::modes).
+std::vector<std::complex<double>> Exponents(const std::vector<FloquetMode>& modes);
+
 /// How a Floquet analysis ended; ok is true exactly for kCompleted.
 enum class Termination {
   kNotRun,              ///< AnalyzeFloquet was not called
