@@ -28,22 +28,13 @@ py::array_t<T> AsArray(const std::vector<T>& v) {
   return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-// The mode shapes as one matrix: a column per mode, a row per MBC state.
-Eigen::MatrixXcd MbcEigenvectors(const Mbc3Result& x) {
+// A per-mode vector of every mode as one matrix: a column per mode, a row per MBC state.
+Eigen::MatrixXcd PerModeColumns(const Mbc3Result& x, Eigen::VectorXcd MbcMode::*field) {
   Eigen::MatrixXcd v(static_cast<Eigen::Index>(x.states.size()),
                      static_cast<Eigen::Index>(x.modes.size()));
   for (size_t k = 0; k < x.modes.size(); ++k)
-    v.col(static_cast<Eigen::Index>(k)) = x.modes[k].eigenvector;
+    v.col(static_cast<Eigen::Index>(k)) = x.modes[k].*field;
   return v;
-}
-
-// Each mode's participation factors as one matrix: a column per mode, a row per MBC state.
-Eigen::MatrixXcd MbcParticipation(const Mbc3Result& x) {
-  Eigen::MatrixXcd p(static_cast<Eigen::Index>(x.states.size()),
-                     static_cast<Eigen::Index>(x.modes.size()));
-  for (size_t k = 0; k < x.modes.size(); ++k)
-    p.col(static_cast<Eigen::Index>(k)) = x.modes[k].participation;
-  return p;
 }
 
 // One entry per mode, in the order of natural frequency.
@@ -107,12 +98,15 @@ void BindMbcModes(py::class_<Mbc3Result>& r) {
           },
           "what carries each mode: its participation summed per coordinate family (a "
           "displacement with its rate, a collective, a cosine/sine pair), unit-free")
-      .def_property_readonly("eigenvectors", &MbcEigenvectors,
-                             "complex mode shapes in MBC coordinates (rows: states), one column "
-                             "per mode, each scaled so "
-                             "its largest entry is 1 (what one animates; ltp mbc --shapes-csv)")
       .def_property_readonly(
-          "participation", &MbcParticipation,
+          "eigenvectors",
+          [](const Mbc3Result& x) { return PerModeColumns(x, &MbcMode::eigenvector); },
+          "complex mode shapes in MBC coordinates (rows: states), one column "
+          "per mode, each scaled so "
+          "its largest entry is 1 (what one animates; ltp mbc --shapes-csv)")
+      .def_property_readonly(
+          "participation",
+          [](const Mbc3Result& x) { return PerModeColumns(x, &MbcMode::participation); },
           "participation factors v_i·w_i (right and left eigenvectors of A, w·v = 1), one "
           "column per mode, rows as states: unit-free, each column sums to 1; a second-order "
           "DOF's displacement and rate rows add up to its share of the mode's energy "
