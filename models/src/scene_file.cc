@@ -176,10 +176,11 @@ class Reader {
         internal::FileMatrixTerm::Harmonic harmonic;
         if (h["order"]) {
           const std::string order = Scalar(h["order"], at + ".order");
-          if (order.empty() || order.size() > 3 ||
-              order.find_first_not_of("0123456789") != std::string::npos || std::stoi(order) < 1)
+          const bool digits = !order.empty() && order.size() <= 3 &&
+                              order.find_first_not_of("0123456789") == std::string::npos;
+          harmonic.order = digits ? std::stoi(order) : 0;
+          if (harmonic.order < 1)
             Fail(h["order"], at + ".order", "expected an integer 1..999, got '" + order + "'");
-          harmonic.order = std::stoi(order);
         }
         if (h["cos"]) harmonic.cos = MatrixFile(h["cos"], at + ".cos", m);
         if (h["sin"]) harmonic.sin = MatrixFile(h["sin"], at + ".sin", m);
@@ -249,21 +250,16 @@ void ReadMatrix(const Reader& reader, const YAML::Node& block, const std::string
   if (FromFiles(node)) {
     if (!model.second_order)
       reader.Fail(node, entry, "matrices from files are read in a second_order block only");
-    internal::FileMatrix m = reader.FileMatrix(node, entry);
-    if ((rows >= 0 && m.rows != rows) || (cols >= 0 && m.cols != cols))
-      reader.Fail(node, entry,
-                  "is " + std::to_string(m.rows) + "x" + std::to_string(m.cols) + " but must be " +
-                      (rows >= 0 ? std::to_string(rows) : "any") + "x" +
-                      (cols >= 0 ? std::to_string(cols) : "any"));
-    model.file_matrices[stored_as] = std::move(m);
-    return;
+    model.file_matrices[stored_as] = reader.FileMatrix(node, entry);
+  } else {
+    model.matrices[stored_as] = reader.Matrix(node, entry);
   }
-  ExpressionMatrixText m = reader.Matrix(node, entry);
-  if ((rows >= 0 && Rows(m) != rows) || (cols >= 0 && Cols(m) != cols))
+  const auto [r, c] = SizeOf(model, stored_as);
+  if ((rows >= 0 && r != rows) || (cols >= 0 && c != cols))
     reader.Fail(node, entry,
-                "is " + Size(m) + " but must be " + (rows >= 0 ? std::to_string(rows) : "any") +
-                    "x" + (cols >= 0 ? std::to_string(cols) : "any"));
-  model.matrices[stored_as] = std::move(m);
+                "is " + std::to_string(r) + "x" + std::to_string(c) + " but must be " +
+                    (rows >= 0 ? std::to_string(rows) : "any") + "x" +
+                    (cols >= 0 ? std::to_string(cols) : "any"));
 }
 
 void ReadStateSpace(const Reader& reader, const YAML::Node& root, SceneModel& model) {
