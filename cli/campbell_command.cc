@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 
 #include "campbell_output.h"
 #include "chart_plot.h"
@@ -42,16 +43,23 @@ LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   return o;
 }
 
+// The point's collective pitch in degrees, as OpenFAST's tables and ACDC show it.
+std::optional<double> PitchDeg(const LinCampbellPoint& p) {
+  if (!p.collective_pitch) return std::nullopt;
+  return *p.collective_pitch * 180 / std::numbers::pi;
+}
+
 // One row per operating point: the ordering quantity first (rotor speed in rpm or wind speed),
-// then the other, then per line its frequency (damped or natural, as the header says) and
-// damping ratio, each column named by the line's number and mode (empty cells where the line
-// is not tracked).
+// then the other and the collective pitch (empty without inputs), then per line its frequency
+// (damped or natural, as the header says) and damping ratio, each column named by the line's number
+// and mode (empty cells where the line is not tracked).
 void WriteLinesCsv(const std::string& path, const LinCampbellResult& r) {
   const bool by_rpm = r.axis == OperatingPointAxis::kRotorSpeed;
   const std::string kind(ToString(r.diagram.frequency));
   std::ofstream out(path);
   out.precision(12);
-  out << (by_rpm ? "rotor_speed_rpm,wind_speed_m_s" : "wind_speed_m_s,rotor_speed_rpm");
+  out << (by_rpm ? "rotor_speed_rpm,wind_speed_m_s" : "wind_speed_m_s,rotor_speed_rpm")
+      << ",pitch_deg";
   for (size_t k = 0; k < r.diagram.lines.size(); ++k) {
     const std::string name =
         "mode " + std::to_string(k + 1) + " (" + r.diagram.lines[k].description + ")";
@@ -62,7 +70,8 @@ void WriteLinesCsv(const std::string& path, const LinCampbellResult& r) {
   for (size_t p = 0; p < r.points.size(); ++p) {
     const std::string rpm = CsvNumber(r.points[p].rotor_speed * 30 / std::numbers::pi);
     const std::string wind = CsvNumber(r.points[p].wind_speed);
-    out << (by_rpm ? rpm + "," + wind : wind + "," + rpm);
+    out << (by_rpm ? rpm + "," + wind : wind + "," + rpm) << ","
+        << CsvNumber(PitchDeg(r.points[p]));
     for (const CampbellLine& line : r.diagram.lines) {
       if (std::isfinite(line.frequency_hz[p]))
         out << "," << line.frequency_hz[p] << "," << line.damping_ratio[p];
@@ -116,9 +125,10 @@ int RunCampbell(const CampbellArgs& args) {
            {"parameter", JsonNumber(p.parameter)},
            {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
            {"wind_speed_m_s", p.wind_speed ? JsonNumber(*p.wind_speed) : json(nullptr)},
+           {"pitch_deg", PitchDeg(p) ? JsonNumber(*PitchDeg(p)) : json(nullptr)},
            {"blades", p.mbc.blades},
            {"max_real_part", JsonNumber(p.mbc.max_real_part)},
-           {"notes", p.notes}});
+           {"notes", Texts(p.diagnostics)}});
     json j = {{"axis", r.axis_label}, {"points", points},
               {"skipped", r.skipped}, {"campbell", CampbellJson(r.diagram)},
               {"csv", args.csv},      {"plot", args.plot}};
@@ -136,7 +146,7 @@ int RunCampbell(const CampbellArgs& args) {
     std::cout << "  " << Num(p.parameter, 6, 17) << Num(static_cast<double>(p.files.size()), 3, 8)
               << Num(p.mbc.blades, 3, 9) << Num(p.mbc.max_real_part, 4, 17) << "   "
               << FilesPattern(p.files) << "\n";
-    for (const std::string& note : p.notes) std::cout << "        note: " << note << "\n";
+    for (const Diagnostic& d : p.diagnostics) std::cout << "        note: " << d.text << "\n";
   }
   for (const std::string& why : r.skipped)
     std::cout << "  left out (--keep-going): " << why << "\n";

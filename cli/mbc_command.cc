@@ -139,7 +139,7 @@ json FloquetJson(const SampledFloquetResult& f) {
           {"modes_below", ReductionJson(f.trig.reduction)},
           {"diagnostics_hold", Texts(f.hold.diagnostics)},
           {"diagnostics_trig", Texts(f.trig.diagnostics)},
-          {"notes", f.notes}};
+          {"notes", Texts(f.diagnostics)}};
 }
 
 void WriteCsv(const std::string& file, const Mbc3Result& r, const SampledFloquetResult* f) {
@@ -268,7 +268,7 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
   if (f.max_to_reference >= 0)
     std::cout << "; Floquet vs MBC3 up to " << Num(f.max_to_reference, 3) << " 1/s";
   std::cout << "\n  notes:\n";
-  for (const auto& n : f.notes) std::cout << "    - " << n << "\n";
+  for (const Diagnostic& d : f.diagnostics) std::cout << "    - " << d.text << "\n";
 }
 
 int RunMbc(const MbcArgs& args) {
@@ -329,7 +329,7 @@ int RunMbc(const MbcArgs& args) {
               {"max_real_part",
                r.applicable && !r.modes.empty() ? JsonNumber(r.max_real_part) : json(nullptr)},
               {"diagnostics", Texts(r.diagnostics)},
-              {"notes", LinCaveats(op)}};
+              {"notes", Texts(LinCaveats(op))}};
     if (!r.applicable) j["reason"] = r.reason;
     if (f) j["floquet"] = FloquetJson(*f);
     if (!floquet_skipped.empty()) j["floquet_skipped"] = floquet_skipped;

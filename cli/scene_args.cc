@@ -22,7 +22,7 @@ LoadedScene LoadSceneArgs(const SceneArgs& args) {
   names.insert(names.end(), args.more_files.begin(), args.more_files.end());
   LoadedScene loaded = LoadSceneInput(names, args.set);
   // Commands print their own results; the caveats go beside them on stderr (stdout may be JSON).
-  for (const std::string& note : loaded.notes) std::cerr << "ltp: note: " << note << "\n";
+  for (const Diagnostic& d : loaded.diagnostics) std::cerr << "ltp: note: " << d.text << "\n";
   return loaded;
 }
 

@@ -115,6 +115,11 @@ constexpr auto kCodeNames = std::to_array<CodeAndName>({
     {DiagnosticCode::kRotorSpeedsDiffer, "rotor_speeds_differ"},
     {DiagnosticCode::kMatrixDropped, "matrix_dropped"},
     {DiagnosticCode::kOperatingSpeedDiffers, "operating_speed_differs"},
+    {DiagnosticCode::kAzimuthSamplesResolve, "azimuth_samples_resolve"},
+    {DiagnosticCode::kTooFewAzimuths, "too_few_azimuths"},
+    {DiagnosticCode::kExponentsModuloRotorSpeed, "exponents_modulo_rotor_speed"},
+    {DiagnosticCode::kBranchesMatched, "branches_matched"},
+    {DiagnosticCode::kDistanceToMbc, "distance_to_mbc"},
 });
 
 constexpr bool InEnumOrder() {

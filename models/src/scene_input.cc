@@ -27,9 +27,10 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
   for (const std::string& a : assignments) overrides.push_back(SplitAssignment(a));
   ParameterMap parameters = scene.Resolve(overrides);
   PeriodicSystem system = scene.build(parameters);
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> diagnostics;
   if (op)  // the caveats of the coordinates actually analysed
-    notes = LinCaveats(parameters.at("mbc") == 1 ? InMultiBladeCoordinates(*op, Mbc3(*op)) : *op);
+    diagnostics =
+        LinCaveats(parameters.at("mbc") == 1 ? InMultiBladeCoordinates(*op, Mbc3(*op)) : *op);
   std::vector<PeriodicSystem> alternatives;
   if (op) {
     ParameterMap other = parameters;
@@ -62,7 +63,7 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
       alternatives.push_back(std::move(built));
     }
   }
-  return {std::move(scene), std::move(parameters), std::move(system), std::move(notes),
+  return {std::move(scene), std::move(parameters), std::move(system), std::move(diagnostics),
           std::move(alternatives)};
 }
 

@@ -850,6 +850,9 @@ LinOperatingPoint MakeLinOperatingPoint(std::vector<LinFile> files) {
   const LinFile& ref = files.front();
   LinOperatingPoint op;
   op.wind_speed = ref.wind_speed;
+  for (const LinChannel& c : ref.input_channels)
+    if (c.description.find("collective blade-pitch command") != std::string::npos)
+      op.collective_pitch = c.operating_point;
   op.states = ref.states;
   op.inputs = ref.input_channels;
   op.outputs = ref.output_channels;
@@ -1100,43 +1103,47 @@ PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation i
   return system.WithLabels(std::move(labels)).WithRotorSpeed(op.rotor_speed);
 }
 
-std::vector<std::string> LinCaveats(const LinOperatingPoint& op) {
-  std::vector<std::string> notes;
+std::vector<Diagnostic> LinCaveats(const LinOperatingPoint& op) {
+  std::vector<Diagnostic> notes;
   const int K = op.size();
   const double hz = op.rotor_speed / (2 * pi);
   if (K == 1) {
-    notes.push_back(
-        "one azimuth: the matrices are held constant over the whole revolution, so "
-        "no periodic content is resolved at all");
+    notes.push_back({DiagnosticCode::kAzimuthSamplesResolve, Severity::kWarning,
+                     "one azimuth: the matrices are held constant over the whole revolution, so "
+                     "no periodic content is resolved at all"});
   } else {
     const int H = (K - 1) / 2;
     std::string harmonics = "0";
     for (int h = 1; h <= H; ++h) harmonics += (h == H ? " and ±" : ", ±") + std::to_string(h);
     notes.push_back(
-        std::to_string(K) + " azimuths hold only harmonics " + harmonics + " of A(ψ)" +
-        (K % 2 == 0 ? " (and half of ±" + std::to_string(K / 2) + ")" : std::string()) +
-        ": anything at " + std::to_string(H + 1) +
-        "P and above is aliased onto them by the trigonometric interpolation or smeared by the "
-        "nearest-sample hold; the two agree only as far as the samples allow, which is not a "
-        "proof of convergence — linearise at more azimuths to check");
+        {DiagnosticCode::kAzimuthSamplesResolve, Severity::kNote,
+         std::to_string(K) + " azimuths hold only harmonics " + harmonics + " of A(ψ)" +
+             (K % 2 == 0 ? " (and half of ±" + std::to_string(K / 2) + ")" : std::string()) +
+             ": anything at " + std::to_string(H + 1) +
+             "P and above is aliased onto them by the trigonometric interpolation or smeared by "
+             "the nearest-sample hold; the two agree only as far as the samples allow, which is "
+             "not a proof of convergence — linearise at more azimuths to check"});
   }
-  for (const Diagnostic& d : op.diagnostics) notes.push_back(d.text);
+  notes.insert(notes.end(), op.diagnostics.begin(), op.diagnostics.end());
   if (op.azimuth_state) {
-    notes.push_back("state " + std::to_string(*op.azimuth_state + 1) + " (" +
-                    op.states[*op.azimuth_state].description +
-                    ") is the rotor azimuth: the rigid rotation is a Floquet exponent 0 exactly "
-                    "(the trajectory's own tangent has multiplier 1); sampling moves it slightly "
-                    "off 0, so the exponent nearest 0 is that rigid-body mode, not an "
-                    "instability or a damped mode");
+    notes.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote,
+                     "state " + std::to_string(*op.azimuth_state + 1) + " (" +
+                         op.states[*op.azimuth_state].description +
+                         ") is the rotor azimuth: the rigid rotation is a Floquet exponent 0 "
+                         "exactly (the trajectory's own tangent has multiplier 1); sampling moves "
+                         "it slightly off 0, so the exponent nearest 0 is that rigid-body mode, "
+                         "not an instability or a damped mode"});
   }
   bool rotating = false;
   for (const LinChannel& c : op.states) rotating = rotating || c.rotating_frame;
   if (rotating)
-    notes.push_back("exponents are defined modulo jΩ (Ω = " + FormatNumber(op.rotor_speed, "%.6g") +
-                    " rad/s, 1P = " + FormatNumber(hz, "%.4g") +
-                    " Hz): modes seen through rotating-frame states can appear shifted by ±1P "
-                    "from a fixed-frame Campbell table (multi-blade coordinates: `--set mbc=1`, "
-                    "or `ltp mbc`)");
+    notes.push_back(
+        {DiagnosticCode::kExponentsModuloRotorSpeed, Severity::kNote,
+         "exponents are defined modulo jΩ (Ω = " + FormatNumber(op.rotor_speed, "%.6g") +
+             " rad/s, 1P = " + FormatNumber(hz, "%.4g") +
+             " Hz): modes seen through rotating-frame states can appear shifted by "
+             "±1P from a fixed-frame Campbell table (multi-blade coordinates: `--set "
+             "mbc=1`, or `ltp mbc`)"});
   return notes;
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/work_estimate.h"
 #include "ltp/integrate/integrator.h"
@@ -89,9 +90,9 @@ class Callbacks {
 /// A system as Python holds it: the library's immutable system, and where it came from.
 struct System {
   PeriodicSystem system;
-  std::optional<Scene> scene;  ///< when built by ltp.scene: what ltp.chart sweeps
-  ParameterMap parameters;     ///< the scene's resolved parameters
-  std::vector<std::string> notes;
+  std::optional<Scene> scene;            ///< when built by ltp.scene: what ltp.chart sweeps
+  ParameterMap parameters;               ///< the scene's resolved parameters
+  std::vector<Diagnostic> notes;         ///< caveats that belong beside any result (.lin input)
   std::shared_ptr<Callbacks> callbacks;  ///< from_function with Python callables
   /// For OpenFAST samples: the other interpolations of the same samples, whose exponents give
   /// the sampling error that floquet() and hill() add to their estimate (IncludeModelError).
@@ -175,6 +176,7 @@ void BindFrf(py::module_& m);
 void BindChart(py::module_& m);
 void BindMbc(py::module_& m);
 void BindCampbell(py::module_& m);
+void BindDeflection(py::module_& m);
 void BindIdentify(py::module_& m);
 void BindHtfOperator(py::module_& m);
 /// ltp.periodic_schur and its result; before BindFloquet (FloquetResult.periodic_schur returns it).

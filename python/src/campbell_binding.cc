@@ -1,9 +1,11 @@
 // ltp.campbell: the Campbell diagram of OpenFAST operating points (`ltp campbell`,
 // studies/lin_campbell.h) for a notebook: MBC3 at each point, modes tracked across them.
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/error.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/studies/lin_campbell.h"
@@ -41,6 +43,16 @@ void BindCampbellResult(py::module_& m) {
             return RealArray(v);
           },
           "wind speed per point (m/s; NaN where the files do not give it)")
+      .def_property_readonly(
+          "pitches",
+          [](const LinCampbellResult& x) {
+            std::vector<double> v;
+            for (const LinCampbellPoint& p : x.points)
+              v.push_back(p.collective_pitch ? *p.collective_pitch * 180 / std::numbers::pi
+                                             : std::numeric_limits<double>::quiet_NaN());
+            return RealArray(v);
+          },
+          "collective blade pitch per point (deg; NaN where the files have no pitch input)")
       .def_property_readonly(
           "points",
           [](const LinCampbellResult& x) {
@@ -84,10 +96,19 @@ void BindCampbellResult(py::module_& m) {
           [](const LinCampbellResult& x) {
             std::vector<std::string> v = Texts(x.diagram.diagnostics);
             for (const LinCampbellPoint& p : x.points)
-              for (const std::string& n : p.notes) v.push_back(n);
+              for (const Diagnostic& d : p.diagnostics) v.push_back(d.text);
             return v;
           },
           "what the diagram and each point noticed, one line each")
+      .def_property_readonly(
+          "note_codes",
+          [](const LinCampbellResult& x) {
+            std::vector<std::string> v = CodeNames(x.diagram.diagnostics);
+            for (const LinCampbellPoint& p : x.points)
+              for (const std::string& c : CodeNames(p.diagnostics)) v.push_back(c);
+            return v;
+          },
+          "the notes' codes (snake_case, one per note), for code that branches on them")
       .def("__repr__", [](const LinCampbellResult& x) {
         return "<ltp.CampbellResult: " + std::to_string(x.points.size()) + " points, " +
                std::to_string(x.diagram.lines.size()) + " lines over " + x.axis_label + ">";

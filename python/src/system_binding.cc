@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "binding.h"
+#include "diagnostic_properties.h"
 #include "ltp/core/bounded_coefficients.h"
 #include "ltp/core/error.h"
 #include "ltp/core/fourier_matrix.h"
@@ -217,8 +218,8 @@ System SceneSystem(const py::object& name, const py::kwargs& parameters) {
     py::gil_scoped_release release;  // .lin files and finite-element scenes take a while
     loaded.emplace(LoadSceneInput(names, assignments));
   }
-  return System{loaded->system, loaded->scene, loaded->parameters,
-                loaded->notes,  nullptr,       loaded->model_alternatives};
+  return System{loaded->system,      loaded->scene, loaded->parameters,
+                loaded->diagnostics, nullptr,       loaded->model_alternatives};
 }
 
 py::object MaybeFourier(const FourierMatrix* f) {
@@ -465,8 +466,11 @@ void BindSystemProperties(py::class_<System>& c) {
           "parameters", [](const System& s) { return s.parameters; },
           "the scene's parameters, all resolved (ltp.scene), else {}")
       .def_property_readonly(
-          "notes", [](const System& s) { return s.notes; },
+          "notes", [](const System& s) { return Texts(s.notes); },
           "caveats that belong beside any result (OpenFAST .lin input)")
+      .def_property_readonly(
+          "note_codes", [](const System& s) { return CodeNames(s.notes); },
+          "the notes' codes (snake_case, one per note), for code that branches on them")
       .def_property_readonly(
           "fourier_A", [](const System& s) { return MaybeFourier(s.system.fourier_A()); },
           "A's coefficients (2H+1, n, n) for w = -H..H when the system is in "

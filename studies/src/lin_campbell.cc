@@ -23,6 +23,7 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
   p.files = op.files;
   p.rotor_speed = op.rotor_speed;
   p.wind_speed = op.wind_speed;
+  p.collective_pitch = op.collective_pitch;
   if (options.axis == OperatingPointAxis::kRotorSpeed) {
     p.parameter = op.rotor_speed * 30 / kPi;
   } else {
@@ -33,14 +34,17 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
   p.mbc = Mbc3(op, options.mbc);
   if (!p.mbc.applicable) throw InputError(Name(op) + ": MBC3 does not apply: " + p.mbc.reason);
   if (op.size() < 3 && p.mbc.blades >= 3)
-    p.notes.push_back(std::to_string(op.size()) + " azimuth" + (op.size() == 1 ? "" : "s") +
-                      ": too few to average the periodic part (OpenFAST recommends 36 for MBC3)");
+    p.diagnostics.push_back(
+        {DiagnosticCode::kTooFewAzimuths, Severity::kWarning,
+         std::to_string(op.size()) + " azimuth" + (op.size() == 1 ? "" : "s") +
+             ": too few to average the periodic part (OpenFAST recommends 36 for MBC3)"});
   if (p.mbc.rigid_body_modes)
-    p.notes.push_back(std::to_string(p.mbc.rigid_body_modes) + " rigid-body mode" +
-                      (p.mbc.rigid_body_modes == 1 ? "" : "s") +
-                      " (the rotor's free rotation) left out");
-  for (const Diagnostic& d : op.diagnostics) p.notes.push_back(d.text);
-  for (const Diagnostic& d : p.mbc.diagnostics) p.notes.push_back(d.text);
+    p.diagnostics.push_back({DiagnosticCode::kRigidBodyMode, Severity::kNote,
+                             std::to_string(p.mbc.rigid_body_modes) + " rigid-body mode" +
+                                 (p.mbc.rigid_body_modes == 1 ? "" : "s") +
+                                 " (the rotor's free rotation) left out"});
+  p.diagnostics.insert(p.diagnostics.end(), op.diagnostics.begin(), op.diagnostics.end());
+  p.diagnostics.insert(p.diagnostics.end(), p.mbc.diagnostics.begin(), p.mbc.diagnostics.end());
   return p;
 }
 

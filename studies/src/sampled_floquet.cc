@@ -186,23 +186,28 @@ void ClassifyRoutes(SampledFloquetResult* r) {
 
 // Notes on branches, the rigid rotation and the distance to MBC.
 void AddMatchNotes(bool with_mbc, SampledFloquetResult* r) {
-  r->notes.push_back("each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +
-                     std::string(with_mbc ? "MBC eigenvalue" : "hold route's exponent") +
-                     " it is matched to" +
-                     (with_mbc ? " (modes whose exponents coincide modulo jΩ, such as the backward "
-                                 "and forward whirl of a nearly isotropic rotor, are told apart by "
-                                 "proximity only)"
-                               : std::string()));
+  r->diagnostics.push_back(
+      {DiagnosticCode::kBranchesMatched, Severity::kNote,
+       "each Floquet exponent (defined modulo jΩ) is shown on the branch of the " +
+           std::string(with_mbc ? "MBC eigenvalue" : "hold route's exponent") +
+           " it is matched to" +
+           (with_mbc ? " (modes whose exponents coincide modulo jΩ, such as the backward and "
+                       "forward whirl of a nearly isotropic rotor, are told apart by proximity "
+                       "only)"
+                     : std::string())});
   for (const SampledFloquetMode& m : r->modes)
     if (m.rigid_body)
-      r->notes.push_back("rigid-body mode: exponent " + Format("%.3g", m.hold.real()) +
-                         " (hold) and " + Format("%.3g", m.trig.real()) +
-                         " (trig) 1/s instead of 0 — the sampling error on the rigid rotation; "
-                         "excluded from max Re λ");
+      r->diagnostics.push_back(
+          {DiagnosticCode::kRigidBodyMode, Severity::kNote,
+           "rigid-body mode: exponent " + Format("%.3g", m.hold.real()) + " (hold) and " +
+               Format("%.3g", m.trig.real()) +
+               " (trig) 1/s instead of 0 — the sampling error on the rigid rotation; excluded "
+               "from max Re λ"});
   if (with_mbc)
-    r->notes.push_back(
-        "distance to the MBC eigenvalues up to " + Format("%.3g", r->max_to_reference) +
-        " 1/s: the periodicity that azimuth averaging discards, plus sampling error");
+    r->diagnostics.push_back(
+        {DiagnosticCode::kDistanceToMbc, Severity::kNote,
+         "distance to the MBC eigenvalues up to " + Format("%.3g", r->max_to_reference) +
+             " 1/s: the periodicity that azimuth averaging discards, plus sampling error"});
 }
 
 }  // namespace
@@ -224,9 +229,11 @@ SampledFloquetResult AnalyzeSampledFloquet(const LinOperatingPoint& op, const Mb
   const bool with_mbc = mbc.applicable && !mbc.modes.empty();
   RunBothRoutes(used, options, with_mbc, &r);
   r.ok = r.hold.ok && r.trig.ok;
-  r.notes = LinCaveats(used);
+  r.diagnostics = LinCaveats(used);
   if (!r.ok) {
-    r.notes.push_back("a Floquet route failed: see its diagnostics");
+    r.diagnostics.push_back({DiagnosticCode::kFloquetFailed, Severity::kFailure,
+                             std::string(r.hold.ok ? "the trigonometric" : "the nearest-sample") +
+                                 " route failed: see its diagnostics"});
     return r;
   }
   MatchRoutes(CollectReferences(mbc, options, r.hold, used, omega), omega, with_mbc, &r);

@@ -126,7 +126,7 @@ TEST(ChartCli, CampbellOfAnOperatingPointSet) {
   EXPECT_FALSE(j["campbell"]["crossings"].empty());
   const std::string table = ReadFile(csv);
   // Ordered by rotor speed: rpm first and only once; columns named by mode.
-  EXPECT_EQ(table.rfind("rotor_speed_rpm,wind_speed_m_s,\"mode 1 (", 0), 0u) << table;
+  EXPECT_EQ(table.rfind("rotor_speed_rpm,wind_speed_m_s,pitch_deg,\"mode 1 (", 0), 0u) << table;
   EXPECT_NE(table.find("damped frequency [Hz]\""), std::string::npos);
   const std::string header = table.substr(0, table.find('\n'));
   EXPECT_EQ(header.find("rpm", header.find("rpm") + 1), std::string::npos) << header;

@@ -40,10 +40,15 @@ TEST(LinScene, SceneOverTheFiles) {
   const MatrixXd a24 = ReadLinFile(FiveMwDir() + "/Main.24.lin").A;
   EXPECT_LT((trig.A(4.0147 / 0.9425) - a24).norm(), 1e-13 * a24.norm());
   EXPECT_THROW(scene.Build({{"trig", "2"}}), InputError);
-  const std::vector<std::string> notes = LinCaveats(op);
+  const std::vector<Diagnostic> notes = LinCaveats(op);
   ASSERT_FALSE(notes.empty());
-  EXPECT_NE(notes[0].find("3 azimuths hold only harmonics 0 and ±1"), std::string::npos)
-      << notes[0];
+  EXPECT_EQ(notes[0].code, DiagnosticCode::kAzimuthSamplesResolve);
+  EXPECT_EQ(notes[0].severity, Severity::kNote);
+  EXPECT_NE(notes[0].text.find("3 azimuths hold only harmonics 0 and ±1"), std::string::npos)
+      << notes[0].text;
+  // The 5 MW files have blade states (rotating frame) and the generator azimuth.
+  EXPECT_TRUE(HasCode(notes, DiagnosticCode::kExponentsModuloRotorSpeed));
+  EXPECT_TRUE(HasCode(notes, DiagnosticCode::kRigidBodyMode));
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ TEST(SceneInput, BuiltinWithAssignments) {
   EXPECT_EQ(l.parameters.at("a"), 2);
   EXPECT_DOUBLE_EQ(l.parameters.at("q"), 0.7853981633974483);
   EXPECT_EQ(l.system.states(), 2);
-  EXPECT_TRUE(l.notes.empty());
+  EXPECT_TRUE(l.diagnostics.empty());
 }
 
 TEST(SceneInput, RefusesWhatItCannotLoad) {

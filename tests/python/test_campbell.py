@@ -35,21 +35,23 @@ def test_campbell_equals_cli(ltp_cli, tmp_path):
     # The CSV: rpm first (the ordering quantity), no second rpm column, then per line its
     # frequency and damping ratio under the line's number and mode description.
     header, *rows = list(csv.reader(out.open()))
-    assert header[:2] == ["rotor_speed_rpm", "wind_speed_m_s"]
-    assert len(header) == 2 + 2 * len(c.lines)
+    assert header[:3] == ["rotor_speed_rpm", "wind_speed_m_s", "pitch_deg"]
+    assert len(header) == 3 + 2 * len(c.lines)
     assert len(rows) == len(c.parameter)
     for k, line in enumerate(c.lines):
         name = f"mode {k + 1} ({line['description']})"
-        assert header[2 + 2 * k] == f"{name} natural frequency [Hz]".replace('"', "'")
-        assert header[3 + 2 * k] == f"{name} damping ratio".replace('"', "'")
+        assert header[3 + 2 * k] == f"{name} natural frequency [Hz]".replace('"', "'")
+        assert header[4 + 2 * k] == f"{name} damping ratio".replace('"', "'")
     for i, row in enumerate(rows):
         assert float(row[0]) == float(f"{c.parameter[i]:.12g}")
         for k, line in enumerate(c.lines):
             if np.isfinite(line["frequency_hz"][i]):
-                assert float(row[2 + 2 * k]) == float(f"{line['frequency_hz'][i]:.12g}")
-                assert float(row[3 + 2 * k]) == float(f"{line['damping_ratio'][i]:.12g}")
+                assert float(row[3 + 2 * k]) == float(f"{line['frequency_hz'][i]:.12g}")
+                assert float(row[4 + 2 * k]) == float(f"{line['damping_ratio'][i]:.12g}")
             else:
-                assert row[2 + 2 * k] == ""
+                assert row[3 + 2 * k] == ""
+    # The test files have no inputs, so no pitch: empty cells, NaN in Python.
+    assert all(row[2] == "" for row in rows) and np.isnan(c.pitches).all()
     # Each point's table is ltp.mbc of its files.
     one = ltp.mbc(POINTS[0])
     assert np.array_equal(one.eigenvalues, c.points[0].eigenvalues)
@@ -81,3 +83,25 @@ def test_campbell_of_a_flat_output_folder_and_keep_going(tmp_path):
     kept = ltp.campbell([str(tmp_path)], keep_going=True)
     assert len(kept.points) == len(POINTS)
     assert len(kept.skipped) == 1 and "broken.1.lin" in kept.skipped[0]
+
+
+def test_notes_carry_codes():
+    # The notes are typed: one snake_case code per sentence, as every result's diagnostics.
+    c = ltp.campbell(POINTS)
+    assert len(c.note_codes) == len(c.notes)
+    for code, note in zip(c.note_codes, c.notes):
+        if code == "tracking_ambiguous":
+            assert "ambiguous" in note
+    # The 5 MW files have the generator azimuth among their states: MBC3 leaves out its rigid
+    # rotation, and says so; their 3 azimuths are enough to average.
+    five_mw = str(Path(__file__).resolve().parents[1] / "data" / "openfast" / "nrel5mw-rotating")
+    one = ltp.campbell([five_mw])
+    assert "rigid_body_mode" in one.note_codes
+    assert "too_few_azimuths" not in one.note_codes
+    s = ltp.scene(five_mw)
+    assert len(s.note_codes) == len(s.notes)
+    assert s.note_codes[0] == "azimuth_samples_resolve"
+    assert "3 azimuths hold only harmonics 0 and ±1" in s.notes[0]
+    # Analysed in multi-blade coordinates by default: no rotating-frame states, no ±1P note.
+    assert "multi_blade_coordinates" in s.note_codes
+    assert "exponents_modulo_rotor_speed" not in s.note_codes

@@ -155,8 +155,13 @@ TEST(LinSampledFloquet, FiveMwHoldRouteIsTheProductOfExponentials) {
   EXPECT_LT(r.max_real_hold, 0);
   EXPECT_LT(r.max_real_trig, 0);
   EXPECT_TRUE(r.stable);
-  ASSERT_FALSE(r.notes.empty());
-  EXPECT_NE(r.notes[0].find("3 azimuths hold only harmonics 0 and ±1"), std::string::npos);
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].code, DiagnosticCode::kAzimuthSamplesResolve);
+  EXPECT_NE(r.diagnostics[0].text.find("3 azimuths hold only harmonics 0 and ±1"),
+            std::string::npos);
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kBranchesMatched));
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kDistanceToMbc));
+  EXPECT_FALSE(HasCode(r.diagnostics, DiagnosticCode::kFloquetFailed));
 }
 
 // A 60-state set whose multipliers span hundreds of e-folds per period: every periodic mode

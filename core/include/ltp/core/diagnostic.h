@@ -125,14 +125,19 @@ enum class DiagnosticCode {
   kTrackingAmbiguous,       ///< mode tracking ambiguous at some points
 
   // OpenFAST linearisations and MBC3.
-  kMbcNotTransformed,      ///< B or C not transformed to multi-blade coordinates
-  kMbcEigenFailed,         ///< the eigenvalue solver failed on the averaged matrix
-  kNoRotatingStates,       ///< no rotating-frame states: the transform is the identity
-  kMultiBladeCoordinates,  ///< the operating point was moved to multi-blade coordinates
-  kAzimuthsUneven,         ///< the azimuths are unevenly spaced
-  kRotorSpeedsDiffer,      ///< the files' rotor speeds differ
-  kMatrixDropped,          ///< a matrix missing in some files was dropped from all
-  kOperatingSpeedDiffers,  ///< a file's azimuth rate differs from its header's rotor speed
+  kMbcNotTransformed,          ///< B or C not transformed to multi-blade coordinates
+  kMbcEigenFailed,             ///< the eigenvalue solver failed on the averaged matrix
+  kNoRotatingStates,           ///< no rotating-frame states: the transform is the identity
+  kMultiBladeCoordinates,      ///< the operating point was moved to multi-blade coordinates
+  kAzimuthsUneven,             ///< the azimuths are unevenly spaced
+  kRotorSpeedsDiffer,          ///< the files' rotor speeds differ
+  kMatrixDropped,              ///< a matrix missing in some files was dropped from all
+  kOperatingSpeedDiffers,      ///< a file's azimuth rate differs from its header's rotor speed
+  kAzimuthSamplesResolve,      ///< which harmonics of A(ψ) the K azimuth samples determine
+  kTooFewAzimuths,             ///< too few azimuths to average the periodic part for MBC3
+  kExponentsModuloRotorSpeed,  ///< exponents seen through rotating-frame states may be ±1P off
+  kBranchesMatched,            ///< each sampled-model exponent shown on its reference's branch
+  kDistanceToMbc,              ///< how far the Floquet exponents are from the MBC3 eigenvalues
 
   kCount  ///< not a code: how many there are (new codes go above it)
 };

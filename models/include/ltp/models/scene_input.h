@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/models/scene.h"
 
@@ -17,7 +18,7 @@ struct LoadedScene {
   PeriodicSystem system;
   /// Caveats that belong beside any result (for .lin input: what K azimuth samples resolve,
   /// the rigid rotation). The library does not print them.
-  std::vector<std::string> notes;
+  std::vector<Diagnostic> diagnostics;
   /// For a model built from samples (.lin input): the same samples through the other
   /// interpolation (trigonometric ↔ nearest-sample hold) and, when MBC applies, the same
   /// interpolation in the other coordinates (multi-blade ↔ the files'). How far their exponents

@@ -88,6 +88,10 @@ struct LinOperatingPoint {
   std::vector<double> operating_speeds, operating_accelerations;
   double rotor_speed = 0;            ///< mean of rotor_speeds: the period is 2π/rotor_speed
   std::optional<double> wind_speed;  ///< m/s, from the first file's header when it has one
+  /// Collective blade pitch (rad): the operating point of ElastoDyn's input "ED Extended
+  /// input: collective blade-pitch command", which OpenFAST writes when the files have inputs
+  /// (LinInputs); the first file's, as every azimuth of a trimmed point shares it.
+  std::optional<double> collective_pitch;
   std::vector<LinChannel> states, inputs, outputs;  ///< in the first file's order
   std::vector<LtiSystem> samples;  ///< A, B, C, D at each azimuth, channels in that order
   /// Index of the generator-azimuth state (the rigid rotation of the rotor), if any.
@@ -169,8 +173,9 @@ PeriodicSystem BuildAzimuthSampledSystem(double rotor_speed, const std::vector<d
 /// time-invariant: no period).
 PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation interpolation);
 
-/// What K samples can and cannot resolve, and how the rigid rotation shows: one sentence per
-/// item, for printing beside any analysis of these files.
-std::vector<std::string> LinCaveats(const LinOperatingPoint& op);
+/// What K samples can and cannot resolve, the files' own diagnostics, how the rigid rotation
+/// shows and the ±1P ambiguity of rotating-frame states: one diagnostic each, to report
+/// beside any analysis of these files.
+std::vector<Diagnostic> LinCaveats(const LinOperatingPoint& op);
 
 }  // namespace ltp

@@ -50,14 +50,15 @@ struct LinCampbellOptions {
 };
 
 struct LinCampbellPoint {
-  std::vector<std::string> files;    ///< the azimuth files, sorted by azimuth
-  double rotor_speed = 0;            ///< rad/s
-  std::optional<double> wind_speed;  ///< m/s
-  double parameter = 0;              ///< the diagram's abscissa: rpm or m/s
+  std::vector<std::string> files;          ///< the azimuth files, sorted by azimuth
+  double rotor_speed = 0;                  ///< rad/s
+  std::optional<double> wind_speed;        ///< m/s
+  std::optional<double> collective_pitch;  ///< rad (LinOperatingPoint::collective_pitch)
+  double parameter = 0;                    ///< the diagram's abscissa: rpm or m/s
   Mbc3Result mbc;
   /// Caveats of this point: too few azimuths to resolve the periodic part, rigid-body modes,
-  /// MBC3's own diagnostics.
-  std::vector<std::string> notes;
+  /// the files' and MBC3's own diagnostics.
+  std::vector<Diagnostic> diagnostics;
 };
 
 struct LinCampbellResult {

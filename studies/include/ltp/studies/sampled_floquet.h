@@ -67,10 +67,12 @@ struct SampledFloquetResult {
   /// ± (integration estimate + its |hold − trig|, the sampling error; docs/sampled-models.md);
   /// marginal when that band holds 0.
   StabilityVerdict verdict = StabilityVerdict::kFailed;
-  double error_estimate = 0;       ///< that band on max Re λ (1/s)
-  double max_difference = 0;       ///< max |hold − trig| over the modes (1/s)
-  double max_to_reference = 0;     ///< max distance to the MBC eigenvalues (1/s), −1 if none
-  std::vector<std::string> notes;  ///< caveats: what K samples resolve, branches, rigid body
+  double error_estimate = 0;    ///< that band on max Re λ (1/s)
+  double max_difference = 0;    ///< max |hold − trig| over the modes (1/s)
+  double max_to_reference = 0;  ///< max distance to the MBC eigenvalues (1/s), −1 if none
+  /// Caveats (what K samples resolve, branches, the rigid body, the distance to MBC3) and a
+  /// failed route (kFloquetFailed; its own diagnostics say why).
+  std::vector<Diagnostic> diagnostics;
 };
 
 /// Both Floquet routes on the samples, matched to `mbc`'s modes (pass a result with
