@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "command.h"
+#include "deflection_output.h"
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
@@ -43,6 +44,10 @@ struct FloquetArgs {
   bool json = false;
   bool keep_going = false;
   std::string modes_csv;
+  std::string deflection_csv;
+  std::string deflection_plot;
+  std::vector<int> deflection_modes;  ///< numbered from 1, as in the table; empty: every mode
+  ModeDeflectionOptions deflection;
   std::string plot;
   double modes_below_hz = 0;
 };
@@ -77,9 +82,18 @@ void ResolveOptions(FloquetArgs& args) {
   if (args.method != "monodromy" && args.method != "hill" && args.method != "both")
     throw InputError("--method must be monodromy, hill or both, got '" + args.method + "'");
   // The mode shapes and the plot come from the monodromy route; Hill alone would skip them.
-  if (args.method == "hill" && (!args.modes_csv.empty() || !args.plot.empty()))
-    throw InputError(std::string(args.modes_csv.empty() ? "--plot" : "--modes-csv") +
+  if (args.method == "hill" && (!args.modes_csv.empty() || !args.plot.empty() ||
+                                !args.deflection_csv.empty() || !args.deflection_plot.empty()))
+    throw InputError(std::string(!args.modes_csv.empty()         ? "--modes-csv"
+                                 : !args.deflection_csv.empty()  ? "--deflection-csv"
+                                 : !args.deflection_plot.empty() ? "--deflection-plot"
+                                                                 : "--plot") +
                      " needs the monodromy route: use --method monodromy or both");
+  if (!args.deflection_modes.empty() && args.deflection_csv.empty() && args.deflection_plot.empty())
+    throw InputError(
+        "--deflection-mode chooses the modes of --deflection-csv or --deflection-plot: give one "
+        "of them too");
+  args.deflection.Validate();
   if (args.harmonics != "auto") {
     try {
       size_t used = 0;
@@ -405,6 +419,24 @@ void WriteModesCsv(const FloquetResult& r, const SystemLabels& labels, const std
   }
 }
 
+// --deflection-csv and --deflection-plot: the chosen modes' deflected structure over a period
+// (scenes that draw one).
+void WriteDeflection(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r) {
+  if (!l.scene.geometry)
+    throw InputError(
+        std::string(args.deflection_csv.empty() ? "--deflection-plot" : "--deflection-csv") +
+        ": scene '" + l.scene.name +
+        "' has no structure to draw (tower-rotor has one); --modes-csv writes "
+        "the mode shapes of any scene");
+  std::vector<int> modes;
+  for (int k : args.deflection_modes) modes.push_back(k - 1);
+  const int dofs = l.system.states() / 2;  // a second-order system: [q; q']
+  const ModeDeflections d =
+      DeflectModes(l.scene.geometry(l.parameters), dofs, r, modes, args.deflection);
+  if (!args.deflection_csv.empty()) WriteDeflectionCsv(args.deflection_csv, d);
+  if (!args.deflection_plot.empty()) PlotDeflection(args.deflection_plot, d);
+}
+
 // One route's JSON as it is, or both side by side with their disagreement.
 json FloquetJson(const LoadedScene& l, const FloquetArgs& args, const FloquetResult& r,
                  const HillResult& h) {
@@ -475,6 +507,8 @@ int RunFloquet(FloquetArgs& args) {
 
   progress.Clear();
   if (run_mono && !args.modes_csv.empty()) WriteModesCsv(r, l.system.labels(), args.modes_csv);
+  if (run_mono && !(args.deflection_csv.empty() && args.deflection_plot.empty()))
+    WriteDeflection(l, args, r);
   if (run_mono && !args.plot.empty()) PlotFloquet(r, l.scene.name, args.plot);
   const bool ok = (!run_mono || r.ok) && (!run_hill || h.ok);
   if (run_mono && !r.ok)
@@ -553,6 +587,20 @@ Command AddFloquetCommand(CLI::App& app) {
                 "exit 0 even when the analysis failed its own checks (the output still says so; "
                 "default: exit 1)");
   cmd->add_option("--modes-csv", args.modes_csv, "write the periodic mode shapes ξ_k(t) to CSV");
+  cmd->add_option("--deflection-csv", args.deflection_csv,
+                  "write each mode's deflected structure over one period to CSV (scenes with a "
+                  "structure: tower-rotor)");
+  cmd->add_option("--deflection-plot", args.deflection_plot,
+                  "draw the deflected structure of up to 4 modes chosen by --deflection-mode "
+                  "(FILE.svg or FILE.png)");
+  cmd->add_option("--deflection-mode", args.deflection_modes,
+                  "only these modes in --deflection-csv and --deflection-plot (numbered as in "
+                  "the table; repeatable)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--deflection-amplitude", args.deflection.amplitude,
+                  "largest node displacement in --deflection-csv and --deflection-plot, as a "
+                  "fraction of the structure's size")
+      ->capture_default_str();
   cmd->add_option("--plot", args.plot,
                   "draw exponents and mode-shape spectra (FILE.svg or FILE.png)");
   return {cmd, [] { return RunFloquet(args); }};

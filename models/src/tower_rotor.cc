@@ -430,6 +430,56 @@ TowerRotorMatrices Assemble(const Structure& st, double psi, double omega, doubl
   return out;
 }
 
+// A rotor point at rotor-frame position ρ (from the hub centre): where it is at rotor angle ψ
+// and how the cantilever's coordinates move it (u_t + θ × ρ', as G in Assemble).
+void AddRotorNode(const Structure& st, double psi, const Vector3d& rho, DrawnBody& body, int node) {
+  const Vector3d rho_p = Vector3d(0, st.params.hub_offset, 0) + RotY(psi) * rho;
+  body.rest.col(node) = Vector3d(st.params.cantilever_length, 0, 0) + rho_p;
+  body.motion.block(3 * node, 0, 3, st.nc) = st.tip_u - Skew(rho_p) * st.tip_theta;
+}
+
+// The drawn bodies at rotor angle ψ (TowerRotorGeometry).
+StructureGeometry DrawStructure(const Structure& st, double psi) {
+  const TowerRotorParams& p = st.params;
+  StructureGeometry g;
+  g.axes = "x along the cantilever (base at 0), y along the rotor shaft, z = x × y";
+  const int nce = p.cantilever_elements, nbe = p.blade_elements;
+  DrawnBody cantilever{"cantilever", Eigen::Matrix3Xd::Zero(3, nce + 1),
+                       MatrixXd::Zero(3 * (nce + 1), st.n)};
+  for (int i = 1; i <= nce; ++i) {  // node 0 is clamped: no motion
+    cantilever.rest(0, i) = p.cantilever_length * i / nce;
+    const int row = kCantileverNodeDofs * (i - 1);
+    cantilever.motion.row(3 * i + 1).head(st.nc) = st.cantilever.shapes.row(row);      // v
+    cantilever.motion.row(3 * i + 2).head(st.nc) = st.cantilever.shapes.row(row + 2);  // w
+  }
+  DrawnBody shaft{"shaft", Eigen::Matrix3Xd::Zero(3, 2), MatrixXd::Zero(6, st.n)};
+  shaft.rest.col(0) = cantilever.rest.col(nce);
+  shaft.motion.topRows(3) = cantilever.motion.bottomRows(3);
+  AddRotorNode(st, psi, Vector3d::Zero(), shaft, 1);
+  g.bodies.push_back(std::move(cantilever));
+  g.bodies.push_back(shaft);
+  const Matrix3d r = RotY(psi);
+  for (int k = 0; k < 2; ++k) {
+    const double sign = k == 0 ? 1.0 : -1.0;
+    const Vector3d axis(0, 0, sign), lag_dir(sign, 0, 0), flap_dir(0, 1, 0);  // a_k, b_k, e_y
+    DrawnBody blade{"blade" + std::to_string(k + 1), Eigen::Matrix3Xd::Zero(3, nbe + 2),
+                    MatrixXd::Zero(3 * (nbe + 2), st.n)};
+    blade.rest.col(0) = shaft.rest.col(1);  // from the hub centre
+    blade.motion.topRows(3) = shaft.motion.bottomRows(3);
+    for (int j = 0; j <= nbe; ++j) {  // FE node j at radius r_h + j L_b/n_b; node 0 clamped
+      const int node = j + 1;
+      AddRotorNode(st, psi, (p.hub_radius + p.blade_length * j / nbe) * axis, blade, node);
+      if (j == 0) continue;
+      const int row = kBladeNodeDofs * (j - 1);
+      const MatrixXd local = flap_dir * st.blade.shapes.row(row) +    // f
+                             lag_dir * st.blade.shapes.row(row + 2);  // g
+      blade.motion.block(3 * node, st.nc + k * st.nb, 3, st.nb) = r * local;
+    }
+    g.bodies.push_back(std::move(blade));
+  }
+  return g;
+}
+
 // Exact Fourier coefficients (harmonics 0..2 of ψ) from 8 equally spaced samples.
 void ToFourier(const std::vector<MatrixXd>& samples, FourierMatrix& series) {
   const int n = static_cast<int>(samples[0].rows());
@@ -712,6 +762,12 @@ TowerRotorModel BuildTowerRotorModel(const TowerRotorParams& params) {
   return model;
 }
 
+GeometryAt TowerRotorGeometry(const TowerRotorParams& params) {
+  Validate(params);
+  auto st = std::make_shared<const Structure>(MakeStructure(params, kCutoffFactor * params.fmax));
+  return [st](double t) { return DrawStructure(*st, st->params.omega * t); };
+}
+
 TowerRotorMatrices TowerRotorMatricesAt(const TowerRotorParams& params, double psi) {
   Validate(params);
   const Structure st = MakeStructure(params, kCutoffFactor * params.fmax);
@@ -819,6 +875,9 @@ Scene TowerRotorScene() {
     scene.parameters.push_back({spec.name, value, spec.description});
   }
   scene.build = BuildSystem;
+  scene.geometry = [](const ParameterMap& values) {
+    return TowerRotorGeometry(TowerRotorParams::FromMap(values));
+  };
   return scene;
 }
 

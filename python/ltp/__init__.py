@@ -24,6 +24,8 @@ Analyses (each runs without the GIL)
     campbell(points, by=...) -> CampbellResult  `ltp campbell`: MBC3 modes tracked over operating points
     mbc(files) -> MbcResult                   `ltp mbc --no-floquet`: the MBC3 table of .lin files
     mbc_check(system, result) -> dict | None  `ltp floquet rotor`'s multi-blade-coordinate check
+    deflection(system, result) -> dict    `ltp floquet --deflection-csv`: each mode's deflected
+                                          structure over a period (tower-rotor)
     simulate(system, freq, ...) -> SimulationResult  `ltp simulate`: time data of a test (a rig's
                                               speed offset, ramp, tacho, input and output noise)
     identify(time, input, output, ...) -> IdentifyResult  `ltp identify` on numpy arrays
@@ -62,6 +64,7 @@ from ._ltp import (  # noqa: F401
     __version__,
     campbell,
     chart,
+    deflection,
     floquet,
     hill,
     hill_matrix,
@@ -83,6 +86,6 @@ __all__ = [
     "InputError", "MbcResult", "PeriodicSchurForm", "PfrfResult",
     "ResourceError", "SceneError", "SimulationResult", "SingularMassError", "SnapshotResult", "System",
     "TransmissionZeros",
-    "campbell", "chart", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "periodic_schur", "pfrf", "scene",
+    "campbell", "chart", "deflection", "floquet", "hill", "hill_matrix", "hill_study", "identify", "mbc", "mbc_check", "periodic_schur", "pfrf", "scene",
     "scenes", "simulate", "snapshot",
 ]

@@ -66,6 +66,7 @@ PYBIND11_MODULE(_ltp, m) {
   BindChart(m);
   BindMbc(m);
   BindCampbell(m);
+  BindDeflection(m);
   BindIdentify(m);
   BindHtfOperator(m);
 }

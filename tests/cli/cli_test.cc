@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -89,6 +90,43 @@ TEST(Cli, ModesCsvColumnsNameModeAndState) {
   const Outcome hill = Ltp("floquet jeffcott --method hill --modes-csv " + csv);
   EXPECT_EQ(hill.code, 2);
   EXPECT_NE(hill.err.find("--modes-csv needs the monodromy route"), std::string::npos) << hill.err;
+}
+
+// --deflection-csv: one row per mode, sample time, body and node; the rest positions are the
+// scene's geometry in closed form (cantilever tip at (L, 0, 0), blade 1's tip at ψ = 0 at
+// (L, d, r_h + L_b) with the defaults L = 0.47, d = 0.03, r_h + L_b = 0.207 m).
+TEST(Cli, DeflectionCsvDrawsTheTowerRotorOverAPeriod) {
+  const std::string csv =
+      std::string(::testing::TempDir()) + "ltp-" + std::to_string(getpid()) + "-deflection.csv";
+  const Outcome r = Ltp("floquet tower-rotor --mode-samples 8 --deflection-csv " + csv +
+                        " --deflection-mode 1 --deflection-mode 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = test::ReadFile(csv);
+  ASSERT_EQ(text.rfind("mode,t,body,node,x_rest,y_rest,z_rest,x,y,z\n", 0), 0u)
+      << text.substr(0, 80);
+  // 2 modes × 8 times × (21 cantilever + 2 shaft + 2 × 12 blade) nodes, and the header.
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2 * 8 * 47 + 1);
+  EXPECT_NE(text.find("\n1,0,\"cantilever\",20,0.47,0,0,"), std::string::npos);
+  EXPECT_NE(text.find("\n1,0,\"blade1\",11,0.47,0.03,0.207,"), std::string::npos);
+  EXPECT_NE(text.find("\n3,"), std::string::npos);
+  EXPECT_EQ(text.find("\n2,"), std::string::npos);
+  // A scene without a structure is refused with what works instead.
+  const Outcome mathieu = Ltp("floquet mathieu --deflection-csv " + csv);
+  EXPECT_EQ(mathieu.code, 2);
+  EXPECT_NE(mathieu.err.find("scene 'mathieu' has no structure to draw"), std::string::npos)
+      << mathieu.err;
+  // The picture: chosen modes only (at most 4 rows), drawn by gnuplot.
+  const std::string svg = csv + ".svg";
+  const Outcome plot =
+      Ltp("floquet tower-rotor --mode-samples 8 --deflection-plot " + svg + " --deflection-mode 1");
+  ASSERT_EQ(plot.code, 0) << plot.err;
+  EXPECT_NE(test::ReadFile(svg).find("<svg"), std::string::npos);
+  const Outcome many = Ltp("floquet tower-rotor --deflection-plot " + svg);
+  EXPECT_EQ(many.code, 2);
+  EXPECT_NE(many.err.find("draws at most 4 modes, 22 chosen"), std::string::npos) << many.err;
+  const Outcome orphan = Ltp("floquet tower-rotor --deflection-mode 2");
+  EXPECT_EQ(orphan.code, 2);
+  EXPECT_NE(orphan.err.find("give one"), std::string::npos) << orphan.err;
 }
 
 TEST(Cli, InfoMathieu) {

@@ -271,5 +271,66 @@ TEST(TowerRotorScene, BadParametersNameTheParameter) {
   }
 }
 
+// The drawn structure. Rest positions in closed form (ψ = Ω t turns the blades from ±z towards
+// ±x); the cantilever tip moves as the model's outputs (Cd rows z_tip, y_tip); and each blade
+// mode moves the blade tip by the mass-normalised clamped-free beam's tip value 2/sqrt(m_b):
+// every mode of the continuous beam has φ(L) = ±2 when ∫φ² dx = L (Blevins, "Formulas for
+// Natural Frequency and Mode Shape", table 8-1), here with ∫ρAφ² dx = 1.
+TEST(TowerRotorGeometry, RestPositionsAndTipMotionInClosedForm) {
+  TowerRotorParams p = Defaults();
+  p.fmax = 1000;  // keeps the first lag mode (~1.4 kHz) beside the flap modes
+  const TowerRotorModel model = BuildTowerRotorModel(p);
+  const GeometryAt geometry = TowerRotorGeometry(p);
+  const auto index = [&](const std::string& label) {
+    const auto it = std::find(model.dof_labels.begin(), model.dof_labels.end(), label);
+    EXPECT_NE(it, model.dof_labels.end()) << label;
+    return static_cast<int>(it - model.dof_labels.begin());
+  };
+  const double L = p.cantilever_length, d = p.hub_offset, R = p.hub_radius + p.blade_length;
+  const double tip_value =
+      2 / std::sqrt(p.blade_rho * p.blade_width * p.blade_thickness * p.blade_length);
+  for (const double psi : {0.0, pi / 2}) {
+    const StructureGeometry g = geometry(psi / p.omega);
+    ASSERT_EQ(g.bodies.size(), 4u);
+    const DrawnBody& cantilever = g.bodies[0];
+    EXPECT_EQ(cantilever.name, "cantilever");
+    ASSERT_EQ(cantilever.rest.cols(), p.cantilever_elements + 1);
+    EXPECT_LT((cantilever.rest.col(p.cantilever_elements) - Eigen::Vector3d(L, 0, 0)).norm(),
+              1e-15);
+    const int tip = 3 * p.cantilever_elements;
+    EXPECT_LT((cantilever.motion.row(tip + 2) - model.Cd.row(0)).norm(), 1e-14);  // z_tip
+    EXPECT_LT((cantilever.motion.row(tip + 1) - model.Cd.row(1)).norm(), 1e-14);  // y_tip
+    EXPECT_EQ(cantilever.motion.topRows(3).norm(), 0);  // the clamped base does not move
+    EXPECT_LT((g.bodies[1].rest.col(1) - Eigen::Vector3d(L, d, 0)).norm(), 1e-15);  // hub
+    for (int k = 0; k < 2; ++k) {
+      const DrawnBody& blade = g.bodies[2 + static_cast<size_t>(k)];
+      EXPECT_EQ(blade.name, "blade" + std::to_string(k + 1));
+      const double sign = k == 0 ? 1 : -1;
+      const Eigen::Vector3d axis(sign * std::sin(psi), 0, sign * std::cos(psi));  // R(ψ) a_k
+      const Eigen::Vector3d lag(sign * std::cos(psi), 0, -sign * std::sin(psi));  // R(ψ) b_k
+      const int last = static_cast<int>(blade.rest.cols()) - 1;
+      EXPECT_LT((blade.rest.col(last) - (Eigen::Vector3d(L, d, 0) + R * axis)).norm(), 1e-15);
+      const std::string name = "blade" + std::to_string(k + 1);
+      const Eigen::Vector3d flap_tip = blade.motion.block(3 * last, index(name + "_flap1"), 3, 1);
+      const Eigen::Vector3d lag_tip = blade.motion.block(3 * last, index(name + "_lag1"), 3, 1);
+      // Flap and lag uncouple exactly in the FE model; the generalized eigensolver's vectors
+      // mix them at its round-off (2e-11 of the tip value for the lag mode).
+      EXPECT_NEAR(std::abs(flap_tip.y()), tip_value, 2e-4 * tip_value) << name;
+      EXPECT_LT(std::hypot(flap_tip.x(), flap_tip.z()), 1e-9 * tip_value) << name;
+      EXPECT_NEAR(std::abs(lag_tip.dot(lag)), tip_value, 2e-4 * tip_value) << name;
+      EXPECT_LT((lag_tip - lag_tip.dot(lag) * lag).norm(), 1e-9 * tip_value) << name;
+      // The other blade's coordinates leave this blade still.
+      const std::string other = k == 0 ? "blade2" : "blade1";
+      EXPECT_EQ(blade.motion.col(index(other + "_flap1")).norm(), 0) << name;
+    }
+  }
+  // The scene hands the same structure to the commands.
+  const Scene scene = TowerRotorScene();
+  ASSERT_TRUE(scene.geometry);
+  const StructureGeometry from_scene =
+      scene.geometry(scene.Resolve({{"fmax", "1000"}}))(pi / 2 / p.omega);
+  EXPECT_EQ(from_scene.bodies[2].rest, geometry(pi / 2 / p.omega).bodies[2].rest);
+}
+
 }  // namespace
 }  // namespace ltp

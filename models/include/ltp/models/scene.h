@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ltp/core/periodic_system.h"
+#include "ltp/models/structure_geometry.h"
 
 namespace ltp {
 
@@ -27,6 +28,10 @@ struct Scene {
   std::vector<SceneParameter> parameters;
   /// Builds the system for fully resolved parameters. @throws InputError, SceneError.
   std::function<PeriodicSystem(const ParameterMap&)> build;
+  /// The structure to draw for resolved parameters, for scenes that have one (tower-rotor);
+  /// empty otherwise. Its coordinates are the system's first states (a second-order system).
+  /// @throws InputError, as `build`.
+  std::function<GeometryAt(const ParameterMap&)> geometry;
 
   /// Defaults overridden by `overrides` ("name=value" pairs; values may be expressions in
   /// numbers and pi). @throws InputError on an unknown name, a bad expression or NaN/inf.

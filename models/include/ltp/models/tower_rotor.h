@@ -24,6 +24,7 @@
 #include "ltp/core/fourier_matrix.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/models/scene.h"
+#include "ltp/models/structure_geometry.h"
 
 namespace ltp {
 
@@ -91,6 +92,13 @@ struct TowerRotorModel {
 
 /// Builds the reduced, linearised model. @throws InputError on invalid parameters.
 TowerRotorModel BuildTowerRotorModel(const TowerRotorParams& params);
+
+/// The structure as drawn, at time t (ψ = Ω t): the cantilever's FE nodes from base to tip,
+/// the shaft from the tip to the hub centre, and each blade from the hub centre through its
+/// root to its FE nodes. Motion per generalized coordinate p of BuildTowerRotorModel, to first
+/// order: tip translation and tilt carried to the rotor, blade flap along the shaft and lag in
+/// the direction of rotation, turned by ψ. @throws InputError on invalid parameters.
+GeometryAt TowerRotorGeometry(const TowerRotorParams& params);
 
 /// M, D, K evaluated directly (not from the Fourier series) at rotor angle ψ, for checks.
 struct TowerRotorMatrices {
