@@ -28,6 +28,7 @@ struct CampbellArgs {
   std::string by = "auto";
   bool keep_going = false;
   CampbellOptions campbell = LinCampbellOptions{}.campbell;  // the library's defaults
+  std::vector<std::string> exclude_modules;
   std::string csv, plot;
   bool json = false;
 };
@@ -40,6 +41,8 @@ LinCampbellOptions MakeOptions(const CampbellArgs& args) {
   o.axis = *axis;
   o.keep_going = args.keep_going;
   o.campbell = args.campbell;
+  o.exclude_modules = args.exclude_modules;
+  o.Validate();
   return o;
 }
 
@@ -181,6 +184,10 @@ Command AddCampbellCommand(CLI::App& app) {
                 "leave out an operating point that cannot be read or analysed (said which and "
                 "why) instead of failing the diagram");
   AddCampbellArgs(cmd, args.campbell);
+  cmd->add_option("--exclude-module", args.exclude_modules,
+                  "leave out modes carried mostly by this module's states (AD: AeroDyn's inflow; "
+                  "BD: BeamDyn; repeatable)")
+      ->type_name("NAME");
   cmd->add_option("--csv", args.csv, "one row per operating point (and FILE-crossings.csv)");
   cmd->add_option("--plot", args.plot, "Campbell + damping diagram (FILE.svg|.png)");
   cmd->add_flag("--json", args.json, "one JSON object on stdout");

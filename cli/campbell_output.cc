@@ -108,6 +108,11 @@ void AddCampbellArgs(CLI::App* cmd, CampbellOptions& options) {
                   "hides inflow states; 1 = keep all)")
       ->capture_default_str()
       ->check(CLI::Range(0.001, 1.0));
+  cmd->add_option("--max-frequency", options.max_frequency_hz,
+                  "Campbell: the band of interest; leave out lines above this many Hz wherever "
+                  "tracked (0 = keep all)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--per-rev", options.max_per_rev,
                   "Campbell: per-rev lines 1P..NP (0 = automatic: B..3B)")
       ->capture_default_str()

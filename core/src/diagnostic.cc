@@ -120,6 +120,8 @@ constexpr auto kCodeNames = std::to_array<CodeAndName>({
     {DiagnosticCode::kExponentsModuloRotorSpeed, "exponents_modulo_rotor_speed"},
     {DiagnosticCode::kBranchesMatched, "branches_matched"},
     {DiagnosticCode::kDistanceToMbc, "distance_to_mbc"},
+    {DiagnosticCode::kLinesAboveBandLeftOut, "lines_above_band_left_out"},
+    {DiagnosticCode::kModulesLeftOut, "modules_left_out"},
 });
 
 constexpr bool InEnumOrder() {

@@ -117,12 +117,15 @@ void BindCampbellResult(py::module_& m) {
 
 // ltp.campbell: the options checked in the CLI's words; the diagram computed without the GIL.
 LinCampbellResult LtpCampbell(const std::vector<std::string>& points, const std::string& by,
-                              const std::string& frequency, Real max_damping, bool keep_going) {
+                              const std::string& frequency, Real max_damping, Real max_frequency,
+                              const std::vector<std::string>& exclude_modules, bool keep_going) {
   LinCampbellOptions o;
   const auto kind = ParseCampbellFrequency(frequency);
   if (!kind) throw InputError("frequency must be 'damped' or 'natural', got '" + frequency + "'");
   o.campbell.frequency = *kind;
   o.campbell.max_damping_ratio = max_damping;
+  o.campbell.max_frequency_hz = max_frequency;
+  o.exclude_modules = exclude_modules;
   const auto axis = ParseOperatingPointAxis(by);
   if (!axis) throw InputError("by must be 'auto', 'rotor-speed' or 'wind-speed', got '" + by + "'");
   o.axis = *axis;
@@ -135,6 +138,7 @@ LinCampbellResult LtpCampbell(const std::vector<std::string>& points, const std:
 void BindCampbellFunction(py::module_& m) {
   m.def("campbell", &LtpCampbell, py::arg("points"), py::kw_only(), py::arg("by") = "auto",
         py::arg("frequency") = "natural", py::arg("max_damping") = 1.0,
+        py::arg("max_frequency") = 0.0, py::arg("exclude_modules") = std::vector<std::string>{},
         py::arg("keep_going") = false, R"doc(
 The Campbell diagram of OpenFAST operating points: `ltp campbell POINT... --json` as a
 function. `points` are folders, .lin files or globs; OpenFAST's <root>.<k>.lin files are
@@ -148,6 +152,8 @@ shapes.
   frequency    'natural' (|λ|/2π, as ACDC and openfast_toolbox draw; the default) |
                'damped' (Im λ/2π)
   max_damping  leave out lines damped above this ratio wherever tracked (1: keep all)
+  max_frequency  leave out lines above this many Hz wherever tracked (0: keep all)
+  exclude_modules  leave out modes carried mostly by these modules' states, e.g. ["AD"]
 
     c = ltp.campbell(sorted(glob.glob("runs/omega-*")))
     for line in c.lines: plt.plot(c.parameter, line["frequency_hz"], label=line["description"]))doc");

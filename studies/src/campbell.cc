@@ -324,6 +324,8 @@ void CampbellOptions::Validate() const {
     check.Fail("max_per_rev", max_per_rev, "in 0..100 (0 = automatic)");
   if (!(max_damping_ratio > 0 && max_damping_ratio <= 1))
     check.Fail("max_damping_ratio", max_damping_ratio, "in (0, 1]");
+  if (!(max_frequency_hz >= 0 && std::isfinite(max_frequency_hz)))
+    check.Fail("max_frequency_hz", max_frequency_hz, ">= 0 and finite (0 = every line)");
   if (!(weak_damping_ratio >= 0 && weak_damping_ratio < 1))
     check.Fail("weak_damping_ratio", weak_damping_ratio, "in [0, 1)");
   description.Validate();
@@ -348,13 +350,19 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
   ShapeNamer shape_namer(points, labels, options.description);
   const CampbellModeNamer by_shape = [&](size_t p, int mode) { return shape_namer(p, mode); };
   const CampbellModeNamer& describe = namer ? namer : by_shape;
-  long overdamped = 0;
+  long overdamped = 0, above_band = 0;
   for (int label : PhysicalLabels(points, tracking)) {
     CampbellLine traced = TraceLine(points, tracking, label, describe, options.frequency);
     if (options.max_damping_ratio < 1 &&
         std::none_of(traced.damping_ratio.begin(), traced.damping_ratio.end(),
                      [&](double z) { return z <= options.max_damping_ratio; })) {
       ++overdamped;  // NaN (not tracked) compares false: a line tracked nowhere goes too
+      continue;
+    }
+    if (options.max_frequency_hz > 0 &&
+        std::none_of(traced.frequency_hz.begin(), traced.frequency_hz.end(),
+                     [&](double f) { return f <= options.max_frequency_hz; })) {
+      ++above_band;
       continue;
     }
     d.lines.push_back(std::move(traced));
@@ -381,6 +389,11 @@ CampbellDiagram MakeCampbellDiagram(const std::vector<SweepPoint>& points,
          std::to_string(overdamped) + (overdamped == 1 ? " line" : " lines") +
              " left out: damped above " + MessageNumber(100 * options.max_damping_ratio, 3) +
              " % wherever tracked (overdamped states such as inflow dynamics)"});
+  if (above_band > 0)
+    d.diagnostics.push_back({DiagnosticCode::kLinesAboveBandLeftOut, Severity::kNote,
+                             std::to_string(above_band) + (above_band == 1 ? " line" : " lines") +
+                                 " left out: above " + MessageNumber(options.max_frequency_hz) +
+                                 " Hz wherever tracked (the band of interest)"});
   d.per_rev = PerRevLines(d, options.max_per_rev);
   for (size_t k = 0; k < d.lines.size(); ++k) FindCrossings(d, k, d.crossings, d.diagnostics);
   std::stable_sort(d.crossings.begin(), d.crossings.end(), [](const auto& a, const auto& b) {

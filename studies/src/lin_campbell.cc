@@ -48,9 +48,35 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
   return p;
 }
 
-// The MBC3 modes of a point as a sweep point (rigid-body modes left out); `index_of[j]` is
-// the MbcMode behind sweep mode j.
-SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index, std::vector<int>& index_of) {
+// Whether a state belongs to one of `modules`: the first word of its description ("ED",
+// "BD_1", "AD") starts with one of them.
+bool InModules(const LinChannel& state, const std::vector<std::string>& modules) {
+  const std::string word = state.description.substr(0, state.description.find(' '));
+  return std::any_of(modules.begin(), modules.end(),
+                     [&](const std::string& m) { return word.starts_with(m); });
+}
+
+// The share of a mode carried by the states of `modules`: |Σ p_i| over those states (the
+// participations sum to 1); without left eigenvectors, the sum of its dominant shares there.
+double ModuleShare(const MbcMode& m, const std::vector<LinChannel>& states,
+                   const std::vector<std::string>& modules) {
+  if (m.participation.size() == static_cast<Eigen::Index>(states.size())) {
+    std::complex<double> sum = 0;
+    for (size_t i = 0; i < states.size(); ++i)
+      if (InModules(states[i], modules)) sum += m.participation(static_cast<Eigen::Index>(i));
+    return std::abs(sum);
+  }
+  double share = 0;
+  for (const MbcMode::Share& s : m.dominant)
+    if (InModules(states[static_cast<size_t>(s.state)], modules)) share += s.share;
+  return share;
+}
+
+// The MBC3 modes of a point as a sweep point (rigid-body modes and those of excluded modules
+// left out, the latter counted in `excluded`); `index_of[j]` is the MbcMode behind sweep mode j.
+SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index,
+                        const std::vector<std::string>& exclude_modules, std::vector<int>& index_of,
+                        long& excluded) {
   SweepPoint s;
   s.index = index;
   s.values = {p.parameter};
@@ -58,8 +84,15 @@ SweepPoint AsSweepPoint(const LinCampbellPoint& p, size_t index, std::vector<int
   s.period = 0;  // time-invariant (averaged) system: frequencies are not modulo Ω
   s.rotor_speed = p.rotor_speed;
   std::vector<int> kept;
-  for (size_t k = 0; k < p.mbc.modes.size(); ++k)
-    if (!p.mbc.modes[k].rigid_body) kept.push_back(static_cast<int>(k));
+  for (size_t k = 0; k < p.mbc.modes.size(); ++k) {
+    if (p.mbc.modes[k].rigid_body) continue;
+    if (!exclude_modules.empty() &&
+        ModuleShare(p.mbc.modes[k], p.mbc.states, exclude_modules) > 0.5) {
+      ++excluded;
+      continue;
+    }
+    kept.push_back(static_cast<int>(k));
+  }
   const Eigen::Index n =
       kept.empty() ? 0 : p.mbc.modes[static_cast<size_t>(kept[0])].eigenvector.size();
   s.shapes.resize(n, static_cast<Eigen::Index>(kept.size()));
@@ -119,7 +152,14 @@ std::optional<OperatingPointAxis> ParseOperatingPointAxis(std::string_view name)
   return std::nullopt;
 }
 
-void LinCampbellOptions::Validate() const { campbell.Validate(); }
+void LinCampbellOptions::Validate() const {
+  campbell.Validate();
+  const OptionCheck check("LinCampbellOptions");
+  for (const std::string& m : exclude_modules)
+    if (m.empty() || m.find_first_of(" \t,") != std::string::npos)
+      check.Fail("exclude_modules", std::string_view(m),
+                 "module names such as AD or BD: one word each");
+}
 
 LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
                                   const LinCampbellOptions& options) {
@@ -169,8 +209,9 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
   });
   const auto& reference = r.points.front();
   std::vector<std::vector<int>> index_of(r.points.size());
+  long excluded = 0;
   for (size_t i = 0; i < r.points.size(); ++i)
-    r.sweep.push_back(AsSweepPoint(r.points[i], i, index_of[i]));
+    r.sweep.push_back(AsSweepPoint(r.points[i], i, options.exclude_modules, index_of[i], excluded));
   r.tracking = TrackModes(r.sweep);
   SystemLabels labels;
   for (const LinChannel& c : reference.mbc.states) labels.states.push_back(c.description);
@@ -183,6 +224,15 @@ LinCampbellResult MakeLinCampbell(const std::vector<LinOperatingPoint>& points,
         .description;
   };
   r.diagram = MakeCampbellDiagram(r.sweep, r.tracking, labels, options.campbell, by_mbc);
+  if (!options.exclude_modules.empty()) {
+    std::string names;
+    for (const std::string& m : options.exclude_modules) names += (names.empty() ? "" : ", ") + m;
+    r.diagram.diagnostics.push_back(
+        {DiagnosticCode::kModulesLeftOut, Severity::kNote,
+         std::to_string(excluded) + " mode" + (excluded == 1 ? "" : "s") + " over " +
+             std::to_string(r.points.size()) + " points left out: carried mostly by " + names +
+             " states"});
+  }
   return r;
 }
 

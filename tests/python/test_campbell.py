@@ -8,6 +8,7 @@ import csv
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import ltp
 from conftest import same
@@ -58,7 +59,6 @@ def test_campbell_equals_cli(ltp_cli, tmp_path):
 
 
 def test_campbell_refuses_an_unknown_axis():
-    import pytest
     with pytest.raises(ltp.InputError, match="by must be"):
         ltp.campbell(POINTS, by="pitch")
 
@@ -67,7 +67,6 @@ def test_campbell_of_a_flat_output_folder_and_keep_going(tmp_path):
     # OpenFAST's layout: every simulation's <root>.<k>.lin in one folder. Reference: the same
     # files one directory per point (the diagram above).
     import shutil
-    import pytest
     for point in POINTS:
         for f in Path(point).glob("*.lin"):
             shutil.copy(f, tmp_path / f"{Path(point).name}.{f.name.split('.')[1]}.lin")
@@ -105,3 +104,19 @@ def test_notes_carry_codes():
     # Analysed in multi-blade coordinates by default: no rotating-frame states, no ±1P note.
     assert "multi_blade_coordinates" in s.note_codes
     assert "exponents_modulo_rotor_speed" not in s.note_codes
+
+
+def test_band_and_module_filters_equal_cli(ltp_cli):
+    # The filters in both doors: the same lines and the same notes.
+    everything = ltp.campbell(POINTS)
+    band = float(np.nanmedian([l["frequency_hz"][0] for l in everything.lines]))
+    j = ltp_cli("campbell", *POINTS, "--max-frequency", str(band), "--exclude-module", "XX")
+    c = ltp.campbell(POINTS, max_frequency=band, exclude_modules=["XX"])
+    assert [l["description"] for l in c.lines] == [l["description"] for l in j["campbell"]["lines"]]
+    assert 0 < len(c.lines) < len(everything.lines)
+    assert "lines_above_band_left_out" in c.note_codes
+    # No state belongs to a module "XX": nothing is left out, and the note says 0.
+    assert "modules_left_out" in c.note_codes
+    assert any(n.startswith("0 modes over 7 points left out") for n in c.notes)
+    with pytest.raises(ltp.InputError, match="exclude_modules"):
+        ltp.campbell(POINTS, exclude_modules=["A D"])

@@ -243,6 +243,81 @@ TEST(LinCampbell, WindSweepAtConstantRotorSpeedIsOrderedByWindSpeed) {
   }
 }
 
+// The band filter leaves out exactly the lines of the unfiltered diagram that are above the band
+// wherever tracked, and says how many.
+TEST(LinCampbell, BandFilterLeavesOutTheLinesAboveIt) {
+  const std::string flat =
+      WriteFlatFolder("lin_campbell_band", {0.4, 0.8, 1.2, 1.6}, {"a", "b", "c", "d"});
+  const LinCampbellResult all = ComputeLinCampbell({flat});
+  LinCampbellOptions banded;
+  banded.campbell.max_frequency_hz = 0.5 * (all.diagram.lines.front().frequency_hz.front() +
+                                            all.diagram.lines.back().frequency_hz.front());
+  std::vector<std::string> expected;
+  for (const CampbellLine& line : all.diagram.lines)
+    if (std::any_of(line.frequency_hz.begin(), line.frequency_hz.end(),
+                    [&](double f) { return f <= banded.campbell.max_frequency_hz; }))
+      expected.push_back(line.description);
+  ASSERT_GT(expected.size(), 0u);
+  ASSERT_LT(expected.size(), all.diagram.lines.size());
+  const LinCampbellResult r = ComputeLinCampbell({flat}, banded);
+  std::vector<std::string> kept;
+  for (const CampbellLine& line : r.diagram.lines) kept.push_back(line.description);
+  EXPECT_EQ(kept, expected);
+  EXPECT_TRUE(HasCode(r.diagram.diagnostics, DiagnosticCode::kLinesAboveBandLeftOut));
+  EXPECT_FALSE(HasCode(all.diagram.diagnostics, DiagnosticCode::kLinesAboveBandLeftOut));
+}
+
+// Excluding a module leaves out, at each point, the modes whose participation in that module's
+// states exceeds one half — checked by summing MBC3's participation factors here.
+TEST(LinCampbell, ModuleFilterLeavesOutModesCarriedByThatModule) {
+  // The hub becomes an "ED" module after the blades' "RT" module, each as OpenFAST orders a
+  // module's states (displacements, then their rates): [lag 1..3, rates; hub x, y, rates].
+  const std::vector<int> order = {0, 1, 2, 5, 6, 7, 3, 4, 8, 9};
+  const std::string flat = WriteFlatFolder("lin_campbell_modules", {0.4, 0.8, 1.2}, {"a", "b", "c"},
+                                           [&](size_t, LinFile& f) {
+                                             std::vector<LinChannel> states;
+                                             for (int i : order)
+                                               states.push_back(f.states[static_cast<size_t>(i)]);
+                                             for (LinChannel& c : states)
+                                               if (c.description.find("hub") != std::string::npos)
+                                                 c.description.replace(0, 2, "ED");
+                                             f.states = states;
+                                             f.A = Eigen::MatrixXd(f.A(order, order));
+                                             f.B = Eigen::MatrixXd(f.B(order, Eigen::all));
+                                             f.C = Eigen::MatrixXd(f.C(Eigen::all, order));
+                                           });
+  const LinCampbellResult all = ComputeLinCampbell({flat});
+  LinCampbellOptions no_blades;
+  no_blades.exclude_modules = {"RT"};
+  const LinCampbellResult r = ComputeLinCampbell({flat}, no_blades);
+  ASSERT_EQ(r.points.size(), all.points.size());
+  size_t left_out = 0;
+  for (size_t p = 0; p < all.points.size(); ++p) {
+    const Mbc3Result& mbc = all.points[p].mbc;
+    size_t kept = 0;
+    for (const MbcMode& m : mbc.modes) {
+      if (m.rigid_body) continue;
+      std::complex<double> blade = 0;
+      for (size_t i = 0; i < mbc.states.size(); ++i)
+        if (mbc.states[i].description.rfind("RT ", 0) == 0)
+          blade += m.participation(static_cast<Eigen::Index>(i));
+      kept += std::abs(blade) <= 0.5;
+    }
+    EXPECT_EQ(r.sweep[p].modes.size(), kept) << p;
+    left_out += all.sweep[p].modes.size() - kept;
+  }
+  EXPECT_GT(left_out, 0u);
+  EXPECT_LT(r.diagram.lines.size(), all.diagram.lines.size());
+  ASSERT_TRUE(HasCode(r.diagram.diagnostics, DiagnosticCode::kModulesLeftOut));
+  for (const Diagnostic& d : r.diagram.diagnostics)
+    if (d.code == DiagnosticCode::kModulesLeftOut)
+      EXPECT_EQ(d.text.rfind(std::to_string(left_out) + " modes over 3 points left out", 0), 0u)
+          << d.text;
+  LinCampbellOptions bad;
+  bad.exclude_modules = {"A D"};
+  EXPECT_THROW(ComputeLinCampbell({flat}, bad), InputError);
+}
+
 TEST(LinCampbell, KeepGoingLeavesOutPointsThatCannotBeUsed) {
   const std::string flat =
       WriteFlatFolder("lin_campbell_keep", {0.4, 0.8, 1.2}, {"op1", "op2", "op3"});

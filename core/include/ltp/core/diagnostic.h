@@ -139,6 +139,10 @@ enum class DiagnosticCode {
   kBranchesMatched,            ///< each sampled-model exponent shown on its reference's branch
   kDistanceToMbc,              ///< how far the Floquet exponents are from the MBC3 eigenvalues
 
+  // Campbell diagrams: what the filters left out.
+  kLinesAboveBandLeftOut,  ///< lines above the band of interest left out
+  kModulesLeftOut,         ///< modes carried mostly by excluded modules' states left out
+
   kCount  ///< not a code: how many there are (new codes go above it)
 };
 

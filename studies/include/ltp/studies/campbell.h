@@ -45,6 +45,9 @@ struct CampbellOptions {
   /// all): overdamped states such as AeroDyn's DBEMT inflow, which crowd a design review's
   /// chart; a diagnostic counts them.
   double max_damping_ratio = 1;
+  /// The band of interest (Hz): lines above it wherever they are tracked are left out (0 = keep
+  /// all), and a diagnostic counts them.
+  double max_frequency_hz = 0;
   /// Per-rev lines n = 1..max_per_rev; 0 = those below the highest mode frequency at the
   /// median rotor speed, at least up to the blade count B and at most to 3B (6 without blades).
   int max_per_rev = 0;

@@ -38,6 +38,10 @@ struct LinCampbellOptions {
   /// LinCampbellResult::skipped) instead of failing the diagram; at least one must remain.
   bool keep_going = false;
   Mbc3Options mbc;
+  /// Leave out the modes carried mostly (more than half of their participation) by states of
+  /// these OpenFAST modules, e.g. {"AD"} for AeroDyn's inflow states. A state's module is the
+  /// first word of its description; a name matches as a prefix ("BD" takes BD_1, BD_2, BD_3).
+  std::vector<std::string> exclude_modules;
   /// Natural frequencies |λ|/2π by default: what ACDC and openfast_toolbox draw for .lin sets,
   /// so a design review compares like with like (ltp chart's Floquet lines default to damped).
   CampbellOptions campbell = [] {
