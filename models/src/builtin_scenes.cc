@@ -102,7 +102,8 @@ std::vector<Scene> MakeBuiltins() {
        {{"a", 1.0, "constant stiffness a (1/s^2)"},
         {"q", 0.2, "parametric excitation q: stiffness varies by -2q cos 2t (1/s^2)"},
         {"c", 0.02, "viscous damping c (1/s)"}},
-       BuildMathieu});
+       BuildMathieu,
+       {}});
   scenes.push_back(
       {"meissner",
        "Meissner oscillator y'' + c y' + (a + b sign(cos t)) y = u: square-wave stiffness, "
@@ -111,7 +112,8 @@ std::vector<Scene> MakeBuiltins() {
        {{"a", 1.0, "mean stiffness a (1/s^2)"},
         {"b", 0.3, "square-wave stiffness amplitude b (1/s^2)"},
         {"c", 0.0, "viscous damping c (1/s)"}},
-       BuildMeissner});
+       BuildMeissner,
+       {}});
   scenes.push_back(
       {"jeffcott",
        "Jeffcott rotor with an asymmetric shaft, fixed frame: m p'' + c p' + K(t) p = f, "
@@ -122,7 +124,8 @@ std::vector<Scene> MakeBuiltins() {
         {"k2", 1.5, "shaft stiffness along its second principal axis k2 (N/m)"},
         {"c", 0.0, "external (non-rotating) viscous damping c (N s/m)"},
         {"Omega", 1.1, "rotor speed Omega (rad/s), > 0"}},
-       BuildJeffcott});
+       BuildJeffcott,
+       {}});
   scenes.push_back(RotorScene());
   scenes.push_back(FlapScene());
   scenes.push_back(TowerRotorScene());

@@ -68,7 +68,8 @@ Scene FlapScene() {
            {"mu", 0.3, "advance ratio mu (-), >= 0"},
            {"nu", 1.0, "rotating flap frequency nu (per rev, -); 1 = centrally hinged"},
            {"Omega", 1.0, "rotor speed Omega (rad/s), > 0; 1 = time in radians of azimuth"}},
-          BuildFlap};
+          BuildFlap,
+          {}};
 }
 
 }  // namespace ltp

@@ -271,7 +271,8 @@ Scene RotorScene() {
            {"cy", 1.18, "support damping in y c_y (N s/m)"},
            {"mistune_k", 1.0, "factor on blade 1's lag spring (1 = identical blades)"},
            {"mistune_c", 1.0, "factor on blade 1's lag damper (0 = inoperative damper)"}},
-          BuildRotor};
+          BuildRotor,
+          {}};
 }
 
 }  // namespace ltp

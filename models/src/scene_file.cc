@@ -23,6 +23,7 @@
 #include "ltp/core/text.h"
 #include "ltp/models/scene.h"
 #include "matrix_market.h"
+#include "npz.h"
 #include "scene_file_matrices.h"
 
 namespace ltp {
@@ -192,15 +193,20 @@ class Reader {
     return term;
   }
 
-  // Reads one .mtx file; every file of a matrix must have the same size.
+  // Reads one .mtx file, or one array of a .npz archive ("model.npz:K"); every file of a
+  // matrix must have the same size.
   Eigen::MatrixXd MatrixFile(const YAML::Node& node, const std::string& entry,
                              internal::FileMatrix& m) const {
     const std::string name = Scalar(node, entry);
-    std::filesystem::path path(name);
+    const size_t npz = name.rfind(".npz:");
+    std::filesystem::path path(npz == std::string::npos ? name : name.substr(0, npz + 4));
     if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
+    if (npz == std::string::npos && path.extension() == ".npz")
+      Fail(node, entry, "name the array in the archive: " + name + ":K");
     Eigen::MatrixXd a;
     try {
-      a = internal::ReadMatrixMarket(path.string());
+      a = npz != std::string::npos ? internal::ReadNpzArray(path.string(), name.substr(npz + 5))
+                                   : internal::ReadMatrixMarket(path.string());
     } catch (const SceneError& e) {
       Fail(node, entry, e.what());
     }
