@@ -430,9 +430,7 @@ void WriteDeflection(const LoadedScene& l, const FloquetArgs& args, const Floque
         "the mode shapes of any scene");
   std::vector<int> modes;
   for (int k : args.deflection_modes) modes.push_back(k - 1);
-  const int dofs = l.system.states() / 2;  // a second-order system: [q; q']
-  const ModeDeflections d =
-      DeflectModes(l.scene.geometry(l.parameters), dofs, r, modes, args.deflection);
+  const ModeDeflections d = DeflectModes(l.scene.geometry(l.parameters), r, modes, args.deflection);
   if (!args.deflection_csv.empty()) WriteDeflectionCsv(args.deflection_csv, d);
   if (!args.deflection_plot.empty()) PlotDeflection(args.deflection_plot, d);
 }

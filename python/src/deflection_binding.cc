@@ -36,9 +36,8 @@ py::dict LtpDeflection(const System& system, const FloquetResult& result,
         "FloquetResult.mode_samples holds the mode shapes of any system");
   ModeDeflectionOptions options;
   options.amplitude = amplitude;
-  const ModeDeflections d =
-      DeflectModes(system.scene->geometry(system.parameters), system.system.states() / 2, result,
-                   modes.value_or(std::vector<int>{}), options);
+  const ModeDeflections d = DeflectModes(system.scene->geometry(system.parameters), result,
+                                         modes.value_or(std::vector<int>{}), options);
   py::list out_modes;
   for (const ModeDeflection& m : d.modes) {
     py::dict one;

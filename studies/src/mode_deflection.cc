@@ -33,7 +33,7 @@ void ModeDeflectionOptions::Validate() const {
     check.Fail("amplitude", amplitude, "0 < amplitude <= 1 (a fraction of the structure's size)");
 }
 
-ModeDeflections DeflectModes(const GeometryAt& geometry, int dofs, const FloquetResult& floquet,
+ModeDeflections DeflectModes(const GeometryAt& geometry, const FloquetResult& floquet,
                              const std::vector<int>& modes, const ModeDeflectionOptions& options) {
   options.Validate();
   if (floquet.mode_samples.empty())
@@ -44,21 +44,23 @@ ModeDeflections DeflectModes(const GeometryAt& geometry, int dofs, const Floquet
     for (int k = 0; k < count; ++k) chosen.push_back(k);
   for (int k : chosen)
     if (k < 0 || k >= count)
-      throw InputError("mode " + std::to_string(k + 1) + " does not exist: the analysis has " +
-                       std::to_string(count) + " modes");
-  if (floquet.mode_samples.front().rows() < dofs)
-    throw InputError("the mode shapes have fewer states than the structure's " +
-                     std::to_string(dofs) + " coordinates");
-
+      throw InputError("there is no mode " + std::to_string(k + 1) + " (index " +
+                       std::to_string(k) + "): the analysis has " + std::to_string(count) +
+                       (count == 1 ? " mode" : " modes"));
   // The geometry at each sample time, computed once for every mode.
   std::vector<StructureGeometry> at;
-  for (double t : floquet.sample_times) {
-    at.push_back(geometry(t));
-    for (const DrawnBody& b : at.back().bodies)
+  for (double t : floquet.sample_times) at.push_back(geometry(t));
+  if (at.front().bodies.empty()) throw InputError("the structure has no bodies to draw");
+  const Eigen::Index dofs = at.front().bodies.front().motion.cols();
+  for (const StructureGeometry& g : at)
+    for (const DrawnBody& b : g.bodies)
       if (b.motion.cols() != dofs || b.motion.rows() != 3 * b.rest.cols())
-        throw InputError("the drawn body '" + b.name + "' does not match the " +
-                         std::to_string(dofs) + " coordinates of the system");
-  }
+        throw InputError("the drawn body '" + b.name + "' does not match the structure's " +
+                         std::to_string(dofs) + " coordinates");
+  if (floquet.mode_samples.front().rows() < dofs)
+    throw InputError("the structure has " + std::to_string(dofs) +
+                     " coordinates but the analysed system only " +
+                     std::to_string(floquet.mode_samples.front().rows()) + " states");
   ModeDeflections out;
   out.axes = at.front().axes;
   for (const DrawnBody& b : at.front().bodies) out.bodies.push_back(b.name);

@@ -51,7 +51,7 @@ FloquetResult OneMode() {
 TEST(ModeDeflection, FramesAreTheModesFreeMotionOnTheTurningStructure) {
   ModeDeflectionOptions options;
   options.amplitude = 0.2;
-  const ModeDeflections d = DeflectModes(TurningBar, 2, OneMode(), {}, options);
+  const ModeDeflections d = DeflectModes(TurningBar, OneMode(), {}, options);
   ASSERT_EQ(d.bodies, std::vector<std::string>{"bar"});
   ASSERT_EQ(d.modes.size(), 1u);
   const ModeDeflection& m = d.modes[0];
@@ -73,20 +73,31 @@ TEST(ModeDeflection, RefusesWhatItCannotDraw) {
   FloquetResult none = OneMode();
   none.mode_samples.clear();
   EXPECT_NE(test::ThrownMessage<InputError>([&] {
-              DeflectModes(TurningBar, 2, none);
+              DeflectModes(TurningBar, none);
             }).find("no periodic mode shapes"),
             std::string::npos);
   EXPECT_NE(test::ThrownMessage<InputError>([&] {
-              DeflectModes(TurningBar, 2, OneMode(), {1});
-            }).find("mode 2 does not exist: the analysis has 1 modes"),
+              DeflectModes(TurningBar, OneMode(), {1});
+            }).find("there is no mode 2 (index 1): the analysis has 1 mode"),
             std::string::npos);
+  FloquetResult scalar = OneMode();  // a one-state system cannot drive two coordinates
+  for (Eigen::MatrixXcd& xi : scalar.mode_samples) xi.conservativeResize(1, 1);
   EXPECT_NE(test::ThrownMessage<InputError>([&] {
-              DeflectModes(TurningBar, 3, OneMode());
-            }).find("does not match the 3 coordinates"),
+              DeflectModes(TurningBar, scalar);
+            }).find("the structure has 2 coordinates but the analysed system only 1 states"),
+            std::string::npos);
+  const GeometryAt uneven = [](double t) {  // two bodies on different coordinates
+    StructureGeometry g = TurningBar(t);
+    g.bodies.push_back({"odd", Eigen::Matrix3Xd::Zero(3, 1), Eigen::MatrixXd::Zero(3, 3)});
+    return g;
+  };
+  EXPECT_NE(test::ThrownMessage<InputError>([&] {
+              DeflectModes(uneven, OneMode());
+            }).find("the drawn body 'odd' does not match the structure's 2 coordinates"),
             std::string::npos);
   ModeDeflectionOptions zero;
   zero.amplitude = 0;
-  EXPECT_THROW(DeflectModes(TurningBar, 2, OneMode(), {}, zero), InputError);
+  EXPECT_THROW(DeflectModes(TurningBar, OneMode(), {}, zero), InputError);
 }
 
 }  // namespace

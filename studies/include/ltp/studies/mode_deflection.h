@@ -49,10 +49,11 @@ struct ModeDeflections {
 };
 
 /// Every mode of `floquet` (or those listed in `modes`, 0-based) over one period, at the
-/// result's mode sample times. `dofs`: the number of generalized coordinates (the first dofs
-/// states). @throws InputError when the result has no mode shapes, `dofs` does not match the
-/// geometry or a listed mode does not exist.
-ModeDeflections DeflectModes(const GeometryAt& geometry, int dofs, const FloquetResult& floquet,
+/// result's mode sample times. The geometry's motion columns are the generalized coordinates,
+/// the first states of the analysed system. @throws InputError when the result has no mode
+/// shapes, the bodies disagree on the coordinates or have more than the system has states, or
+/// a listed mode does not exist.
+ModeDeflections DeflectModes(const GeometryAt& geometry, const FloquetResult& floquet,
                              const std::vector<int>& modes = {},
                              const ModeDeflectionOptions& options = {});
 
