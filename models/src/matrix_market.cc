@@ -152,15 +152,18 @@ Eigen::MatrixXd ReadArray(Lines& lines, const Header& h, long rows, long cols) {
 
 }  // namespace
 
-Eigen::MatrixXd ReadMatrixMarket(const std::string& path) {
-  // A regular file of bounded size: a scene naming /dev/zero or a FIFO must not hang the reader.
+void CheckMatrixFile(const std::string& path, const std::string& what) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
-    throw SceneError(path + ": not a readable Matrix Market file (missing, or not a regular file)");
+    throw SceneError(path + ": not a readable " + what + " (missing, or not a regular file)");
   constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;
   if (std::filesystem::file_size(path, error) > kMaxBytes)
     throw SceneError(path + ": larger than 1 GiB, more than a " +
                      std::to_string(kMatrixMarketMaxSize) + "-square matrix needs");
+}
+
+Eigen::MatrixXd ReadMatrixMarket(const std::string& path) {
+  CheckMatrixFile(path, "Matrix Market file");
   std::ifstream in(path);
   if (!in) throw SceneError(path + ": cannot open the Matrix Market file");
   Lines lines(path, in);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -16,7 +15,6 @@ namespace ltp::internal {
 
 namespace {
 
-constexpr std::uint64_t kMaxBytes = std::uint64_t{1} << 30;  // as the Matrix Market reader
 // A member holds at most a kMatrixMarketMaxSize-square float64 matrix and its header: a larger
 // size claimed by a (compressed) member is refused before anything is allocated.
 constexpr std::uint64_t kMaxMemberBytes =
@@ -125,11 +123,7 @@ std::string Members(zip_t* z) {
 }  // namespace
 
 Eigen::MatrixXd ReadNpzArray(const std::string& path, const std::string& name) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    throw SceneError(path + ": not a readable regular file");
-  if (std::filesystem::file_size(path, error) > kMaxBytes)
-    throw SceneError(path + ": larger than 1 GiB");
+  CheckMatrixFile(path, ".npz archive");
   int code = 0;
   const std::unique_ptr<zip_t, ArchiveCloser> z(zip_open(path.c_str(), ZIP_RDONLY, &code));
   if (!z) throw SceneError(path + ": not a .npz (zip) archive");

@@ -119,7 +119,8 @@ TEST(Npz, RefusesWhatIsNotARealMatrix) {
     std::fclose(f);
   }
   EXPECT_NE(Refusal(text, "K").find("not a .npz (zip) archive"), std::string::npos);
-  EXPECT_NE(Refusal(::testing::TempDir(), "K").find("not a readable regular file"),
+  EXPECT_NE(Refusal(::testing::TempDir(), "K")
+                .find("not a readable .npz archive (missing, or not a regular file)"),
             std::string::npos);
 }
 
