@@ -123,15 +123,14 @@ int RunCampbell(const CampbellArgs& args) {
   if (args.json) {
     json points = json::array();
     for (const LinCampbellPoint& p : r.points)
-      points.push_back(
-          {{"files", p.files},
-           {"parameter", JsonNumber(p.parameter)},
-           {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
-           {"wind_speed_m_s", p.wind_speed ? JsonNumber(*p.wind_speed) : json(nullptr)},
-           {"pitch_deg", PitchDeg(p) ? JsonNumber(*PitchDeg(p)) : json(nullptr)},
-           {"blades", p.mbc.blades},
-           {"max_real_part", JsonNumber(p.mbc.max_real_part)},
-           {"notes", Texts(p.diagnostics)}});
+      points.push_back({{"files", p.files},
+                        {"parameter", JsonNumber(p.parameter)},
+                        {"rotor_speed_rad_s", JsonNumber(p.rotor_speed)},
+                        {"wind_speed_m_s", JsonNumber(p.wind_speed)},
+                        {"pitch_deg", JsonNumber(PitchDeg(p))},
+                        {"blades", p.mbc.blades},
+                        {"max_real_part", JsonNumber(p.mbc.max_real_part)},
+                        {"notes", Texts(p.diagnostics)}});
     json j = {{"axis", r.axis_label}, {"points", points},
               {"skipped", r.skipped}, {"campbell", CampbellJson(r.diagram)},
               {"csv", args.csv},      {"plot", args.plot}};
