@@ -1103,6 +1103,10 @@ PeriodicSystem BuildLinSystem(const LinOperatingPoint& op, SampleInterpolation i
   return system.WithLabels(std::move(labels)).WithRotorSpeed(op.rotor_speed);
 }
 
+std::string ModuleOf(const LinChannel& c) {
+  return c.description.substr(0, c.description.find(' '));
+}
+
 std::vector<Diagnostic> LinCaveats(const LinOperatingPoint& op) {
   std::vector<Diagnostic> notes;
   const int K = op.size();

@@ -239,10 +239,7 @@ BladeCoordinates FindBladeCoordinates(const std::vector<LinChannel>& channels) {
 std::vector<int> RateOf(const std::vector<LinChannel>& states) {
   const int n = static_cast<int>(states.size());
   std::vector<int> rate_of(n, -1);
-  auto module = [&](int i) {
-    const std::string& d = states[i].description;
-    return d.substr(0, d.find(' '));
-  };
+  auto module = [&](int i) { return ModuleOf(states[static_cast<size_t>(i)]); };
   int start = 0;
   while (start < n) {
     int end = start + 1;

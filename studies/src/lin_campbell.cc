@@ -48,12 +48,12 @@ LinCampbellPoint AnalysePoint(const LinOperatingPoint& op, const LinCampbellOpti
   return p;
 }
 
-// Whether a state belongs to one of `modules`: the first word of its description ("ED",
-// "BD_1", "AD") starts with one of them.
+// Whether a state belongs to one of `modules`: its module ("ED", "BD_1", "AD") starts with one
+// of them.
 bool InModules(const LinChannel& state, const std::vector<std::string>& modules) {
-  const std::string word = state.description.substr(0, state.description.find(' '));
+  const std::string module = ModuleOf(state);
   return std::any_of(modules.begin(), modules.end(),
-                     [&](const std::string& m) { return word.starts_with(m); });
+                     [&](const std::string& m) { return module.starts_with(m); });
 }
 
 // The share of a mode carried by the states of `modules`: |Σ p_i| over those states (the

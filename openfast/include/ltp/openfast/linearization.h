@@ -35,6 +35,9 @@ struct LinChannel {
   std::string description;
 };
 
+/// The OpenFAST module that writes `c`: the first word of its description ("ED", "BD_1", "AD").
+std::string ModuleOf(const LinChannel& c);
+
 /// One `.lin` file.
 struct LinFile {
   std::string path;                       ///< as given (names the file in messages)
