@@ -290,8 +290,11 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
                 : r.integrator == IntegratorType::kTaylor
                     ? "(difference to the product of the\n  steps' order-p sums; the numbers "
                       "shown come from order p + 4 on the same steps)\n"
-                    : "(its steps' local errors, one\n  extrapolation order lower, carried to the "
-                      "exponents; the numbers come from that one run)\n");
+                : r.integrator == IntegratorType::kBulirschStoer
+                    ? "(its steps' local errors, one\n  extrapolation order lower, carried to the "
+                      "exponents; the numbers come from that one run)\n"
+                    : "(difference to the pass at half\n  the steps that chose them; the numbers "
+                      "shown come from the finer pass)\n");
   if (r.model_error)
     std::cout << "  of which the model's sampling error is " << Num(*r.model_error, 2)
               << " 1/s (other models of the same samples; docs/sampled-models.md)\n";
@@ -559,11 +562,13 @@ Command AddFloquetCommand(CLI::App& app) {
          "--multipliers", args.multipliers,
          "schur (periodic Schur of the segment factors) | single-shot (eig of the formed Φ)")
       ->capture_default_str();
-  cmd->add_option("--estimate", args.estimate,
-                  "auto (local-errors for Taylor series, refined-run otherwise) | refined-run "
-                  "(a second run at --tol/100 gives the numbers) | local-errors (one run: "
-                  "Bulirsch–Stoer's steps' local errors carried to the exponents; Taylor series' "
-                  "order-p product beside the reported order p + 4)")
+  cmd->add_option(
+         "--estimate", args.estimate,
+         "auto (local-errors for Taylor series and Magnus, refined-run otherwise) | refined-run "
+         "(a second run at --tol/100 gives the numbers) | local-errors (one run: "
+         "Bulirsch–Stoer's steps' local errors carried to the exponents; Taylor series' "
+         "order-p product beside the reported order p + 4; Magnus methods' pass at half "
+         "the steps beside the reported one)")
       ->capture_default_str();
   cmd->add_option("--mode-samples", args.options.mode_samples,
                   "samples of the mode shapes per period (power of two; 0 = automatic)")

@@ -219,9 +219,10 @@ void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
             << ToString(f.trig.integrator) << ", error estimate " << Num(f.trig.error_estimate, 2)
             << " 1/s"
             << (f.trig.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-                    ? (f.trig.integrator == IntegratorType::kTaylor
-                           ? " from its order-p product"
-                           : " from its steps' local errors")
+                    ? (f.trig.integrator == IntegratorType::kTaylor ? " from its order-p product"
+                       : f.trig.integrator == IntegratorType::kBulirschStoer
+                           ? " from its steps' local errors"
+                           : " from its pass at half the steps")
                     : "")
             << ")\n";
   if (!f.ok) {

@@ -332,8 +332,10 @@ void WeighTheWork(const PeriodicSystem& system, std::optional<SystemTraits>& tra
   const double limit = options.max_work_seconds > 0 ? options.max_work_seconds : HUGE_VAL;
   if (most <= std::min(limit, options.announce_work_seconds)) return;
   if (!traits) traits = MeasureSystemTraits(system);
-  WorkEstimate w =
-      EstimateFloquetWork(*traits, options.integrator, pieces, segments, per_evaluation);
+  IntegratorOptions weighed = options.integrator;  // the estimate's passes count too
+  weighed.carry_local_errors =
+      options.estimate_error && options.error_estimate_method == ErrorEstimateMethod::kLocalErrors;
+  WorkEstimate w = EstimateFloquetWork(*traits, weighed, pieces, segments, per_evaluation);
   if (w.fewest_seconds() > limit) {
     std::ostringstream s;
     s.precision(3);
@@ -540,9 +542,10 @@ std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
   return errors;
 }
 
-// Step 3 when the integrator carried its local errors (Bulirsch–Stoer): the exponents of the
-// factors moved by them, Φ_i + δΦ_i — the period integrated with every step one extrapolation
-// order lower, to first order — against the factors' own (docs/local-error-estimate.md).
+// Step 3 when the integrator carried its local errors: the exponents of the factors moved by
+// them, Φ_i + δΦ_i — the period integrated as a run held only to the tolerance would be
+// (Bulirsch–Stoer one extrapolation order lower, to first order; Taylor series at order p; the
+// Magnus methods at half the steps) — against the factors' own (docs/local-error-estimate.md).
 // Returns each exponent's difference (∞ when the moved factors' eigenvalues failed).
 std::vector<double> LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalues& eig,
                                        MultiplierMethod method, double period, FloquetResult& r) {
@@ -718,14 +721,32 @@ struct Setup {
 };
 
 // kAuto: the local errors where they keep the refined run's promise (ErrorEstimateMethod).
-ErrorEstimateMethod ResolveEstimateMethod(ErrorEstimateMethod requested, IntegratorType type) {
-  if (requested != ErrorEstimateMethod::kAuto) return requested;
-  return type == IntegratorType::kTaylor ? ErrorEstimateMethod::kLocalErrors
-                                         : ErrorEstimateMethod::kRefinedRun;
+
+// Bulirsch–Stoer and Taylor series carry their steps' local errors; Magnus 4, 6 and Magnus–Filon
+// keep the doubling loop's coarse pass when they choose their steps (docs/local-error-estimate.md).
+bool CarriesLocalErrors(const IntegratorOptions& integrator) {
+  switch (integrator.type) {
+    case IntegratorType::kBulirschStoer:
+    case IntegratorType::kTaylor:
+      return true;
+    case IntegratorType::kMagnus4:
+    case IntegratorType::kMagnus6:
+    case IntegratorType::kMagnusFilon:
+      return integrator.steps_per_period == 0;
+    default:
+      return false;
+  }
 }
 
-bool CarriesLocalErrors(IntegratorType type) {
-  return type == IntegratorType::kBulirschStoer || type == IntegratorType::kTaylor;
+// `auto`: the carried local errors where the numbers they leave are still far more accurate
+// than the estimate (Taylor series' order p + 4, the Magnus methods' finer pass), else the
+// refined run (ErrorEstimateMethod::kAuto).
+ErrorEstimateMethod ResolveEstimateMethod(ErrorEstimateMethod requested,
+                                          const IntegratorOptions& integrator) {
+  if (requested != ErrorEstimateMethod::kAuto) return requested;
+  return integrator.type != IntegratorType::kBulirschStoer && CarriesLocalErrors(integrator)
+             ? ErrorEstimateMethod::kLocalErrors
+             : ErrorEstimateMethod::kRefinedRun;
 }
 
 // States in units far apart (a finite-element rotor's metres and radians, stiffness entries of
@@ -752,7 +773,7 @@ Setup Prepare(const PeriodicSystem& given, const FloquetOptions& requested, Floq
          "integrator auto → " + std::string(ToString(s.options.integrator.type)) + ": " + choice});
   s.requested_estimate = requested.error_estimate_method;
   s.options.error_estimate_method =
-      ResolveEstimateMethod(requested.error_estimate_method, s.options.integrator.type);
+      ResolveEstimateMethod(requested.error_estimate_method, s.options.integrator);
   r.states = s.system.states();
   r.period = s.system.period();
   r.integrator = s.options.integrator.type;
@@ -793,19 +814,20 @@ std::vector<double> IntegrationErrors(const Setup& s,
   // Worth a note: local errors that were not finite, or asked of an integrator the user named
   // that carries none. Under `auto` (integrator or estimate) the estimate follows the integrator
   // chosen, and r.error_estimate_method says which.
-  const bool carrier = CarriesLocalErrors(options.integrator.type);
+  const bool carrier = CarriesLocalErrors(options.integrator);
   const bool asked = s.requested_estimate == ErrorEstimateMethod::kLocalErrors && !s.traits;
   if (options.estimate_error && n > 0 && (carrier || asked) &&
       options.error_estimate_method != r.error_estimate_method)
     r.diagnostics.push_back(
         {DiagnosticCode::kErrorEstimateFallback, Severity::kNote,
-         carrier
-             ? "error estimate: the carried local errors were not finite (a singular step "
-               "matrix or an overflowing series); the refined run instead"
-             : "error estimate: the steps' local errors are carried by Bulirsch–Stoer and Taylor "
-               "series only; " +
-                   std::string(ToString(options.integrator.type)) +
-                   " gets the refined run instead"});
+         carrier ? "error estimate: the carried local errors were not finite (a singular step "
+                   "matrix, an overflowing series, or fixed steps that did not reach the "
+                   "tolerance); the refined run instead"
+                 : "error estimate: local errors are carried by Bulirsch–Stoer, Taylor series and "
+                   "the Magnus methods choosing their own steps only; " +
+                       std::string(ToString(options.integrator.type)) +
+                       (options.integrator.steps_per_period > 0 ? " with fixed steps" : "") +
+                       " gets the refined run instead"});
   if (!options.estimate_error || n == 0) return std::vector<double>(n, 0.0);
   return r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
              ? LocalErrorEstimate(grid, eig, options.multipliers, r.period, r)

@@ -100,6 +100,10 @@ TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& int
       result.steps_per_period = density();
       if (change <= options.rel_tol) {
         result.ok = true;
+        // The coarse pass is what a run held only to the tolerance gives: its offset from the
+        // reported (finer) one is the carried local error (docs/local-error-estimate.md,
+        // "Fixed steps").
+        if (options.carry_local_errors) result.local_error_effect = coarse - result.phi;
         break;
       }
       // Round-off plateau: in the asymptotic regime a doubling divides the change by 2^order
@@ -113,6 +117,7 @@ TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& int
         s << "round-off plateau: relative change " << change << " at " << result.steps_per_period
           << " steps per period (rel_tol " << options.rel_tol << " not reachable)";
         result.message = s.str();
+        if (options.carry_local_errors) result.local_error_effect = coarse - result.phi;
         break;
       }
       previous_change = change;

@@ -98,8 +98,9 @@ void BindFloquetVerdict(py::class_<FloquetResult>& r) {
           "error_estimate_method",
           [](const FloquetResult& f) { return std::string(ToString(f.error_estimate_method)); },
           "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
-          "'local-errors' (one run: Bulirsch–Stoer's local errors carried to the exponents, or "
-          "Taylor series' order-p product beside the reported order p + 4)")
+          "'local-errors' (one run: Bulirsch–Stoer's local errors carried to the exponents, "
+          "Taylor series' order-p product beside the reported order p + 4, or the Magnus "
+          "methods' pass at half the steps beside the reported one)")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
                     "stopped before its multipliers");
@@ -315,10 +316,11 @@ the same options and defaults.
   steps         fixed-step methods: steps per period (0 = automatic)
   segments      number of segments K of the period, or 'auto'
   multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
-  estimate      'auto' ('local-errors' for Taylor series, 'refined-run' otherwise) |
+  estimate      'auto' ('local-errors' for Taylor series and Magnus, 'refined-run' otherwise) |
                 'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
                 (one run: Bulirsch–Stoer's steps' local errors carried to the exponents;
-                Taylor series' order-p product beside the reported order p + 4)
+                Taylor series' order-p product beside the reported order p + 4; Magnus
+                methods' pass at half the steps beside the reported one)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU

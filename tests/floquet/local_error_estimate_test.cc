@@ -1,5 +1,6 @@
-// The error estimate from Bulirsch–Stoer's carried local errors (ErrorEstimateMethod::
-// kLocalErrors, docs/local-error-estimate.md) against independent references.
+// The error estimate from carried local errors (ErrorEstimateMethod::kLocalErrors:
+// Bulirsch–Stoer, Taylor series, the Magnus methods; docs/local-error-estimate.md) against
+// independent references.
 #include <gtest/gtest.h>
 
 #include <complex>
@@ -67,9 +68,8 @@ TEST(LocalErrorEstimate, BoundsTheErrorOfTheReportedExponents) {
 }
 
 // The carried local errors are a first-order effect of size ~ the tolerance: zero-size unless
-// asked for, and only Bulirsch–Stoer carries them; other integrators fall back to the refined
-// run and say so.
-TEST(LocalErrorEstimate, OnlyBulirschStoerCarriesLocalErrors) {
+// asked for; Runge–Kutta carries none and falls back to the refined run, and says so.
+TEST(LocalErrorEstimate, CarriedOnlyWhenAskedAndNotByRungeKutta) {
   const PeriodicSystem system = LoadScene("mathieu").Build({{"a", "1"}, {"q", "5"}});
   IntegratorOptions bs;
   bs.type = IntegratorType::kBulirschStoer;
@@ -89,6 +89,53 @@ TEST(LocalErrorEstimate, OnlyBulirschStoerCarriesLocalErrors) {
   o.integrator.type = IntegratorType::kRkf78;
   o.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
   const FloquetResult r = AnalyzeFloquet(system, o);
+  EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kRefinedRun);
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
+}
+
+// The Magnus methods choosing their steps by doubling keep the loop's last coarse pass beside
+// the reported one: its offset is the carried local error, at no extra work, and `auto` takes
+// it for them. On the smooth scenes at a loose and a tight tolerance the estimate bounds the
+// error of the reported numbers against the RKF78 reference; fixed steps have no coarse pass
+// and fall back to the refined run with a note.
+TEST(LocalErrorEstimate, MagnusMethodsKeepTheirCoarsePass) {
+  const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
+      cases = {{"mathieu", {}},
+               {"mathieu", {{"a", "1"}, {"q", "5"}}},
+               {"rotor", {}},
+               {"jeffcott", {{"c", "0.05"}}},
+               {"flap", {}}};
+  for (const auto& [name, set] : cases) {
+    const PeriodicSystem system = LoadScene(name).Build(set);
+    const FloquetResult reference = Reference(system);
+    ASSERT_TRUE(reference.ok) << name;
+    for (IntegratorType type :
+         {IntegratorType::kMagnus4, IntegratorType::kMagnus6, IntegratorType::kMagnusFilon}) {
+      // Magnus–Filon needs a Fourier series whose mean has an eigenbasis (Mathieu's does).
+      if (type == IntegratorType::kMagnusFilon && name != "mathieu") continue;
+      for (double tol : {1e-6, 1e-10}) {
+        FloquetOptions o;
+        o.integrator.type = type;
+        o.integrator.rel_tol = tol;
+        const FloquetResult r = AnalyzeFloquet(system, o);
+        std::ostringstream where;
+        where << name << (set.empty() ? "" : " " + set[0].second) << " " << ToString(type)
+              << " tol " << tol;
+        ASSERT_TRUE(r.ok && r.error_estimate) << where.str();
+        EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors) << where.str();
+        EXPECT_EQ(r.segments, r.grid_segments) << where.str() << ": no second run";
+        const double error =
+            MaxExponentMismatch(Exponents(r.modes), Exponents(reference.modes), system.omega());
+        EXPECT_LT(error, *r.error_estimate) << where.str();
+      }
+    }
+  }
+  FloquetOptions fixed;
+  fixed.integrator.type = IntegratorType::kMagnus6;
+  fixed.integrator.steps_per_period = 64;
+  fixed.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
+  const FloquetResult r = AnalyzeFloquet(LoadScene("mathieu").Build({}), fixed);
+  ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kRefinedRun);
   EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kErrorEstimateFallback));
 }

@@ -196,6 +196,49 @@ TEST(TaylorIntegrator, LargeSystemsOfEveryShapeMatchAnotherIntegrator) {
   }
 }
 
+// The finite-element shaft's pattern at a size rkf78 can check: 20 degrees of freedom at 30 to
+// 3000 rad/s, constant light damping, and a stiffness that varies by 10 % at Ω = 2π/0.2 s — a
+// harmonic 100 times slower than the fastest mode. There the weighted sums X_w = Σ_j c_j Φ_{k−j}
+// keep only their first terms (the weights fall like (Ω)^j/j!, the terms like ρ^{−j}): the
+// stepper leaves the rest out when together they are below half an ulp of the largest
+// (SummedTerms). A threshold of 1e-8 instead of the ulp fails this test at 1e-10 (error 1e-8),
+// where LargeSystemsOfEveryShapeMatchAnotherIntegrator, whose harmonics are as fast as its
+// modes, still passes.
+PeriodicSystem FastModesSlowHarmonic() {
+  std::mt19937 rng(20261130);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  const int q = 20, n = 2 * q;
+  Eigen::MatrixXd k0 = Eigen::MatrixXd::Zero(q, q), k1(q, q);
+  for (int i = 0; i < q; ++i) k0(i, i) = std::pow(30.0 * std::pow(100.0, i / (q - 1.0)), 2);
+  for (int i = 0; i < q; ++i)  // a symmetric coupling and a variation of 10 % of the stiffness
+    for (int j = 0; j <= i; ++j) {
+      const double scale = std::sqrt(k0(i, i) * k0(j, j));
+      k1(i, j) = k1(j, i) = 0.1 * scale * (i == j ? 1.0 : u(rng) * 0.2);
+      if (i != j) k0(i, j) = k0(j, i) = 0.05 * scale * u(rng);
+    }
+  FourierMatrix a(n, n, 1);
+  Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(n, n), first = mean;
+  mean.topRightCorner(q, q).setIdentity();
+  mean.bottomLeftCorner(q, q) = -k0.cast<cd>();
+  for (int i = 0; i < q; ++i) mean(q + i, q + i) = -1.0;
+  first.bottomLeftCorner(q, q) = -0.5 * k1.cast<cd>();  // cos Ωt: half at ±1
+  a.SetHarmonic(0, mean);
+  a.SetHarmonic(1, first);
+  return PeriodicSystem::FromFourier(0.2, a);
+}
+
+TEST(TaylorIntegrator, FastModesWithASlowHarmonicMatchAnotherIntegrator) {
+  const PeriodicSystem sys = FastModesSlowHarmonic();
+  EXPECT_EQ(MeasureSystemTraits(sys).series_products_per_order, 1);  // constant damping, H = 1
+  const double T = sys.period();
+  const Eigen::MatrixXd want = StateTransition(AsFunction(sys), 0, T, Reference()).phi;
+  for (double tol : {1e-7, 1e-10}) {
+    const TransitionResult r = StateTransition(sys, 0, T, Taylor(tol));
+    ASSERT_TRUE(r.ok) << r.message;
+    EXPECT_LT(RelErr(r.phi, want), 10 * tol) << "tol " << tol;
+  }
+}
+
 TEST(TaylorIntegrator, JeffcottRotorMatchesAnotherIntegrator) {
   // 4 states, second-order form with constant damping: the fixed-size path whose harmonics
   // multiply only the upper half of Φ (stiffness K(t) rotating, damping constant).

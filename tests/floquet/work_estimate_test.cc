@@ -29,8 +29,10 @@ void ExpectEstimateBrackets(double w, IntegratorType type, double tol, double we
   o.integrator.rel_tol = tol;
   const FloquetResult r = AnalyzeFloquet(system, o);
   ASSERT_TRUE(r.ok);
+  IntegratorOptions weighed = o.integrator;  // as the analysis weighs itself: which estimate ran
+  weighed.carry_local_errors = r.error_estimate_method == ErrorEstimateMethod::kLocalErrors;
   const WorkEstimate e =
-      EstimateFloquetWork(MeasureSystemTraits(system), o.integrator, 1, r.segments, 1e-7);
+      EstimateFloquetWork(MeasureSystemTraits(system), weighed, 1, r.segments, 1e-7);
   const double counted = weight * static_cast<double>(r.rhs_evals);
   const std::string what = "w = " + std::to_string(w) + " " + std::string(ToString(type)) +
                            " tol " + std::to_string(tol);

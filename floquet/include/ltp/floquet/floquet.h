@@ -41,19 +41,22 @@ enum class ErrorEstimateMethod {
   /// A second run at rel_tol/100 on another grid; the numbers come from it, the difference to
   /// the first run is the estimate. Any integrator; about 2.5 runs' work.
   kRefinedRun,
-  /// Bulirsch–Stoer and Taylor series (others fall back to kRefinedRun, with a note when the
-  /// integrator was named rather than chosen by `auto`): one run at rel_tol whose factors also
-  /// carry how far a lower-order solution lies, and the exponents of the factors so moved
-  /// compared with theirs (docs/local-error-estimate.md). Bulirsch–Stoer: each step's previous
-  /// extrapolation row; about 1.1 runs' work, the numbers are the run's at rel_tol, the estimate
-  /// 25–1000× their error (study median 112×). Taylor series: the order-p sums beside the
-  /// reported order-(p + 4) ones on the same steps; about 1.2 runs' work, the numbers about 10³×
-  /// better than the estimate, as a refined run's.
+  /// Bulirsch–Stoer, Taylor series, and Magnus 4, 6 and Magnus–Filon choosing their own steps
+  /// (others fall back to kRefinedRun, with a note when the integrator was named rather than
+  /// chosen by `auto`): one run at rel_tol whose factors also carry how far a lower-order
+  /// solution lies, and the exponents of the factors so moved compared with theirs
+  /// (docs/local-error-estimate.md). Bulirsch–Stoer: each step's previous extrapolation row;
+  /// about 1.1 runs' work, the numbers are the run's at rel_tol, the estimate 25–1000× their
+  /// error (study median 112×). Taylor series: the order-p sums beside the reported
+  /// order-(p + 4) ones on the same steps; about 1.2 runs' work, the numbers about 10³× better
+  /// than the estimate, as a refined run's. Magnus: the doubling loop's pass at half the steps
+  /// beside the reported one; no extra work, the numbers 2^order better than the estimate.
   kLocalErrors,
   /// The cheaper one that keeps the refined run's promise (numbers from a computation far more
-  /// accurate than the one the estimate measures): kLocalErrors for Taylor series, kRefinedRun
-  /// for every other integrator (Bulirsch–Stoer's local errors would report the run's own
-  /// numbers). FloquetResult::error_estimate_method says which ran.
+  /// accurate than the one the estimate measures): kLocalErrors for Taylor series and the Magnus
+  /// methods choosing their own steps, kRefinedRun for every other integrator (Bulirsch–Stoer's
+  /// local errors would report the run's own numbers). FloquetResult::error_estimate_method says
+  /// which ran.
   kAuto,
 };
 std::string_view ToString(ErrorEstimateMethod method);

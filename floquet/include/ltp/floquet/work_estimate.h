@@ -30,7 +30,9 @@ struct WorkEstimate {
 double SecondsPerEvaluation(const PeriodicSystem& system);
 
 /// The estimate for a system with `traits` (MeasureSystemTraits), `pieces` intervals between
-/// breakpoints, analysed with `integrator` (resolved: not kAuto) from a grid of `segments`.
+/// breakpoints, analysed with `integrator` (resolved: not kAuto) from a grid of `segments`;
+/// `integrator.carry_local_errors` says the estimate comes from the run's carried local errors,
+/// not from a refined run (the Magnus methods then do about a third of the work).
 WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOptions& integrator,
                                  double pieces, int segments, double seconds_per_evaluation);
 

@@ -62,7 +62,9 @@ struct IntegratorOptions {
   /// extrapolant, two orders lower, minus the accepted value) to the end of each transition, to
   /// first order: TransitionResult::local_error_effect. One n×n LU per step.
   /// Taylor series: also keep the product of the steps' order-p sums beside the reported one of
-  /// order p + 4 on the same steps (about 1.2 runs' work). Ignored by the other methods.
+  /// order p + 4 on the same steps (about 1.2 runs' work). Fixed-step methods whose steps are
+  /// chosen by doubling (steps_per_period = 0): the last coarse pass beside the reported one
+  /// (no extra work). Ignored by the other methods.
   bool carry_local_errors = false;
   /// For progress reports: called with the time each accepted step advanced (adaptive
   /// methods) or each transition spanned (the others), possibly from several threads at once,
@@ -92,7 +94,8 @@ struct TransitionResult {
   /// may be off by (docs/local-error-estimate.md). Bulirsch–Stoer: how far Φ moves to first
   /// order had every step kept its previous row's extrapolant, Σ_i Φ(t1, t_i) l_i over the
   /// steps' local error estimates l_i. Taylor series: the product of the order-p sums minus
-  /// `phi`, the product of the order-(p + 4) sums on the same steps. Empty otherwise.
+  /// `phi`, the product of the order-(p + 4) sums on the same steps. Fixed steps chosen by
+  /// doubling: the pass at half the steps minus `phi`. Empty otherwise.
   Eigen::MatrixXd local_error_effect;
 };
 
