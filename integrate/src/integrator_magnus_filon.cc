@@ -32,6 +32,7 @@ namespace {
 constexpr double kResonant = 1e-2;
 // Steps keep h·(max Re λ − min Re λ) below this: B's entries grow by at most e^2 over a step.
 constexpr double kDecaySpreadPerStep = 2;
+const double kDecayGrowth = std::exp(kDecaySpreadPerStep);  // B's largest growth over a step
 // Eigenvector matrices worse conditioned than this (Frobenius estimate) make the transformation's
 // round-off, ε·cond, larger than the tolerances this method is for: it declines.
 constexpr double kMaxCondition = 1e7;
@@ -72,6 +73,7 @@ struct MagnusFilonIntegrator::Split {
   Matrix Divisor(int m) const;  // D_m(i, j) = λ_j − λ_i + jmΩ
   std::shared_ptr<const Generators> For(double h);
   Generators Form(double h) const;
+  std::vector<bool> PairsAboveRoundOff(double h) const;
 };
 
 namespace {
@@ -173,6 +175,32 @@ std::shared_ptr<const MagnusFilonIntegrator::Split::Generators> MagnusFilonInteg
   return generators.back();
 }
 
+// Which harmonic pairs (m, m') the second Magnus term takes, in row-major (m + H, m' + H) order.
+// Q_0 is the decomposition's residue, round-off whose own first-order effect h‖Q_0‖ no error
+// control sees (docs/magnus-filon.md, "When it declines"); a pair's second-order terms are at
+// most e²·h²·n‖Q_m‖‖Q_m'‖ (n paths j, factors e^{(λ_j − λ_i)s} below e² within a step), and a
+// pair below h‖Q_0‖ (or ε‖Q‖ when the residue is 0) adds nothing above that round-off. Q_0 itself
+// is one: its pairs are skipped, and so are harmonics that are round-off like it (a blade-
+// coordinate interpolant of an isotropic rotor: 1P and 2P at 3e-11 beside a 3P of 0.025, 32 of
+// the 36 pairs).
+std::vector<bool> MagnusFilonIntegrator::Split::PairsAboveRoundOff(double h) const {
+  const int n = static_cast<int>(lambda.size()), H = harmonics;
+  std::vector<double> size(static_cast<size_t>(2 * H + 1));
+  for (int m = -H; m <= H; ++m) size[static_cast<size_t>(m + H)] = q[m + H].cwiseAbs().maxCoeff();
+  const double largest = *std::max_element(size.begin(), size.end());
+  const double round_off = std::max(h * size[static_cast<size_t>(H)],
+                                    std::numeric_limits<double>::epsilon() * h * largest);
+  std::vector<bool> pairs(static_cast<size_t>((2 * H + 1) * (2 * H + 1)), false);
+  for (int m = -H; m <= H; ++m)
+    for (int mp = -H; mp <= H; ++mp)
+      pairs[static_cast<size_t>((m + H) * (2 * H + 1) + mp + H)] =
+          m != 0 && mp != 0 &&
+          kDecayGrowth * h * h * n * size[static_cast<size_t>(m + H)] *
+                  size[static_cast<size_t>(mp + H)] >
+              round_off;
+  return pairs;
+}
+
 MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
   std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
@@ -201,11 +229,15 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
     yr.push_back(std::move(yrm));
     regular.push_back(std::move(reg));
   }
+  const std::vector<bool> pairs = PairsAboveRoundOff(h);
+  auto pair = [&](int m, int mp) {
+    return pairs[static_cast<size_t>((m + H) * (2 * H + 1) + mp + H)];
+  };
   std::vector<Matrix> cross(4 * H + 1, Matrix::Zero(n, n)), rest = cross;
   Matrix product(n, n);
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp) {
-      if (m == 0 || mp == 0) continue;  // Q_0 is round-off: its second-order terms are below it
+      if (!pair(m, mp)) continue;
       const int p = m + mp + 2 * H, a = m + H, b = mp + H;
       MultiplyInto(qr[a], x[b], product);
       cross[p] += product;
@@ -226,7 +258,7 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
   // The resonant paths: a resonant (any b), then a regular with b resonant.
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp) {
-      if (m == 0 || mp == 0) continue;
+      if (!pair(m, mp)) continue;
       const int a = m + H, b = mp + H;
       Matrix& g2 = second[m + mp + 2 * H];
       for (int j = 0; j < n; ++j)

@@ -596,6 +596,31 @@ TEST(MagnusFilon, StrongVariationStillMeetsTheClosedFormAndAnotherIntegrator) {
   EXPECT_LT(RelErr(half.phi, want.phi), 1e-10);
 }
 
+// The second Magnus term skips pairs of harmonics whose terms are below the decomposition's own
+// round-off (the turning oscillators' first harmonic is the samples' rounding, ~1e-16). A small
+// but real first harmonic (1 % of the anisotropy's 0.4) is not round-off: its pairs are kept, so
+// the transition meets rkf78 at 1e-13 to the tolerance in the steps of a fourth-order method.
+TEST(MagnusFilon, SmallHarmonicsAreKeptRoundOffOnesSkipped) {
+  TurningOscillators t = MakeTurningOscillators(4.4, 3.6, 0.05, 1);
+  FourierMatrix a = *t.system.fourier_A();
+  Eigen::MatrixXcd first(4, 4);
+  first << 0, 0, 0, 0, 0, 0, 0, 0, 0.004, -0.002, 0.001, 0.003, 0.002, 0.004, -0.003, 0.001;
+  a.SetHarmonic(1, first);
+  const PeriodicSystem system = PeriodicSystem::FromFourier(t.system.period(), std::move(a));
+  IntegratorOptions o = With(IntegratorType::kMagnusFilon);
+  o.rel_tol = 1e-11;
+  IntegratorOptions ref = With(IntegratorType::kRkf78);
+  ref.rel_tol = 1e-13;
+  ref.abs_tol = 1e-16;
+  const TransitionResult r = StateTransition(system, 0.3, 0.3 + system.period(), o);
+  const TransitionResult want = StateTransition(system, 0.3, 0.3 + system.period(), ref);
+  ASSERT_TRUE(r.ok && want.ok) << r.message;
+  EXPECT_LT(RelErr(r.phi, want.phi), 1e-10);
+  // Fourth order with every pair that counts: 2048 steps per period. Without the small
+  // harmonic's pairs the method is second order in them and the doubling went to 131 072.
+  EXPECT_LE(r.steps_per_period, 4096);
+}
+
 TEST(MagnusFilon, DeclinesAMeanWithoutAWellConditionedEigenbasis) {
   // A_0 = [[0, 1], [0, 0]] is a Jordan block (a free rigid-body state): no eigenbasis at all.
   FourierMatrix a(2, 2, 1);
