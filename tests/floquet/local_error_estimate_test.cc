@@ -30,6 +30,19 @@ FloquetResult Reference(const PeriodicSystem& system) {
   return AnalyzeFloquet(system, o);
 }
 
+// The analysis with options `o` makes one run (no refined run), estimates from its carried local
+// errors, and the estimate bounds the error of its exponents against `reference`.
+void ExpectOneRunBoundsTheError(const PeriodicSystem& system, const FloquetOptions& o,
+                                const FloquetResult& reference, const std::string& where) {
+  const FloquetResult r = AnalyzeFloquet(system, o);
+  ASSERT_TRUE(r.ok && r.error_estimate) << where;
+  EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors) << where;
+  EXPECT_EQ(r.segments, r.grid_segments) << where << ": no second run";
+  const double error =
+      MaxExponentMismatch(Exponents(r.modes), Exponents(reference.modes), system.omega());
+  EXPECT_LT(error, *r.error_estimate) << where;
+}
+
 // Oscillating, growing and decaying, piecewise-constant (meissner: restarts at every jump)
 // and two-state-pair scenes at a loose and a tight tolerance, with and without modes: the
 // estimate is at least the error of the numbers reported, and is made by one run.
@@ -53,16 +66,10 @@ TEST(LocalErrorEstimate, BoundsTheErrorOfTheReportedExponents) {
         o.integrator.rel_tol = tol;
         o.compute_modes = modes;
         o.error_estimate_method = ErrorEstimateMethod::kLocalErrors;
-        const FloquetResult r = AnalyzeFloquet(system, o);
         std::ostringstream where;
         where << name << (set.empty() ? "" : " " + set[0].second) << " tol " << tol
               << (modes ? " modes" : "");
-        ASSERT_TRUE(r.ok && r.error_estimate) << where.str();
-        EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors) << where.str();
-        EXPECT_EQ(r.segments, r.grid_segments) << where.str() << ": no second run";
-        const double error =
-            MaxExponentMismatch(Exponents(r.modes), Exponents(reference.modes), system.omega());
-        EXPECT_LT(error, *r.error_estimate) << where.str();
+        ExpectOneRunBoundsTheError(system, o, reference, where.str());
       }
   }
 }
@@ -117,16 +124,10 @@ TEST(LocalErrorEstimate, MagnusMethodsKeepTheirCoarsePass) {
         FloquetOptions o;
         o.integrator.type = type;
         o.integrator.rel_tol = tol;
-        const FloquetResult r = AnalyzeFloquet(system, o);
         std::ostringstream where;
         where << name << (set.empty() ? "" : " " + set[0].second) << " " << ToString(type)
               << " tol " << tol;
-        ASSERT_TRUE(r.ok && r.error_estimate) << where.str();
-        EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors) << where.str();
-        EXPECT_EQ(r.segments, r.grid_segments) << where.str() << ": no second run";
-        const double error =
-            MaxExponentMismatch(Exponents(r.modes), Exponents(reference.modes), system.omega());
-        EXPECT_LT(error, *r.error_estimate) << where.str();
+        ExpectOneRunBoundsTheError(system, o, reference, where.str());
       }
     }
   }
