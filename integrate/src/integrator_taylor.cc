@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -49,10 +48,6 @@ class TaylorSeriesStepper {
       lower_.setZero(rows, n_);
       term_sizes_.assign(static_cast<size_t>(series_order_) + 1, 0.0);
       harmonic_sums_.setZero(static_cast<Eigen::Index>(2 * shape_.harmonics) * inner_, n_);
-      reversed_weights_.setZero(series_order_ + 1, 2 * shape_.harmonics);
-      sums_.setZero(static_cast<Eigen::Index>(n_) * n_, 2 * shape_.harmonics);
-      if (inner_ < n_)
-        inner_terms_.setZero(static_cast<Eigen::Index>(inner_) * n_, series_order_ + 1);
       harmonic_blocks_.resize(rows, static_cast<Eigen::Index>(2 * shape_.harmonics) * inner_);
       for (int column = 0; column < 2 * shape_.harmonics; ++column)
         harmonic_blocks_.middleCols(static_cast<Eigen::Index>(column) * inner_, inner_) =
@@ -233,11 +228,6 @@ class TaylorSeriesStepper {
   // harmonics in one product with [C_1 S_1 …] — every product through BLAS. The sums take the
   // terms j whose weights are not lost in rounding (SummedTerms).
   void NextTermInBlas(int k) {
-    static const bool old = std::getenv("LTP_OLD") != nullptr;
-    if (old) {
-      NextTermInBlasOld(k);
-      return;
-    }
     MultiplyInto(Block(0).bottomRows(lower_.rows()), Term(k), lower_);
     if (shape_.harmonics > 0) {
       term_sizes_[static_cast<size_t>(k)] = Term(k).topRows(inner_).cwiseAbs().maxCoeff();
@@ -261,30 +251,6 @@ class TaylorSeriesStepper {
     }
     FinishTerm(k, lower_);
   }
-
-  void NextTermInBlasOld(int k) {
-    const int rows = static_cast<int>(lower_.rows());
-    MultiplyInto(Block(0).bottomRows(rows), Term(k), lower_);
-    if (shape_.harmonics > 0) {
-      for (int column = 0; column < 2 * shape_.harmonics; ++column) {
-        const double* weights = Weights(column);
-        for (int i = 0; i <= k; ++i) reversed_weights_(i, column) = weights[k - i];
-      }
-      const Eigen::MatrixXd& terms = inner_ < n_ ? inner_terms_ : terms_;
-      if (inner_ < n_) {
-        Eigen::Map<Eigen::MatrixXd>(inner_terms_.col(k).data(), inner_, n_) =
-            Term(k).topRows(inner_);
-      }
-      auto sums = sums_.topRows(static_cast<Eigen::Index>(inner_) * n_);
-      MultiplyInto(terms.leftCols(k + 1), reversed_weights_.topRows(k + 1), sums);
-      for (int column = 0; column < 2 * shape_.harmonics; ++column) {
-        const Eigen::Map<const Eigen::MatrixXd> sum(sums_.col(column).data(), inner_, n_);
-        MultiplyInto(Block(1 + column).bottomLeftCorner(rows, inner_), sum, lower_, 1.0);
-      }
-    }
-    FinishTerm(k, lower_);
-  }
-  Eigen::MatrixXd reversed_weights_, inner_terms_, sums_;
 
   // How many terms j = 0, 1, … of X_w = Σ_j c_{w,j} Φ_{k−j} to sum: the weights fall like
   // (wΩ)^j/j! while the terms grow like ρ(A)^{k−j}/(k−j)!, so where the harmonics are slow
