@@ -176,20 +176,19 @@ std::shared_ptr<const MagnusFilonIntegrator::Split::Generators> MagnusFilonInteg
 }
 
 // Which harmonic pairs (m, m') the second Magnus term takes, in row-major (m + H, m' + H) order.
-// Q_0 is the decomposition's residue, round-off whose own first-order effect h‖Q_0‖ no error
-// control sees (docs/magnus-filon.md, "When it declines"); a pair's second-order terms are at
-// most e²·h²·n‖Q_m‖‖Q_m'‖ (n paths j, factors e^{(λ_j − λ_i)s} below e² within a step), and a
-// pair below h‖Q_0‖ (or ε‖Q‖ when the residue is 0) adds nothing above that round-off. Q_0 itself
-// is one: its pairs are skipped, and so are harmonics that are round-off like it (a blade-
-// coordinate interpolant of an isotropic rotor: 1P and 2P at 3e-11 beside a 3P of 0.025, 32 of
-// the 36 pairs).
+// A pair's terms in Ω2 are at most e²·h²·n‖Q_m‖‖Q_m'‖ entrywise (n paths j, the factors
+// e^{(λ_j − λ_i)s} below e² within a step); below ε·h‖Q‖, the rounding of the first term's
+// largest entry, it changes nothing the arithmetic keeps, and is skipped: the pairs of harmonics
+// that are the samples' rounding (a blade-coordinate interpolant of an isotropic rotor: 1P and
+// 2P at 3e-11 beside a 3P of 0.025; 16 of its 36 pairs). Q_0, the decomposition's residue, is
+// round-off of the mean itself: its pairs are skipped as before.
 std::vector<bool> MagnusFilonIntegrator::Split::PairsAboveRoundOff(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
   std::vector<double> size(static_cast<size_t>(2 * H + 1));
   for (int m = -H; m <= H; ++m) size[static_cast<size_t>(m + H)] = q[m + H].cwiseAbs().maxCoeff();
   const double largest = *std::max_element(size.begin(), size.end());
-  const double round_off = std::max(h * size[static_cast<size_t>(H)],
-                                    std::numeric_limits<double>::epsilon() * h * largest);
+  // The first-order term's own rounding: ε times its largest entry, h‖Q‖.
+  const double round_off = std::numeric_limits<double>::epsilon() * h * largest;
   std::vector<bool> pairs(static_cast<size_t>((2 * H + 1) * (2 * H + 1)), false);
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp)
