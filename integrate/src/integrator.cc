@@ -100,10 +100,6 @@ TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& int
       result.steps_per_period = density();
       if (change <= options.rel_tol) {
         result.ok = true;
-        // The coarse pass is what a run held only to the tolerance gives: its offset from the
-        // reported (finer) one is the carried local error (docs/local-error-estimate.md,
-        // "Fixed steps").
-        if (options.carry_local_errors) result.local_error_effect = coarse - result.phi;
         break;
       }
       // Round-off plateau: in the asymptotic regime a doubling divides the change by 2^order
@@ -117,7 +113,6 @@ TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& int
         s << "round-off plateau: relative change " << change << " at " << result.steps_per_period
           << " steps per period (rel_tol " << options.rel_tol << " not reachable)";
         result.message = s.str();
-        if (options.carry_local_errors) result.local_error_effect = coarse - result.phi;
         break;
       }
       previous_change = change;
@@ -130,6 +125,10 @@ TransitionResult ResolveFixedSteps(const PeriodicSystem& system, Integrator& int
       }
       coarse = std::move(fine);
     }
+    // An accepted result ends the loop before the last coarse pass is replaced: that pass is
+    // what a run held only to the tolerance gives, and its offset from the reported (finer) one
+    // the carried local error (docs/local-error-estimate.md, "Fixed steps").
+    if (result.ok && options.carry_local_errors) result.local_error_effect = coarse - result.phi;
   }
   result.steps = integrator.steps();
   result.rhs_evals = integrator.rhs_evals();

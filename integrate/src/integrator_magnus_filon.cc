@@ -73,7 +73,7 @@ struct MagnusFilonIntegrator::Split {
   Matrix Divisor(int m) const;  // D_m(i, j) = λ_j − λ_i + jmΩ
   std::shared_ptr<const Generators> For(double h);
   Generators Form(double h) const;
-  std::vector<bool> PairsAboveRoundOff(double h) const;
+  Eigen::Matrix<bool, -1, -1> PairsAboveRoundOff(double h) const;
 };
 
 namespace {
@@ -175,28 +175,22 @@ std::shared_ptr<const MagnusFilonIntegrator::Split::Generators> MagnusFilonInteg
   return generators.back();
 }
 
-// Which harmonic pairs (m, m') the second Magnus term takes, in row-major (m + H, m' + H) order.
-// A pair's terms in Ω2 are at most e²·h²·n‖Q_m‖‖Q_m'‖ entrywise (n paths j, the factors
-// e^{(λ_j − λ_i)s} below e² within a step); below ε·h‖Q‖, the rounding of the first term's
-// largest entry, it changes nothing the arithmetic keeps, and is skipped: the pairs of harmonics
-// that are the samples' rounding (a blade-coordinate interpolant of an isotropic rotor: 1P and
-// 2P at 3e-11 beside a 3P of 0.025; 16 of its 36 pairs). Q_0, the decomposition's residue, is
-// round-off of the mean itself: its pairs are skipped as before.
-std::vector<bool> MagnusFilonIntegrator::Split::PairsAboveRoundOff(double h) const {
+// Which harmonic pairs (m, m') the second Magnus term takes, at (m + H, m' + H). A pair's terms in
+// Ω2 are at most e²·h²·n‖Q_m‖‖Q_m'‖ entrywise (n paths j, the factors e^{(λ_j − λ_i)s} below e²
+// within a step); below ε·h‖Q‖, the rounding of the first term's largest entry, it changes
+// nothing the arithmetic keeps, and is skipped: the pairs of harmonics that are the samples'
+// rounding (a blade-coordinate interpolant of an isotropic rotor: 1P and 2P at 3e-11 beside a 3P
+// of 0.025; 16 of its 36 pairs). Q_0, the decomposition's residue, is round-off of the mean
+// itself: its pairs are skipped as before.
+Eigen::Matrix<bool, -1, -1> MagnusFilonIntegrator::Split::PairsAboveRoundOff(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
-  std::vector<double> size(static_cast<size_t>(2 * H + 1));
-  for (int m = -H; m <= H; ++m) size[static_cast<size_t>(m + H)] = q[m + H].cwiseAbs().maxCoeff();
-  const double largest = *std::max_element(size.begin(), size.end());
-  // The first-order term's own rounding: ε times its largest entry, h‖Q‖.
-  const double round_off = std::numeric_limits<double>::epsilon() * h * largest;
-  std::vector<bool> pairs(static_cast<size_t>((2 * H + 1) * (2 * H + 1)), false);
-  for (int m = -H; m <= H; ++m)
-    for (int mp = -H; mp <= H; ++mp)
-      pairs[static_cast<size_t>((m + H) * (2 * H + 1) + mp + H)] =
-          m != 0 && mp != 0 &&
-          kDecayGrowth * h * h * n * size[static_cast<size_t>(m + H)] *
-                  size[static_cast<size_t>(mp + H)] >
-              round_off;
+  Eigen::VectorXd size(2 * H + 1);  // ‖Q_m‖ at m + H, largest entry
+  for (int a = 0; a <= 2 * H; ++a) size(a) = q[a].cwiseAbs().maxCoeff();
+  const double round_off = std::numeric_limits<double>::epsilon() * h * size.maxCoeff();
+  Eigen::Matrix<bool, -1, -1> pairs =
+      ((kDecayGrowth * h * h * n * size) * size.transpose()).array() > round_off;
+  pairs.row(H).setConstant(false);
+  pairs.col(H).setConstant(false);
   return pairs;
 }
 
@@ -228,15 +222,12 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
     yr.push_back(std::move(yrm));
     regular.push_back(std::move(reg));
   }
-  const std::vector<bool> pairs = PairsAboveRoundOff(h);
-  auto pair = [&](int m, int mp) {
-    return pairs[static_cast<size_t>((m + H) * (2 * H + 1) + mp + H)];
-  };
+  const Eigen::Matrix<bool, -1, -1> pairs = PairsAboveRoundOff(h);
   std::vector<Matrix> cross(4 * H + 1, Matrix::Zero(n, n)), rest = cross;
   Matrix product(n, n);
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp) {
-      if (!pair(m, mp)) continue;
+      if (!pairs(m + H, mp + H)) continue;
       const int p = m + mp + 2 * H, a = m + H, b = mp + H;
       MultiplyInto(qr[a], x[b], product);
       cross[p] += product;
@@ -257,7 +248,7 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
   // The resonant paths: a resonant (any b), then a regular with b resonant.
   for (int m = -H; m <= H; ++m)
     for (int mp = -H; mp <= H; ++mp) {
-      if (!pair(m, mp)) continue;
+      if (!pairs(m + H, mp + H)) continue;
       const int a = m + H, b = mp + H;
       Matrix& g2 = second[m + mp + 2 * H];
       for (int j = 0; j < n; ++j)
