@@ -720,8 +720,6 @@ struct Setup {
   ErrorEstimateMethod requested_estimate = ErrorEstimateMethod::kAuto;  ///< before resolution
 };
 
-// kAuto: the local errors where they keep the refined run's promise (ErrorEstimateMethod).
-
 // Bulirsch–Stoer and Taylor series carry their steps' local errors; Magnus 4, 6 and Magnus–Filon
 // keep the doubling loop's coarse pass when they choose their steps (docs/local-error-estimate.md).
 bool CarriesLocalErrors(const IntegratorOptions& integrator) {

@@ -118,6 +118,9 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
       integrator.type == IntegratorType::kMagnus4 || integrator.type == IntegratorType::kMagnus6;
   // The estimate from the doubling loop's coarse pass: no refined run.
   const bool coarse_pass = integrator.carry_local_errors && integrator.steps_per_period == 0;
+  // Magnus 6 on A(t) constant to the tolerance: a count of its own, refined run or not.
+  const bool over_the_mean = integrator.type == IntegratorType::kMagnus6 &&
+                             MagnusOverTheMeanPays(traits, integrator.rel_tol);
   if (magnus && integrator.steps_per_period > 0) {
     // Fixed steps: the count is the user's, the nodes per step the method's; the refined run
     // of the estimate doubles it, the mode samples add about half a pass.
@@ -158,8 +161,7 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
     w.fewest_evaluations = pieces;
     w.evaluations = kProductsPerPiece * pieces;
     s << pieces << " constant pieces, one matrix exponential each";
-  } else if (integrator.type == IntegratorType::kMagnus6 &&
-             MagnusOverTheMeanPays(traits, integrator.rel_tol)) {
+  } else if (over_the_mean) {
     w.fewest_evaluations = 1;
     w.evaluations = kNearlyConstantMagnus;
     s << "A(t) constant to the tolerance: Magnus steps exact for its mean";
@@ -190,7 +192,7 @@ WorkEstimate EstimateFloquetWork(const SystemTraits& traits, const IntegratorOpt
       << integrator.rel_tol;
     if (cvode) s << ", CVODE's vector work " << kCvodeTypicalCost << " evaluations' worth each";
   }
-  if (magnus && coarse_pass && w.evaluations > kNearlyConstantMagnus) {
+  if (magnus && coarse_pass && !over_the_mean) {
     w.evaluations *= kCoarsePassShare;
     w.fewest_evaluations *= kCoarsePassShare;
     s << ", a third of it without a refined run";
