@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "integrator_internal.h"
 #include "ltp/core/error.h"
+#include "ltp/integrate/detail/modal_basis.h"
 #include "ltp/integrate/detail/state_balancing.h"
 
 namespace ltp {
@@ -104,14 +106,17 @@ SystemTraits MeasureSystemTraits(const PeriodicSystem& system) {
     // Eigen's eigensolvers read past their arrays on NaN input (AddressSanitizer): a sample
     // that is not finite says nothing of the rates anyway.
     if (!a.allFinite()) continue;
-    const Eigen::VectorXcd eig = a.eigenvalues();
-    for (Eigen::Index i = 0; i < eig.size(); ++i) rate = std::max(rate, std::abs(eig(i).real()));
+    if (const std::optional<Eigen::VectorXcd> eig = internal::RealEigenvalues(a))
+      for (Eigen::Index i = 0; i < eig->size(); ++i)
+        rate = std::max(rate, std::abs((*eig)(i).real()));
   }
   t.stiffness = T * rate;
   Eigen::MatrixXcd a0 = mean.cast<std::complex<double>>();
   if (const FourierMatrix* fa = system.fourier_A()) a0 = (*fa)[0];
   const Eigen::VectorXcd eig =
-      a0.allFinite() ? Eigen::VectorXcd(a0.eigenvalues()) : Eigen::VectorXcd::Zero(0);
+      !a0.allFinite()       ? Eigen::VectorXcd::Zero(0)
+      : a0.imag().isZero(0) ? internal::RealEigenvalues(a0.real()).value_or(Eigen::VectorXcd())
+                            : Eigen::VectorXcd(a0.eigenvalues());
   double re = 0, radius = 0;
   for (Eigen::Index i = 0; i < eig.size(); ++i) {
     re = std::max(re, std::abs(eig(i).real()));

@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "ltp/core/error.h"
 #include "ltp/integrate/detail/matrix_exponential.h"
 #include "ltp/integrate/detail/matrix_product.h"
+#include "ltp/integrate/detail/modal_basis.h"
 #include "ltp/integrate/integrator_choice.h"
 #include "oscillatory_integrals.h"
 
@@ -78,6 +80,21 @@ struct MagnusFilonIntegrator::Split {
 
 namespace {
 
+// The complex eigenvectors from the real basis: a pair's columns a, b give v = a + jb for the
+// eigenvalue with Im > 0 and its conjugate for the next.
+Matrix ComplexEigenvectors(const RealEigenbasis& basis) {
+  const Eigen::Index n = basis.w.rows();
+  Matrix v = basis.w.cast<std::complex<double>>();
+  for (Eigen::Index j = 0; j + 1 < n; ++j) {
+    if (basis.eigenvalues(j).imag() == 0) continue;
+    const Eigen::VectorXcd pair = basis.w.col(j) + std::complex<double>(0, 1) * basis.w.col(j + 1);
+    v.col(j) = pair;
+    v.col(j + 1) = pair.conjugate();
+    ++j;
+  }
+  return v;
+}
+
 std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& system,
                                                         const FourierMatrix& a) {
   auto split = std::make_shared<MagnusFilonIntegrator::Split>();
@@ -85,14 +102,13 @@ std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& sy
   split->harmonics = H;
   split->omega = system.omega();
   for (int m = -H; m <= H; ++m) split->key.push_back(a[m]);
-  const Eigen::MatrixXd mean = a[0].real();
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(mean);
-  if (eig.info() != Eigen::Success) {
+  const std::optional<RealEigenbasis> eig = RealEigenDecomposition(a[0].real());
+  if (!eig) {
     split->unsuitable = "the eigen-decomposition of the mean A_0 failed";
     return split;
   }
-  split->lambda = eig.eigenvalues();
-  split->v = eig.eigenvectors();
+  split->lambda = eig->eigenvalues;
+  split->v = ComplexEigenvectors(*eig);
   Eigen::PartialPivLU<Matrix> lu(split->v);
   split->v_inv = lu.inverse();
   const double condition = split->v.norm() * split->v_inv.norm();

@@ -1,5 +1,6 @@
 #include "ltp/integrate/detail/modal_basis.h"
 
+#include <utility>
 #include <vector>
 
 #ifndef LTP_EIGEN_ONLY
@@ -10,43 +11,62 @@
 
 namespace ltp::internal {
 
-namespace {
-
 // W with dgeev (which balances, transforms back and gives each eigenvector unit norm) or, in the
 // sanitizer build, Eigen's pseudo-eigenvectors with each real vector and each complex pair's
 // (a, b) scaled to unit norm together (separate scales would make D's 2×2 blocks non-normal).
-std::optional<Eigen::MatrixXd> Eigenvectors(const Eigen::MatrixXd& a) {
+std::optional<RealEigenbasis> RealEigenDecomposition(const Eigen::MatrixXd& a) {
+  if (a.rows() == 0 || a.cols() != a.rows() || !a.allFinite()) return std::nullopt;
   const Eigen::Index n = a.rows();
+  RealEigenbasis out;
 #ifndef LTP_EIGEN_ONLY
   const auto m = static_cast<lapack_int>(n);
-  Eigen::MatrixXd work = a, w(n, n);
+  Eigen::MatrixXd work = a;
+  out.w.resize(n, n);
   std::vector<double> re(n), im(n);
   if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', m, work.data(), m, re.data(), im.data(), nullptr, 1,
-                    w.data(), m) != 0)
+                    out.w.data(), m) != 0)
     return std::nullopt;
-  return w;
+  out.eigenvalues.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) out.eigenvalues(j) = {re[j], im[j]};
 #else
   Eigen::EigenSolver<Eigen::MatrixXd> es(a);
   if (es.info() != Eigen::Success) return std::nullopt;
-  Eigen::MatrixXd w = es.pseudoEigenvectors();
-  const Eigen::VectorXcd& lambda = es.eigenvalues();
+  out.w = es.pseudoEigenvectors();
+  out.eigenvalues = es.eigenvalues();
   for (Eigen::Index j = 0; j < n;) {
-    const Eigen::Index width = lambda(j).imag() != 0 && j + 1 < n ? 2 : 1;
-    const double norm = w.middleCols(j, width).norm();
-    if (norm > 0) w.middleCols(j, width) /= norm;
+    const Eigen::Index width = out.eigenvalues(j).imag() != 0 && j + 1 < n ? 2 : 1;
+    const double norm = out.w.middleCols(j, width).norm();
+    if (norm > 0) out.w.middleCols(j, width) /= norm;
     j += width;
   }
-  return w;
+#endif
+  if (!out.w.allFinite()) return std::nullopt;
+  return out;
+}
+
+std::optional<Eigen::VectorXcd> RealEigenvalues(const Eigen::MatrixXd& a) {
+  if (a.rows() == 0 || a.cols() != a.rows() || !a.allFinite()) return std::nullopt;
+#ifndef LTP_EIGEN_ONLY
+  const auto m = static_cast<lapack_int>(a.rows());
+  Eigen::MatrixXd work = a;
+  std::vector<double> re(a.rows()), im(a.rows());
+  if (LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', m, work.data(), m, re.data(), im.data(), nullptr, 1,
+                    nullptr, 1) != 0)
+    return std::nullopt;
+  Eigen::VectorXcd values(a.rows());
+  for (Eigen::Index j = 0; j < a.rows(); ++j) values(j) = {re[j], im[j]};
+  return values;
+#else
+  Eigen::EigenSolver<Eigen::MatrixXd> es(a, /*computeEigenvectors=*/false);
+  if (es.info() != Eigen::Success) return std::nullopt;
+  return Eigen::VectorXcd(es.eigenvalues());
 #endif
 }
 
-}  // namespace
-
 std::optional<Eigen::MatrixXd> RealModalBasis(const Eigen::MatrixXd& a, double max_condition) {
-  if (a.rows() == 0 || a.cols() != a.rows() || !a.allFinite()) return std::nullopt;
-  std::optional<Eigen::MatrixXd> w = Eigenvectors(a);
-  if (!w || !w->allFinite() || !(ConditionNumber(*w) <= max_condition)) return std::nullopt;
-  return w;
+  std::optional<RealEigenbasis> basis = RealEigenDecomposition(a);
+  if (!basis || !(ConditionNumber(basis->w) <= max_condition)) return std::nullopt;
+  return std::move(basis->w);
 }
 
 }  // namespace ltp::internal

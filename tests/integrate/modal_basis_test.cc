@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <random>
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -14,6 +16,46 @@
 
 namespace ltp::internal {
 namespace {
+
+// A (a + jb) = λ_j (a + jb) for a complex pair's columns a, b (and A w = λ w for a real one), and
+// the eigenvalues alone are the same set: against Eigen's own eigensolver on the same matrix (the
+// plain build's are LAPACK's dgeev, an independent implementation; the sanitizer build's are
+// Eigen's, so there the decomposition's relation is the check).
+TEST(RealEigenDecomposition, PairsAreAPlusJBAndTheEigenvaluesMatchAnotherSolver) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  const Eigen::MatrixXd a = Eigen::MatrixXd::NullaryExpr(30, 30, [&] { return g(rng); });
+  const auto basis = RealEigenDecomposition(a);
+  ASSERT_TRUE(basis.has_value());
+  int pairs = 0;
+  for (Eigen::Index j = 0; j < a.rows(); ++j) {
+    const std::complex<double> lambda = basis->eigenvalues(j);
+    Eigen::VectorXcd v = basis->w.col(j).cast<std::complex<double>>();
+    if (lambda.imag() != 0) {
+      ASSERT_GT(lambda.imag(), 0) << "the pair's first has Im > 0";
+      ASSERT_EQ(basis->eigenvalues(j + 1), std::conj(lambda));
+      v += std::complex<double>(0, 1) * basis->w.col(j + 1);
+      ++pairs;
+    }
+    EXPECT_LT((a * v - lambda * v).norm(), 1e-12 * a.norm() * v.norm()) << j;
+    if (lambda.imag() != 0) ++j;
+  }
+  EXPECT_GT(pairs, 3);
+  const auto values = RealEigenvalues(a);
+  ASSERT_TRUE(values.has_value());
+  const Eigen::VectorXcd reference = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+  for (Eigen::Index i = 0; i < reference.size(); ++i) {
+    double nearest = INFINITY, nearest_in_basis = INFINITY;
+    for (Eigen::Index j = 0; j < values->size(); ++j) {
+      nearest = std::min(nearest, std::abs((*values)(j)-reference(i)));
+      nearest_in_basis = std::min(nearest_in_basis, std::abs(basis->eigenvalues(j) - reference(i)));
+    }
+    EXPECT_LT(nearest, 1e-12 * a.norm()) << reference(i);
+    EXPECT_LT(nearest_in_basis, 1e-12 * a.norm()) << reference(i);
+  }
+  EXPECT_FALSE(RealEigenvalues(Eigen::MatrixXd::Constant(2, 2, NAN)).has_value());
+  EXPECT_FALSE(RealEigenDecomposition(Eigen::MatrixXd(2, 3)).has_value());
+}
 
 // W⁻¹ A W is block diagonal: real eigenvalues in 1 × 1 blocks, complex pairs in 2 × 2 ones.
 TEST(RealModalBasis, TakesAIntoRealBlockDiagonalForm) {

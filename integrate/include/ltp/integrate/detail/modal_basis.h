@@ -8,10 +8,23 @@
 
 namespace ltp::internal {
 
-/// W with A W = W D, D real block diagonal (LAPACK dgeev: a real eigenvalue's unit eigenvector,
-/// a complex pair's vector v = a ± jb as the columns a, b); empty when A is not finite, LAPACK
-/// fails, or W's 2-norm condition exceeds `max_condition` (a (near-)defective A, whose modes'
-/// scales are not its factors').
+/// A real matrix's eigenvalues with its real eigenvector basis W, A W = W D: a real eigenvalue's
+/// unit eigenvector, a complex pair's v = a + jb (for eigenvalues(j), Im > 0; the conjugate
+/// follows) as the columns a, b (LAPACK dgeev, balanced).
+struct RealEigenbasis {
+  Eigen::VectorXcd eigenvalues;
+  Eigen::MatrixXd w;
+};
+/// Empty when A is not square and finite or the eigensolver fails.
+std::optional<RealEigenbasis> RealEigenDecomposition(const Eigen::MatrixXd& a);
+
+/// A real matrix's eigenvalues alone (LAPACK dgeev without vectors: at 250 states a tenth of
+/// Eigen's complex eigensolver); empty when A is not square and finite or the solver fails.
+std::optional<Eigen::VectorXcd> RealEigenvalues(const Eigen::MatrixXd& a);
+
+/// RealEigenDecomposition's W (D real block diagonal); empty when that is, or when W's 2-norm
+/// condition exceeds `max_condition` (a (near-)defective A, whose modes' scales are not its
+/// factors').
 std::optional<Eigen::MatrixXd> RealModalBasis(const Eigen::MatrixXd& a, double max_condition);
 
 }  // namespace ltp::internal
