@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
@@ -11,6 +12,7 @@
 #include "ltp/floquet/periodic_eigen.h"
 #include "ltp/integrate/detail/condition_number.h"
 #include "ltp/integrate/detail/matrix_product.h"
+#include "ltp/integrate/detail/modal_basis.h"
 
 namespace ltp::internal {
 
@@ -18,6 +20,43 @@ namespace {
 
 using cd = std::complex<double>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The mean's eigenvalues and ξ_k(0) in its eigenbasis (coefficients column k). A real mean
+// (every real system) through LAPACK's real eigensolver, whose basis holds a complex pair's
+// v = a + jb as columns a, b: x = c_a a + c_b b = ½(c_a − j c_b) v + ½(c_a + j c_b) v̄
+// (Eigen's complex eigensolver took 0.2 s at 250 states); a complex one through Eigen.
+struct MeanModes {
+  Eigen::VectorXcd eigenvalues;
+  Eigen::MatrixXcd coefficients;
+};
+std::optional<MeanModes> ModesOfTheMean(const Eigen::MatrixXcd& mean, const Eigen::MatrixXcd& xi0) {
+  MeanModes out;
+  if (mean.imag().isZero(0)) {
+    const std::optional<RealEigenbasis> basis = RealEigenDecomposition(mean.real());
+    if (!basis) return std::nullopt;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(basis->w);
+    const Eigen::MatrixXd re = lu.solve(xi0.real()), im = lu.solve(xi0.imag());
+    out.eigenvalues = basis->eigenvalues;
+    out.coefficients.resize(re.rows(), re.cols());
+    for (Eigen::Index j = 0; j < re.rows(); ++j) {
+      if (out.eigenvalues(j).imag() == 0 || j + 1 == re.rows()) {
+        out.coefficients.row(j) = re.row(j) + cd(0, 1) * im.row(j);
+        continue;
+      }
+      const Eigen::RowVectorXcd a = re.row(j) + cd(0, 1) * im.row(j);
+      const Eigen::RowVectorXcd b = re.row(j + 1) + cd(0, 1) * im.row(j + 1);
+      out.coefficients.row(j) = 0.5 * (a - cd(0, 1) * b);
+      out.coefficients.row(j + 1) = 0.5 * (a + cd(0, 1) * b);
+      ++j;
+    }
+    return out;
+  }
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(mean);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  out.eigenvalues = eig.eigenvalues();
+  out.coefficients = eig.eigenvectors().colPivHouseholderQr().solve(xi0);
+  return out;
+}
 
 // A first guess of each mode's branch m in λ = Log ρ / T + j m Ωp, from the time-averaged
 // system: the averaged A's eigenvector that dominates the mode shape ξ_k(0) (its coefficient
@@ -42,17 +81,15 @@ std::vector<int> PriorBranches(const PeriodicSystem& system, const std::vector<c
   }
   std::vector<int> prior(log_rho.size(), 0);
   if (!mean.allFinite() || !xi0.allFinite()) return prior;
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(mean);
-  if (eig.info() != Eigen::Success) return prior;
-  const Eigen::MatrixXcd coefficients =
-      eig.eigenvectors().colPivHouseholderQr().solve(xi0);  // ξ_k(0) in the eigenbasis
+  std::optional<MeanModes> modes = ModesOfTheMean(mean, xi0);
+  if (!modes) return prior;
   for (size_t k = 0; k < log_rho.size(); ++k) {
     const cd principal = log_rho[k] / T;
     if (!std::isfinite(principal.imag())) continue;
     Eigen::Index i = 0;
-    if (!coefficients.col(k).allFinite()) continue;
-    coefficients.col(k).cwiseAbs().maxCoeff(&i);
-    const double m = std::round((eig.eigenvalues()(i).imag() - principal.imag()) / omega);
+    if (!modes->coefficients.col(k).allFinite()) continue;
+    modes->coefficients.col(k).cwiseAbs().maxCoeff(&i);
+    const double m = std::round((modes->eigenvalues(i).imag() - principal.imag()) / omega);
     if (std::abs(m) < 1e6) prior[k] = static_cast<int>(m);
   }
   return prior;
@@ -259,7 +296,8 @@ void ModeMatrixCondition(const std::vector<int>& good, ModeShapes& out) {
 
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<cd>& log_rho, int samples,
-                             const IntegratorOptions& integrator, int threads, bool constant) {
+                             const IntegratorOptions& integrator, int threads, bool constant,
+                             const PeriodicSchurForm* form) {
   const int n = system.states();
   const double T = system.period();
   const double omega = system.omega();
@@ -269,7 +307,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
   std::vector<double> dt(grid.factors.size());
   for (size_t i = 0; i < dt.size(); ++i) dt[i] = grid.times[i + 1] - grid.times[i];
   const std::vector<PeriodicEigenvector> vecs =
-      ComputePeriodicEigenvectors(grid.factors, dt, log_rho, threads);
+      ComputePeriodicEigenvectors(grid.factors, dt, log_rho, threads, form);
   out.samples =
       SampleShapes(system, grid, vecs, log_rho, samples, integrator, threads, constant, out);
   // Demodulate by the prior branch, so the FFT sees spectra near harmonic 0.

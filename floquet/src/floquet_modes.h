@@ -10,6 +10,7 @@
 #include "ltp/core/diagnostic.h"
 #include "ltp/core/periodic_system.h"
 #include "ltp/floquet/floquet.h"
+#include "ltp/floquet/periodic_eigen.h"
 #include "ltp/integrate/detail/segment_grid.h"
 
 namespace ltp::internal {
@@ -29,10 +30,12 @@ struct ModeShapes {
 /// The mode shapes of the multipliers exp(log_rho) of the factors on `grid`, at `samples`
 /// uniform times (grid points where the grid has them, else propagated from the last grid
 /// point with `integrator`; for an A(t) that is `constant`, as powers of one transition). The
-/// periodic eigenvectors use `threads` threads.
+/// periodic eigenvectors use `threads` threads, and `form`, the grid factors' periodic Schur
+/// decomposition, when the caller has it.
 ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& grid,
                              const std::vector<std::complex<double>>& log_rho, int samples,
-                             const IntegratorOptions& integrator, int threads, bool constant);
+                             const IntegratorOptions& integrator, int threads, bool constant,
+                             const PeriodicSchurForm* form = nullptr);
 
 /// Each mode's FloquetMode::forward_whirl from r.mode_fourier (in the system's states), when
 /// `system` declares whirl pairs; the rotor turns the way its rotor speed's sign says (+ when it

@@ -30,9 +30,15 @@ namespace {
 
 using Complex = std::complex<double>;
 
-/// Complex periodic Schur form T_i = V_{i+1}ᴴ Φ_i V_i, all upper triangular.
+/// Complex periodic Schur form T_i = V_{i+1}ᴴ Φ_i V_i, all upper triangular, with
+/// V_i = U_i W_i: U_i the real form's orthogonal Z_i, W_i the identity but for the unitary
+/// 2×2 rotation of each complex pair's block (rotations[b][i] acting on rows and columns
+/// first[b], first[b] + 1). V_i is never formed: V_i y = U_i (W_i y) is two real products.
 struct ComplexSchurForm {
-  std::vector<Eigen::MatrixXcd> t, v;
+  std::vector<Eigen::MatrixXcd> t;
+  const std::vector<Eigen::MatrixXd>* u = nullptr;
+  std::vector<int> first;
+  std::vector<std::vector<Eigen::Matrix2cd>> rotations;
 };
 
 /// Splits every 2×2 block of R_{K−1}. With w_0 an eigenvector of the block's product
@@ -44,11 +50,8 @@ bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::
   const int k = static_cast<int>(r.size());
   const int n = static_cast<int>(r[0].rows());
   s.t.resize(k);
-  s.v.resize(k);
-  for (int i = 0; i < k; ++i) {
-    s.t[i] = r[i].cast<Complex>();
-    s.v[i] = u[i].cast<Complex>();
-  }
+  s.u = &u;
+  for (int i = 0; i < k; ++i) s.t[i] = r[i].cast<Complex>();
   std::vector<Eigen::Matrix2cd> w(k);
   for (int p = 0; p + 1 < n; ++p) {
     if (r[k - 1](p + 1, p) == 0.0) continue;
@@ -72,8 +75,9 @@ bool Complexify(const std::vector<Eigen::MatrixXd>& r, const std::vector<Eigen::
       s.t[i].middleCols(p, 2) = (s.t[i].middleCols(p, 2) * w[i]).eval();
       s.t[i].middleRows(p, 2) = (w[(i + 1) % k].adjoint() * s.t[i].middleRows(p, 2)).eval();
       s.t[i](p + 1, p) = 0.0;  // rounding level by construction; the caller's residual checks it
-      s.v[i].middleCols(p, 2) = (s.v[i].middleCols(p, 2) * w[i]).eval();
     }
+    s.first.push_back(p);
+    s.rotations.push_back(w);
     ++p;  // the second row of the block
   }
   return true;
@@ -146,9 +150,9 @@ std::optional<Recurrence> SolveRecurrences(const ComplexSchurForm& s, int j,
   return out;
 }
 
-/// v_i = c_i V_i y_i for every solved mode, stacked and scaled by the largest ||v_i||: one
-/// n × n times n × modes product per segment (what per-mode products would cost, at
-/// matrix–matrix speed).
+/// v_i = c_i V_i y_i for every solved mode, stacked and scaled by the largest ||v_i||: per
+/// segment the pairs' rotations W_i, then one real n × n times n × modes product for each of
+/// the real and imaginary parts (what per-mode products would cost, at matrix–matrix speed).
 void StackEigenvectors(const ComplexSchurForm& s, const std::vector<std::size_t>& modes,
                        const std::vector<Recurrence>& recurrences,
                        std::vector<Eigen::VectorXcd>& out) {
@@ -158,9 +162,15 @@ void StackEigenvectors(const ComplexSchurForm& s, const std::vector<std::size_t>
   std::vector<double> top(count, -std::numeric_limits<double>::infinity());
   std::vector<Eigen::VectorXcd> stacked(count, Eigen::VectorXcd(static_cast<Eigen::Index>(k) * n));
   Eigen::MatrixXcd y(n, count), x(n, count);
+  Eigen::MatrixXd x_re(n, count), x_im(n, count);
   for (int i = 0; i < k; ++i) {
     for (int q = 0; q < count; ++q) y.col(q) = recurrences[q].y.col(i);
-    MultiplyInto(s.v[i], y, x);
+    for (std::size_t b = 0; b < s.first.size(); ++b)
+      y.middleRows(s.first[b], 2) = (s.rotations[b][i] * y.middleRows(s.first[b], 2)).eval();
+    MultiplyInto((*s.u)[i], y.real(), x_re);
+    MultiplyInto((*s.u)[i], y.imag(), x_im);
+    x.real() = x_re;
+    x.imag() = x_im;
     for (int q = 0; q < count; ++q) {
       stacked[q].segment(static_cast<Eigen::Index>(i) * n, n) = x.col(q);
       top[q] = std::max(top[q], recurrences[q].log_c[i].real() + std::log(x.col(q).norm()));
@@ -186,7 +196,8 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
                                                         const std::vector<double>& dt,
                                                         const std::vector<Complex>& log_rho,
                                                         const std::vector<bool>& wanted,
-                                                        int threads) {
+                                                        int threads,
+                                                        const PeriodicSchurForm* form) {
   std::vector<Eigen::VectorXcd> out(log_rho.size());
   if (factors.empty() || factors[0].rows() == 0 ||
       std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
@@ -196,7 +207,12 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
   double period = 0;
   for (double d : dt) period += d;
   // Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i, R_{K−1} quasi-triangular.
-  const PeriodicSchurForm real = PeriodicSchurDecomposition(factors);
+  PeriodicSchurForm computed;
+  if (!form || !form->ok) {
+    computed = PeriodicSchurDecomposition(factors);
+    form = &computed;
+  }
+  const PeriodicSchurForm& real = *form;
   ComplexSchurForm s;
   if (!real.ok || !Complexify(real.t, real.z, s)) return out;
   std::vector<Complex> log_diag(n, 0.0);

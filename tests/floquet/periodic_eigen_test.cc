@@ -471,6 +471,37 @@ TEST_P(PeriodicEigenvectorsRandomTest, CyclicRelationAndEigenvectorOfProduct) {
 INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicEigenvectorsRandomTest,
                          ::testing::Values(1, 3, 8));
 
+// An analysis that has the periodic Schur form already passes it in: the multipliers from the
+// form's diagonal (LogEigenvaluesOf) match the eigenvalue-only route (a different SLICOT job and
+// another formula for log ρ) in the same sorted order, and the vectors are those computed
+// without it, with their cyclic relation at round-off.
+TEST(PeriodicEigenvectorsTest, AGivenSchurFormGivesTheSameMultipliersAndVectors) {
+  Uniform random(909);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < 6; ++i) factors.push_back(random.Matrix(7));
+  const std::vector<double> dt = UnequalSegments(6, 1.5);
+  const PeriodicSchurForm form = PeriodicSchurDecomposition(factors);
+  ASSERT_TRUE(form.ok) << form.message;
+  const LogEigenvalues from_form = LogEigenvaluesOf(form);
+  const LogEigenvalues eigenvalue_only = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(from_form.ok && eigenvalue_only.ok);
+  ASSERT_EQ(from_form.log_values.size(), eigenvalue_only.log_values.size());
+  for (std::size_t j = 0; j < from_form.log_values.size(); ++j)
+    EXPECT_LT(std::abs(from_form.log_values[j] - eigenvalue_only.log_values[j]), 1e-12) << j;
+  const std::vector<PeriodicEigenvector> given =
+      ComputePeriodicEigenvectors(factors, dt, from_form.log_values, 1, &form);
+  const std::vector<PeriodicEigenvector> own =
+      ComputePeriodicEigenvectors(factors, dt, from_form.log_values, 2);
+  for (std::size_t j = 0; j < given.size(); ++j) {
+    EXPECT_EQ(given[j].method, PeriodicEigenvectorMethod::kSchur) << j;
+    EXPECT_LT(given[j].residual, 1e-12) << j;
+    EXPECT_LT(CyclicResidual(factors, dt, from_form.log_values[j], given[j]), 1e-12) << j;
+    for (std::size_t i = 0; i < given[j].v.size(); ++i)
+      EXPECT_LT((given[j].v[i] - own[j].v[i]).norm(), 1e-13) << j << ", " << i;
+  }
+  EXPECT_FALSE(LogEigenvaluesOf(PeriodicSchurForm{}).ok);
+}
+
 TEST(PeriodicEigenvectorsTest, SixHundredDecadesMatchClosedForm) {
   // Same construction as MultipliersSpanningSixHundredDecades: v_i = Q_i e_j exactly.
   const Eigen::Vector4d lambda(0.1, -5.0, -300.0, -1400.0);

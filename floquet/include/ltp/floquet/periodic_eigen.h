@@ -47,6 +47,11 @@ struct PeriodicSchurForm {
 };
 PeriodicSchurForm PeriodicSchurDecomposition(const std::vector<Eigen::MatrixXd>& factors);
 
+/// The form's log ρ sorted as PeriodicSchurLogEigenvalues sorts its own (ok and message copied):
+/// the multipliers of an analysis that needs the form for its mode shapes anyway, without a
+/// second periodic QZ of the same factors.
+LogEigenvalues LogEigenvaluesOf(const PeriodicSchurForm& form);
+
 /// The same from the formed product with a plain eigen-solver (single shot), for comparison:
 /// inaccurate for every |ρ| below about eps · max|ρ|.
 LogEigenvalues SingleShotLogEigenvalues(const Eigen::MatrixXd& product);
@@ -71,9 +76,11 @@ struct PeriodicEigenvector {
   double residual = 0;              ///< max_i ||Φ_i v_i − σ_i v_{i+1}|| / (||Φ_i|| + |σ_i|)
   PeriodicEigenvectorMethod method = PeriodicEigenvectorMethod::kInverseIteration;
 };
-/// `threads`: OpenMP threads over the modes.
+/// `threads`: OpenMP threads over the modes. `form`: the periodic Schur decomposition of these
+/// factors when the caller has it (ok); otherwise it is computed here.
 std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
-    const std::vector<std::complex<double>>& log_rho, int threads = 1);
+    const std::vector<std::complex<double>>& log_rho, int threads = 1,
+    const PeriodicSchurForm* form = nullptr);
 
 }  // namespace ltp
