@@ -9,7 +9,16 @@
 
 namespace ltp {
 
-Scene MakeLinScene(const LinOperatingPoint& op) {
+std::shared_ptr<const Mbc3Result> Mbc3OrNull(const LinOperatingPoint& op) {
+  try {
+    return std::make_shared<const Mbc3Result>(Mbc3(op));
+  } catch (const InputError&) {
+    return nullptr;  // blade channels not recognised: the files' coordinates
+  }
+}
+
+Scene MakeLinScene(const LinOperatingPoint& op, std::shared_ptr<const Mbc3Result> mbc) {
+  if (!mbc) mbc = Mbc3OrNull(op);
   Scene scene;
   std::string names, paths;
   for (const std::string& f : op.files) {
@@ -27,12 +36,7 @@ Scene MakeLinScene(const LinOperatingPoint& op) {
   // trigonometric interpolation, which is exact for A(ψ) within the resolved harmonics where
   // the hold is O(Δψ²), in multi-blade coordinates when MBC applies: an isotropic rotor is
   // time-invariant there, so its samples are equal and any interpolation of them exact.
-  bool mbc_applies = false;
-  try {
-    mbc_applies = Mbc3(op).applicable;
-  } catch (const InputError&) {
-    mbc_applies = false;  // blade channels not recognised: the files' coordinates
-  }
+  const bool mbc_applies = mbc && mbc->applicable;
   scene.parameters = {
       {"trig", 1,
        "1: trigonometric interpolation through the samples (default); 0: each sample held over "
@@ -40,7 +44,7 @@ Scene MakeLinScene(const LinOperatingPoint& op) {
       {"mbc", mbc_applies ? 1.0 : 0.0,
        "1: multi-blade coordinates (MBC3, N >= 3 blades; the default when they apply); 0: the "
        "files' coordinates"}};
-  scene.build = [op](const ParameterMap& p) {
+  scene.build = [op, mbc](const ParameterMap& p) {
     auto flag = [&](const char* name) {
       const double v = p.at(name);
       if (v != 0 && v != 1)
@@ -51,8 +55,9 @@ Scene MakeLinScene(const LinOperatingPoint& op) {
     const SampleInterpolation interpolation =
         flag("trig") ? SampleInterpolation::kTrigonometric : SampleInterpolation::kNearestConstant;
     if (!flag("mbc")) return BuildLinSystem(op, interpolation);
-    const Mbc3Result mbc = Mbc3(op);
-    return BuildLinSystem(InMultiBladeCoordinates(op, mbc), interpolation);
+    if (!mbc)
+      return BuildLinSystem(InMultiBladeCoordinates(op, Mbc3(op)), interpolation);  // throws
+    return BuildLinSystem(InMultiBladeCoordinates(op, *mbc), interpolation);
   };
   return scene;
 }

@@ -13,13 +13,15 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
                            const std::vector<std::string>& assignments) {
   if (names.empty()) throw InputError("no scene given");
   std::optional<LinOperatingPoint> op;
+  std::shared_ptr<const Mbc3Result> mbc;  // one MBC3 of the files for every model built of them
   Scene scene;
   if (names.size() > 1 && !LooksLikeLinInput(names.front()))
     throw InputError("unexpected argument '" + names[1] + "' after scene '" + names.front() +
                      "': only OpenFAST .lin input takes several files");
   if (names.size() > 1 || LooksLikeLinInput(names.front())) {
     op = ReadLinOperatingPoint(names);
-    scene = MakeLinScene(*op);
+    mbc = Mbc3OrNull(*op);
+    scene = MakeLinScene(*op, mbc);
   } else {
     scene = LoadScene(names.front());
   }
@@ -28,9 +30,8 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
   ParameterMap parameters = scene.Resolve(overrides);
   PeriodicSystem system = scene.build(parameters);
   std::vector<Diagnostic> diagnostics;
-  if (op)  // the caveats of the coordinates actually analysed
-    diagnostics =
-        LinCaveats(parameters.at("mbc") == 1 ? InMultiBladeCoordinates(*op, Mbc3(*op)) : *op);
+  if (op)  // the caveats of the coordinates actually analysed (the build threw without an MBC3)
+    diagnostics = LinCaveats(parameters.at("mbc") == 1 ? InMultiBladeCoordinates(*op, *mbc) : *op);
   std::vector<PeriodicSystem> alternatives;
   if (op) {
     ParameterMap other = parameters;
@@ -40,12 +41,7 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
     // only in what the samples miss — and alias differently: a 1P blade term is harmonic 1 in
     // blade coordinates but 0 and ±3 in MBC, where three azimuths fold it onto a constant
     // that both interpolations share (docs/sampled-models.md).
-    std::optional<Mbc3Result> mbc;  // none without blade states: both coordinates are the files'
-    try {
-      mbc = Mbc3(*op);
-    } catch (const InputError&) {
-      mbc.reset();
-    }
+    // No MBC3 without recognised blade states: both coordinates are then the files'.
     if (mbc && mbc->applicable && mbc->blades >= 3) {
       other = parameters;
       other.at("mbc") = 1 - other.at("mbc");
