@@ -209,8 +209,9 @@ struct FloquetResult {
   /// for integrators that carry no local errors).
   ErrorEstimateMethod error_estimate_method = ErrorEstimateMethod::kRefinedRun;
   int segments = 0;  ///< K actually used
-  /// K of the grid the first run chose (the error estimate's refined run re-cuts it into
-  /// `segments`): a starting grid, FloquetOptions::initial_segments, for a similar system.
+  /// A starting grid, FloquetOptions::initial_segments, for a similar system: K of the grid the
+  /// first run chose (the error estimate's refined run re-cuts it into `segments`), halved while
+  /// its factors' conditions say merged pairs would still be within the limit.
   int grid_segments = 0;
   std::vector<double> segment_times;  ///< t_0 = 0 < t_1 < … < t_K = T
   std::vector<FloquetMode> modes;     ///< sorted by frequency (|Im λ|), then Re λ
