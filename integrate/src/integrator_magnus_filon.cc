@@ -67,7 +67,10 @@ struct MagnusFilonIntegrator::Split {
 
   struct Generators {
     double h = 0;
-    std::vector<Matrix> terms;  // G_q = G1_q + G2_q at q + 2H (G1_q = 0 for |q| > H)
+    /// G_q = G1_q + G2_q (G1_q = 0 for |q| > H), column q + 2H holding G_q's n² entries: a
+    /// step's Ω = Σ_q e^{jqΩt} G_q is then one matrix–vector product (13 scaled sums of
+    /// 250 × 250 matrices per step were 6 % of a 250-state analysis).
+    Matrix stacked;
   };
   std::mutex mutex;  // guards `generators`: one thread forms a step length's, the others wait
   std::vector<std::shared_ptr<const Generators>> generators;  // most recent last
@@ -281,9 +284,11 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
               g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
         }
     }
-  // One matrix per frequency: a step's Ω is then 4H + 1 scaled sums, not 6H + 2.
+  // One matrix per frequency: a step's Ω is then 4H + 1 terms, not 6H + 2.
   for (int m = -H; m <= H; ++m) second[m + 2 * H] += first[m + H];
-  return Generators{h, std::move(second)};
+  Matrix stacked(static_cast<Eigen::Index>(n) * n, 4 * H + 1);
+  for (int q = 0; q <= 4 * H; ++q) stacked.col(q) = second[q].reshaped();
+  return Generators{h, std::move(stacked)};
 }
 
 MagnusFilonIntegrator::MagnusFilonIntegrator(const PeriodicSystem& system)
@@ -296,6 +301,7 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
   Split& s = *split_;
   const int n = system_.states(), H = s.harmonics;
   Matrix z = Matrix::Identity(n, n), next(n, n), w(n, n), step(n, n);
+  Eigen::VectorXcd phases(4 * H + 1);
   last_pass_steps_ = 0;
   const double period = system_.period();
   for (size_t p = 0; p + 1 < points.size(); ++p) {
@@ -310,11 +316,12 @@ Eigen::MatrixXd MagnusFilonIntegrator::Run(const std::vector<double>& points, in
     const Eigen::VectorXcd decay = (s.lambda * h).array().exp();
     for (long k = 0; k < steps; ++k) {
       const double t = t0 + k * h;  // not a running sum: no drift over many steps
-      w = g.terms[2 * H];
+      phases(2 * H) = 1.0;
       for (int q = 1; q <= 2 * H; ++q) {
-        const Complex phase = std::polar(1.0, q * s.omega * t);
-        w += phase * g.terms[2 * H + q] + std::conj(phase) * g.terms[2 * H - q];
+        phases(2 * H + q) = std::polar(1.0, q * s.omega * t);
+        phases(2 * H - q) = std::conj(phases(2 * H + q));
       }
+      MultiplyInto(g.stacked, phases, Eigen::Map<Matrix>(w.data(), w.size(), 1));
       ExpInto(w, step);
       MultiplyInto(step, z, next);
       z = decay.asDiagonal() * next;
