@@ -202,21 +202,24 @@ std::vector<Eigen::MatrixXcd> SampleShapes(const PeriodicSystem& system, const S
 }
 
 // Harmonics −H … H of every entry of ξ (FFT), H = S/2 − 1: the Nyquist bin is dropped (its
-// sign is ambiguous).
-std::vector<Eigen::MatrixXcd> FourierCoefficients(const std::vector<Eigen::MatrixXcd>& xi) {
+// sign is ambiguous). The n² transforms run on `threads` threads.
+std::vector<Eigen::MatrixXcd> FourierCoefficients(const std::vector<Eigen::MatrixXcd>& xi,
+                                                  int threads) {
   const int samples = static_cast<int>(xi.size());
   const int n = static_cast<int>(xi[0].rows());
   const int H = samples / 2 - 1;
-  Eigen::FFT<double> fft;
   std::vector<Eigen::MatrixXcd> coef(2 * H + 1, Eigen::MatrixXcd::Zero(n, n));
-  std::vector<cd> in(samples), out(samples);
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < n; ++k) {
+#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
+  for (int k = 0; k < n; ++k) {
+    Eigen::FFT<double> fft;
+    std::vector<cd> in(samples), out(samples);
+    for (int i = 0; i < n; ++i) {
       for (int s = 0; s < samples; ++s) in[s] = xi[s](i, k);
       fft.fwd(out, in);  // out[j] = Σ_s in[s] e^{-2πj js/S}
       for (int v = -H; v <= H; ++v)
         coef[v + H](i, k) = out[(v + samples) % samples] / double(samples);
     }
+  }
   return coef;
 }
 
@@ -266,27 +269,32 @@ double ChooseBranch(int k, int prior, cd log_rho, double T, double omega, double
 // every t). An SVD per sample was a fifth of a 60-state analysis. Then the eigenvalue
 // condition numbers κ_k = ||x_k|| ||y_k|| with x_k = ξ_k(t)/||ξ_k(t)|| and y_k the k-th row of
 // Ξ(t)⁻¹ (left eigenvector scaled so that y_k x_k = 1), at that best t. Modes whose shape
-// could not be computed are left out (κ = ∞).
-void ModeMatrixCondition(const std::vector<int>& good, ModeShapes& out) {
+// could not be computed are left out (κ = ∞). The sample times' conditions are measured on
+// `threads` threads.
+void ModeMatrixCondition(const std::vector<int>& good, int threads, ModeShapes& out) {
   const int n = static_cast<int>(out.modes.size());
   const int samples = static_cast<int>(out.samples.size());
   out.condition = kInf;
   out.kappa.assign(n, kInf);
   if (good.empty()) return;  // every cyclic solve failed: no mode matrix (and no condition)
-  Eigen::MatrixXcd best_xi;
-  for (int s = 0; s < samples; s += std::max(1, samples / 16)) {
+  auto normalised = [&](int s) {
     Eigen::MatrixXcd x(n, good.size());
     for (size_t j = 0; j < good.size(); ++j) {
       x.col(j) = out.samples[s].col(good[j]);
       const double norm = x.col(j).norm();
       if (norm > 0) x.col(j) /= norm;
     }
-    const double c = ConditionNumber(x);
-    if (c < out.condition || best_xi.size() == 0) {
-      out.condition = c;
-      best_xi = x;
-    }
-  }
+    return x;
+  };
+  const int stride = std::max(1, samples / 16), measured = (samples + stride - 1) / stride;
+  std::vector<double> conditions(measured);
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
+  for (int m = 0; m < measured; ++m) conditions[m] = ConditionNumber(normalised(m * stride));
+  int best = 0;  // the first of the smallest, as a serial scan finds it
+  for (int m = 1; m < measured; ++m)
+    if (conditions[m] < conditions[best]) best = m;
+  out.condition = conditions[best];
+  const Eigen::MatrixXcd best_xi = normalised(best * stride);
   const Eigen::MatrixXcd left = best_xi.completeOrthogonalDecomposition().pseudoInverse();
   for (size_t j = 0; j < good.size(); ++j)
     out.kappa[good[j]] = std::isfinite(out.condition) ? left.row(j).norm() : kInf;
@@ -315,7 +323,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
   for (int s = 0; s < samples; ++s)
     for (int k = 0; k < n; ++k)
       out.samples[s].col(k) *= std::polar(1.0, -prior[k] * omega * out.sample_times[s]);
-  out.fourier = FourierCoefficients(out.samples);
+  out.fourier = FourierCoefficients(out.samples, threads);
   out.harmonics = samples / 2 - 1;
   double worst_tail = 0;
   std::vector<int> good, failed;
@@ -340,7 +348,7 @@ ModeShapes ComputeModeShapes(const PeriodicSystem& system, const SegmentGrid& gr
       << " samples; raise --mode-samples";
     out.diagnostics.push_back({DiagnosticCode::kModesUnderResolved, Severity::kWarning, s.str()});
   }
-  ModeMatrixCondition(good, out);
+  ModeMatrixCondition(good, threads, out);
   for (int k : failed) {
     std::ostringstream s;
     s << "the periodic mode shape of the exponent " << (log_rho[k] / T).real()
