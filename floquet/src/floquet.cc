@@ -986,7 +986,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   // 2. Multipliers as logarithms.
   std::string fallback;
   bool single_shot = false;
-  const std::optional<PeriodicSchurForm> form = FormForTheShapes(grid, options, n);
+  std::optional<PeriodicSchurForm> form = FormForTheShapes(grid, options, n);
   LogEigenvalues eig = form ? LogEigenvaluesOf(*form)
                             : MultiplierLogs(grid, options.multipliers, n, &fallback, &single_shot);
   if (!fallback.empty()) {
@@ -1018,6 +1018,7 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   std::vector<FloquetMode> modes;
   const std::vector<double> kappa =
       ComputeModes(s, grid, eig, samples, constant, form ? &*form : nullptr, progress, modes, r);
+  form.reset();  // 2 K n² numbers, not held while the analysis finishes
   // 5–6. Estimates per exponent, order, rigid-body modes, summary and checks.
   Finish(s, grid, eig, kappa, single_shot && !fallback.empty(), std::move(integration),
          std::move(modes), r);

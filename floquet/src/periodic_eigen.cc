@@ -537,18 +537,22 @@ PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
 
 /// FinishVector for many modes at once: per segment, Φ_i times every mode's v_i in one real
 /// product for each of the real and imaginary parts (one matrix–vector product per mode and
-/// segment was 0.2 s of a 250-state analysis). sigma[q][i] is mode q's σ_i.
+/// segment was 0.2 s of a 250-state analysis). sigma[q][i] is mode q's σ_i. Each stacked
+/// vector is released once split into its blocks (not held twice: 32 MB at 250 states).
 std::vector<PeriodicEigenvector> FinishVectors(const std::vector<Eigen::MatrixXd>& factors,
                                                const std::vector<double>& norms,
                                                const std::vector<std::vector<Complex>>& sigma,
-                                               const std::vector<const Eigen::VectorXcd*>& stacked,
+                                               const std::vector<Eigen::VectorXcd*>& stacked,
                                                int threads) {
   const int k = static_cast<int>(factors.size());
   const Eigen::Index n = factors[0].rows();
   const long count = static_cast<long>(stacked.size());
   std::vector<PeriodicEigenvector> out(stacked.size());
 #pragma omp parallel for schedule(dynamic) num_threads(std::max(threads, 1))
-  for (long q = 0; q < count; ++q) out[q] = Normalised(*stacked[q], k, n);
+  for (long q = 0; q < count; ++q) {
+    out[q] = Normalised(*stacked[q], k, n);
+    *stacked[q] = Eigen::VectorXcd();
+  }
   std::vector<long> finite;  // the modes whose residual is to be measured
   for (long q = 0; q < count; ++q)
     if (out[q].residual != kInf) finite.push_back(q);
@@ -696,10 +700,10 @@ std::vector<PeriodicEigenvector> ComputePeriodicEigenvectors(
       if (a != b && InClusterOf(log_rho[a], log_rho[b])) isolated[a] = false;
   std::vector<char> done(log_rho.size(), 0);  // not vector<bool>: written concurrently
   {
-    const std::vector<Eigen::VectorXcd> schur =
+    std::vector<Eigen::VectorXcd> schur =
         internal::SchurPeriodicEigenvectors(factors, dt, log_rho, isolated, threads, form);
     std::vector<std::size_t> delivered;
-    std::vector<const Eigen::VectorXcd*> stacked;
+    std::vector<Eigen::VectorXcd*> stacked;
     std::vector<std::vector<Complex>> sigma;
     for (std::size_t m = 0; m < log_rho.size(); ++m) {
       if (schur[m].size() == 0) continue;

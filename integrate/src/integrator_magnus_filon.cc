@@ -287,7 +287,10 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
   // One matrix per frequency: a step's Ω is then 4H + 1 terms, not 6H + 2.
   for (int m = -H; m <= H; ++m) second[m + 2 * H] += first[m + H];
   Matrix stacked(static_cast<Eigen::Index>(n) * n, 4 * H + 1);
-  for (int q = 0; q <= 4 * H; ++q) stacked.col(q) = second[q].reshaped();
+  for (int q = 0; q <= 4 * H; ++q) {
+    stacked.col(q) = second[q].reshaped();
+    second[q] = Matrix();  // one term at a time: the generators are not held twice
+  }
   return Generators{h, std::move(stacked)};
 }
 
