@@ -397,7 +397,7 @@ internal::SegmentGridOptions GridOptionsFor(const FloquetOptions& options, int s
 // points then starts the other models of a sampled set (no modes) at what their factors, which
 // grow alike, need (250-state turbine set: K = 32 for 32 samples with every factor's condition
 // below 6.9 in the mean's modes; the other models start at 16, and their periodic Schur forms
-// and steps halve: 12.7 → 11.8 s of CPU).
+// halve: the whole call 11.3–12.0 → 10.2–10.3 s of CPU side by side, docs/model-sizes.md).
 int StartingGrid(const internal::SegmentGrid& grid, double max_condition) {
   int k = static_cast<int>(grid.factors.size());
   double condition = std::max(grid.worst_condition, 1.0);
