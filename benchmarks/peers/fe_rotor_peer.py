@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Peer for benchmarks/model_size_benchmark: the finite-element rotor of tests/python/fe_rotor.py
 (SI units, 8 (elements + 1) states), its largest Floquet exponent at tolerance 1e-10 either
-  ltp    ltp.System.from_second_order + ltp.floquet (defaults: balanced states, refined-run
-         estimate, mode shapes), or
+  ltp    ltp.System.from_second_order + ltp.floquet (defaults: balanced states, the error
+         estimate `auto` picks — Taylor series' order-p product here —, mode shapes), or
   scipy  what one writes without ltp: solve_ivp DOP853 (rtol 1e-10, atol 1e-13) of the n x n
          matrix ODE Phi' = A(t) Phi over one period, vectorised numpy right-hand side, then
          numpy.linalg.eigvals of the monodromy (no estimate, no mode shapes).
