@@ -22,9 +22,8 @@ using cd = std::complex<double>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The mean's eigenvalues and ξ_k(0) in its eigenbasis (coefficients column k). A real mean
-// (every real system) through LAPACK's real eigensolver, whose basis holds a complex pair's
-// v = a + jb as columns a, b: x = c_a a + c_b b = ½(c_a − j c_b) v + ½(c_a + j c_b) v̄
-// (Eigen's complex eigensolver took 0.2 s at 250 states); a complex one through Eigen.
+// (every real system) through LAPACK's real eigensolver and its real basis (Eigen's complex
+// eigensolver took 0.2 s at 250 states); a complex one through Eigen.
 struct MeanModes {
   Eigen::VectorXcd eigenvalues;
   Eigen::MatrixXcd coefficients;
@@ -34,21 +33,8 @@ std::optional<MeanModes> ModesOfTheMean(const Eigen::MatrixXcd& mean, const Eige
   if (mean.imag().isZero(0)) {
     const std::optional<RealEigenbasis> basis = RealEigenDecomposition(mean.real());
     if (!basis) return std::nullopt;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(basis->w);
-    const Eigen::MatrixXd re = lu.solve(xi0.real()), im = lu.solve(xi0.imag());
     out.eigenvalues = basis->eigenvalues;
-    out.coefficients.resize(re.rows(), re.cols());
-    for (Eigen::Index j = 0; j < re.rows(); ++j) {
-      if (out.eigenvalues(j).imag() == 0 || j + 1 == re.rows()) {
-        out.coefficients.row(j) = re.row(j) + cd(0, 1) * im.row(j);
-        continue;
-      }
-      const Eigen::RowVectorXcd a = re.row(j) + cd(0, 1) * im.row(j);
-      const Eigen::RowVectorXcd b = re.row(j + 1) + cd(0, 1) * im.row(j + 1);
-      out.coefficients.row(j) = 0.5 * (a - cd(0, 1) * b);
-      out.coefficients.row(j + 1) = 0.5 * (a + cd(0, 1) * b);
-      ++j;
-    }
+    out.coefficients = EigenbasisCoefficients(*basis, xi0);
     return out;
   }
   Eigen::ComplexEigenSolver<Eigen::MatrixXcd> eig(mean);

@@ -519,25 +519,10 @@ PeriodicEigenvector Normalised(const Eigen::VectorXcd& stacked, int k, Eigen::In
   return out;
 }
 
-/// The normalised vector with its cyclic residual max_i ||Φ_i v_i − σ_i v_{i+1}|| / RowScale.
-PeriodicEigenvector FinishVector(const std::vector<Eigen::MatrixXd>& factors,
-                                 const std::vector<double>& norms,
-                                 const std::vector<Complex>& sigma,
-                                 const Eigen::VectorXcd& stacked) {
-  const int k = static_cast<int>(factors.size());
-  PeriodicEigenvector out = Normalised(stacked, k, factors[0].rows());
-  if (out.residual == kInf) return out;
-  for (int i = 0; i < k; ++i) {
-    const double r = (factors[i] * out.v[i] - sigma[i] * out.v[(i + 1) % k]).norm() /
-                     RowScale(norms[i], sigma[i]);
-    out.residual = std::max(out.residual, r);
-  }
-  return out;
-}
-
-/// FinishVector for many modes at once: per segment, Φ_i times every mode's v_i in one real
-/// product for each of the real and imaginary parts (one matrix–vector product per mode and
-/// segment was 0.2 s of a 250-state analysis). sigma[q][i] is mode q's σ_i. Each stacked
+/// The normalised vectors with their cyclic residuals max_i ||Φ_i v_i − σ_i v_{i+1}|| /
+/// RowScale: per segment, Φ_i times every mode's v_i in one real product for each of the real
+/// and imaginary parts (one matrix–vector product per mode and segment was 0.2 s of a 250-state
+/// analysis). sigma[q][i] is mode q's σ_i. Each stacked
 /// vector is released once split into its blocks (not held twice: 32 MB at 250 states).
 std::vector<PeriodicEigenvector> FinishVectors(const std::vector<Eigen::MatrixXd>& factors,
                                                const std::vector<double>& norms,
@@ -652,7 +637,7 @@ void InverseIterationVectors(const std::vector<Eigen::MatrixXd>& factors,
       } else {
         refined.setConstant(size, Complex(kInf, 0.0));
       }
-      result[member] = FinishVector(factors, norms, sys->sigma, refined);
+      result[member] = std::move(FinishVectors(factors, norms, {sys->sigma}, {&refined}, 1)[0]);
     }
   }
 }

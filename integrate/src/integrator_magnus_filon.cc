@@ -83,21 +83,6 @@ struct MagnusFilonIntegrator::Split {
 
 namespace {
 
-// The complex eigenvectors from the real basis: a pair's columns a, b give v = a + jb for the
-// eigenvalue with Im > 0 and its conjugate for the next.
-Matrix ComplexEigenvectors(const RealEigenbasis& basis) {
-  const Eigen::Index n = basis.w.rows();
-  Matrix v = basis.w.cast<std::complex<double>>();
-  for (Eigen::Index j = 0; j + 1 < n; ++j) {
-    if (basis.eigenvalues(j).imag() == 0) continue;
-    const Eigen::VectorXcd pair = basis.w.col(j) + std::complex<double>(0, 1) * basis.w.col(j + 1);
-    v.col(j) = pair;
-    v.col(j + 1) = pair.conjugate();
-    ++j;
-  }
-  return v;
-}
-
 std::shared_ptr<MagnusFilonIntegrator::Split> MakeSplit(const PeriodicSystem& system,
                                                         const FourierMatrix& a) {
   auto split = std::make_shared<MagnusFilonIntegrator::Split>();

@@ -44,6 +44,33 @@ std::optional<RealEigenbasis> RealEigenDecomposition(const Eigen::MatrixXd& a) {
   return out;
 }
 
+Eigen::MatrixXcd ComplexEigenvectors(const RealEigenbasis& basis) {
+  const Eigen::Index n = basis.w.rows();
+  Eigen::MatrixXcd v = basis.w.cast<std::complex<double>>();
+  for (Eigen::Index j = 0; j + 1 < n; ++j) {
+    if (basis.eigenvalues(j).imag() == 0) continue;
+    v.col(j) = basis.w.col(j) + std::complex<double>(0, 1) * basis.w.col(j + 1);
+    v.col(j + 1) = v.col(j).conjugate();
+    ++j;
+  }
+  return v;
+}
+
+Eigen::MatrixXcd EigenbasisCoefficients(const RealEigenbasis& basis, const Eigen::MatrixXcd& x) {
+  const std::complex<double> i(0, 1);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(basis.w);
+  Eigen::MatrixXcd c = lu.solve(x.real()).cast<std::complex<double>>();
+  c += i * lu.solve(x.imag()).cast<std::complex<double>>();
+  for (Eigen::Index j = 0; j + 1 < c.rows(); ++j) {
+    if (basis.eigenvalues(j).imag() == 0) continue;
+    const Eigen::RowVectorXcd a = c.row(j), b = c.row(j + 1);
+    c.row(j) = 0.5 * (a - i * b);
+    c.row(j + 1) = 0.5 * (a + i * b);
+    ++j;
+  }
+  return c;
+}
+
 std::optional<Eigen::VectorXcd> RealEigenvalues(const Eigen::MatrixXd& a) {
   if (a.rows() == 0 || a.cols() != a.rows() || !a.allFinite()) return std::nullopt;
 #ifndef LTP_EIGEN_ONLY

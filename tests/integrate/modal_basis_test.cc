@@ -38,9 +38,15 @@ TEST(RealEigenDecomposition, PairsAreAPlusJBAndTheEigenvaluesMatchAnotherSolver)
       ++pairs;
     }
     EXPECT_LT((a * v - lambda * v).norm(), 1e-12 * a.norm() * v.norm()) << j;
+    EXPECT_EQ(ComplexEigenvectors(*basis).col(j), v) << j;
     if (lambda.imag() != 0) ++j;
   }
   EXPECT_GT(pairs, 3);
+  // Coefficients in the complex eigenbasis: V c = x for a complex x.
+  const Eigen::MatrixXcd x =
+      Eigen::MatrixXcd::NullaryExpr(30, 4, [&] { return std::complex<double>(g(rng), g(rng)); });
+  const Eigen::MatrixXcd c = EigenbasisCoefficients(*basis, x);
+  EXPECT_LT((ComplexEigenvectors(*basis) * c - x).norm(), 1e-11 * x.norm());
   const auto values = RealEigenvalues(a);
   ASSERT_TRUE(values.has_value());
   const Eigen::VectorXcd reference = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();

@@ -18,6 +18,14 @@ struct RealEigenbasis {
 /// Empty when A is not square and finite or the eigensolver fails.
 std::optional<RealEigenbasis> RealEigenDecomposition(const Eigen::MatrixXd& a);
 
+/// The complex eigenvectors V of the basis, in its order: a pair's columns a, b become
+/// v = a + jb and v̄ = a − jb.
+Eigen::MatrixXcd ComplexEigenvectors(const RealEigenbasis& basis);
+
+/// V⁻¹ x without forming V: W⁻¹ x by a real LU, then a pair's rows c_a, c_b become
+/// ½(c_a − j c_b) (for v) and ½(c_a + j c_b) (for v̄), since x = c_a a + c_b b.
+Eigen::MatrixXcd EigenbasisCoefficients(const RealEigenbasis& basis, const Eigen::MatrixXcd& x);
+
 /// A real matrix's eigenvalues alone (LAPACK dgeev without vectors: at 250 states a tenth of
 /// Eigen's complex eigensolver); empty when A is not square and finite or the solver fails.
 std::optional<Eigen::VectorXcd> RealEigenvalues(const Eigen::MatrixXd& a);
