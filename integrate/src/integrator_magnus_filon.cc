@@ -22,6 +22,7 @@
 #include "ltp/integrate/detail/modal_basis.h"
 #include "ltp/integrate/integrator_choice.h"
 #include "oscillatory_integrals.h"
+#include "task_threads.h"
 
 namespace ltp::internal {
 
@@ -200,13 +201,16 @@ Eigen::Matrix<bool, -1, -1> MagnusFilonIntegrator::Split::PairsAboveRoundOff(dou
 
 MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(double h) const {
   const int n = static_cast<int>(lambda.size()), H = harmonics;
-  std::vector<Matrix> first, second;  // G1_m at m + H, G2_p at p + 2H
-  std::vector<Matrix> d, x, qr, yr;
-  std::vector<Eigen::Matrix<bool, -1, -1>> regular;
-  for (int m = -H; m <= H; ++m) {
-    d.push_back(Divisor(m));
-    const Matrix& dm = d.back();
-    const Matrix& qm = q[m + H];
+  // The analysis's other threads wait for these generators (every segment needs them first):
+  // the harmonics', then the frequencies', terms are shared out to them.
+  const int threads = TeamThreads();
+  std::vector<Matrix> first(2 * H + 1), d = first, x = first, qr = first, yr = first;  // at m + H
+  std::vector<Eigen::Matrix<bool, -1, -1>> regular(2 * H + 1);
+  RunTasks(2 * H + 1, threads, [&](int a) {
+    const int m = a - H;
+    d[a] = Divisor(m);
+    const Matrix& dm = d[a];
+    const Matrix& qm = q[a];
     Matrix g1(n, n), xm = Matrix::Zero(n, n), qrm = Matrix::Zero(n, n), yrm = Matrix::Zero(n, n);
     Eigen::Matrix<bool, -1, -1> reg(n, n);
     for (int j = 0; j < n; ++j)
@@ -220,41 +224,39 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
           yrm(i, j) = qm(i, j) * phi;
         }
       }
-    first.push_back(std::move(g1));
-    x.push_back(std::move(xm));
-    qr.push_back(std::move(qrm));
-    yr.push_back(std::move(yrm));
-    regular.push_back(std::move(reg));
-  }
+    first[a] = std::move(g1);
+    x[a] = std::move(xm);
+    qr[a] = std::move(qrm);
+    yr[a] = std::move(yrm);
+    regular[a] = std::move(reg);
+  });
   const Eigen::Matrix<bool, -1, -1> pairs = PairsAboveRoundOff(h);
-  std::vector<Matrix> cross(4 * H + 1, Matrix::Zero(n, n)), rest = cross;
-  Matrix product(n, n);
-  for (int m = -H; m <= H; ++m)
-    for (int mp = -H; mp <= H; ++mp) {
-      if (!pairs(m + H, mp + H)) continue;
-      const int p = m + mp + 2 * H, a = m + H, b = mp + H;
+  Matrix stacked(static_cast<Eigen::Index>(n) * n, 4 * H + 1);
+  // G_p = G2_p (+ G1_p for |p| ≤ H), p = m + m', one task per frequency, the middle (most
+  // pairs) first.
+  RunTasks(4 * H + 1, threads, [&](int task) {
+    const int p = task % 2 == 0 ? task / 2 : -(task + 1) / 2;
+    Matrix cross = Matrix::Zero(n, n), rest = Matrix::Zero(n, n), product(n, n);
+    for (int m = std::max(-H, p - H); m <= std::min(H, p + H); ++m) {
+      const int a = m + H, b = p - m + H;
+      if (!pairs(a, b)) continue;
       MultiplyInto(qr[a], x[b], product);
-      cross[p] += product;
+      cross += product;
       MultiplyInto(x[a], qr[b], product);
-      cross[p] -= product;
+      cross -= product;
       MultiplyInto(x[a], yr[b], product);
-      rest[p] += product;
+      rest += product;
       MultiplyInto(yr[a], x[b], product);
-      rest[p] -= product;
+      rest -= product;
     }
-  for (int p = -2 * H; p <= 2 * H; ++p) {
     const Matrix dp = Divisor(p);
-    Matrix g2 = 0.5 * h * rest[p + 2 * H];
+    Matrix g2 = 0.5 * h * rest;
     for (int k = 0; k < n; ++k)
-      for (int i = 0; i < n; ++i) g2(i, k) += 0.5 * h * Phi1(dp(i, k) * h) * cross[p + 2 * H](i, k);
-    second.push_back(std::move(g2));
-  }
-  // The resonant paths: a resonant (any b), then a regular with b resonant.
-  for (int m = -H; m <= H; ++m)
-    for (int mp = -H; mp <= H; ++mp) {
-      if (!pairs(m + H, mp + H)) continue;
-      const int a = m + H, b = mp + H;
-      Matrix& g2 = second[m + mp + 2 * H];
+      for (int i = 0; i < n; ++i) g2(i, k) += 0.5 * h * Phi1(dp(i, k) * h) * cross(i, k);
+    // The resonant paths: a resonant (any b), then a regular with b resonant.
+    for (int m = std::max(-H, p - H); m <= std::min(H, p + H); ++m) {
+      const int a = m + H, b = p - m + H;
+      if (!pairs(a, b)) continue;
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           if (regular[a](i, j)) continue;
@@ -269,13 +271,10 @@ MagnusFilonIntegrator::Split::Generators MagnusFilonIntegrator::Split::Form(doub
               g2(i, k) += q[a](i, j) * q[b](j, k) * PathWeight(d[a](i, j), d[b](j, k), h);
         }
     }
-  // One matrix per frequency: a step's Ω is then 4H + 1 terms, not 6H + 2.
-  for (int m = -H; m <= H; ++m) second[m + 2 * H] += first[m + H];
-  Matrix stacked(static_cast<Eigen::Index>(n) * n, 4 * H + 1);
-  for (int q = 0; q <= 4 * H; ++q) {
-    stacked.col(q) = second[q].reshaped();
-    second[q] = Matrix();  // one term at a time: the generators are not held twice
-  }
+    // One matrix per frequency: a step's Ω is then 4H + 1 terms, not 6H + 2.
+    if (std::abs(p) <= H) g2 += first[p + H];
+    stacked.col(p + 2 * H) = g2.reshaped();
+  });
   return Generators{h, std::move(stacked)};
 }
 
