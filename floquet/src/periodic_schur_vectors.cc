@@ -190,29 +190,16 @@ double LogDistance(Complex a, Complex b) {
   return std::hypot(a.real() - b.real(), std::remainder(a.imag() - b.imag(), 2 * std::numbers::pi));
 }
 
-}  // namespace
-
-std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
-                                                        const std::vector<double>& dt,
-                                                        const std::vector<Complex>& log_rho,
-                                                        const std::vector<bool>& wanted,
-                                                        int threads,
-                                                        const PeriodicSchurForm* form) {
+/// The vectors at the boundaries of `real`'s factors, whose lengths are `dt`.
+std::vector<Eigen::VectorXcd> VectorsOfTheForm(const PeriodicSchurForm& real,
+                                               const std::vector<double>& dt,
+                                               const std::vector<Complex>& log_rho,
+                                               const std::vector<bool>& wanted, int threads) {
   std::vector<Eigen::VectorXcd> out(log_rho.size());
-  if (factors.empty() || factors[0].rows() == 0 ||
-      std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
-    return out;
-  const int k = static_cast<int>(factors.size());
-  const int n = static_cast<int>(factors[0].rows());
+  const int k = static_cast<int>(real.t.size());
+  const int n = static_cast<int>(real.t[0].rows());
   double period = 0;
   for (double d : dt) period += d;
-  // Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i, R_{K−1} quasi-triangular.
-  PeriodicSchurForm computed;
-  if (!form || !form->ok) {
-    computed = PeriodicSchurDecomposition(factors);
-    form = &computed;
-  }
-  const PeriodicSchurForm& real = *form;
   ComplexSchurForm s;
   if (!real.ok || !Complexify(real.t, real.z, s)) return out;
   std::vector<Complex> log_diag(n, 0.0);
@@ -254,6 +241,76 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
   }
   StackEigenvectors(s, solved, recurrences, out);
   return out;
+}
+
+// Vectors at every boundary of `factors` from those at every r-th (`grouped`, from the form of
+// the factors multiplied in groups of r): v_{j+1} = Φ_j v_j / σ_j inside each group, for all
+// modes at once. Each step's error is at most the factor's condition times the vector's, and a
+// group's conditions multiply to within the grid's limit (StartingGrid); the caller's cyclic
+// residual check sees the rest.
+std::vector<Eigen::VectorXcd> FillTheGroups(const std::vector<Eigen::MatrixXd>& factors,
+                                            const std::vector<double>& dt,
+                                            const std::vector<Complex>& log_rho, int r,
+                                            std::vector<Eigen::VectorXcd> grouped) {
+  const int k = static_cast<int>(factors.size());
+  const Eigen::Index n = factors[0].rows();
+  double period = 0;
+  for (double d : dt) period += d;
+  std::vector<std::size_t> modes;
+  for (std::size_t m = 0; m < grouped.size(); ++m)
+    if (grouped[m].size() > 0) modes.push_back(m);
+  const Eigen::Index count = static_cast<Eigen::Index>(modes.size());
+  std::vector<Eigen::VectorXcd> out(log_rho.size());
+  for (std::size_t m : modes) out[m].resize(static_cast<Eigen::Index>(k) * n);
+  Eigen::MatrixXcd x(n, count);
+  Eigen::MatrixXd next_re(n, count), next_im(n, count);
+  for (int j = 0; j < k; ++j) {
+    if (j % r == 0) {
+      for (Eigen::Index q = 0; q < count; ++q)
+        x.col(q) = grouped[modes[q]].segment(static_cast<Eigen::Index>(j / r) * n, n);
+    } else {
+      MultiplyInto(factors[j - 1], x.real(), next_re);
+      MultiplyInto(factors[j - 1], x.imag(), next_im);
+      x.real() = next_re;
+      x.imag() = next_im;
+      for (Eigen::Index q = 0; q < count; ++q)
+        x.col(q) *= std::exp(-log_rho[modes[q]] * (dt[j - 1] / period));
+    }
+    for (Eigen::Index q = 0; q < count; ++q)
+      out[modes[q]].segment(static_cast<Eigen::Index>(j) * n, n) = x.col(q);
+  }
+  for (std::size_t m : modes)
+    if (!out[m].allFinite()) out[m] = Eigen::VectorXcd();  // the caller's other route
+  return out;
+}
+
+}  // namespace
+
+std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen::MatrixXd>& factors,
+                                                        const std::vector<double>& dt,
+                                                        const std::vector<Complex>& log_rho,
+                                                        const std::vector<bool>& wanted,
+                                                        int threads,
+                                                        const PeriodicSchurForm* form) {
+  std::vector<Eigen::VectorXcd> out(log_rho.size());
+  if (factors.empty() || factors[0].rows() == 0 ||
+      std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
+    return out;
+  const int k = static_cast<int>(factors.size());
+  // Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i, R_{K−1} quasi-triangular.
+  PeriodicSchurForm computed;
+  const int groups = form && form->ok ? static_cast<int>(form->t.size()) : 0;
+  if (groups == 0 || k % groups != 0) {
+    computed = PeriodicSchurDecomposition(factors);
+    if (!computed.ok) return out;
+    return VectorsOfTheForm(computed, dt, log_rho, wanted, threads);
+  }
+  if (groups == k) return VectorsOfTheForm(*form, dt, log_rho, wanted, threads);
+  const int r = k / groups;
+  std::vector<double> group_dt(groups, 0.0);
+  for (int j = 0; j < k; ++j) group_dt[j / r] += dt[j];
+  return FillTheGroups(factors, dt, log_rho, r,
+                       VectorsOfTheForm(*form, group_dt, log_rho, wanted, threads));
 }
 
 }  // namespace ltp::internal

@@ -15,7 +15,9 @@ namespace ltp::internal {
 /// Schur form, no diagonal entry matching log_rho[m], a repeated multiplier, or non-finite
 /// numbers): the caller falls back to another method, and checks every returned vector's
 /// cyclic residual itself. The modes' recurrences run on `threads` threads (OpenMP). `form`:
-/// the factors' periodic Schur decomposition when the caller has it, else computed here.
+/// the factors' periodic Schur decomposition when the caller has it, else computed here — or
+/// that of the factors multiplied in consecutive groups of r (K/r factors, Φ_{r−1}⋯Φ_0 first):
+/// the vectors at the groups' ends come from it, those inside by the factors.
 std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(
     const std::vector<Eigen::MatrixXd>& factors, const std::vector<double>& dt,
     const std::vector<std::complex<double>>& log_rho, const std::vector<bool>& wanted,

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "ltp/core/error.h"
+#include "ltp/core/exponent_match.h"
 #include "support/compare.h"
 
 namespace ltp {
@@ -500,6 +501,80 @@ TEST(PeriodicEigenvectorsTest, AGivenSchurFormGivesTheSameMultipliersAndVectors)
       EXPECT_LT((given[j].v[i] - own[j].v[i]).norm(), 1e-13) << j << ", " << i;
   }
   EXPECT_FALSE(LogEigenvaluesOf(PeriodicSchurForm{}).ok);
+}
+
+// The factors multiplied in consecutive groups of r, Φ_{r−1}⋯Φ_0 first.
+std::vector<Eigen::MatrixXd> Grouped(const std::vector<Eigen::MatrixXd>& factors, int r) {
+  std::vector<Eigen::MatrixXd> groups;
+  for (std::size_t i = 0; i < factors.size(); i += r) {
+    Eigen::MatrixXd product = Eigen::MatrixXd::Identity(factors[i].rows(), factors[i].cols());
+    for (std::size_t j = i; j < i + r; ++j) product = factors[j] * product;
+    groups.push_back(product);
+  }
+  return groups;
+}
+
+Eigen::VectorXcd Stacked(const PeriodicEigenvector& vec) {
+  Eigen::VectorXcd all(static_cast<Eigen::Index>(vec.v.size()) * vec.v[0].size());
+  for (std::size_t i = 0; i < vec.v.size(); ++i)
+    all.segment(static_cast<Eigen::Index>(i) * vec.v[0].size(), vec.v[0].size()) = vec.v[i];
+  return all;
+}
+
+// An analysis whose grid was cut finer than its factors need takes the Schur form of the
+// factors in groups (floquet.cc, FactorsPerForm); the vectors inside a group then come from the
+// factors. They must be the vectors at every factor all the same: against the route through the
+// form of every factor, and by their own cyclic residual.
+TEST(PeriodicEigenvectorsTest, AFormOfGroupedFactorsGivesTheVectorsAtEveryFactor) {
+  Uniform random(913);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < 6; ++i) factors.push_back(random.Matrix(7));
+  const std::vector<double> dt = UnequalSegments(6, 1.5);
+  const LogEigenvalues every = PeriodicSchurLogEigenvalues(factors);
+  ASSERT_TRUE(every.ok);
+  const std::vector<PeriodicEigenvector> own =
+      ComputePeriodicEigenvectors(factors, dt, every.log_values, 1);
+  for (int r : {2, 3, 6}) {
+    const PeriodicSchurForm form = PeriodicSchurDecomposition(Grouped(factors, r));
+    ASSERT_TRUE(form.ok) << form.message;
+    const LogEigenvalues grouped = LogEigenvaluesOf(form);
+    ASSERT_TRUE(grouped.ok);
+    const std::vector<double> distance =
+        ltp::MatchExponents(every.log_values, grouped.log_values, 2 * std::numbers::pi);
+    for (double d : distance) EXPECT_LT(d, 1e-12) << "groups of " << r;
+    const std::vector<PeriodicEigenvector> given =
+        ComputePeriodicEigenvectors(factors, dt, every.log_values, 2, &form);
+    for (std::size_t j = 0; j < given.size(); ++j) {
+      EXPECT_EQ(given[j].method, PeriodicEigenvectorMethod::kSchur) << j << ", groups of " << r;
+      EXPECT_LT(CyclicResidual(factors, dt, every.log_values[j], given[j]), 1e-12) << j;
+      EXPECT_TRUE(VectorsEqualUpToPhase(Stacked(given[j]), Stacked(own[j]), 1e-12))
+          << j << ", groups of " << r;
+    }
+  }
+}
+
+// The same through six hundred decades (the closed form of the test below, v_i = Q_i e_j at
+// every factor): the factors inside a group carry the vectors without losing the fast-decaying
+// ones. An analysis groups factors only while a group stays within the condition limit (1000,
+// StartingGrid): here K = 1000, so groups of 2 and 4 span e^{2.8} and e^{5.6}. (At e^{14}, beyond
+// the limit, the −1400 mode's residual is 5e-10 and it goes to the inverse iteration instead.)
+TEST(PeriodicEigenvectorsTest, GroupedFormKeepsSixHundredDecadesAtEveryFactor) {
+  const Eigen::Vector4d lambda(0.1, -5.0, -300.0, -1400.0);
+  const StiffProduct p = MakeStiffProduct(lambda, 1000, 1.0, 77);
+  const std::vector<Complex> log_rho = {0.1, -5.0, -300.0, -1400.0};
+  for (int r : {2, 4}) {
+    const PeriodicSchurForm form = PeriodicSchurDecomposition(Grouped(p.factors, r));
+    ASSERT_TRUE(form.ok) << form.message;
+    const std::vector<PeriodicEigenvector> vecs =
+        ComputePeriodicEigenvectors(p.factors, p.dt, log_rho, 1, &form);
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_EQ(vecs[j].method, PeriodicEigenvectorMethod::kSchur) << j << ", groups of " << r;
+      EXPECT_LT(CyclicResidual(p.factors, p.dt, log_rho[j], vecs[j]), 1e-12) << j;
+      for (int i : {0, 1, r - 1, 501, 999})
+        EXPECT_TRUE(VectorsEqualUpToPhase(vecs[j].v[i], p.q[i].col(j).cast<Complex>(), 1e-10))
+            << "mode " << j << ", factor " << i << ", groups of " << r;
+    }
+  }
 }
 
 TEST(PeriodicEigenvectorsTest, SixHundredDecadesMatchClosedForm) {
