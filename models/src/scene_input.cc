@@ -50,9 +50,16 @@ LoadedScene LoadSceneInput(const std::vector<std::string>& names,
       // projects both on one state space, and in the multi-blade frame the blade-coordinate
       // model is as nearly constant as the analysed one. Held samples are not: T(ψ) turns
       // within each hold.
+      // One constant in its own coordinates (one azimuth) keeps its states and takes only the
+      // other channels: its exponents are then its A's eigenvalues, exact, where its states
+      // carried over would make it periodic (harmonics 0 to ±3 wherever fixed and rotating
+      // states couple) and costly to integrate (250 states from one file: 130 s, nearly all of
+      // it this model).
       PeriodicSystem built = scene.build(other);
+      const FourierMatrix* a = built.fourier_A();
       if (built.form() == PeriodicSystem::Form::kFourier) try {
-          built = TransformedMultiBlade(built, *op, *mbc, parameters.at("mbc") == 1);
+          built = TransformedMultiBlade(built, *op, *mbc, parameters.at("mbc") == 1,
+                                        /*channels_only=*/a && a->max_harmonic() == 0);
         } catch (const InputError&) {
           // not a finite series after all: compared in its own coordinates
         }

@@ -537,7 +537,8 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
 }
 
 PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
-                                     const Mbc3Result& mbc, bool to_multiblade) {
+                                     const Mbc3Result& mbc, bool to_multiblade,
+                                     bool channels_only) {
   if (!mbc.applicable) throw InputError("multi-blade coordinates do not apply to this model");
   const BladeCoordinates states = mbc.state_coordinates;
   const std::vector<int> rate_of = RateOf(op.states);
@@ -547,6 +548,10 @@ PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOper
   // costs O(n²) products and a sparse LU, not three dense n³ ones (250 states: a dense sample
   // was about 10 ms, and the fit takes dozens).
   const PeriodicSystem::MatrixFunction a = [=](double t, Eigen::Ref<MatrixXd> out) {
+    if (channels_only) {
+      out = system.A(t);
+      return;
+    }
     const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
     const Eigen::SparseMatrix<double> t_sparse = x.T.sparseView(), t_dot = x.T_dot.sparseView();
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(t_sparse);
@@ -574,17 +579,22 @@ PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOper
   };
   const bool to = to_multiblade;
   const PeriodicSystem::MatrixFunction b_of = [=](double t, Eigen::Ref<MatrixXd> out) {
+    const MatrixXd given = system.B(t) * channel(inputs, m, omega * t, !to);
+    if (channels_only) {
+      out = given;
+      return;
+    }
     const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
-    const MatrixXd given = system.B(t);
-    out = to ? MatrixXd(x.T.partialPivLu().solve(given * channel(inputs, m, omega * t, false)))
-             : MatrixXd(x.T * given * channel(inputs, m, omega * t, true));
+    out = to ? MatrixXd(x.T.partialPivLu().solve(given)) : MatrixXd(x.T * given);
   };
   const PeriodicSystem::MatrixFunction c_of = [=](double t, Eigen::Ref<MatrixXd> out) {
+    const MatrixXd given = channel(outputs, p, omega * t, to) * system.C(t);
+    if (channels_only) {
+      out = given;
+      return;
+    }
     const MbcStateTransform x = MbcStateTransformAt(states, rate_of, omega * t, omega, 0);
-    const MatrixXd given = system.C(t);
-    out =
-        to ? MatrixXd(channel(outputs, p, omega * t, true) * given * x.T)
-           : MatrixXd(channel(outputs, p, omega * t, false) * given * x.T.partialPivLu().inverse());
+    out = to ? MatrixXd(given * x.T) : MatrixXd(given * x.T.partialPivLu().inverse());
   };
   const PeriodicSystem::MatrixFunction d_of = [=](double t, Eigen::Ref<MatrixXd> out) {
     out = channel(outputs, p, omega * t, to) * system.D(t) * channel(inputs, m, omega * t, !to);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <complex>
 #include <numbers>
@@ -15,6 +16,8 @@
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
 #include "ltp/models/scene_input.h"
+#include "ltp/openfast/linearization.h"
+#include "ltp/openfast/mbc3.h"
 #include "support/isotropic_rotor_lin.h"
 
 namespace ltp {
@@ -158,6 +161,43 @@ namespace {
 // the other analysis's own estimate for that exponent (the other models run at a looser
 // tolerance than the analysed one). Exponents by hand: distances 0.01 and 0.002, own estimates
 // 1e-3 and 4e-3.
+// One azimuth (OpenFAST run with one linearisation time): both coordinates hold the file's
+// matrices constant, so each model's exponents are its matrix's eigenvalues — the MBC sample's
+// for the analysed model, the file's own for the other coordinates. The other model is analysed
+// in its own coordinates, where it is constant (carried into multi-blade coordinates it was
+// periodic, harmonics 0 to ±3, and took 130 s at 250 states), and the sampling error is the
+// distance between the two spectra (references: Eigen's eigenvalues of the two matrices).
+TEST(ModelError, OneAzimuthComparesTheFilesMatricesInTheirOwnCoordinates) {
+  const auto model = test::MakeIsotropicRotorLin(8, 6, test::EvenAzimuths(1));
+  const std::string dir = test::WriteLinDirectory(model.files, ::testing::TempDir() + "iso-one");
+  const LoadedScene l = LoadSceneInput({dir}, {});
+  ASSERT_EQ(l.model_alternatives.size(), 2u);
+  const FourierMatrix* other = l.model_alternatives[1].fourier_A();
+  ASSERT_NE(other, nullptr);
+  EXPECT_EQ(other->max_harmonic(), 0);  // constant, not carried into the other coordinates
+  const LinOperatingPoint op = ReadLinOperatingPoint({dir});
+  auto eigenvalues = [](const Eigen::MatrixXd& a) {
+    const Eigen::VectorXcd e = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+    return std::vector<std::complex<double>>(e.begin(), e.end());
+  };
+  const auto files = eigenvalues(op.samples[0].A);
+  const auto mbc = eigenvalues(InMultiBladeCoordinates(op, Mbc3(op)).samples[0].A);
+  FloquetResult r = AnalyzeFloquet(l.system);
+  ASSERT_TRUE(r.ok);
+  std::vector<std::complex<double>> exponents;
+  for (const FloquetMode& m : r.modes) exponents.push_back(m.exponent);
+  const double omega = 2 * std::numbers::pi / r.period;
+  EXPECT_LT(MaxExponentMismatch(exponents, mbc, omega), 1e-9);
+  IncludeModelError(l.model_alternatives, FloquetOptions{}, r);
+  ASSERT_TRUE(r.model_error.has_value());
+  const std::vector<double> apart = MatchExponents(mbc, files, omega);
+  const double distance = *std::max_element(apart.begin(), apart.end());
+  ASSERT_GT(distance, 1e-3);  // a snapshot in blade coordinates is not the MBC model
+  // The term adds the other analysis's own estimate (at 1e-7) to the distance.
+  EXPECT_GE(*r.model_error, distance - 1e-9);
+  EXPECT_LE(*r.model_error, distance + 1e-5);
+}
+
 TEST(ModelError, TermCarriesTheOtherAnalysisOwnEstimate) {
   auto mode = [](std::complex<double> lambda, std::optional<double> estimate) {
     FloquetMode m;

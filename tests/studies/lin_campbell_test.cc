@@ -309,10 +309,12 @@ TEST(LinCampbell, ModuleFilterLeavesOutModesCarriedByThatModule) {
   EXPECT_GT(left_out, 0u);
   EXPECT_LT(r.diagram.lines.size(), all.diagram.lines.size());
   ASSERT_TRUE(HasCode(r.diagram.diagnostics, DiagnosticCode::kModulesLeftOut));
-  for (const Diagnostic& d : r.diagram.diagnostics)
-    if (d.code == DiagnosticCode::kModulesLeftOut)
+  for (const Diagnostic& d : r.diagram.diagnostics) {
+    if (d.code == DiagnosticCode::kModulesLeftOut) {
       EXPECT_EQ(d.text.rfind(std::to_string(left_out) + " modes over 3 points left out", 0), 0u)
           << d.text;
+    }
+  }
   LinCampbellOptions bad;
   bad.exclude_modules = {"A D"};
   EXPECT_THROW(ComputeLinCampbell({flat}, bad), InputError);

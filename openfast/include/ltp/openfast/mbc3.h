@@ -175,8 +175,13 @@ LinOperatingPoint InMultiBladeCoordinates(const LinOperatingPoint& op, const Mbc
 /// finitely many harmonics of ψ, so the result is a Fourier series, fitted exactly by FFT.
 /// B, C, D are carried with the states and take the channels of the other coordinates
 /// (u_R = T_u u_NR, y_NR = T_y⁻¹ y_R for the tables MBC transforms), so partial FRFs compare
-/// channel by channel too. `mbc` is Mbc3(op). @throws InputError when MBC does not apply.
+/// channel by channel too. `mbc` is Mbc3(op). `channels_only`: the states stay as they are and
+/// only the inputs and outputs take the other coordinates — for a model constant in its own
+/// states (one azimuth), whose transfer functions are then compared channel by channel while
+/// its A stays constant (its exponents the eigenvalues of A; carried into the other states it
+/// would be periodic and costly to integrate). @throws InputError when MBC does not apply.
 PeriodicSystem TransformedMultiBlade(const PeriodicSystem& system, const LinOperatingPoint& op,
-                                     const Mbc3Result& mbc, bool to_multiblade);
+                                     const Mbc3Result& mbc, bool to_multiblade,
+                                     bool channels_only = false);
 
 }  // namespace ltp
