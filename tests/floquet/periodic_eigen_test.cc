@@ -472,14 +472,20 @@ TEST_P(PeriodicEigenvectorsRandomTest, CyclicRelationAndEigenvectorOfProduct) {
 INSTANTIATE_TEST_SUITE_P(PeriodicRandomFactors, PeriodicEigenvectorsRandomTest,
                          ::testing::Values(1, 3, 8));
 
+// Six random 7 × 7 factors: isolated multipliers of every kind, vectors by the Schur route.
+std::vector<Eigen::MatrixXd> SixRandomFactors(std::uint32_t seed) {
+  Uniform random(seed);
+  std::vector<Eigen::MatrixXd> factors;
+  for (int i = 0; i < 6; ++i) factors.push_back(random.Matrix(7));
+  return factors;
+}
+
 // An analysis that has the periodic Schur form already passes it in: the multipliers from the
 // form's diagonal (LogEigenvaluesOf) match the eigenvalue-only route (a different SLICOT job and
 // another formula for log ρ) in the same sorted order, and the vectors are those computed
 // without it, with their cyclic relation at round-off.
 TEST(PeriodicEigenvectorsTest, AGivenSchurFormGivesTheSameMultipliersAndVectors) {
-  Uniform random(909);
-  std::vector<Eigen::MatrixXd> factors;
-  for (int i = 0; i < 6; ++i) factors.push_back(random.Matrix(7));
+  const std::vector<Eigen::MatrixXd> factors = SixRandomFactors(909);
   const std::vector<double> dt = UnequalSegments(6, 1.5);
   const PeriodicSchurForm form = PeriodicSchurDecomposition(factors);
   ASSERT_TRUE(form.ok) << form.message;
@@ -526,9 +532,7 @@ Eigen::VectorXcd Stacked(const PeriodicEigenvector& vec) {
 // factors. They must be the vectors at every factor all the same: against the route through the
 // form of every factor, and by their own cyclic residual.
 TEST(PeriodicEigenvectorsTest, AFormOfGroupedFactorsGivesTheVectorsAtEveryFactor) {
-  Uniform random(913);
-  std::vector<Eigen::MatrixXd> factors;
-  for (int i = 0; i < 6; ++i) factors.push_back(random.Matrix(7));
+  const std::vector<Eigen::MatrixXd> factors = SixRandomFactors(913);
   const std::vector<double> dt = UnequalSegments(6, 1.5);
   const LogEigenvalues every = PeriodicSchurLogEigenvalues(factors);
   ASSERT_TRUE(every.ok);
