@@ -435,12 +435,6 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid, const Floqu
   return s.str();
 }
 
-// Step 2: the multipliers as logarithms. Periodic Schur (SLICOT MB03BD) rarely fails to
-// converge (INFO > 0: nearly triple multipliers of isotropic rotors); a failed analysis would
-// then cost the user the whole result, so it falls back: first the same method on the product
-// regrouped into pairs (another problem for the iteration, equally accurate while the pairs'
-// condition stays moderate), then the eigenvalues of the formed product (single shot), whose
-// lost accuracy the error estimate then carries (SingleShotError). `note` says which was used.
 // The factors multiplied in consecutive groups of `r` (Φ_{r−1}⋯Φ_0 first; a shorter last group
 // when r does not divide K).
 std::vector<Eigen::MatrixXd> GroupedFactors(const std::vector<Eigen::MatrixXd>& factors, int r) {
@@ -454,6 +448,12 @@ std::vector<Eigen::MatrixXd> GroupedFactors(const std::vector<Eigen::MatrixXd>& 
   return groups;
 }
 
+// Step 2: the multipliers as logarithms. Periodic Schur (SLICOT MB03BD) rarely fails to
+// converge (INFO > 0: nearly triple multipliers of isotropic rotors); a failed analysis would
+// then cost the user the whole result, so it falls back: first the same method on the product
+// regrouped into pairs (another problem for the iteration, equally accurate while the pairs'
+// condition stays moderate), then the eigenvalues of the formed product (single shot), whose
+// lost accuracy the error estimate then carries (SingleShotError). `note` says which was used.
 LogEigenvalues MultiplierLogs(const internal::SegmentGrid& grid, MultiplierMethod method, int n,
                               std::string* note = nullptr, bool* single_shot = nullptr) {
   auto formed = [&] {
