@@ -3,7 +3,9 @@
 // pieces): Higham's scaling and squaring with Padé degrees 3…13 (SIAM J. Matrix Anal. Appl. 26
 // (2005); the algorithm of Eigen's MatrixExponential), its products in BLAS (MultiplyInto) and
 // its solve in LAPACK, where Eigen's own kernels are compiled for baseline x86-64
-// (docs/magnus-filon.md, "Where the time goes").
+// (docs/magnus-filon.md, "Where the time goes"). A real matrix is balanced first (a diagonal
+// of powers of two, exact) where that lowers its 1-norm enough to save squarings, as Al-Mohy
+// and Higham's 2009 algorithm does.
 #include <Eigen/Core>
 
 namespace ltp::internal {
