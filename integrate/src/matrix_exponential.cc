@@ -194,6 +194,14 @@ void ExpInto(const Eigen::Ref<const Eigen::MatrixXd>& a, Eigen::Ref<Eigen::Matri
   Exp<double>(a, out, /*balance=*/true);
 }
 
+bool ExpBalances() {
+#ifdef LTP_EIGEN_ONLY
+  return false;
+#else
+  return true;
+#endif
+}
+
 void ExpInto(const Eigen::Ref<const Eigen::MatrixXcd>& a, Eigen::Ref<Eigen::MatrixXcd> out) {
   Exp<std::complex<double>>(a, out, /*balance=*/false);
 }

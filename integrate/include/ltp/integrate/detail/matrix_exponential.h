@@ -14,4 +14,8 @@ namespace ltp::internal {
 void ExpInto(const Eigen::Ref<const Eigen::MatrixXd>& a, Eigen::Ref<Eigen::MatrixXd> out);
 void ExpInto(const Eigen::Ref<const Eigen::MatrixXcd>& a, Eigen::Ref<Eigen::MatrixXcd> out);
 
+/// Whether ExpInto balances (it does through LAPACK; the Eigen-only build of the sanitizers
+/// scales and squares the matrix as given).
+bool ExpBalances();
+
 }  // namespace ltp::internal
