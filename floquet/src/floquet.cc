@@ -574,17 +574,16 @@ std::vector<double> RefineForErrorEstimate(const PeriodicSystem& system,
 // as well — one periodic QZ instead of an eigenvalue-only one and then the same with vectors
 // (250-state turbine set: the eigenvalue-only QZ took 0.27 s beside the form's 0.66 s). Empty
 // otherwise, or when the QZ did not converge: MultiplierLogs and its fallbacks then take over.
-// Of the factors in groups of `group` (FactorsPerForm): the vectors inside a group come from the
-// factors (SchurPeriodicEigenvectors).
+// `factors` are `grid`'s, or those in the groups FactorsPerForm allows: the vectors inside a
+// group then come from the grid's factors (SchurPeriodicEigenvectors).
 std::optional<PeriodicSchurForm> FormForTheShapes(const internal::SegmentGrid& grid,
-                                                  const FloquetOptions& options, int n, int group) {
+                                                  const std::vector<Eigen::MatrixXd>& factors,
+                                                  const FloquetOptions& options, int n) {
   const bool final_grid = !options.estimate_error || !grid.local_error_effects.empty();
   if (!options.compute_modes || n == 0 || !final_grid ||
       options.multipliers != MultiplierMethod::kPeriodicSchur)
     return std::nullopt;
-  PeriodicSchurForm form = group > 1
-                               ? PeriodicSchurDecomposition(GroupedFactors(grid.factors, group))
-                               : PeriodicSchurDecomposition(grid.factors);
+  PeriodicSchurForm form = PeriodicSchurDecomposition(factors);
   if (!form.ok) return std::nullopt;
   return form;
 }
@@ -1016,17 +1015,15 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   std::string fallback;
   bool single_shot = false;
   const int group = FactorsPerForm(grid, grid_options, options.max_factor_condition);
-  std::optional<PeriodicSchurForm> form = FormForTheShapes(grid, options, n, group);
-  LogEigenvalues eig;
-  if (form) {
-    eig = LogEigenvaluesOf(*form);
-  } else if (group > 1) {
-    internal::SegmentGrid grouped;
-    grouped.factors = GroupedFactors(grid.factors, group);
-    eig = MultiplierLogs(grouped, options.multipliers, n, &fallback, &single_shot);
-  } else {
-    eig = MultiplierLogs(grid, options.multipliers, n, &fallback, &single_shot);
-  }
+  internal::SegmentGrid grouped;  // the factors the multipliers come from, when grouped
+  if (group > 1) grouped.factors = GroupedFactors(grid.factors, group);
+  const internal::SegmentGrid& multiplier_grid = group > 1 ? grouped : grid;
+  std::optional<PeriodicSchurForm> form =
+      FormForTheShapes(grid, multiplier_grid.factors, options, n);
+  LogEigenvalues eig =
+      form ? LogEigenvaluesOf(*form)
+           : MultiplierLogs(multiplier_grid, options.multipliers, n, &fallback, &single_shot);
+  grouped.factors.clear();  // K/group n² numbers, not held while the analysis goes on
   if (!fallback.empty()) {
     r.diagnostics.push_back({single_shot ? DiagnosticCode::kMultipliersSingleShot
                                          : DiagnosticCode::kMultipliersRegrouped,

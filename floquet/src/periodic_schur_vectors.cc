@@ -292,19 +292,14 @@ std::vector<Eigen::VectorXcd> SchurPeriodicEigenvectors(const std::vector<Eigen:
                                                         const std::vector<bool>& wanted,
                                                         int threads,
                                                         const PeriodicSchurForm* form) {
-  std::vector<Eigen::VectorXcd> out(log_rho.size());
   if (factors.empty() || factors[0].rows() == 0 ||
       std::none_of(wanted.begin(), wanted.end(), [](bool b) { return b; }))
-    return out;
+    return std::vector<Eigen::VectorXcd>(log_rho.size());
   const int k = static_cast<int>(factors.size());
   // Real periodic Schur form in time order: R_i = U_{i+1}ᵀ Φ_i U_i, R_{K−1} quasi-triangular.
-  PeriodicSchurForm computed;
   const int groups = form && form->ok ? static_cast<int>(form->t.size()) : 0;
-  if (groups == 0 || k % groups != 0) {
-    computed = PeriodicSchurDecomposition(factors);
-    if (!computed.ok) return out;
-    return VectorsOfTheForm(computed, dt, log_rho, wanted, threads);
-  }
+  if (groups == 0 || k % groups != 0)
+    return VectorsOfTheForm(PeriodicSchurDecomposition(factors), dt, log_rho, wanted, threads);
   if (groups == k) return VectorsOfTheForm(*form, dt, log_rho, wanted, threads);
   const int r = k / groups;
   std::vector<double> group_dt(groups, 0.0);
