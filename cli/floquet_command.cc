@@ -12,6 +12,7 @@
 #include "format.h"
 #include "ltp/core/error.h"
 #include "ltp/core/exponent_match.h"
+#include "ltp/floquet/estimate_source.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/hill/hill.h"
@@ -170,6 +171,7 @@ json MonodromyJson(const LoadedScene& l, const FloquetArgs& args, const FloquetR
           {"verdict", ToString(r.verdict)},
           {"error_estimate", JsonNumber(r.error_estimate)},
           {"error_estimate_method", ToString(r.error_estimate_method)},
+          {"estimate_source", EstimateSource(r.error_estimate_method, r.integrator)},
           {"model_error", r.model_error ? JsonNumber(*r.model_error) : json(nullptr)},
           {"modes_below", ReductionJson(r.reduction)},
           {"liouville_residual", JsonNumber(r.liouville_residual)},
@@ -283,18 +285,8 @@ void PrintMonodromy(const FloquetArgs& args, const FloquetResult& r) {
   std::cout << "\n  max Re λ = " << Num(r.max_real_exponent, 8) << " 1/s  →  "
             << VerdictText(r.verdict) << "   (max log|ρ| = " << Num(r.max_log_abs_multiplier, 8)
             << ")\n"
-            << "  error estimate " << Num(r.error_estimate, 2) << " 1/s on every exponent "
-            << (r.error_estimate_method != ErrorEstimateMethod::kLocalErrors
-                    ? "(difference to the run at the requested tolerance on\n  another grid; the "
-                      "numbers shown come from the refined, 100× tighter run)\n"
-                : r.integrator == IntegratorType::kTaylor
-                    ? "(difference to the product of the\n  steps' order-p sums; the numbers "
-                      "shown come from order p + 4 on the same steps)\n"
-                : r.integrator == IntegratorType::kBulirschStoer
-                    ? "(its steps' local errors, one\n  extrapolation order lower, carried to the "
-                      "exponents; the numbers come from that one run)\n"
-                    : "(difference to the pass at half\n  the steps that chose them; the numbers "
-                      "shown come from the finer pass)\n");
+            << "  error estimate " << Num(r.error_estimate, 2) << " 1/s on every exponent\n  ("
+            << EstimateSource(r.error_estimate_method, r.integrator) << ")\n";
   if (r.model_error)
     std::cout << "  of which the model's sampling error is " << Num(*r.model_error, 2)
               << " 1/s (other models of the same samples; docs/sampled-models.md)\n";
@@ -565,10 +557,8 @@ Command AddFloquetCommand(CLI::App& app) {
   cmd->add_option(
          "--estimate", args.estimate,
          "auto (local-errors for Taylor series and Magnus, refined-run otherwise) | refined-run "
-         "(a second run at --tol/100 gives the numbers) | local-errors (one run: "
-         "Bulirsch–Stoer's steps' local errors carried to the exponents; Taylor series' "
-         "order-p product beside the reported order p + 4; Magnus methods' pass at half "
-         "the steps beside the reported one)")
+         "(a second run at --tol/100 gives the numbers) | local-errors (one run: " +
+             std::string(kLocalErrorSources) + ")")
       ->capture_default_str();
   cmd->add_option("--mode-samples", args.options.mode_samples,
                   "samples of the mode shapes per period (power of two; 0 = automatic)")

@@ -15,6 +15,7 @@
 #include "command.h"
 #include "format.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/estimate_source.h"
 #include "ltp/openfast/linearization.h"
 #include "ltp/openfast/mbc3.h"
 #include "ltp/studies/sampled_floquet.h"
@@ -211,20 +212,15 @@ void PrintTable(const Mbc3Result& r) {
 }
 
 void PrintFloquet(const SampledFloquetResult& f, const Mbc3Result& r) {
+  const std::string_view brief =
+      EstimateSourceBrief(f.trig.error_estimate_method, f.trig.integrator);
   std::cout << "\nFloquet analysis of the same " << f.samples
             << (f.samples == 1 ? " sample (" : " samples (") << f.coordinates << ", not averaged)\n"
             << "  hold: each sample held over the nearest azimuths (exact product of exponentials, "
             << f.hold.segments << " segments)\n"
             << "  trig: trigonometric interpolation through the samples ("
             << ToString(f.trig.integrator) << ", error estimate " << Num(f.trig.error_estimate, 2)
-            << " 1/s"
-            << (f.trig.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-                    ? (f.trig.integrator == IntegratorType::kTaylor ? " from its order-p product"
-                       : f.trig.integrator == IntegratorType::kBulirschStoer
-                           ? " from its steps' local errors"
-                           : " from its pass at half the steps")
-                    : "")
-            << ")\n";
+            << " 1/s" << (brief.empty() ? "" : " ") << brief << ")\n";
   if (!f.ok) {
     std::cout << "  FAILED\n";
     for (const Diagnostic& d : f.hold.diagnostics) std::cout << "    - hold: " << d.text << "\n";

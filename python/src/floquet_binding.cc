@@ -12,6 +12,7 @@
 #include "diagnostic_properties.h"
 #include "floquet_modes.h"
 #include "ltp/core/error.h"
+#include "ltp/floquet/estimate_source.h"
 #include "ltp/floquet/floquet.h"
 #include "ltp/floquet/model_error.h"
 #include "ltp/floquet/periodic_eigen.h"
@@ -68,6 +69,11 @@ void BindFloquetRun(py::class_<FloquetResult>& r) {
 }
 
 // The verdict and the error estimate it rests on.
+const std::string kEstimateMethodDoc =
+    "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
+    "'local-errors' (one run: " +
+    std::string(kLocalErrorSources) + ")";
+
 void BindFloquetVerdict(py::class_<FloquetResult>& r) {
   r.def_readonly("max_real_exponent", &FloquetResult::max_real_exponent,
                  "max Re λ (1/s), rigid-body modes excluded")
@@ -97,10 +103,14 @@ void BindFloquetVerdict(py::class_<FloquetResult>& r) {
       .def_property_readonly(
           "error_estimate_method",
           [](const FloquetResult& f) { return std::string(ToString(f.error_estimate_method)); },
-          "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
-          "'local-errors' (one run: Bulirsch–Stoer's local errors carried to the exponents, "
-          "Taylor series' order-p product beside the reported order p + 4, or the Magnus "
-          "methods' pass at half the steps beside the reported one)")
+          kEstimateMethodDoc.c_str())
+      .def_property_readonly(
+          "estimate_source",
+          [](const FloquetResult& f) {
+            return std::string(EstimateSource(f.error_estimate_method, f.integrator));
+          },
+          "how this result's error estimate was made and where its numbers come from, in words "
+          "(as `ltp floquet` prints it)")
       .def_readonly("liouville_residual", &FloquetResult::liouville_residual,
                     "|Σ log|ρ_k| − ∫ tr A dt| / max(1, |∫ tr A dt|); None when the analysis "
                     "stopped before its multipliers");
@@ -318,9 +328,8 @@ the same options and defaults.
   multipliers   'schur' (periodic Schur of the segment factors) | 'single-shot'
   estimate      'auto' ('local-errors' for Taylor series and Magnus, 'refined-run' otherwise) |
                 'refined-run' (a second run at tol/100 gives the numbers) | 'local-errors'
-                (one run: Bulirsch–Stoer's steps' local errors carried to the exponents;
-                Taylor series' order-p product beside the reported order p + 4; Magnus
-                methods' pass at half the steps beside the reported one)
+                (one run: what each integrator carries, FloquetResult.error_estimate_method
+                says; FloquetResult.estimate_source says how a result's estimate was made)
   mode_samples  samples of the mode shapes per period (power of two; 0 = automatic)
   threads       OpenMP threads (0 = all cores; one for a system behind Python callables)
   max_work      refuse (ltp.InputError, with the estimate) an analysis that would need more CPU

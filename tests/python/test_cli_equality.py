@@ -73,6 +73,7 @@ def test_floquet_equals_cli(ltp_cli, scene, parameters, options):
     assert j["integrator"] == r.integrator and j["segments"] == r.segments
     assert j["multiplier_method"] == r.multiplier_method and j["period"] == r.period
     assert j["error_estimate_method"] == r.error_estimate_method
+    assert j["estimate_source"] == r.estimate_source
     for key in ["max_real_exponent", "max_log_abs_multiplier", "error_estimate", "liouville_residual",
                 "mode_condition", "model_error"]:
         assert same(j[key], getattr(r, key)), key
