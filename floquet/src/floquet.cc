@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iomanip>
 #include <limits>
 #include <numbers>
@@ -611,20 +612,32 @@ int FactorsPerForm(const internal::SegmentGrid& grid,
   return static_cast<int>(grid.factors.size()) / StartingGrid(grid, max_condition);
 }
 
-// Step 3 when the integrator carried its local errors: the exponents of the factors moved by
-// them, Φ_i + δΦ_i — the period integrated as a run held only to the tolerance would be
-// (Bulirsch–Stoer one extrapolation order lower, to first order; Taylor series at order p; the
-// Magnus methods at half the steps) — against the factors' own (docs/local-error-estimate.md).
-// Returns each exponent's difference (∞ when the moved factors' eigenvalues failed).
-// The moved factors are grouped as the multipliers' form was (`group`, FactorsPerForm).
-std::vector<double> LocalErrorEstimate(const internal::SegmentGrid& grid, const LogEigenvalues& eig,
-                                       MultiplierMethod method, double period, int group,
-                                       FloquetResult& r) {
+// The eigenvalues of the factors moved by their carried local errors, Φ_i + δΦ_i — the period
+// integrated as a run held only to the tolerance would be (Bulirsch–Stoer one extrapolation
+// order lower, to first order; Taylor series at order p; the Magnus methods at half the steps)
+// — grouped as the multipliers' form was (`group`, FactorsPerForm). They do not depend on that
+// form, so the analysis finds them beside it on another thread.
+LogEigenvalues MovedFactorLogs(const internal::SegmentGrid& grid, MultiplierMethod method,
+                               int group, int n) {
   internal::SegmentGrid moved;
-  moved.factors = grid.factors;
-  for (size_t i = 0; i < moved.factors.size(); ++i) moved.factors[i] += grid.local_error_effects[i];
-  if (group > 1) moved.factors = GroupedFactors(moved.factors, group);
-  const LogEigenvalues moved_eig = MultiplierLogs(moved, method, r.states);
+  const size_t k = grid.factors.size(), r = static_cast<size_t>(std::max(group, 1));
+  Eigen::MatrixXd next(n, n);
+  for (size_t i = 0; i < k; i += r) {
+    Eigen::MatrixXd product = grid.factors[i] + grid.local_error_effects[i];
+    for (size_t j = i + 1; j < std::min(k, i + r); ++j) {
+      internal::MultiplyInto(grid.factors[j] + grid.local_error_effects[j], product, next);
+      product.swap(next);
+    }
+    moved.factors.push_back(std::move(product));
+  }
+  return MultiplierLogs(moved, method, n);
+}
+
+// Step 3 when the integrator carried its local errors: the exponents of the moved factors
+// (MovedFactorLogs) against the factors' own (docs/local-error-estimate.md). Returns each
+// exponent's difference (∞ when the moved factors' eigenvalues failed).
+std::vector<double> LocalErrorEstimate(const LogEigenvalues& eig, const LogEigenvalues& moved_eig,
+                                       double period, FloquetResult& r) {
   if (!moved_eig.ok) {
     r.diagnostics.push_back(
         {DiagnosticCode::kErrorEstimateFailed, Severity::kWarning,
@@ -870,13 +883,13 @@ std::optional<Eigen::MatrixXd> ModalBasisForTheGrid(const Setup& s) {
 }
 
 // Step 3: each exponent's integration error, in eig's order — the carried local errors (the
-// factors grouped as eig's were), or a refined run whose grid and multipliers then replace
-// `grid` and `eig` (zeros without an estimate).
+// moved factors' eigenvalues, `moved_eig`), or a refined run whose grid and multipliers then
+// replace `grid` and `eig` (zeros without an estimate).
 std::vector<double> IntegrationErrors(const Setup& s,
                                       const internal::SegmentGridOptions& grid_options,
                                       const internal::AnalysisProgress& progress, int samples,
-                                      int group, internal::SegmentGrid& grid, LogEigenvalues& eig,
-                                      FloquetResult& r) {
+                                      const LogEigenvalues* moved_eig, internal::SegmentGrid& grid,
+                                      LogEigenvalues& eig, FloquetResult& r) {
   const int n = r.states;
   const FloquetOptions& options = s.options;
   r.error_estimate_method = grid.local_error_effects.empty() ? ErrorEstimateMethod::kRefinedRun
@@ -900,7 +913,7 @@ std::vector<double> IntegrationErrors(const Setup& s,
                        " gets the refined run instead"});
   if (!options.estimate_error || n == 0) return std::vector<double>(n, 0.0);
   return r.error_estimate_method == ErrorEstimateMethod::kLocalErrors
-             ? LocalErrorEstimate(grid, eig, options.multipliers, r.period, group, r)
+             ? LocalErrorEstimate(eig, *moved_eig, r.period, r)
              : RefineForErrorEstimate(s.system, options, RefinedRunOptions(grid_options, progress),
                                       options.compute_modes ? samples : 0, grid, eig, r);
 }
@@ -1021,10 +1034,18 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
     r.elapsed_s = SecondsSince(start);
     return r;
   }
-  // 2. Multipliers as logarithms.
+  // 2. Multipliers as logarithms; beside their form, on another thread, the eigenvalues of the
+  // factors moved by their local errors (step 3): two serial periodic QZ runs that need nothing
+  // of each other (250-state set: 0.1–0.3 s each, in each of its three models).
   std::string fallback;
   bool single_shot = false;
   const int group = FactorsPerForm(grid, grid_options, options.max_factor_condition);
+  const MultiplierMethod method = options.multipliers;
+  std::future<LogEigenvalues> moved;
+  if (options.estimate_error && n > 0 && !grid.local_error_effects.empty())
+    moved =
+        std::async(ThreadsFor(options.threads) > 1 ? std::launch::async : std::launch::deferred,
+                   [&grid, method, group, n] { return MovedFactorLogs(grid, method, group, n); });
   internal::SegmentGrid grouped;  // the factors the multipliers come from, when grouped
   if (group > 1) grouped.factors = GroupedFactors(grid.factors, group);
   const internal::SegmentGrid& multiplier_grid = group > 1 ? grouped : grid;
@@ -1051,9 +1072,16 @@ FloquetResult AnalyzeFloquet(const PeriodicSystem& given, const FloquetOptions& 
   }
   r.grid_segments = grid_options.refine ? StartingGrid(grid, options.max_factor_condition)
                                         : static_cast<int>(grid.factors.size());
-  // 3. Error estimate (after a refined run the numbers come from it).
-  std::vector<double> integration =
-      IntegrationErrors(s, grid_options, progress, samples, group, grid, eig, r);
+  // 3. Error estimate (after a refined run the numbers come from it). A fallback to the
+  // single-shot multipliers moves the factors' eigenvalues the same way.
+  std::optional<LogEigenvalues> moved_eig;
+  if (moved.valid()) {
+    moved_eig = moved.get();
+    if (options.multipliers != method)
+      moved_eig = MovedFactorLogs(grid, options.multipliers, group, n);
+  }
+  std::vector<double> integration = IntegrationErrors(
+      s, grid_options, progress, samples, moved_eig ? &*moved_eig : nullptr, grid, eig, r);
   r.segments = static_cast<int>(grid.factors.size());
   r.segment_times = grid.times;
   r.monodromy = grid.factors.empty() ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n))

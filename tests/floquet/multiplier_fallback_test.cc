@@ -77,5 +77,24 @@ TEST(MultiplierFallback, SingleShotOnAStiffSystemIsUndecidedNotWrong) {
   EXPECT_NE(r.verdict, StabilityVerdict::kUnstable);
 }
 
+// With carried local errors (Taylor series) the moved factors' eigenvalues are found beside the
+// multipliers' form; after a fallback to single shot they are found the same way again. One
+// thread, so that the injected failures fall on the multipliers' route, not on the moved one.
+TEST(MultiplierFallback, LocalErrorsFollowTheSingleShotFallback) {
+  FloquetOptions o;
+  o.segments = 8;
+  o.threads = 1;
+  o.compute_modes = false;  // the multipliers from MultiplierLogs, where the failures are injected
+  o.integrator.type = IntegratorType::kTaylor;
+  internal::InjectPeriodicSchurFailures(2);
+  const FloquetResult r = AnalyzeFloquet(Constant(1.3, 0.05, 0.7), o);
+  internal::InjectPeriodicSchurFailures(0);
+  ASSERT_TRUE(r.ok) << r.failure;
+  EXPECT_TRUE(HasCode(r.diagnostics, DiagnosticCode::kMultipliersSingleShot));
+  EXPECT_EQ(r.error_estimate_method, ErrorEstimateMethod::kLocalErrors);
+  EXPECT_LE(Error(r, Exact(1.3, 0.05, 0.7)), *r.error_estimate);
+  EXPECT_EQ(r.verdict, StabilityVerdict::kStable);
+}
+
 }  // namespace
 }  // namespace ltp
