@@ -437,25 +437,30 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid, const Floqu
   return s.str();
 }
 
-// Φ_{end−1} ⋯ Φ_begin (begin < end), its products through BLAS for large n (Eigen's own were
+// Φ_{end−1} ⋯ Φ_begin (begin < end), each factor plus `added`'s matrix of the same index when
+// given (the local errors' effects); its products through BLAS for large n (Eigen's own were
 // 55 ms for the 32 factors of a 250-state monodromy, BLAS 20 ms).
 Eigen::MatrixXd ProductOfFactors(const std::vector<Eigen::MatrixXd>& factors, size_t begin,
-                                 size_t end) {
-  Eigen::MatrixXd product = factors[begin], next(product.rows(), product.cols());
+                                 size_t end, const std::vector<Eigen::MatrixXd>* added = nullptr) {
+  auto factor = [&](size_t j) {
+    return added ? Eigen::MatrixXd(factors[j] + (*added)[j]) : factors[j];
+  };
+  Eigen::MatrixXd product = factor(begin), next(product.rows(), product.cols());
   for (size_t j = begin + 1; j < end; ++j) {
-    internal::MultiplyInto(factors[j], product, next);
+    internal::MultiplyInto(added ? factor(j) : factors[j], product, next);
     product.swap(next);
   }
   return product;
 }
 
-// The factors multiplied in consecutive groups of `r` (Φ_{r−1}⋯Φ_0 first; a shorter last group
-// when r does not divide K).
-std::vector<Eigen::MatrixXd> GroupedFactors(const std::vector<Eigen::MatrixXd>& factors, int r) {
+// The factors (plus `added`, as ProductOfFactors) multiplied in consecutive groups of `r`
+// (Φ_{r−1}⋯Φ_0 first; a shorter last group when r does not divide K).
+std::vector<Eigen::MatrixXd> GroupedFactors(const std::vector<Eigen::MatrixXd>& factors, int r,
+                                            const std::vector<Eigen::MatrixXd>* added = nullptr) {
   std::vector<Eigen::MatrixXd> groups;
-  for (size_t i = 0; i < factors.size(); i += static_cast<size_t>(r))
-    groups.push_back(
-        ProductOfFactors(factors, i, std::min(factors.size(), i + static_cast<size_t>(r))));
+  const size_t step = static_cast<size_t>(std::max(r, 1));
+  for (size_t i = 0; i < factors.size(); i += step)
+    groups.push_back(ProductOfFactors(factors, i, std::min(factors.size(), i + step), added));
   return groups;
 }
 
@@ -620,16 +625,7 @@ int FactorsPerForm(const internal::SegmentGrid& grid,
 LogEigenvalues MovedFactorLogs(const internal::SegmentGrid& grid, MultiplierMethod method,
                                int group, int n) {
   internal::SegmentGrid moved;
-  const size_t k = grid.factors.size(), r = static_cast<size_t>(std::max(group, 1));
-  Eigen::MatrixXd next(n, n);
-  for (size_t i = 0; i < k; i += r) {
-    Eigen::MatrixXd product = grid.factors[i] + grid.local_error_effects[i];
-    for (size_t j = i + 1; j < std::min(k, i + r); ++j) {
-      internal::MultiplyInto(grid.factors[j] + grid.local_error_effects[j], product, next);
-      product.swap(next);
-    }
-    moved.factors.push_back(std::move(product));
-  }
+  moved.factors = GroupedFactors(grid.factors, group, &grid.local_error_effects);
   return MultiplierLogs(moved, method, n);
 }
 
