@@ -68,12 +68,13 @@ void BindFloquetRun(py::class_<FloquetResult>& r) {
           "t_0 = 0 < ... < t_K = T");
 }
 
-// The verdict and the error estimate it rests on.
+// error_estimate_method's docstring, with the library's words for what each integrator carries.
 const std::string kEstimateMethodDoc =
     "'refined-run' (the difference to a second, tighter run that gives the numbers) or "
     "'local-errors' (one run: " +
     std::string(kLocalErrorSources) + ")";
 
+// The verdict and the error estimate it rests on.
 void BindFloquetVerdict(py::class_<FloquetResult>& r) {
   r.def_readonly("max_real_exponent", &FloquetResult::max_real_exponent,
                  "max Re λ (1/s), rigid-body modes excluded")
