@@ -442,12 +442,12 @@ std::string DescribeSegmentChoice(const internal::SegmentGrid& grid, const Floqu
 // 55 ms for the 32 factors of a 250-state monodromy, BLAS 20 ms).
 Eigen::MatrixXd ProductOfFactors(const std::vector<Eigen::MatrixXd>& factors, size_t begin,
                                  size_t end, const std::vector<Eigen::MatrixXd>* added = nullptr) {
-  auto factor = [&](size_t j) {
-    return added ? Eigen::MatrixXd(factors[j] + (*added)[j]) : factors[j];
-  };
-  Eigen::MatrixXd product = factor(begin), next(product.rows(), product.cols());
+  Eigen::MatrixXd product = factors[begin], sum, next(product.rows(), product.cols());
+  if (added) product += (*added)[begin];
   for (size_t j = begin + 1; j < end; ++j) {
-    internal::MultiplyInto(added ? factor(j) : factors[j], product, next);
+    if (added) sum = factors[j] + (*added)[j];
+    const Eigen::MatrixXd& factor = added ? sum : factors[j];  // a reference, not a copy
+    internal::MultiplyInto(factor, product, next);
     product.swap(next);
   }
   return product;
